@@ -1,0 +1,214 @@
+//! Errors of the mesh layer.
+
+use std::path::PathBuf;
+
+/// Everything that can be wrong with a mesh or with the input it was built from.
+///
+/// Every variant names where the problem is (polygon, vertex, edge, part, file), so that a
+/// user can find it in their own data.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// The mesh has no vertices or no polygons.
+    #[error("the mesh is empty ({vertices} vertices, {polygons} polygons)")]
+    Empty {
+        /// Number of vertices given.
+        vertices: usize,
+        /// Number of polygons given.
+        polygons: usize,
+    },
+    /// A vertex coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y})")]
+    NonFiniteVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+    },
+    /// The polygon storage is inconsistent (offsets not increasing, or not ending at the
+    /// number of indices).
+    #[error("polygon storage is inconsistent: {reason}")]
+    BadStorage {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A polygon has fewer than three vertices.
+    #[error("polygon {polygon} has {count} vertices; at least 3 are needed")]
+    TooFewVertices {
+        /// Polygon index.
+        polygon: usize,
+        /// Its number of vertices.
+        count: usize,
+    },
+    /// A polygon refers to a vertex that does not exist.
+    #[error(
+        "polygon {polygon} refers to vertex {vertex}, but the mesh has {vertex_count} vertices"
+    )]
+    VertexOutOfRange {
+        /// Polygon index.
+        polygon: usize,
+        /// The offending vertex index.
+        vertex: usize,
+        /// Number of vertices of the mesh.
+        vertex_count: usize,
+    },
+    /// A polygon lists the same vertex twice.
+    #[error("polygon {polygon} lists vertex {vertex} more than once")]
+    RepeatedVertex {
+        /// Polygon index.
+        polygon: usize,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// A polygon's vertex loop runs clockwise (its signed area is negative).
+    #[error("polygon {polygon} is clockwise (signed area {signed_area:e}); vertex loops must run counter-clockwise")]
+    Clockwise {
+        /// Polygon index.
+        polygon: usize,
+        /// Its signed area.
+        signed_area: f64,
+    },
+    /// A polygon has zero area (relative to its diameter squared).
+    #[error("polygon {polygon} has zero or negligible area ({area:e})")]
+    DegenerateArea {
+        /// Polygon index.
+        polygon: usize,
+        /// Its signed area.
+        area: f64,
+    },
+    /// Two edges of one polygon cross or touch away from their shared vertex.
+    #[error("polygon {polygon} intersects itself: its edges {edge_a} and {edge_b} (local numbering) cross")]
+    SelfIntersecting {
+        /// Polygon index.
+        polygon: usize,
+        /// Local index of the first edge (edge k joins local vertices k and k+1).
+        edge_a: usize,
+        /// Local index of the second edge.
+        edge_b: usize,
+    },
+    /// Two distinct vertices are closer than the tolerance.
+    #[error(
+        "vertices {a} and {b} are {distance:e} apart, closer than the tolerance {tolerance:e}"
+    )]
+    DuplicateVertices {
+        /// First vertex.
+        a: usize,
+        /// Second vertex.
+        b: usize,
+        /// Their distance.
+        distance: f64,
+        /// The tolerance in force.
+        tolerance: f64,
+    },
+    /// An edge is used by more than two polygons, or twice in the same direction.
+    #[error("edge ({a}, {b}) is used {count} times (polygons {polygons:?}); an edge may border at most two polygons, in opposite directions")]
+    OverusedEdge {
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+        /// How many polygons use it.
+        count: usize,
+        /// The polygons using it.
+        polygons: Vec<usize>,
+    },
+    /// An edge of one polygon overlaps an edge of another polygon without sharing its
+    /// vertices (a hanging node that the neighbour does not list as a vertex).
+    #[error("non-conforming edges: edge ({a0}, {a1}) of polygon {polygon_a} overlaps edge ({b0}, {b1}) of polygon {polygon_b} without sharing its vertices")]
+    NonConforming {
+        /// Polygon owning the first edge.
+        polygon_a: usize,
+        /// First vertex of the first edge.
+        a0: usize,
+        /// Second vertex of the first edge.
+        a1: usize,
+        /// Polygon owning the second edge.
+        polygon_b: usize,
+        /// First vertex of the second edge.
+        b0: usize,
+        /// Second vertex of the second edge.
+        b1: usize,
+    },
+    /// Polygons overlap (an interior point of one lies inside another).
+    #[error("polygons {a} and {b} overlap")]
+    Overlapping {
+        /// First polygon.
+        a: usize,
+        /// Second polygon.
+        b: usize,
+    },
+    /// A boundary part names an edge that is not an edge of the mesh.
+    #[error("boundary part '{part}' names ({a}, {b}), which is not an edge of the mesh")]
+    UnknownEdge {
+        /// The part's name.
+        part: String,
+        /// First vertex.
+        a: usize,
+        /// Second vertex.
+        b: usize,
+    },
+    /// A boundary part names an interior edge.
+    #[error("boundary part '{part}' names edge ({a}, {b}), which is interior (shared by polygons {left} and {right})")]
+    InteriorEdgeInPart {
+        /// The part's name.
+        part: String,
+        /// First vertex.
+        a: usize,
+        /// Second vertex.
+        b: usize,
+        /// One adjacent polygon.
+        left: usize,
+        /// The other adjacent polygon.
+        right: usize,
+    },
+    /// Two boundary parts share a name.
+    #[error("boundary part '{part}' is defined twice")]
+    DuplicatePart {
+        /// The part's name.
+        part: String,
+    },
+    /// A boundary part with this name does not exist.
+    #[error("no boundary part named '{part}'; the mesh has {available:?}")]
+    UnknownPart {
+        /// The requested name.
+        part: String,
+        /// The names that exist.
+        available: Vec<String>,
+    },
+    /// A generator was given parameters it cannot use.
+    #[error("generator '{generator}': {reason}")]
+    BadGeneratorParameter {
+        /// The generator's name.
+        generator: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Interface node insertion failed.
+    #[error("interface between '{part_a}' and '{part_b}': {reason}")]
+    Interface {
+        /// Part on the first mesh.
+        part_a: String,
+        /// Part on the second mesh.
+        part_b: String,
+        /// What went wrong.
+        reason: String,
+    },
+    /// Reading a mesh file failed.
+    #[error("{}: {reason}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong (with the entity or line where known).
+        reason: String,
+    },
+    /// Writing a file failed.
+    #[error("cannot write {}: {reason}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
+}

@@ -1,0 +1,30 @@
+//! Polygonal meshes for the lowest-order virtual element method.
+//!
+//! A [`Mesh`] holds vertex coordinates, polygons as counter-clockwise vertex loops (compact
+//! offsets + indices storage), the edges derived from them with their one or two adjacent
+//! polygons, and named boundary parts made of boundary edges. Hanging nodes are plain vertices:
+//! a polygon may have collinear consecutive vertices. Every constructor validates.
+//!
+//! ```
+//! use vem_mesh::{Mesh, PartSpec, Point};
+//! let vertices = vec![
+//!     Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0),
+//! ];
+//! let mesh = Mesh::from_polygons(vertices, &[vec![0, 1, 2, 3]], vec![])?;
+//! assert_eq!(mesh.area(0), 1.0);
+//! # Ok::<(), vem_mesh::MeshError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod error;
+pub mod geometry;
+mod mesh;
+pub mod validate;
+
+pub use error::MeshError;
+pub use mesh::{BoundaryPart, Edge, Mesh, PartSpec};
+
+/// A point of the plane.
+pub type Point = nalgebra::Point2<f64>;
+/// A vector of the plane.
+pub type Vector = nalgebra::Vector2<f64>;

@@ -1,0 +1,482 @@
+//! The polygonal mesh: vertices, counter-clockwise polygons in compact storage, derived edges
+//! and named boundary parts.
+
+use std::collections::HashMap;
+
+use crate::{geometry, validate, MeshError, Point};
+
+/// An edge of the mesh, derived from the polygons.
+///
+/// `vertices` are in the order in which the polygon `left` traverses the edge (counter-clockwise),
+/// so the polygon lies to the left of `vertices[0] -> vertices[1]`; `right` is the polygon on the
+/// other side, `None` on the boundary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Edge {
+    /// End vertices, in the direction of the `left` polygon's counter-clockwise loop.
+    pub vertices: [usize; 2],
+    /// The polygon that traverses the edge as `vertices[0] -> vertices[1]`.
+    pub left: usize,
+    /// The polygon on the other side, if any.
+    pub right: Option<usize>,
+}
+
+impl Edge {
+    /// True when the edge borders only one polygon.
+    pub fn is_boundary(&self) -> bool {
+        self.right.is_none()
+    }
+}
+
+/// A named set of boundary edges ("bottom", "contact", ...).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BoundaryPart {
+    /// The part's name.
+    pub name: String,
+    /// Indices into [`Mesh::edges`], all boundary edges, in the order given.
+    pub edges: Vec<usize>,
+}
+
+/// A boundary part as given to a constructor: a name and edges as vertex pairs (either order).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PartSpec {
+    /// The part's name.
+    pub name: String,
+    /// Its edges, each as the two end vertices.
+    pub edges: Vec<[usize; 2]>,
+}
+
+impl PartSpec {
+    /// A part named `name` made of `edges`.
+    pub fn new(name: impl Into<String>, edges: Vec<[usize; 2]>) -> Self {
+        Self {
+            name: name.into(),
+            edges,
+        }
+    }
+}
+
+/// A validated polygonal mesh.
+///
+/// Polygons are counter-clockwise vertex loops stored compactly: polygon `p` is
+/// `polygon_vertex_indices()[offsets[p]..offsets[p + 1]]`. Consecutive collinear vertices are
+/// allowed (hanging nodes are plain vertices). A `Mesh` is immutable once built: every
+/// constructor validates, so any `Mesh` value satisfies the checks of [`crate::validate`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    vertices: Vec<Point>,
+    polygon_offsets: Vec<usize>,
+    polygon_vertices: Vec<usize>,
+    /// Edge index of local edge k of each polygon (k joins local vertices k and k + 1),
+    /// stored parallel to `polygon_vertices`.
+    polygon_edges: Vec<usize>,
+    edges: Vec<Edge>,
+    parts: Vec<BoundaryPart>,
+}
+
+impl Mesh {
+    /// Builds and validates a mesh from polygons given as vertex loops.
+    ///
+    /// ```
+    /// use vem_mesh::{Mesh, PartSpec, Point};
+    /// // Two unit squares side by side.
+    /// let vertices = vec![
+    ///     Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(2.0, 0.0),
+    ///     Point::new(0.0, 1.0), Point::new(1.0, 1.0), Point::new(2.0, 1.0),
+    /// ];
+    /// let polygons = vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]];
+    /// let bottom = PartSpec::new("bottom", vec![[0, 1], [1, 2]]);
+    /// let mesh = Mesh::from_polygons(vertices, &polygons, vec![bottom])?;
+    /// assert_eq!(mesh.n_edges(), 7);
+    /// assert_eq!(mesh.part("bottom")?.edges.len(), 2);
+    /// # Ok::<(), vem_mesh::MeshError>(())
+    /// ```
+    pub fn from_polygons(
+        vertices: Vec<Point>,
+        polygons: &[Vec<usize>],
+        parts: Vec<PartSpec>,
+    ) -> Result<Self, MeshError> {
+        let mut offsets = Vec::with_capacity(polygons.len() + 1);
+        offsets.push(0);
+        let mut indices = Vec::with_capacity(polygons.iter().map(Vec::len).sum());
+        for polygon in polygons {
+            indices.extend_from_slice(polygon);
+            offsets.push(indices.len());
+        }
+        Self::from_compact(vertices, offsets, indices, parts)
+    }
+
+    /// Builds and validates a mesh from compact storage: `offsets` has one entry per polygon
+    /// plus one, starts at 0 and ends at `indices.len()`.
+    pub fn from_compact(
+        vertices: Vec<Point>,
+        polygon_offsets: Vec<usize>,
+        polygon_vertices: Vec<usize>,
+        parts: Vec<PartSpec>,
+    ) -> Result<Self, MeshError> {
+        validate::check_storage(&vertices, &polygon_offsets, &polygon_vertices)?;
+        let (edges, polygon_edges) = derive_edges(&polygon_offsets, &polygon_vertices)?;
+        let mut mesh = Mesh {
+            vertices,
+            polygon_offsets,
+            polygon_vertices,
+            polygon_edges,
+            edges,
+            parts: Vec::new(),
+        };
+        mesh.parts = resolve_parts(&mesh, parts)?;
+        validate::validate(&mesh)?;
+        Ok(mesh)
+    }
+
+    /// Number of vertices.
+    pub fn n_vertices(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Number of polygons.
+    pub fn n_polygons(&self) -> usize {
+        self.polygon_offsets.len() - 1
+    }
+
+    /// Number of edges.
+    pub fn n_edges(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// All vertex coordinates.
+    pub fn vertices(&self) -> &[Point] {
+        &self.vertices
+    }
+
+    /// Coordinates of vertex `v`.
+    pub fn vertex(&self, v: usize) -> Point {
+        self.vertices[v]
+    }
+
+    /// Vertex indices of polygon `p`, counter-clockwise.
+    pub fn polygon(&self, p: usize) -> &[usize] {
+        &self.polygon_vertices[self.polygon_offsets[p]..self.polygon_offsets[p + 1]]
+    }
+
+    /// Iterator over all polygons' vertex loops.
+    pub fn polygons(&self) -> impl ExactSizeIterator<Item = &[usize]> + '_ {
+        (0..self.n_polygons()).map(move |p| self.polygon(p))
+    }
+
+    /// Coordinates of the vertices of polygon `p`, counter-clockwise.
+    pub fn polygon_points(&self, p: usize) -> Vec<Point> {
+        self.polygon(p).iter().map(|&v| self.vertices[v]).collect()
+    }
+
+    /// Edge indices of polygon `p`: entry k is the edge joining its local vertices k and k + 1.
+    pub fn polygon_edges(&self, p: usize) -> &[usize] {
+        &self.polygon_edges[self.polygon_offsets[p]..self.polygon_offsets[p + 1]]
+    }
+
+    /// The compact offsets (length `n_polygons() + 1`).
+    pub fn polygon_offsets(&self) -> &[usize] {
+        &self.polygon_offsets
+    }
+
+    /// The compact vertex indices of all polygons, concatenated.
+    pub fn polygon_vertex_indices(&self) -> &[usize] {
+        &self.polygon_vertices
+    }
+
+    /// All edges.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// Edge `e`.
+    pub fn edge(&self, e: usize) -> &Edge {
+        &self.edges[e]
+    }
+
+    /// Indices of the boundary edges.
+    pub fn boundary_edges(&self) -> impl Iterator<Item = usize> + '_ {
+        self.edges
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.is_boundary())
+            .map(|(i, _)| i)
+    }
+
+    /// All named boundary parts.
+    pub fn parts(&self) -> &[BoundaryPart] {
+        &self.parts
+    }
+
+    /// Names of the boundary parts.
+    pub fn part_names(&self) -> Vec<String> {
+        self.parts.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// The boundary part named `name`; the error lists the parts that exist.
+    pub fn part(&self, name: &str) -> Result<&BoundaryPart, MeshError> {
+        self.parts
+            .iter()
+            .find(|p| p.name == name)
+            .ok_or_else(|| MeshError::UnknownPart {
+                part: name.to_string(),
+                available: self.part_names(),
+            })
+    }
+
+    /// The distinct vertices of part `name`, sorted by index.
+    pub fn part_vertices(&self, name: &str) -> Result<Vec<usize>, MeshError> {
+        let part = self.part(name)?;
+        let mut vertices: Vec<usize> = part
+            .edges
+            .iter()
+            .flat_map(|&e| self.edges[e].vertices)
+            .collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        Ok(vertices)
+    }
+
+    /// A copy of this mesh with one more boundary part, made of the boundary edges for which
+    /// `select(a, b)` is true (a, b: the edge's end points).
+    pub fn with_part_where(
+        &self,
+        name: &str,
+        mut select: impl FnMut(Point, Point) -> bool,
+    ) -> Result<Self, MeshError> {
+        if self.parts.iter().any(|p| p.name == name) {
+            return Err(MeshError::DuplicatePart {
+                part: name.to_string(),
+            });
+        }
+        let edges: Vec<usize> = self
+            .boundary_edges()
+            .filter(|&e| {
+                let [a, b] = self.edges[e].vertices;
+                select(self.vertices[a], self.vertices[b])
+            })
+            .collect();
+        let mut mesh = self.clone();
+        mesh.parts.push(BoundaryPart {
+            name: name.to_string(),
+            edges,
+        });
+        Ok(mesh)
+    }
+
+    /// The part specifications of this mesh (vertex pairs), e.g. to rebuild it after a change.
+    pub fn part_specs(&self) -> Vec<PartSpec> {
+        self.parts
+            .iter()
+            .map(|part| PartSpec {
+                name: part.name.clone(),
+                edges: part.edges.iter().map(|&e| self.edges[e].vertices).collect(),
+            })
+            .collect()
+    }
+
+    /// Area of polygon `p`.
+    pub fn area(&self, p: usize) -> f64 {
+        geometry::signed_area(&self.polygon_points(p))
+    }
+
+    /// Centroid of polygon `p`.
+    pub fn centroid(&self, p: usize) -> Point {
+        geometry::centroid(&self.polygon_points(p))
+    }
+
+    /// Diameter h_T of polygon `p`.
+    pub fn diameter(&self, p: usize) -> f64 {
+        geometry::diameter(&self.polygon_points(p))
+    }
+
+    /// Mesh size h: the largest polygon diameter.
+    pub fn mesh_size(&self) -> f64 {
+        (0..self.n_polygons())
+            .map(|p| self.diameter(p))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Derives the edges from the polygon loops; an edge used twice in the same direction or by
+/// more than two polygons is an error.
+fn derive_edges(
+    offsets: &[usize],
+    indices: &[usize],
+) -> Result<(Vec<Edge>, Vec<usize>), MeshError> {
+    let mut edge_of_pair: HashMap<(usize, usize), usize> = HashMap::with_capacity(indices.len());
+    let mut edges: Vec<Edge> = Vec::with_capacity(indices.len() / 2 + 16);
+    let mut polygon_edges = vec![0; indices.len()];
+    for p in 0..offsets.len() - 1 {
+        let loop_ = &indices[offsets[p]..offsets[p + 1]];
+        let n = loop_.len();
+        for k in 0..n {
+            let (a, b) = (loop_[k], loop_[(k + 1) % n]);
+            let key = (a.min(b), a.max(b));
+            let e = match edge_of_pair.get(&key) {
+                None => {
+                    edges.push(Edge {
+                        vertices: [a, b],
+                        left: p,
+                        right: None,
+                    });
+                    edge_of_pair.insert(key, edges.len() - 1);
+                    edges.len() - 1
+                }
+                Some(&e) => {
+                    let edge = &mut edges[e];
+                    if edge.right.is_some() || edge.vertices != [b, a] {
+                        let mut polygons = vec![edge.left];
+                        polygons.extend(edge.right);
+                        polygons.push(p);
+                        return Err(MeshError::OverusedEdge {
+                            a,
+                            b,
+                            count: polygons.len(),
+                            polygons,
+                        });
+                    }
+                    edge.right = Some(p);
+                    e
+                }
+            };
+            polygon_edges[offsets[p] + k] = e;
+        }
+    }
+    Ok((edges, polygon_edges))
+}
+
+/// Turns part specifications (vertex pairs) into edge indices, checking that each names a
+/// boundary edge and that names are unique.
+fn resolve_parts(mesh: &Mesh, specs: Vec<PartSpec>) -> Result<Vec<BoundaryPart>, MeshError> {
+    let mut edge_of_pair: HashMap<(usize, usize), usize> = HashMap::new();
+    for e in mesh.boundary_edges() {
+        let [a, b] = mesh.edges[e].vertices;
+        edge_of_pair.insert((a.min(b), a.max(b)), e);
+    }
+    let mut parts: Vec<BoundaryPart> = Vec::with_capacity(specs.len());
+    for spec in specs {
+        if parts.iter().any(|p| p.name == spec.name) {
+            return Err(MeshError::DuplicatePart { part: spec.name });
+        }
+        let mut edges = Vec::with_capacity(spec.edges.len());
+        for [a, b] in spec.edges {
+            match edge_of_pair.get(&(a.min(b), a.max(b))) {
+                Some(&e) => edges.push(e),
+                None => {
+                    let interior = mesh
+                        .edges
+                        .iter()
+                        .find(|edge| edge.vertices == [a, b] || edge.vertices == [b, a]);
+                    return Err(match interior {
+                        Some(edge) => MeshError::InteriorEdgeInPart {
+                            part: spec.name,
+                            a,
+                            b,
+                            left: edge.left,
+                            right: edge.right.unwrap_or(edge.left),
+                        },
+                        None => MeshError::UnknownEdge {
+                            part: spec.name,
+                            a,
+                            b,
+                        },
+                    });
+                }
+            }
+        }
+        parts.push(BoundaryPart {
+            name: spec.name,
+            edges,
+        });
+    }
+    Ok(parts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_squares() -> (Vec<Point>, Vec<Vec<usize>>) {
+        let vertices = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(0.0, 1.0),
+            Point::new(1.0, 1.0),
+            Point::new(2.0, 1.0),
+        ];
+        (vertices, vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]])
+    }
+
+    #[test]
+    fn edges_and_adjacency_are_derived() {
+        let (vertices, polygons) = two_squares();
+        let mesh = Mesh::from_polygons(vertices, &polygons, vec![]).unwrap();
+        assert_eq!(mesh.n_edges(), 7);
+        assert_eq!(mesh.boundary_edges().count(), 6);
+        let shared: Vec<&Edge> = mesh.edges().iter().filter(|e| !e.is_boundary()).collect();
+        assert_eq!(shared.len(), 1);
+        assert_eq!(shared[0].vertices, [1, 4]);
+        assert_eq!((shared[0].left, shared[0].right), (0, Some(1)));
+        // Euler: V - E + F = 1 for a connected planar mesh without holes.
+        assert_eq!(
+            mesh.n_vertices() as i64 - mesh.n_edges() as i64 + mesh.n_polygons() as i64,
+            1
+        );
+        assert_eq!(mesh.mesh_size(), 2f64.sqrt());
+    }
+
+    #[test]
+    fn interior_edge_in_part_is_rejected() {
+        let (vertices, polygons) = two_squares();
+        let err = Mesh::from_polygons(
+            vertices,
+            &polygons,
+            vec![PartSpec::new("mid", vec![[4, 1]])],
+        )
+        .unwrap_err();
+        assert!(matches!(err, MeshError::InteriorEdgeInPart { .. }), "{err}");
+    }
+
+    #[test]
+    fn unknown_part_lists_existing_parts() {
+        let (vertices, polygons) = two_squares();
+        let mesh = Mesh::from_polygons(
+            vertices,
+            &polygons,
+            vec![PartSpec::new("bottom", vec![[0, 1], [1, 2]])],
+        )
+        .unwrap();
+        let err = mesh.part("top").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "no boundary part named 'top'; the mesh has [\"bottom\"]"
+        );
+        assert_eq!(mesh.part_vertices("bottom").unwrap(), vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn part_where_selects_boundary_edges() {
+        let (vertices, polygons) = two_squares();
+        let mesh = Mesh::from_polygons(vertices, &polygons, vec![]).unwrap();
+        let mesh = mesh
+            .with_part_where("top", |a, b| a.y == 1.0 && b.y == 1.0)
+            .unwrap();
+        assert_eq!(mesh.part_vertices("top").unwrap(), vec![3, 4, 5]);
+    }
+
+    #[test]
+    fn same_direction_edge_is_overused() {
+        let (vertices, _) = two_squares();
+        // Second square traverses 1 -> 4 like the first: overlapping polygons.
+        let polygons = vec![vec![0, 1, 4, 3], vec![1, 4, 5, 2]];
+        let err = Mesh::from_polygons(vertices, &polygons, vec![]).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                MeshError::OverusedEdge { .. } | MeshError::Clockwise { .. }
+            ),
+            "{err}"
+        );
+    }
+}

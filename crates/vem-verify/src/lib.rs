@@ -1,0 +1,2 @@
+//! vem-verify: work in progress; see the issue tracker.
+#![deny(missing_docs)]
