@@ -17,6 +17,7 @@
 #![deny(missing_docs)]
 
 mod error;
+pub mod generators;
 pub mod geometry;
 mod mesh;
 pub mod validate;

@@ -1,2 +1,99 @@
-//! vem-space: work in progress; see the issue tracker.
+//! The lowest-order virtual element on one polygon: geometry, energy projection,
+//! stabilisation, load term.
+//!
+//! This is the place where a contributor adds a new element type: implement [`ElementSpace`]
+//! for it. The global assembly (`vem-elastic`) sees elements only through that trait.
+//!
+//! Conventions used everywhere in the project:
+//! - local degrees of freedom are vertex values, interleaved by component:
+//!   `[u_x(v0), u_y(v0), u_x(v1), u_y(v1), ...]` (2n for a polygon with n vertices);
+//! - strains and stresses in Voigt notation `[xx, yy, xy]` with engineering shear strain
+//!   `gamma_xy = 2 eps_xy`, so that `sigma = C eps` with a symmetric 3x3 `C`.
 #![deny(missing_docs)]
+
+mod error;
+mod material;
+
+pub use error::SpaceError;
+pub use material::ElasticityTensor;
+
+use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};
+pub use vem_mesh::{Point, Vector};
+
+/// The local stiffness of one polygon, split into its two parts
+/// `K_T = consistency + stabilisation` (spec section 2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LocalStiffness {
+    /// `a_T(Pi u, Pi v)`: the consistency part, exact on P1 (consistency (3.1)).
+    pub consistency: DMatrix<f64>,
+    /// `S_T((I - Pi) u, (I - Pi) v)`: the stabilisation part, zero on P1 fields.
+    pub stabilisation: DMatrix<f64>,
+}
+
+impl LocalStiffness {
+    /// The local matrix `consistency + stabilisation`.
+    pub fn total(&self) -> DMatrix<f64> {
+        &self.consistency + &self.stabilisation
+    }
+}
+
+/// The energy projection `Pi: V_h(T) -> P1(T)^2` of one polygon as a linear map of the local
+/// degrees of freedom: `Pi v (x) = value_at_reference + gradient (x - reference)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnergyProjection {
+    /// The point about which the projected polynomial is expanded.
+    pub reference: Point,
+    /// Rows: `[value_x, value_y, d_x v_x, d_y v_x, d_x v_y, d_y v_y]` of `Pi v`, as a linear map of
+    /// the 2n local DOFs (a 6 x 2n matrix).
+    pub coefficients: DMatrix<f64>,
+}
+
+impl EnergyProjection {
+    /// The projected polynomial of the DOF vector `dofs`, evaluated at `x`.
+    pub fn evaluate(&self, dofs: &DVector<f64>, x: Point) -> Vector {
+        let c = &self.coefficients * dofs;
+        let d = x - self.reference;
+        Vector::new(
+            c[0] + c[2] * d.x + c[3] * d.y,
+            c[1] + c[4] * d.x + c[5] * d.y,
+        )
+    }
+
+    /// The (constant) gradient of `Pi v`: entry (i, j) is d_j (Pi v)_i.
+    pub fn gradient(&self, dofs: &DVector<f64>) -> Matrix2<f64> {
+        let c = &self.coefficients * dofs;
+        Matrix2::new(c[2], c[3], c[4], c[5])
+    }
+
+    /// The (constant) strain of `Pi v` in Voigt notation `[xx, yy, 2 xy]`.
+    pub fn strain(&self, dofs: &DVector<f64>) -> SMatrix<f64, 3, 1> {
+        let g = self.gradient(dofs);
+        SMatrix::<f64, 3, 1>::new(g[(0, 0)], g[(1, 1)], g[(0, 1)] + g[(1, 0)])
+    }
+}
+
+/// A local element space on one polygon: what a contributor implements to add an element type.
+///
+/// Implementations must be thread-safe: assembly calls them from many threads at once.
+pub trait ElementSpace: Send + Sync {
+    /// A short name for reports ("vem1", "p1", ...).
+    fn name(&self) -> &str;
+
+    /// The local stiffness of the polygon with vertices `polygon` (counter-clockwise) and
+    /// material `material`, split into consistency and stabilisation.
+    fn stiffness(
+        &self,
+        polygon: &[Point],
+        material: &ElasticityTensor,
+    ) -> Result<LocalStiffness, SpaceError>;
+
+    /// The energy projection of the polygon, for post-processing (strain, stress, errors).
+    fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError>;
+
+    /// The local load vector `l_T^h(v)` of a body force `f` (assumption A3), length 2n.
+    fn body_load(
+        &self,
+        polygon: &[Point],
+        body_force: &(dyn Fn(Point) -> Vector + Sync),
+    ) -> Result<DVector<f64>, SpaceError>;
+}
