@@ -19,7 +19,10 @@
 mod error;
 pub mod generators;
 pub mod geometry;
+pub mod interface;
+pub mod io;
 mod mesh;
+pub mod quality;
 pub mod validate;
 
 pub use error::MeshError;

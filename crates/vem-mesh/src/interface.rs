@@ -1,0 +1,1 @@
+//! Interface node insertion: makes two facing boundary parts node-to-node.
