@@ -26,6 +26,9 @@ pub mod quality;
 pub mod validate;
 
 pub use error::MeshError;
+pub use interface::{
+    boundary_chain, insert_interface_nodes, ChainNode, Interface, InterfaceOptions, InterfacePair,
+};
 pub use mesh::{BoundaryPart, Edge, Mesh, PartSpec};
 
 /// A point of the plane.
