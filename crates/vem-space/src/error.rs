@@ -26,4 +26,40 @@ pub enum SpaceError {
         /// y of the evaluation point.
         y: f64,
     },
+    /// The element type cannot handle this polygon (e.g. a P1 triangle given a quadrilateral).
+    #[error("element {element} does not support a polygon with {vertices} vertices")]
+    UnsupportedPolygon {
+        /// Name of the element type.
+        element: &'static str,
+        /// Number of vertices of the polygon.
+        vertices: usize,
+    },
+    /// An edge (of a Neumann boundary) has zero length or non-finite end points.
+    #[error("degenerate edge from ({x0}, {y0}) to ({x1}, {y1})")]
+    DegenerateEdge {
+        /// x of the first end point.
+        x0: f64,
+        /// y of the first end point.
+        y0: f64,
+        /// x of the second end point.
+        x1: f64,
+        /// y of the second end point.
+        y1: f64,
+    },
+    /// A quadrature rule with this number of points is not tabulated.
+    #[error("no {rule} rule with {points} points (supported: 1 to {max})")]
+    UnsupportedQuadrature {
+        /// Which family of rules.
+        rule: &'static str,
+        /// Number of points asked for.
+        points: usize,
+        /// Largest tabulated number of points.
+        max: usize,
+    },
+    /// The stabilisation settings are not admissible (non-positive or non-finite scale).
+    #[error("invalid stabilisation: {reason}")]
+    InvalidStabilisation {
+        /// What is wrong.
+        reason: String,
+    },
 }

@@ -9,13 +9,47 @@
 //!   `[u_x(v0), u_y(v0), u_x(v1), u_y(v1), ...]` (2n for a polygon with n vertices);
 //! - strains and stresses in Voigt notation `[xx, yy, xy]` with engineering shear strain
 //!   `gamma_xy = 2 eps_xy`, so that `sigma = C eps` with a symmetric 3x3 `C`.
+//!
+//! Element types: [`LowestOrderVem`] ("vem1", any polygon, stabilisation chosen by
+//! [`Stabilisation`]) and [`LinearTriangle`] ("p1", the classical linear triangle, an
+//! independent check: on a triangle the two agree to round-off). Loads: [`ElementSpace::body_load`]
+//! and [`edge_traction_load`]; quadrature rules for others to reuse in [`quadrature`].
+//!
+//! ```
+//! use nalgebra::DVector;
+//! use vem_space::{ElasticityTensor, ElementSpace, LowestOrderVem, Point};
+//! // A square with a hanging node on its right edge: five vertices, ten DOFs.
+//! let polygon = [
+//!     Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 0.5),
+//!     Point::new(1.0, 1.0), Point::new(0.0, 1.0),
+//! ];
+//! let material = ElasticityTensor::isotropic(2.0, 1.0)?;
+//! let element = LowestOrderVem::default();
+//! let local = element.stiffness(&polygon, &material)?;
+//! // The linear field u = (x, 0) has strain (1, 0, 0) and energy |T| C_11 = 4.
+//! let u = DVector::from_fn(10, |i, _| if i % 2 == 0 { polygon[i / 2].x } else { 0.0 });
+//! let energy = u.dot(&(local.total() * &u));
+//! assert!((energy - 4.0).abs() < 1e-13);
+//! // ... and the projection reproduces it.
+//! let projection = element.projection(&polygon)?;
+//! assert!((projection.strain(&u) - nalgebra::Vector3::new(1.0, 0.0, 0.0)).norm() < 1e-14);
+//! # Ok::<(), vem_space::SpaceError>(())
+//! ```
 #![deny(missing_docs)]
 
 mod error;
+mod load;
 mod material;
+mod p1;
+mod polygon;
+pub mod quadrature;
+mod vem;
 
 pub use error::SpaceError;
+pub use load::edge_traction_load;
 pub use material::ElasticityTensor;
+pub use p1::LinearTriangle;
+pub use vem::{LowestOrderVem, Stabilisation, StabilisationScaling};
 
 use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};
 pub use vem_mesh::{Point, Vector};

@@ -1,6 +1,6 @@
 //! The elasticity tensor in Voigt notation.
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 
 use crate::SpaceError;
 
@@ -79,6 +79,12 @@ impl ElasticityTensor {
     pub fn shear_modulus(&self) -> f64 {
         self.voigt[(2, 2)]
     }
+
+    /// The stress `sigma = C eps` in Voigt notation `[xx, yy, xy]` of a strain
+    /// `[eps_xx, eps_yy, 2 eps_xy]` (engineering shear).
+    pub fn stress(&self, strain: &Vector3<f64>) -> Vector3<f64> {
+        self.voigt * strain
+    }
 }
 
 #[cfg(test)]
@@ -90,6 +96,14 @@ mod tests {
         let c = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
         assert_eq!(c.voigt()[(0, 1)], 2.0);
         assert_eq!(c.trace(), 2.0 * 2.0 + 5.0 * 1.0);
+    }
+
+    #[test]
+    fn stress_of_the_pt0a_strain() {
+        // PT0a (manufactured.md): eps = (1/5, 2/5, shear 1/10) -> sigma = (1.6, 2.0, 0.2).
+        let c = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+        let sigma = c.stress(&Vector3::new(0.2, 0.4, 0.2));
+        assert!((sigma - Vector3::new(1.6, 2.0, 0.2)).norm() < 1e-15);
     }
 
     #[test]

@@ -1,0 +1,265 @@
+//! The lowest-order (k = 1) virtual element for linear elasticity (spec section 2).
+//!
+//! On a polygon `T` with vertices `x_0 .. x_{n-1}` (counter-clockwise), `x_bar` their mean and
+//! `|T|` the area:
+//!
+//! - **Energy projection.** Since `v` is linear on every edge, the mean gradient is exact from
+//!   the vertex values: `G = (1/|T|) int_{dT} v (x) nu ds = sum_k v_k (x) w_k` with
+//!   `w_k = (|e_{k-1}| nu_{k-1} + |e_k| nu_k) / (2 |T|)` (`e_{k-1}`, `e_k` the two edges at `x_k`).
+//!   Then `Pi v (x) = v_bar + G (x - x_bar)` with `v_bar` the mean of the vertex values: the
+//!   symmetric part of `G` is the mean strain, so `a_T(Pi v, p) = a_T(v, p)` for every
+//!   `p in P1^2` (consistency (3.1)); the vertex-mean condition and the skew part of `G` fix the
+//!   rigid motions, so `Pi p = p` for `p in P1^2`. The expansion point is `x_bar`
+//!   ([`crate::EnergyProjection::reference`]).
+//! - **Consistency part** `K_c = |T| B^T C B`, `B` (3 x 2n) the Voigt strain of `Pi`.
+//! - **Stabilisation part** `K_s = (I - Pi_dof)^T S (I - Pi_dof)`, `Pi_dof = D Pi` with `D`
+//!   (2n x 6) the P1 basis `(1,0), (0,1), (x - x_bar) e_x, (y - y_bar) e_x, (x - x_bar) e_y,
+//!   (y - y_bar) e_y` evaluated at the vertices; `S` from [`Stabilisation`]. `K_s` vanishes on
+//!   P1 fields, so (3.1) holds for `K_c + K_s`.
+//! - **Load** (A3) `l_T^h(v) = |T| f_bar . v_bar`, `f_bar` the cell mean of `f` by the degree-5
+//!   rule on the centroid fan ([`crate::quadrature::polygon_rule`]): every vertex receives
+//!   `|T| f_bar / n`.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::polygon::PolygonGeometry;
+use crate::quadrature::{polygon_rule, TriangleRule};
+use crate::{
+    ElasticityTensor, ElementSpace, EnergyProjection, LocalStiffness, Point, SpaceError, Vector,
+};
+
+/// Which material constant scales the "dofi-dofi" stabilisation `S = alpha I`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StabilisationScaling {
+    /// `alpha = scale * trace(C)` (Voigt trace, `2 lambda + 5 mu` for an isotropic material).
+    /// Contains lambda: stiffens the non-polynomial modes like lambda (spec section 9).
+    #[default]
+    TraceOfC,
+    /// `alpha = scale * 5 C_33` (`5 mu`): the value `trace(C)` takes for an isotropic material
+    /// with lambda = 0, so the two scalings agree there and differ only through lambda.
+    ShearModulus,
+}
+
+/// The stabilisation `S_T((I - Pi) u, (I - Pi) v) = (I - Pi_dof)^T S (I - Pi_dof)` of
+/// [`LowestOrderVem`].
+///
+/// Dimensions: in 2D `a_T(phi_i, phi_i) ~ C |T| / h^2 ~ C`, so `S` is a material constant times a
+/// dimensionless matrix and needs no mesh-size factor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stabilisation {
+    /// `S = alpha I` ("dofi-dofi", Euclidean product of the DOF vectors), `alpha` from `scaling`
+    /// times `scale`. With [`Stabilisation::DEFAULT_SCALE`] = 1/8 and [`StabilisationScaling::TraceOfC`],
+    /// `alpha = trace(C)/8` is close to the mean diagonal entry of `K_c` on a square,
+    /// `(C_11 + C_22 + 2 C_33)/8`.
+    DofiDofi {
+        /// The material constant.
+        scaling: StabilisationScaling,
+        /// The dimensionless factor (finite, positive).
+        scale: f64,
+    },
+    /// The "D-recipe" of Beirão da Veiga, Dassi and Russo (2017): `S` diagonal with
+    /// `S_ii = max(K_c,ii, floor)`, `floor = DRECIPE_FLOOR * trace(C)`. Adapts to the element
+    /// shape and to the number of vertices; no parameter.
+    DRecipe,
+}
+
+impl Stabilisation {
+    /// The default `scale` of [`Stabilisation::DofiDofi`].
+    pub const DEFAULT_SCALE: f64 = 0.125;
+    /// The floor of the D-recipe diagonal, relative to `trace(C)` (only guards against a
+    /// vanishing diagonal entry; `K_c,ii > 0` on every valid polygon).
+    pub const DRECIPE_FLOOR: f64 = 1e-6;
+
+    /// `DofiDofi` with `scaling` and the default scale 1/8.
+    pub fn dofi_dofi(scaling: StabilisationScaling) -> Self {
+        Self::DofiDofi {
+            scaling,
+            scale: Self::DEFAULT_SCALE,
+        }
+    }
+
+    /// Checks the settings (a `DofiDofi` scale must be finite and positive).
+    pub fn validate(&self) -> Result<(), SpaceError> {
+        match *self {
+            Self::DofiDofi { scale, .. } if !(scale.is_finite() && scale > 0.0) => {
+                Err(SpaceError::InvalidStabilisation {
+                    reason: format!("the dofi-dofi scale must be finite and positive, got {scale}"),
+                })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The diagonal of `S` for a polygon with consistency matrix `consistency`.
+    fn diagonal(&self, material: &ElasticityTensor, consistency: &DMatrix<f64>) -> DVector<f64> {
+        let dofs = consistency.nrows();
+        match *self {
+            Self::DofiDofi { scaling, scale } => {
+                let constant = match scaling {
+                    StabilisationScaling::TraceOfC => material.trace(),
+                    StabilisationScaling::ShearModulus => 5.0 * material.shear_modulus(),
+                };
+                DVector::from_element(dofs, scale * constant)
+            }
+            Self::DRecipe => {
+                let floor = Self::DRECIPE_FLOOR * material.trace();
+                consistency.diagonal().map(|k| k.max(floor))
+            }
+        }
+    }
+}
+
+impl Default for Stabilisation {
+    /// `DofiDofi` with `TraceOfC` and scale 1/8.
+    fn default() -> Self {
+        Self::dofi_dofi(StabilisationScaling::TraceOfC)
+    }
+}
+
+/// The lowest-order virtual element for linear elasticity ("vem1"): vertex DOFs, energy
+/// projection from boundary integrals, a choice of stabilisation (see the module docs).
+///
+/// ```
+/// use vem_space::{ElasticityTensor, ElementSpace, LowestOrderVem, Point};
+/// let element = LowestOrderVem::default();
+/// let hexagon: Vec<Point> = (0..6)
+///     .map(|k| {
+///         let t = std::f64::consts::PI * k as f64 / 3.0;
+///         Point::new(t.cos(), t.sin())
+///     })
+///     .collect();
+/// let k = element.stiffness(&hexagon, &ElasticityTensor::isotropic(2.0, 1.0)?)?.total();
+/// // A translation in x is a rigid motion: no force.
+/// let translation = nalgebra::DVector::from_fn(12, |i, _| if i % 2 == 0 { 1.0 } else { 0.0 });
+/// assert!((&k * translation).norm() < 1e-13 * k.norm());
+/// # Ok::<(), vem_space::SpaceError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LowestOrderVem {
+    /// The stabilisation `S_T`.
+    pub stabilisation: Stabilisation,
+}
+
+impl LowestOrderVem {
+    /// The element with stabilisation `stabilisation`, validated.
+    pub fn new(stabilisation: Stabilisation) -> Result<Self, SpaceError> {
+        stabilisation.validate()?;
+        Ok(Self { stabilisation })
+    }
+
+    /// The 6 x 2n coefficient matrix of `Pi` (see [`EnergyProjection::coefficients`]).
+    fn coefficients(geometry: &PolygonGeometry) -> DMatrix<f64> {
+        let n = geometry.n_vertices();
+        let mut c = DMatrix::zeros(6, 2 * n);
+        let mean = 1.0 / n as f64;
+        for (k, w) in geometry.gradient_weights.iter().enumerate() {
+            let (x, y) = (2 * k, 2 * k + 1);
+            c[(0, x)] = mean;
+            c[(1, y)] = mean;
+            c[(2, x)] = w.x;
+            c[(3, x)] = w.y;
+            c[(4, y)] = w.x;
+            c[(5, y)] = w.y;
+        }
+        c
+    }
+
+    /// The 3 x 2n Voigt strain `[xx, yy, 2 xy]` of `Pi`.
+    fn strain_matrix(geometry: &PolygonGeometry) -> DMatrix<f64> {
+        let n = geometry.n_vertices();
+        let mut b = DMatrix::zeros(3, 2 * n);
+        for (k, w) in geometry.gradient_weights.iter().enumerate() {
+            let (x, y) = (2 * k, 2 * k + 1);
+            b[(0, x)] = w.x;
+            b[(2, x)] = w.y;
+            b[(1, y)] = w.y;
+            b[(2, y)] = w.x;
+        }
+        b
+    }
+
+    /// `D`: the P1 basis of [`EnergyProjection::coefficients`] at the vertices (2n x 6).
+    fn basis_at_vertices(geometry: &PolygonGeometry) -> DMatrix<f64> {
+        let n = geometry.n_vertices();
+        let mut d = DMatrix::zeros(2 * n, 6);
+        for (k, x) in geometry.local.iter().enumerate() {
+            let (rx, ry) = (2 * k, 2 * k + 1);
+            d[(rx, 0)] = 1.0;
+            d[(rx, 2)] = x.x;
+            d[(rx, 3)] = x.y;
+            d[(ry, 1)] = 1.0;
+            d[(ry, 4)] = x.x;
+            d[(ry, 5)] = x.y;
+        }
+        d
+    }
+}
+
+/// `(m + m^T) / 2`: removes the round-off asymmetry of a product `A^T S A`.
+fn symmetrised(m: DMatrix<f64>) -> DMatrix<f64> {
+    (&m + m.transpose()) * 0.5
+}
+
+impl ElementSpace for LowestOrderVem {
+    fn name(&self) -> &str {
+        "vem1"
+    }
+
+    fn stiffness(
+        &self,
+        polygon: &[Point],
+        material: &ElasticityTensor,
+    ) -> Result<LocalStiffness, SpaceError> {
+        self.stabilisation.validate()?;
+        let geometry = PolygonGeometry::new(polygon)?;
+        // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v).
+        let b = Self::strain_matrix(&geometry);
+        let c = DMatrix::from_column_slice(3, 3, material.voigt().as_slice());
+        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.area);
+        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi.
+        let dofs = 2 * geometry.n_vertices();
+        let projector = Self::basis_at_vertices(&geometry) * Self::coefficients(&geometry);
+        let complement = DMatrix::identity(dofs, dofs) - projector;
+        let s = self.stabilisation.diagonal(material, &consistency);
+        let mut scaled = complement.clone();
+        for (mut row, s_i) in scaled.row_iter_mut().zip(s.iter()) {
+            row *= *s_i;
+        }
+        let stabilisation = symmetrised(complement.transpose() * scaled);
+        Ok(LocalStiffness {
+            consistency,
+            stabilisation,
+        })
+    }
+
+    fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError> {
+        let geometry = PolygonGeometry::new(polygon)?;
+        Ok(EnergyProjection {
+            reference: geometry.reference,
+            coefficients: Self::coefficients(&geometry),
+        })
+    }
+
+    fn body_load(
+        &self,
+        polygon: &[Point],
+        body_force: &(dyn Fn(Point) -> Vector + Sync),
+    ) -> Result<DVector<f64>, SpaceError> {
+        let geometry = PolygonGeometry::new(polygon)?;
+        // |T| f_bar = int_T f, by the degree-5 rule on the centroid fan (A3).
+        let mut integral = Vector::zeros();
+        for q in polygon_rule(polygon, &TriangleRule::degree5()) {
+            let f = body_force(q.point);
+            if !(f.x.is_finite() && f.y.is_finite()) {
+                return Err(SpaceError::NonFiniteLoad {
+                    x: q.point.x,
+                    y: q.point.y,
+                });
+            }
+            integral += f * q.weight;
+        }
+        let n = geometry.n_vertices();
+        let share = integral / n as f64;
+        Ok(DVector::from_fn(2 * n, |i, _| share[i % 2]))
+    }
+}
