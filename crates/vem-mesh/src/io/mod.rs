@@ -1,1 +1,184 @@
 //! File input and output: Gmsh `.msh` 4.1 input, VTK `.vtu` and SVG output, atomic writes.
+//!
+//! Every writer goes through [`write_atomically`]: a file is written whole or not at all, so
+//! an interrupted run never leaves a truncated `.vtu` that a viewer half-reads.
+//!
+//! ```
+//! use vem_mesh::generators::{structured_quads, Rectangle};
+//! use vem_mesh::io::{write_svg, write_vtu, SvgOptions, VtuData};
+//!
+//! let mesh = structured_quads(&Rectangle::unit_square(), 4, 4)?;
+//! let dir = std::env::temp_dir().join(format!("vem-mesh-io-doc-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir).unwrap();
+//! let x: Vec<f64> = mesh.vertices().iter().map(|p| p.x).collect();
+//! write_vtu(dir.join("square.vtu"), &mesh, &VtuData::new().with_point_scalars("x", x))?;
+//! write_svg(dir.join("square.svg"), &mesh, &SvgOptions::default())?;
+//! # std::fs::remove_dir_all(&dir).unwrap();
+//! # Ok::<(), vem_mesh::MeshError>(())
+//! ```
+
+mod gmsh;
+mod svg;
+mod vtu;
+
+pub use gmsh::{read_gmsh, read_gmsh_bytes};
+pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
+pub use vtu::{write_vtu, DataArray, VtuData};
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use crate::MeshError;
+
+/// Writes the file at `path` whole or not at all.
+///
+/// `write` receives a buffered writer on a temporary file in the same directory as `path`
+/// (so that the final rename stays on one file system). When `write` succeeds the data is
+/// flushed and synced to disk and the temporary file is renamed over `path`, replacing any
+/// previous file atomically. When anything fails the temporary file is removed, `path` is left
+/// as it was, and the error is [`MeshError::Write`] naming `path`.
+///
+/// Any text or binary format can use it (VTU, SVG, CSV, JSON):
+///
+/// ```
+/// use std::io::Write;
+/// let path = std::env::temp_dir().join(format!("vem-mesh-atomic-doc-{}.csv", std::process::id()));
+/// vem_mesh::io::write_atomically(&path, |w| writeln!(w, "h,error\n0.5,0.01"))?;
+/// assert_eq!(std::fs::read_to_string(&path).unwrap(), "h,error\n0.5,0.01\n");
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), vem_mesh::MeshError>(())
+/// ```
+pub fn write_atomically<F>(path: impl AsRef<Path>, write: F) -> Result<(), MeshError>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
+    let path = path.as_ref();
+    let fail = |reason: String| MeshError::Write {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let (temporary, file) = create_temporary(path)
+        .map_err(|e| fail(format!("cannot create a temporary file beside it: {e}")))?;
+    let result = write_and_sync(file, write).and_then(|()| fs::rename(&temporary, path));
+    result.map_err(|e| {
+        // The temporary file is ours and incomplete: remove it, whatever the failure was.
+        let _ = fs::remove_file(&temporary);
+        fail(e.to_string())
+    })
+}
+
+/// Runs `write` on a buffered `file`, then flushes and syncs it to disk.
+fn write_and_sync<F>(file: File, write: F) -> io::Result<()>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
+    let mut writer = BufWriter::new(file);
+    write(&mut writer)?;
+    let file = writer.into_inner().map_err(|e| e.into_error())?;
+    file.sync_all()
+}
+
+/// Creates a new, empty temporary file in the directory of `path`, named after it.
+fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let directory = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
+    })?;
+    loop {
+        let mut temporary_name = std::ffi::OsString::from(".");
+        temporary_name.push(name);
+        temporary_name.push(format!(
+            ".{}.{}.tmp",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        let temporary = directory.join(temporary_name);
+        match OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&temporary)
+        {
+            Ok(file) => return Ok((temporary, file)),
+            // Left over from a crashed process with the same id: try the next name.
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// Escapes the five XML special characters of `text` (attribute values and text content).
+pub(crate) fn xml_escape(text: &str) -> String {
+    let mut escaped = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => escaped.push_str("&amp;"),
+            '<' => escaped.push_str("&lt;"),
+            '>' => escaped.push_str("&gt;"),
+            '"' => escaped.push_str("&quot;"),
+            '\'' => escaped.push_str("&apos;"),
+            c => escaped.push(c),
+        }
+    }
+    escaped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch_dir(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("vem-mesh-io-{name}-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn failed_write_keeps_the_old_file_and_leaves_no_temporary() {
+        let dir = scratch_dir("atomic");
+        let path = dir.join("data.csv");
+        write_atomically(&path, |w| w.write_all(b"old")).unwrap();
+        let err = write_atomically(&path, |w| {
+            w.write_all(b"partial")?;
+            Err(io::Error::other("disk on fire"))
+        })
+        .unwrap_err();
+        assert_eq!(
+            err,
+            MeshError::Write {
+                path: path.clone(),
+                reason: "disk on fire".into()
+            }
+        );
+        assert_eq!(fs::read(&path).unwrap(), b"old");
+        let entries: Vec<_> = fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(entries.len(), 1, "only data.csv may remain");
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn missing_directory_is_a_write_error_naming_the_file() {
+        let path = scratch_dir("missing").join("no/such/dir/out.vtu");
+        let err = write_atomically(&path, |w| w.write_all(b"x")).unwrap_err();
+        match err {
+            MeshError::Write { path: p, reason } => {
+                assert_eq!(p, path);
+                assert!(reason.contains("temporary"), "{reason}");
+            }
+            other => panic!("unexpected {other}"),
+        }
+    }
+
+    #[test]
+    fn escapes_markup() {
+        assert_eq!(
+            xml_escape("a<b & \"c\">'"),
+            "a&lt;b &amp; &quot;c&quot;&gt;&apos;"
+        );
+    }
+}

@@ -1,0 +1,596 @@
+//! SVG pictures of meshes: polygons, boundary parts with a legend, optional vertex dots,
+//! per-cell colours with a colour bar, and deformed meshes drawn over the undeformed ones.
+//!
+//! One picture may hold several meshes ([`SvgLayer`]s, e.g. two bodies in contact); they share
+//! one scale, one colour range and one displacement magnification, so that what is drawn can be
+//! compared across bodies.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use super::{write_atomically, xml_escape};
+use crate::{Mesh, MeshError, Point, Vector};
+
+/// Colours of the boundary parts, in order (repeated after ten parts).
+const PART_COLOURS: [&str; 10] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+    "#bcbd22", "#7f7f7f",
+];
+
+/// Control points of the colour map (viridis, sampled at 0, 1/8, ..., 1), interpolated
+/// linearly in RGB.
+const COLOUR_MAP: [[f64; 3]; 9] = [
+    [68.0, 1.0, 84.0],
+    [71.0, 44.0, 122.0],
+    [59.0, 81.0, 139.0],
+    [44.0, 113.0, 142.0],
+    [33.0, 144.0, 141.0],
+    [39.0, 173.0, 129.0],
+    [92.0, 200.0, 99.0],
+    [170.0, 220.0, 50.0],
+    [253.0, 231.0, 37.0],
+];
+
+/// Height of the title line, in pixels.
+const TITLE_HEIGHT: f64 = 28.0;
+/// Height of one legend entry, in pixels.
+const LEGEND_ROW: f64 = 18.0;
+/// Height of the colour bar, in pixels.
+const COLOUR_BAR_HEIGHT: f64 = 200.0;
+
+/// One mesh in a picture, with what to draw on it.
+#[derive(Debug, Clone, Copy)]
+pub struct SvgLayer<'a> {
+    /// The mesh.
+    pub mesh: &'a Mesh,
+    /// Name of the mesh in the legend ("upper body"), prefixed to its part names.
+    pub label: Option<&'a str>,
+    /// One value per polygon: polygons are filled by the colour map, with a colour bar.
+    pub cell_values: Option<&'a [f64]>,
+    /// One displacement per vertex: the mesh is drawn at `x + magnification * u` over its
+    /// undeformed outline (dashed grey).
+    pub displacement: Option<&'a [Vector]>,
+}
+
+impl<'a> SvgLayer<'a> {
+    /// The mesh alone: outlines and boundary parts.
+    pub fn new(mesh: &'a Mesh) -> Self {
+        Self {
+            mesh,
+            label: None,
+            cell_values: None,
+            displacement: None,
+        }
+    }
+
+    /// Names the mesh in the legend.
+    pub fn with_label(mut self, label: &'a str) -> Self {
+        self.label = Some(label);
+        self
+    }
+
+    /// Fills polygon `p` with the colour of `values[p]`.
+    pub fn with_cell_values(mut self, values: &'a [f64]) -> Self {
+        self.cell_values = Some(values);
+        self
+    }
+
+    /// Draws the mesh displaced by `displacement` (one vector per vertex).
+    pub fn with_displacement(mut self, displacement: &'a [Vector]) -> Self {
+        self.displacement = Some(displacement);
+        self
+    }
+}
+
+/// How to draw a picture (shared by all its layers).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SvgOptions {
+    /// Width of the picture in pixels; the height follows from the meshes' aspect ratio.
+    pub width: f64,
+    /// Blank border around the drawing, in pixels.
+    pub margin: f64,
+    /// Title written above the drawing.
+    pub title: Option<String>,
+    /// Draw a dot at every vertex.
+    pub vertex_dots: bool,
+    /// Draw the boundary parts in distinct colours, with a legend.
+    pub parts: bool,
+    /// Displacements are drawn multiplied by this factor.
+    pub magnification: f64,
+    /// Title of the colour bar.
+    pub value_label: String,
+    /// Values mapped to the two ends of the colour map; `None`: the smallest and largest
+    /// cell value over all layers.
+    pub value_range: Option<(f64, f64)>,
+}
+
+impl Default for SvgOptions {
+    /// 800 pixels wide, 20 pixels margin, parts with a legend, no dots, magnification 1.
+    fn default() -> Self {
+        Self {
+            width: 800.0,
+            margin: 20.0,
+            title: None,
+            vertex_dots: false,
+            parts: true,
+            magnification: 1.0,
+            value_label: "value".into(),
+            value_range: None,
+        }
+    }
+}
+
+/// Writes a picture of `mesh` (polygons and, per `options`, boundary parts and vertex dots).
+///
+/// The drawing maps the mesh's bounding box, y pointing up, onto a box `options.margin` pixels
+/// inside the picture (below the title), keeping the aspect ratio. For cell colours or a
+/// displacement use [`write_svg_layers`] with one [`SvgLayer`].
+pub fn write_svg(
+    path: impl AsRef<Path>,
+    mesh: &Mesh,
+    options: &SvgOptions,
+) -> Result<(), MeshError> {
+    write_svg_layers(path, &[SvgLayer::new(mesh)], options)
+}
+
+/// Writes a picture of several meshes drawn over one another in the given order, at one
+/// scale (e.g. two bodies in contact, each with its displacement).
+///
+/// Checks before writing (a failure is [`MeshError::Write`] naming the layer): at least one
+/// layer, one finite cell value per polygon, one finite displacement per vertex, a finite
+/// magnification, a finite increasing value range, a width that leaves room for the drawing.
+pub fn write_svg_layers(
+    path: impl AsRef<Path>,
+    layers: &[SvgLayer],
+    options: &SvgOptions,
+) -> Result<(), MeshError> {
+    let path = path.as_ref();
+    let document = render(layers, options).map_err(|reason| MeshError::Write {
+        path: path.to_path_buf(),
+        reason,
+    })?;
+    write_atomically(path, |w| w.write_all(document.as_bytes()))
+}
+
+/// The positions drawn for one layer (displaced when it has a displacement).
+struct Drawn<'a> {
+    layer: &'a SvgLayer<'a>,
+    positions: Vec<Point>,
+}
+
+/// The SVG document, or the reason why the input cannot be drawn.
+fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
+    check(layers, options)?;
+    let drawn: Vec<Drawn> = layers
+        .iter()
+        .map(|layer| Drawn {
+            layer,
+            positions: match layer.displacement {
+                Some(u) => layer
+                    .mesh
+                    .vertices()
+                    .iter()
+                    .zip(u)
+                    .map(|(p, u)| p + options.magnification * u)
+                    .collect(),
+                None => layer.mesh.vertices().to_vec(),
+            },
+        })
+        .collect();
+
+    // Legend entries: (colour, dashed, text).
+    let mut legend: Vec<(String, bool, String)> = Vec::new();
+    if layers.iter().any(|l| l.displacement.is_some()) {
+        legend.push(("#9a9a9a".into(), true, "undeformed".into()));
+    }
+    let mut part_colours: Vec<Vec<&str>> = Vec::with_capacity(layers.len());
+    let mut next_colour = 0;
+    for layer in layers {
+        let mut colours = Vec::new();
+        if options.parts {
+            for part in layer.mesh.parts() {
+                let colour = PART_COLOURS[next_colour % PART_COLOURS.len()];
+                next_colour += 1;
+                colours.push(colour);
+                let text = match layer.label {
+                    Some(label) => format!("{label}: {}", part.name),
+                    None => part.name.clone(),
+                };
+                legend.push((colour.into(), false, text));
+            }
+        }
+        part_colours.push(colours);
+    }
+    let value_range = value_range(layers, options);
+
+    // Layout: drawing on the left, legend and colour bar in a panel on the right.
+    let longest = legend
+        .iter()
+        .map(|(_, _, text)| text.chars().count())
+        .chain(value_range.map(|_| options.value_label.chars().count()))
+        .max();
+    let panel_width = longest.map_or(0.0, |chars| (chars as f64 * 7.0 + 40.0).max(110.0));
+    let title_height = if options.title.is_some() {
+        TITLE_HEIGHT
+    } else {
+        0.0
+    };
+    let drawing_width = options.width - 2.0 * options.margin - panel_width;
+    if drawing_width < 10.0 {
+        return Err(format!(
+            "a width of {} pixels leaves no room for the drawing (margins {} and legend {panel_width})",
+            options.width, options.margin
+        ));
+    }
+    let (min, max) = bounding_box(layers, &drawn);
+    let scale = (drawing_width / (max.x - min.x)).min(
+        // Tall meshes: at most twice as high as the picture is wide.
+        2.0 * options.width / (max.y - min.y),
+    );
+    let top = options.margin + title_height;
+    let to_picture = |p: Point| {
+        (
+            options.margin + (p.x - min.x) * scale,
+            top + (max.y - p.y) * scale,
+        )
+    };
+    let panel_height =
+        legend.len() as f64 * LEGEND_ROW + value_range.map_or(0.0, |_| COLOUR_BAR_HEIGHT + 60.0);
+    let height =
+        (top + (max.y - min.y) * scale + options.margin).max(top + panel_height + options.margin);
+
+    let mut svg = String::new();
+    let out = &mut svg;
+    emit(
+        out,
+        format_args!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"),
+    );
+    emit(
+        out,
+        format_args!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{height:.0}\" \
+             viewBox=\"0 0 {w:.0} {height:.0}\" font-family=\"sans-serif\" font-size=\"12\">\n",
+            w = options.width
+        ),
+    );
+    emit(
+        out,
+        format_args!("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"),
+    );
+    if let Some(title) = &options.title {
+        emit(
+            out,
+            format_args!(
+                "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"16\">{}</text>\n",
+                options.margin,
+                options.margin + 14.0,
+                xml_escape(title)
+            ),
+        );
+    }
+
+    for (index, d) in drawn.iter().enumerate() {
+        let mesh = d.layer.mesh;
+        emit(out, format_args!("<g id=\"layer-{index}\">\n"));
+        if d.layer.displacement.is_some() {
+            emit(
+                out,
+                format_args!(
+                    "<g class=\"undeformed\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"0.6\" \
+                     stroke-dasharray=\"3 2\">\n"
+                ),
+            );
+            for polygon in mesh.polygons() {
+                polygon_element(out, polygon, mesh.vertices(), &to_picture, None);
+            }
+            emit(out, format_args!("</g>\n"));
+        }
+        let stroke_width = if d.layer.cell_values.is_some() {
+            0.4
+        } else {
+            0.7
+        };
+        emit(
+            out,
+            format_args!(
+                "<g class=\"cells\" fill=\"none\" stroke=\"#303030\" stroke-width=\"{stroke_width}\" \
+                 stroke-linejoin=\"round\">\n"
+            ),
+        );
+        for (p, polygon) in mesh.polygons().enumerate() {
+            let fill = match (d.layer.cell_values, value_range) {
+                (Some(values), Some(range)) => Some(colour_of(values[p], range)),
+                _ => None,
+            };
+            polygon_element(out, polygon, &d.positions, &to_picture, fill);
+        }
+        emit(out, format_args!("</g>\n"));
+        for (part, colour) in mesh.parts().iter().zip(&part_colours[index]) {
+            let mut path = String::new();
+            for &e in &part.edges {
+                let [a, b] = mesh.edge(e).vertices;
+                let (xa, ya) = to_picture(d.positions[a]);
+                let (xb, yb) = to_picture(d.positions[b]);
+                emit(&mut path, format_args!("M{xa:.2} {ya:.2}L{xb:.2} {yb:.2}"));
+            }
+            emit(
+                out,
+                format_args!(
+                    "<path class=\"part\" data-part=\"{}\" d=\"{path}\" fill=\"none\" \
+                     stroke=\"{colour}\" stroke-width=\"2.5\" stroke-linecap=\"round\"/>\n",
+                    xml_escape(&part.name)
+                ),
+            );
+        }
+        if options.vertex_dots {
+            emit(
+                out,
+                format_args!("<g class=\"vertices\" fill=\"#000000\">\n"),
+            );
+            for &p in &d.positions {
+                let (x, y) = to_picture(p);
+                emit(
+                    out,
+                    format_args!("<circle cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"1.6\"/>\n"),
+                );
+            }
+            emit(out, format_args!("</g>\n"));
+        }
+        emit(out, format_args!("</g>\n"));
+    }
+
+    // Legend and colour bar.
+    let panel_x = options.width - options.margin - panel_width + 16.0;
+    let mut y = top + 8.0;
+    for (colour, dashed, text) in &legend {
+        let dash = if *dashed {
+            " stroke-dasharray=\"3 2\""
+        } else {
+            ""
+        };
+        emit(
+            out,
+            format_args!(
+                "<line x1=\"{panel_x:.2}\" y1=\"{y:.2}\" x2=\"{:.2}\" y2=\"{y:.2}\" \
+                 stroke=\"{colour}\" stroke-width=\"3\"{dash}/>\n\
+                 <text x=\"{:.2}\" y=\"{:.2}\">{}</text>\n",
+                panel_x + 20.0,
+                panel_x + 26.0,
+                y + 4.0,
+                xml_escape(text)
+            ),
+        );
+        y += LEGEND_ROW;
+    }
+    if let Some((lo, hi)) = value_range {
+        colour_bar(out, panel_x, y + 10.0, (lo, hi), &options.value_label);
+    }
+    emit(out, format_args!("</svg>\n"));
+    Ok(svg)
+}
+
+/// Appends formatted text to the document (writing to a `String` cannot fail).
+fn emit(out: &mut String, args: std::fmt::Arguments) {
+    out.write_fmt(args)
+        .expect("writing to a String cannot fail");
+}
+
+/// Appends one `<polygon>` with the given vertex positions and optional fill colour.
+fn polygon_element(
+    out: &mut String,
+    polygon: &[usize],
+    positions: &[Point],
+    to_picture: &impl Fn(Point) -> (f64, f64),
+    fill: Option<String>,
+) {
+    out.push_str("<polygon points=\"");
+    for (k, &v) in polygon.iter().enumerate() {
+        let (x, y) = to_picture(positions[v]);
+        let separator = if k == 0 { "" } else { " " };
+        emit(out, format_args!("{separator}{x:.2},{y:.2}"));
+    }
+    match fill {
+        Some(colour) => emit(out, format_args!("\" fill=\"{colour}\"/>\n")),
+        None => out.push_str("\"/>\n"),
+    }
+}
+
+/// A vertical colour bar with its title and the values at both ends and the middle.
+fn colour_bar(out: &mut String, x: f64, y: f64, (lo, hi): (f64, f64), label: &str) {
+    emit(
+        out,
+        format_args!(
+            "<text x=\"{x:.2}\" y=\"{:.2}\">{}</text>\n\
+             <defs><linearGradient id=\"colour-map\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">\n",
+            y + 4.0,
+            xml_escape(label)
+        ),
+    );
+    for (i, rgb) in COLOUR_MAP.iter().enumerate() {
+        emit(
+            out,
+            format_args!(
+                "<stop offset=\"{:.4}\" stop-color=\"{}\"/>\n",
+                i as f64 / (COLOUR_MAP.len() - 1) as f64,
+                hex(*rgb)
+            ),
+        );
+    }
+    let top = y + 16.0;
+    emit(
+        out,
+        format_args!(
+            "</linearGradient></defs>\n<rect class=\"colour-bar\" x=\"{x:.2}\" y=\"{top:.2}\" \
+             width=\"18\" height=\"{COLOUR_BAR_HEIGHT}\" fill=\"url(#colour-map)\" \
+             stroke=\"#303030\" stroke-width=\"0.5\"/>\n"
+        ),
+    );
+    for (fraction, value) in [(0.0, hi), (0.5, 0.5 * (lo + hi)), (1.0, lo)] {
+        emit(
+            out,
+            format_args!(
+                "<text x=\"{:.2}\" y=\"{:.2}\">{}</text>\n",
+                x + 24.0,
+                top + fraction * COLOUR_BAR_HEIGHT + 4.0,
+                tick_label(value)
+            ),
+        );
+    }
+}
+
+/// The colour of `value` in the range `(lo, hi)` (clamped; the middle of the map when the
+/// range is a single value).
+fn colour_of(value: f64, (lo, hi): (f64, f64)) -> String {
+    let t = if hi > lo {
+        ((value - lo) / (hi - lo)).clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    let position = t * (COLOUR_MAP.len() - 1) as f64;
+    let k = (position.floor() as usize).min(COLOUR_MAP.len() - 2);
+    let s = position - k as f64;
+    let (a, b) = (COLOUR_MAP[k], COLOUR_MAP[k + 1]);
+    hex([0, 1, 2].map(|c| a[c] + s * (b[c] - a[c])))
+}
+
+/// `#rrggbb` of an RGB triple in 0..=255.
+fn hex(rgb: [f64; 3]) -> String {
+    let [r, g, b] = rgb.map(|c| c.round().clamp(0.0, 255.0) as u8);
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+/// A short label for a colour-bar value: fixed notation for moderate magnitudes, scientific
+/// otherwise.
+fn tick_label(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 {
+        "0".into()
+    } else if (1e-3..1e4).contains(&magnitude) {
+        let fixed = format!("{value:.4}");
+        fixed
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
+    } else {
+        format!("{value:.3e}")
+    }
+}
+
+/// The value range of the colour map: given, or the extent of all cell values.
+fn value_range(layers: &[SvgLayer], options: &SvgOptions) -> Option<(f64, f64)> {
+    let mut values = layers
+        .iter()
+        .filter_map(|l| l.cell_values)
+        .flatten()
+        .peekable();
+    values.peek()?;
+    Some(options.value_range.unwrap_or_else(|| {
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
+    }))
+}
+
+/// The bounding box of everything drawn: undeformed and displaced positions of every layer.
+fn bounding_box(layers: &[SvgLayer], drawn: &[Drawn]) -> (Point, Point) {
+    let mut min = Point::new(f64::INFINITY, f64::INFINITY);
+    let mut max = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+    let undeformed = layers.iter().map(|l| l.mesh.vertices());
+    let displaced = drawn.iter().map(|d| d.positions.as_slice());
+    for p in undeformed.chain(displaced).flatten() {
+        min = Point::new(min.x.min(p.x), min.y.min(p.y));
+        max = Point::new(max.x.max(p.x), max.y.max(p.y));
+    }
+    (min, max)
+}
+
+/// Checks layers and options; the error names the layer and what is wrong.
+fn check(layers: &[SvgLayer], options: &SvgOptions) -> Result<(), String> {
+    if layers.is_empty() {
+        return Err("there is nothing to draw (no layers)".into());
+    }
+    let width_ok = options.width.is_finite() && options.width > 0.0;
+    let margin_ok = options.margin.is_finite() && options.margin >= 0.0;
+    if !(width_ok && margin_ok) {
+        return Err(format!(
+            "width {} and margin {} must be finite, the width positive and the margin \
+             non-negative",
+            options.width, options.margin
+        ));
+    }
+    if !options.magnification.is_finite() {
+        return Err(format!(
+            "the magnification {} is not finite",
+            options.magnification
+        ));
+    }
+    if let Some((lo, hi)) = options.value_range {
+        if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+            return Err(format!(
+                "the value range ({lo}, {hi}) must be finite and increasing"
+            ));
+        }
+    }
+    for (index, layer) in layers.iter().enumerate() {
+        let name = match layer.label {
+            Some(label) => format!("layer {index} ('{label}')"),
+            None => format!("layer {index}"),
+        };
+        let mesh = layer.mesh;
+        if let Some(values) = layer.cell_values {
+            if values.len() != mesh.n_polygons() {
+                return Err(format!(
+                    "{name}: {} cell values for {} polygons",
+                    values.len(),
+                    mesh.n_polygons()
+                ));
+            }
+            if let Some(p) = values.iter().position(|v| !v.is_finite()) {
+                return Err(format!(
+                    "{name}: the cell value of polygon {p} is {}",
+                    values[p]
+                ));
+            }
+        }
+        if let Some(u) = layer.displacement {
+            if u.len() != mesh.n_vertices() {
+                return Err(format!(
+                    "{name}: {} displacements for {} vertices",
+                    u.len(),
+                    mesh.n_vertices()
+                ));
+            }
+            if let Some(v) = u.iter().position(|u| !(u.x.is_finite() && u.y.is_finite())) {
+                return Err(format!(
+                    "{name}: the displacement of vertex {v} is ({}, {})",
+                    u[v].x, u[v].y
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colour_map_ends_and_middle() {
+        assert_eq!(colour_of(0.0, (0.0, 1.0)), "#440154");
+        assert_eq!(colour_of(1.0, (0.0, 1.0)), "#fde725");
+        assert_eq!(colour_of(0.5, (0.0, 1.0)), "#21908d");
+        // Clamped outside the range, middle colour for a single value.
+        assert_eq!(colour_of(-3.0, (0.0, 1.0)), "#440154");
+        assert_eq!(colour_of(2.0, (2.0, 2.0)), "#21908d");
+    }
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_label(0.0), "0");
+        assert_eq!(tick_label(0.25), "0.25");
+        assert_eq!(tick_label(-12.0), "-12");
+        assert_eq!(tick_label(1.5e-6), "1.500e-6");
+        assert_eq!(tick_label(2.0e5), "2.000e5");
+    }
+}
