@@ -1,2 +1,29 @@
-//! vem-verify: work in progress; see the issue tracker.
+//! Verification of the VEM contact solver: exact (manufactured) solutions of the one- and
+//! two-body problems of the specification, in the sign conventions of `contact-vem.md`.
+//!
+//! The module [`exact`] holds the [`ExactSolution`] trait (implement it for a solution of your
+//! own), its contact companion [`ContactSolution`] and the built-in cases M1–M4, E1, E2,
+//! PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3.
+//!
+//! ```
+//! use vem_verify::{all_cases, BodyId, ExactSolution, Lame};
+//! use vem_mesh::Point;
+//! // The body force balances the stress of every built-in case: check one component of
+//! // -div sigma = f by central differences at an interior point.
+//! for case in all_cases(Lame::default()) {
+//!     let (x, h) = (Point::new(0.3, 0.4), 1e-4);
+//!     let s = |dx: f64, dy: f64| case.stress(BodyId::One, Point::new(x.x + dx, x.y + dy));
+//!     let div_x = (s(h, 0.0)[(0, 0)] - s(-h, 0.0)[(0, 0)]
+//!         + s(0.0, h)[(0, 1)] - s(0.0, -h)[(0, 1)]) / (2.0 * h);
+//!     let f = case.body_force(BodyId::One, x);
+//!     assert!((div_x + f.x).abs() < 1e-5 * (1.0 + f.x.abs()), "{}", case.name());
+//! }
+//! ```
 #![deny(missing_docs)]
+
+pub mod exact;
+
+pub use exact::{
+    all_cases, case_by_name, BodyId, ContactLaw, ContactSolution, ExactError, ExactSolution, Lame,
+    Side,
+};
