@@ -1,5 +1,5 @@
-//! Exact (manufactured) solutions of the one- and two-body problems of
-//! `docs/spec/manufactured.md` (the shared specification `manufactured.md`).
+//! Exact (manufactured) solutions of the one- and two-body problems of the specification
+//! `manufactured.md` (section numbers below refer to it).
 //!
 //! The trait [`ExactSolution`] describes a linear-elasticity solution on one rectangle or on
 //! two stacked rectangles: material, domains, displacement, gradient, stress, body force and
