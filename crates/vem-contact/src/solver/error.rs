@@ -1,0 +1,108 @@
+//! Errors of the contact solvers and of their settings.
+
+use super::report::SolveReport;
+
+/// A setting was rejected when its builder was built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("invalid setting `{setting}` = {value}: must be {requirement}")]
+pub struct SettingsError {
+    /// Name of the setting.
+    pub setting: &'static str,
+    /// The rejected value.
+    pub value: f64,
+    /// What it must satisfy.
+    pub requirement: &'static str,
+}
+
+impl SettingsError {
+    /// Checks `value` is finite and `> 0`.
+    pub(crate) fn positive(setting: &'static str, value: f64) -> Result<f64, Self> {
+        if value.is_finite() && value > 0.0 {
+            Ok(value)
+        } else {
+            Err(Self {
+                setting,
+                value,
+                requirement: "finite and > 0",
+            })
+        }
+    }
+
+    /// Checks a count is at least 1.
+    pub(crate) fn at_least_one(setting: &'static str, value: usize) -> Result<usize, Self> {
+        if value >= 1 {
+            Ok(value)
+        } else {
+            Err(Self {
+                setting,
+                value: value as f64,
+                requirement: ">= 1",
+            })
+        }
+    }
+}
+
+/// Why a contact solve produced no answer. Every variant that comes out of a run carries the
+/// [`SolveReport`] of that run (iterations, time, residuals of the last iterate).
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum ContactSolverError {
+    /// The solver stopped before meeting its tolerances (iteration limit, reduced accuracy,
+    /// lack of progress).
+    #[error("{} did not converge ({:?}) after {} iterations; residuals {:?}", report.solver, report.status, report.iterations, report.residuals)]
+    NotConverged {
+        /// The report of the run; its residuals are those of the last iterate.
+        report: Box<SolveReport>,
+    },
+    /// Tresca friction cannot hold the load: `K` is singular along a (tangential rigid) mode,
+    /// and the load along that mode exceeds the friction capacity. No equilibrium exists.
+    ///
+    /// The mode `d` is scaled so that its largest nodal slip `max_i |(B_T d)_i|` is 1; then
+    /// `load_along_mode = f . d` and `friction_capacity = sum_i b_i |(B_T d)_i|` are forces.
+    #[error("rigid sliding: load along the free mode {load_along_mode:.6e} exceeds the friction capacity {friction_capacity:.6e} ({})", report.solver)]
+    RigidSliding {
+        /// `f . d` for the unit-slip mode `d`.
+        load_along_mode: f64,
+        /// `sum_i b_i |(B_T d)_i|`.
+        friction_capacity: f64,
+        /// Report of the run that detected it.
+        report: Box<SolveReport>,
+    },
+    /// The energy is unbounded below along a mode that no constraint or friction controls
+    /// (a floating body, a missing Dirichlet condition, a body pulled away from the contact).
+    /// The mode `d` is scaled so that `max_j |d_j| = 1`.
+    #[error("unbounded energy (floating body?): load along a free mode {load_along_mode:.6e} ({})", report.solver)]
+    Unbounded {
+        /// `f . d` for the free mode `d`.
+        load_along_mode: f64,
+        /// Report of the run that detected it.
+        report: Box<SolveReport>,
+    },
+    /// The constraints `B_N u <= g` are contradictory (possible only for dependent rows).
+    #[error("the contact constraints admit no displacement ({})", report.solver)]
+    Infeasible {
+        /// Report of the run that detected it.
+        report: Box<SolveReport>,
+    },
+    /// The linear algebra backend refused the problem (out of memory, bad data).
+    #[error("{solver}: backend failure: {detail}")]
+    Backend {
+        /// The solver.
+        solver: &'static str,
+        /// The backend's message.
+        detail: String,
+    },
+}
+
+impl ContactSolverError {
+    /// The report of the failed run, if the failure happened during a run.
+    pub fn report(&self) -> Option<&SolveReport> {
+        match self {
+            Self::NotConverged { report }
+            | Self::RigidSliding { report, .. }
+            | Self::Unbounded { report, .. }
+            | Self::Infeasible { report } => Some(report),
+            Self::Backend { .. } => None,
+        }
+    }
+}

@@ -1,0 +1,354 @@
+//! The exact solver: the contact problem as a convex QP solved by Clarabel (interior point).
+//!
+//! Frictionless (P1^h): `min 1/2 u'Ku - f'u` s.t. `B_N u + s = g, s >= 0`.
+//!
+//! Tresca (P2^h with nodal quadrature): the variables are `(u, t)` with epigraph variables
+//! `t_i >= |(B_T u)_i|` written as the two linear inequalities `B_T u - t <= 0` and
+//! `-B_T u - t <= 0` (no cone in 2D); the objective gains `sum_i b_i t_i`. With multipliers
+//! `z = (lambda_N, z_+, z_-)` the stationarity in `t` gives `z_+ + z_- = b`, so
+//! `lambda_T = z_+ - z_-` satisfies `|lambda_T| <= b` and has the sign of the slip.
+
+use std::time::Instant;
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+};
+
+use super::error::{ContactSolverError, SettingsError};
+use super::report::{KktResiduals, SolveReport, SolveStatus};
+use super::system::ContactSystem;
+use super::{ContactSolution, ContactSolver};
+
+const NAME: &str = "exact (clarabel)";
+
+/// Settings of [`ExactSolver`]; build them with [`ExactSettings::builder`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExactSettings {
+    eps_abs: f64,
+    eps_rel: f64,
+    max_iter: usize,
+    accept_reduced_accuracy: bool,
+}
+
+impl Default for ExactSettings {
+    /// `eps_abs = eps_rel = 1e-10`, `max_iter = 100`, reduced accuracy rejected.
+    fn default() -> Self {
+        Self {
+            eps_abs: 1e-10,
+            eps_rel: 1e-10,
+            max_iter: 100,
+            accept_reduced_accuracy: false,
+        }
+    }
+}
+
+impl ExactSettings {
+    /// A builder starting from the defaults.
+    pub fn builder() -> ExactSettingsBuilder {
+        ExactSettingsBuilder {
+            settings: Self::default(),
+        }
+    }
+
+    /// Absolute duality-gap tolerance (Clarabel `tol_gap_abs`).
+    pub fn eps_abs(&self) -> f64 {
+        self.eps_abs
+    }
+
+    /// Relative duality-gap and feasibility tolerance (Clarabel `tol_gap_rel`, `tol_feas`).
+    pub fn eps_rel(&self) -> f64 {
+        self.eps_rel
+    }
+
+    /// Interior-point iteration limit.
+    pub fn max_iter(&self) -> usize {
+        self.max_iter
+    }
+
+    /// Whether Clarabel's `AlmostSolved` (reduced accuracy) is returned as an answer.
+    pub fn accept_reduced_accuracy(&self) -> bool {
+        self.accept_reduced_accuracy
+    }
+}
+
+/// Builder of [`ExactSettings`]; values are checked by [`ExactSettingsBuilder::build`].
+#[derive(Debug, Clone, Copy)]
+pub struct ExactSettingsBuilder {
+    settings: ExactSettings,
+}
+
+impl ExactSettingsBuilder {
+    /// Absolute duality-gap tolerance, finite and `> 0`.
+    pub fn eps_abs(mut self, value: f64) -> Self {
+        self.settings.eps_abs = value;
+        self
+    }
+
+    /// Relative gap and feasibility tolerance, finite and `> 0`.
+    pub fn eps_rel(mut self, value: f64) -> Self {
+        self.settings.eps_rel = value;
+        self
+    }
+
+    /// Iteration limit, `>= 1`.
+    pub fn max_iter(mut self, value: usize) -> Self {
+        self.settings.max_iter = value;
+        self
+    }
+
+    /// Accept Clarabel's reduced-accuracy answers instead of reporting
+    /// [`ContactSolverError::NotConverged`].
+    pub fn accept_reduced_accuracy(mut self, value: bool) -> Self {
+        self.settings.accept_reduced_accuracy = value;
+        self
+    }
+
+    /// Validates the settings.
+    ///
+    /// # Errors
+    /// [`SettingsError`] naming the first invalid setting.
+    pub fn build(self) -> Result<ExactSettings, SettingsError> {
+        let s = self.settings;
+        SettingsError::positive("eps_abs", s.eps_abs)?;
+        SettingsError::positive("eps_rel", s.eps_rel)?;
+        SettingsError::at_least_one("max_iter", s.max_iter)?;
+        if u32::try_from(s.max_iter).is_err() {
+            return Err(SettingsError {
+                setting: "max_iter",
+                value: s.max_iter as f64,
+                requirement: "<= u32::MAX",
+            });
+        }
+        Ok(s)
+    }
+}
+
+/// Exact contact solver: the QP of [`ContactSystem`] solved by Clarabel's interior-point
+/// method (default `qdldl` backend). Multipliers are the nodal contact forces.
+///
+/// Detects an unbounded energy from Clarabel's dual-infeasibility certificate `d` and reports
+/// it as [`ContactSolverError::RigidSliding`] (when friction acts along `d`) or
+/// [`ContactSolverError::Unbounded`]. A free mode with no load along it is not an error here:
+/// one of the minimisers is returned.
+#[derive(Debug, Clone, Default)]
+pub struct ExactSolver {
+    settings: ExactSettings,
+}
+
+impl ExactSolver {
+    /// A solver with the given settings.
+    pub fn new(settings: ExactSettings) -> Self {
+        Self { settings }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ExactSettings {
+        &self.settings
+    }
+}
+
+/// The QP data in Clarabel's form.
+struct QpData {
+    p: CscMatrix<f64>,
+    q: Vec<f64>,
+    a: CscMatrix<f64>,
+    b: Vec<f64>,
+}
+
+fn build_qp(system: &ContactSystem) -> QpData {
+    let n = system.n_dofs();
+    let m = system.n_constraints();
+    let friction = system.friction();
+    let n_t = if friction.is_some() { m } else { 0 };
+    let n_var = n + n_t;
+
+    // P: upper triangle of K, columns sorted; the t block is zero.
+    let k = system.stiffness().as_ref();
+    let mut colptr = Vec::with_capacity(n_var + 1);
+    let mut rowval = Vec::new();
+    let mut nzval = Vec::new();
+    colptr.push(0);
+    for j in 0..n {
+        let range = k.col_range(j);
+        let mut col: Vec<(usize, f64)> = k.row_idx()[range.clone()]
+            .iter()
+            .zip(&k.val()[range])
+            .filter(|(&i, _)| i <= j)
+            .map(|(&i, &v)| (i, v))
+            .collect();
+        col.sort_by_key(|&(i, _)| i);
+        for (i, v) in col {
+            // Sum duplicates of unsorted storage.
+            if rowval.len() > colptr[j] && rowval.last() == Some(&i) {
+                if let Some(last) = nzval.last_mut() {
+                    *last += v;
+                }
+            } else {
+                rowval.push(i);
+                nzval.push(v);
+            }
+        }
+        colptr.push(rowval.len());
+    }
+    for _ in 0..n_t {
+        colptr.push(rowval.len());
+    }
+    let p = CscMatrix::new(n_var, n_var, colptr, rowval, nzval);
+
+    let mut q: Vec<f64> = system.load().iter().map(|f| -f).collect();
+    let (mut ai, mut aj, mut av) = (Vec::new(), Vec::new(), Vec::new());
+    let normal = system.normal_rows();
+    for i in 0..m {
+        let (cols, vals) = normal.row(i);
+        for (&c, &v) in cols.iter().zip(vals) {
+            ai.push(i);
+            aj.push(c);
+            av.push(v);
+        }
+    }
+    let mut b = system.gap().to_vec();
+    if let Some(fr) = friction {
+        q.extend_from_slice(fr.bounds());
+        let tangential = fr.tangential_rows();
+        for i in 0..m {
+            let (cols, vals) = tangential.row(i);
+            for (&c, &v) in cols.iter().zip(vals) {
+                // B_T u - t <= 0 (rows m..2m) and -B_T u - t <= 0 (rows 2m..3m).
+                ai.extend([m + i, 2 * m + i]);
+                aj.extend([c, c]);
+                av.extend([v, -v]);
+            }
+            ai.extend([m + i, 2 * m + i]);
+            aj.extend([n + i, n + i]);
+            av.extend([-1.0, -1.0]);
+        }
+        b.extend(std::iter::repeat_n(0.0, 2 * m));
+    }
+    let a = CscMatrix::new_from_triplets(b.len(), n_var, ai, aj, av);
+    QpData { p, q, a, b }
+}
+
+impl ContactSolver for ExactSolver {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
+        let start = Instant::now();
+        let n = system.n_dofs();
+        let m = system.n_constraints();
+        let qp = build_qp(system);
+        let s = &self.settings;
+        let backend = |detail: String| ContactSolverError::Backend {
+            solver: NAME,
+            detail,
+        };
+        let settings = DefaultSettingsBuilder::default()
+            .verbose(false)
+            .max_iter(s.max_iter as u32)
+            .tol_gap_abs(s.eps_abs)
+            .tol_gap_rel(s.eps_rel)
+            .tol_feas(s.eps_rel)
+            .build()
+            .map_err(|e| backend(e.to_string()))?;
+        let cones = if qp.b.is_empty() {
+            vec![]
+        } else {
+            vec![NonnegativeConeT(qp.b.len())]
+        };
+        let mut solver = DefaultSolver::new(&qp.p, &qp.q, &qp.a, &qp.b, &cones, settings)
+            .map_err(|e| backend(e.to_string()))?;
+        solver.solve();
+        let sol = &solver.solution;
+
+        let displacement = sol.x[..n].to_vec();
+        let normal_force = sol.z[..m].to_vec();
+        let tangential_force = if system.friction().is_some() {
+            (0..m).map(|i| sol.z[m + i] - sol.z[2 * m + i]).collect()
+        } else {
+            vec![0.0; m]
+        };
+        let status = match sol.status {
+            SolverStatus::Solved => SolveStatus::Converged,
+            SolverStatus::AlmostSolved => SolveStatus::ReducedAccuracy,
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+                SolveStatus::Infeasible
+            }
+            SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => {
+                SolveStatus::Unbounded
+            }
+            SolverStatus::MaxIterations | SolverStatus::MaxTime => SolveStatus::MaxIterations,
+            _ => SolveStatus::NumericalFailure,
+        };
+        let residuals =
+            KktResiduals::evaluate(system, &displacement, &normal_force, &tangential_force);
+        let report = Box::new(SolveReport {
+            solver: NAME,
+            status,
+            iterations: sol.iterations as usize,
+            factorisations: 0,
+            wall_time: start.elapsed(),
+            residuals,
+        });
+        match status {
+            SolveStatus::Converged => {}
+            SolveStatus::ReducedAccuracy if s.accept_reduced_accuracy => {}
+            SolveStatus::Infeasible => return Err(ContactSolverError::Infeasible { report }),
+            SolveStatus::Unbounded => return Err(classify_free_mode(system, &sol.x[..n], report)),
+            _ => return Err(ContactSolverError::NotConverged { report }),
+        }
+        Ok(ContactSolution {
+            displacement,
+            normal_force,
+            tangential_force,
+            report: *report,
+        })
+    }
+}
+
+/// Turns a direction `d` along which the energy decreases without bound into
+/// [`ContactSolverError::RigidSliding`] (friction acts along `d`) or
+/// [`ContactSolverError::Unbounded`], with the figures of the error's documentation.
+pub(crate) fn classify_free_mode(
+    system: &ContactSystem,
+    direction: &[f64],
+    report: Box<SolveReport>,
+) -> ContactSolverError {
+    let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let load_along = |d: &[f64], scale: f64| {
+        system
+            .load()
+            .iter()
+            .zip(d)
+            .map(|(f, x)| f * x / scale)
+            .sum::<f64>()
+    };
+    if let Some(fr) = system.friction() {
+        let slip = fr.tangential_rows().apply(direction);
+        let scale = inf(&slip);
+        // A mode with slips below 1e-8 of its size is not resisted by friction.
+        if scale > 1e-8 * inf(direction) {
+            let friction_capacity = fr
+                .bounds()
+                .iter()
+                .zip(&slip)
+                .map(|(b, s)| b * s.abs() / scale)
+                .sum::<f64>();
+            return ContactSolverError::RigidSliding {
+                load_along_mode: load_along(direction, scale),
+                friction_capacity,
+                report,
+            };
+        }
+    }
+    let scale = inf(direction);
+    ContactSolverError::Unbounded {
+        load_along_mode: if scale > 0.0 {
+            load_along(direction, scale)
+        } else {
+            0.0
+        },
+        report,
+    }
+}

@@ -1,0 +1,69 @@
+//! Contact solvers: matrices, constraint rows and bounds in; displacements and nodal contact
+//! forces out.
+//!
+//! Every solver implements [`ContactSolver`] and returns a [`ContactSolution`] whose
+//! [`SolveReport`] carries KKT residuals recomputed from the answer, or a
+//! [`ContactSolverError`] carrying the report of the failed run.
+//!
+//! # Sign conventions
+//!
+//! The KKT system of the Lagrangian `E(u) + lambda_N'(B_N u - g)` (with `E` the energy of
+//! [`ContactSystem`]) reads
+//!
+//! ```text
+//! K u - f + B_N' lambda_N + B_T' lambda_T = 0
+//! lambda_N >= 0,  B_N u - g <= 0,  lambda_N,i (B_N u - g)_i = 0
+//! |lambda_T,i| <= b_i,  lambda_T,i = b_i sign((B_T u)_i)  where (B_T u)_i != 0
+//! ```
+//!
+//! * `normal_force[i] = lambda_N,i >= 0` is the compressive nodal contact force at interface
+//!   node `i` (divide by the tributary length for the pressure `p = -sigma_nu`).
+//! * `tangential_force[i] = lambda_T,i` is the nodal friction force conjugate to the slip
+//!   `(B_T u)_i = [u]_1tau`: it has the sign of the slip, and `-lambda_T,i` (times the tangent
+//!   of body 1) is the friction force acting on body 1, opposing its slip.
+//!   For frictionless systems it is all zeros.
+
+mod error;
+mod exact;
+mod newton_matrix;
+mod penalty;
+mod report;
+mod system;
+
+pub use error::{ContactSolverError, SettingsError};
+pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
+pub use penalty::{PenaltyParameter, PenaltySettings, PenaltySettingsBuilder, PenaltySolver};
+pub use report::{KktResiduals, SolveReport, SolveStatus};
+pub use system::{ConstraintRows, ContactSystem, ContactSystemError, Friction};
+
+/// The answer of a contact solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSolution {
+    /// Displacement `u` (length `n`).
+    pub displacement: Vec<f64>,
+    /// `lambda_N` (length `m`): compressive nodal contact forces, `>= 0`.
+    pub normal_force: Vec<f64>,
+    /// `lambda_T` (length `m`): nodal friction forces with the sign of the slip `B_T u`; zeros
+    /// for a frictionless system.
+    pub tangential_force: Vec<f64>,
+    /// What the solve measured.
+    pub report: SolveReport,
+}
+
+/// A contact solver. Object safe: assembly code holds a `Box<dyn ContactSolver>` and new
+/// solvers are added without touching it.
+///
+/// `solve` takes `&mut self` so that a solver may keep work from one solve to the next (the
+/// symbolic factorisation of a pattern that did not change, e.g. along a Coulomb fixed-point
+/// iteration of Tresca problems).
+pub trait ContactSolver {
+    /// Short name used in reports.
+    fn name(&self) -> &'static str;
+
+    /// Solves the problem.
+    ///
+    /// # Errors
+    /// [`ContactSolverError`]: no convergence, rigid sliding, unbounded energy, infeasible
+    /// constraints or a backend failure; run failures carry their [`SolveReport`].
+    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError>;
+}

@@ -1,0 +1,640 @@
+//! The penalty solver: a semismooth Newton method with exact line search for the penalised
+//! energy
+//!
+//! ```text
+//! Pi(u) = 1/2 u'Ku - f'u + eps_N/2 sum_i ((B_N u - g)_i)_+^2 + sum_i psi_i((B_T u)_i)
+//! ```
+//!
+//! where `psi_i` is the Huber regularisation of `b_i |s|` (quadratic `eps_T s^2 / 2` for
+//! `|eps_T s| <= b_i`, then `b_i |s| - b_i^2 / (2 eps_T)`). Its minimiser gives the forces
+//! `lambda_N = eps_N (B_N u - g)_+` and `lambda_T = clamp(eps_T B_T u, -b, b)`; the penetration
+//! and the elastic stick slip are O(1/eps), which is the penalty error.
+//!
+//! `Pi` is convex, C^1 and piecewise quadratic. Each Newton step solves with
+//! `H = K + eps_N B_A'B_A + eps_T B_S'B_S` (`A`: penetrating nodes, `S`: sticking nodes) on a
+//! Cholesky factorisation whose symbolic analysis is done once for the pattern of
+//! `K + B_N'B_N + B_T'B_T` (and kept across solves while the pattern does not change). When
+//! `H` is singular (`K` singular along a mode that only inactive or sliding rows control) the
+//! step is computed with `H + delta D` instead (`D = diag(K + eps_N B_N'B_N + eps_T B_T'B_T)`,
+//! `delta = 1e-10`): a direction dominated by the free mode. The step length is the exact
+//! minimiser of `Pi` along the Newton direction, found among the breakpoints of the
+//! piecewise-linear derivative; an energy that decreases without bound along the direction
+//! is reported as rigid sliding or a floating body.
+//!
+//! Stopping: the penetrating and sticking sets did not change over the last step and
+//! `||grad Pi||_inf` is below the relative tolerance or below the round-off floor of its own
+//! evaluation (`8 eps_mach || |K||u| + |f| + eps_N |B_N|'(|B_N||u| + |g|) + eps_T |B_T|'|B_T||u| ||_inf`,
+//! which dominates for very large penalties).
+
+use std::time::Instant;
+
+use faer::Par;
+
+use super::error::{ContactSolverError, SettingsError};
+use super::exact::classify_free_mode;
+use super::newton_matrix::NewtonMatrix;
+use super::report::{KktResiduals, SolveReport, SolveStatus};
+use super::system::ContactSystem;
+use super::{ContactSolution, ContactSolver};
+
+const NAME: &str = "penalty (semismooth Newton)";
+
+/// Relative diagonal shift `delta` of a singular Newton matrix.
+const SHIFT: f64 = 1e-10;
+
+/// A direction along which the curvature of `Pi` is below this fraction of `d'Dd` is taken as
+/// a free (rigid) mode.
+const FREE_MODE_CURVATURE: f64 = 1e-10;
+
+/// How a penalty parameter is chosen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PenaltyParameter {
+    /// `factor` times the largest diagonal entry of `K` over the unknowns that appear in a
+    /// constraint row (falls back to the largest diagonal entry of `K`, then to 1, if that
+    /// vanishes).
+    RelativeToStiffness(f64),
+    /// An absolute value (force per length for unit constraint rows).
+    Absolute(f64),
+}
+
+impl PenaltyParameter {
+    fn validate(&self, setting: &'static str) -> Result<(), SettingsError> {
+        let (Self::RelativeToStiffness(v) | Self::Absolute(v)) = *self;
+        SettingsError::positive(setting, v).map(|_| ())
+    }
+
+    /// The value for a given system.
+    pub fn value(&self, system: &ContactSystem) -> f64 {
+        match *self {
+            Self::Absolute(v) => v,
+            Self::RelativeToStiffness(factor) => {
+                let mut scale = system.max_constrained_diagonal();
+                if scale <= 0.0 {
+                    let k = system.stiffness().as_ref();
+                    scale = (0..k.ncols())
+                        .flat_map(|j| {
+                            let range = k.col_range(j);
+                            k.row_idx()[range.clone()]
+                                .iter()
+                                .zip(&k.val()[range])
+                                .filter(move |(&i, _)| i == j)
+                                .map(|(_, &v)| v)
+                        })
+                        .fold(0.0, f64::max);
+                }
+                factor * if scale > 0.0 { scale } else { 1.0 }
+            }
+        }
+    }
+}
+
+/// Settings of [`PenaltySolver`]; build them with [`PenaltySettings::builder`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PenaltySettings {
+    normal_penalty: PenaltyParameter,
+    tangential_penalty: PenaltyParameter,
+    tolerance: f64,
+    max_iter: usize,
+    parallelism: Par,
+}
+
+impl Default for PenaltySettings {
+    /// Normal and tangential penalty `1e3 x` the largest constrained diagonal entry of `K`,
+    /// relative gradient tolerance `1e-10`, at most 50 Newton steps, sequential factorisation.
+    fn default() -> Self {
+        Self {
+            normal_penalty: PenaltyParameter::RelativeToStiffness(1e3),
+            tangential_penalty: PenaltyParameter::RelativeToStiffness(1e3),
+            tolerance: 1e-10,
+            max_iter: 50,
+            parallelism: Par::Seq,
+        }
+    }
+}
+
+impl PenaltySettings {
+    /// A builder starting from the defaults.
+    pub fn builder() -> PenaltySettingsBuilder {
+        PenaltySettingsBuilder {
+            settings: Self::default(),
+        }
+    }
+
+    /// Normal penalty `eps_N`.
+    pub fn normal_penalty(&self) -> PenaltyParameter {
+        self.normal_penalty
+    }
+
+    /// Tangential (stick) penalty `eps_T`.
+    pub fn tangential_penalty(&self) -> PenaltyParameter {
+        self.tangential_penalty
+    }
+
+    /// Relative tolerance on `||grad Pi||_inf` (scaled like
+    /// [`KktResiduals::stationarity`]).
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Newton iteration limit.
+    pub fn max_iter(&self) -> usize {
+        self.max_iter
+    }
+
+    /// Parallelism of the factorisation and solves.
+    pub fn parallelism(&self) -> Par {
+        self.parallelism
+    }
+}
+
+/// Builder of [`PenaltySettings`]; values are checked by [`PenaltySettingsBuilder::build`].
+#[derive(Debug, Clone, Copy)]
+pub struct PenaltySettingsBuilder {
+    settings: PenaltySettings,
+}
+
+impl PenaltySettingsBuilder {
+    /// Normal penalty (value or factor finite and `> 0`).
+    pub fn normal_penalty(mut self, value: PenaltyParameter) -> Self {
+        self.settings.normal_penalty = value;
+        self
+    }
+
+    /// Tangential penalty (value or factor finite and `> 0`).
+    pub fn tangential_penalty(mut self, value: PenaltyParameter) -> Self {
+        self.settings.tangential_penalty = value;
+        self
+    }
+
+    /// Sets both penalties.
+    pub fn penalty(self, value: PenaltyParameter) -> Self {
+        self.normal_penalty(value).tangential_penalty(value)
+    }
+
+    /// Relative gradient tolerance, finite and `> 0`.
+    pub fn tolerance(mut self, value: f64) -> Self {
+        self.settings.tolerance = value;
+        self
+    }
+
+    /// Newton iteration limit, `>= 1`.
+    pub fn max_iter(mut self, value: usize) -> Self {
+        self.settings.max_iter = value;
+        self
+    }
+
+    /// Parallelism of the factorisation and solves (default [`Par::Seq`]).
+    pub fn parallelism(mut self, value: Par) -> Self {
+        self.settings.parallelism = value;
+        self
+    }
+
+    /// Validates the settings.
+    ///
+    /// # Errors
+    /// [`SettingsError`] naming the first invalid setting.
+    pub fn build(self) -> Result<PenaltySettings, SettingsError> {
+        let s = self.settings;
+        s.normal_penalty.validate("normal_penalty")?;
+        s.tangential_penalty.validate("tangential_penalty")?;
+        SettingsError::positive("tolerance", s.tolerance)?;
+        SettingsError::at_least_one("max_iter", s.max_iter)?;
+        Ok(s)
+    }
+}
+
+/// Penalty contact solver (semismooth Newton on faer sparse Cholesky). Keeps the symbolic
+/// analysis from one solve to the next while the patterns of `K`, `B_N` and `B_T` do not
+/// change.
+#[derive(Debug, Default)]
+pub struct PenaltySolver {
+    settings: PenaltySettings,
+    matrix: Option<NewtonMatrix>,
+}
+
+impl PenaltySolver {
+    /// A solver with the given settings.
+    pub fn new(settings: PenaltySettings) -> Self {
+        Self {
+            settings,
+            matrix: None,
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &PenaltySettings {
+        &self.settings
+    }
+}
+
+/// The penalised problem at one iterate.
+struct State {
+    /// `B_N u - g`.
+    constraint: Vec<f64>,
+    /// `B_T u` (empty when frictionless).
+    slip: Vec<f64>,
+    normal_force: Vec<f64>,
+    tangential_force: Vec<f64>,
+    /// `K u`.
+    ku: Vec<f64>,
+    /// `grad Pi(u)`.
+    gradient: Vec<f64>,
+    /// Relative `||grad Pi||_inf`.
+    relative_gradient: f64,
+    /// Round-off floor of `||grad Pi||_inf`, relative like `relative_gradient`.
+    relative_noise: f64,
+    /// Penetrating nodes, then sticking nodes.
+    sets: Vec<bool>,
+}
+
+struct Penalised<'a> {
+    system: &'a ContactSystem,
+    eps_n: f64,
+    eps_t: f64,
+}
+
+impl Penalised<'_> {
+    fn bounds(&self) -> &[f64] {
+        self.system.friction().map_or(&[], |f| f.bounds())
+    }
+
+    fn state(&self, u: &[f64]) -> State {
+        let sys = self.system;
+        let m = sys.n_constraints();
+        let constraint: Vec<f64> = sys
+            .normal_rows()
+            .apply(u)
+            .iter()
+            .zip(sys.gap())
+            .map(|(bu, g)| bu - g)
+            .collect();
+        let normal_force: Vec<f64> = constraint.iter().map(|c| self.eps_n * c.max(0.0)).collect();
+        let slip = sys
+            .friction()
+            .map_or_else(Vec::new, |f| f.tangential_rows().apply(u));
+        let tangential_force: Vec<f64> = if slip.is_empty() {
+            vec![0.0; m]
+        } else {
+            slip.iter()
+                .zip(self.bounds())
+                .map(|(s, b)| (self.eps_t * s).clamp(-b, *b))
+                .collect()
+        };
+        let ku = sys.stiffness_apply(u);
+        let mut reaction = vec![0.0; u.len()];
+        sys.normal_rows()
+            .add_transpose_apply(&normal_force, &mut reaction);
+        if let Some(f) = sys.friction() {
+            f.tangential_rows()
+                .add_transpose_apply(&tangential_force, &mut reaction);
+        }
+        let gradient: Vec<f64> = ku
+            .iter()
+            .zip(sys.load())
+            .zip(&reaction)
+            .map(|((k, f), r)| k - f + r)
+            .collect();
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let scale = inf(sys.load()).max(inf(&ku)).max(inf(&reaction));
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        let relative_gradient = inf(&gradient) / scale;
+        let relative_noise = 8.0 * f64::EPSILON * inf(&self.magnitudes(u)) / scale;
+        let mut sets: Vec<bool> = constraint.iter().map(|&c| c > 0.0).collect();
+        sets.extend(
+            slip.iter()
+                .zip(self.bounds())
+                .map(|(s, b)| (self.eps_t * s).abs() < *b),
+        );
+        State {
+            constraint,
+            slip,
+            normal_force,
+            tangential_force,
+            ku,
+            gradient,
+            relative_gradient,
+            relative_noise,
+            sets,
+        }
+    }
+
+    /// `|K||u| + |f| + eps_N |B_N|'(|B_N||u| + |g|) + eps_T |B_T|'|B_T||u|`: the magnitudes
+    /// whose round-off bounds the evaluation error of the gradient.
+    fn magnitudes(&self, u: &[f64]) -> Vec<f64> {
+        let sys = self.system;
+        let abs_u: Vec<f64> = u.iter().map(|x| x.abs()).collect();
+        let k = sys.stiffness().as_ref();
+        let mut out: Vec<f64> = sys.load().iter().map(|f| f.abs()).collect();
+        for (j, &uj) in abs_u.iter().enumerate() {
+            let range = k.col_range(j);
+            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
+                out[i] += v.abs() * uj;
+            }
+        }
+        let mut add = |rows: &super::ConstraintRows, eps: f64, offset: &[f64]| {
+            for r in 0..rows.nrows() {
+                let (cols, vals) = rows.row(r);
+                let mut row_mag: f64 = cols
+                    .iter()
+                    .zip(vals)
+                    .map(|(&c, v)| v.abs() * abs_u[c])
+                    .sum();
+                row_mag += offset.get(r).map_or(0.0, |g| g.abs());
+                for (&c, v) in cols.iter().zip(vals) {
+                    out[c] += eps * v.abs() * row_mag;
+                }
+            }
+        };
+        add(sys.normal_rows(), self.eps_n, sys.gap());
+        if let Some(f) = sys.friction() {
+            add(f.tangential_rows(), self.eps_t, &[]);
+        }
+        out
+    }
+
+    /// If `mode` (or its opposite) is a direction of recession along which the energy
+    /// decreases without bound, returns it: `K mode = 0` (relative to the metric),
+    /// `B_N mode <= 0` (no penetration grows) and load along it larger than the friction
+    /// capacity `sum_i b_i |(B_T mode)_i|`.
+    fn recession(&self, mode: &[f64], metric: &[f64]) -> Option<Vec<f64>> {
+        let sys = self.system;
+        let km = sys.stiffness_apply(mode);
+        let curvature: f64 = mode.iter().zip(&km).map(|(a, b)| a * b).sum();
+        let size: f64 = mode.iter().zip(metric).map(|(x, w)| w * x * x).sum();
+        if size <= 0.0 || size.is_nan() || curvature > FREE_MODE_CURVATURE * size {
+            return None;
+        }
+        let e = sys.normal_rows().apply(mode);
+        let mode_inf = mode.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let tol = 1e-8 * mode_inf;
+        let capacity: f64 = sys.friction().map_or(0.0, |f| {
+            f.tangential_rows()
+                .apply(mode)
+                .iter()
+                .zip(f.bounds())
+                .map(|(w, b)| b * w.abs())
+                .sum()
+        });
+        let load: f64 = sys.load().iter().zip(mode).map(|(f, x)| f * x).sum();
+        for sign in [1.0, -1.0] {
+            if e.iter().all(|&ei| sign * ei <= tol) && sign * load > capacity {
+                return Some(mode.iter().map(|x| sign * x).collect());
+            }
+        }
+        None
+    }
+
+    /// `D = diag(K + eps_N B_N'B_N + eps_T B_T'B_T)`.
+    fn full_diagonal(&self) -> Vec<f64> {
+        let sys = self.system;
+        let k = sys.stiffness().as_ref();
+        let mut d: Vec<f64> = (0..sys.n_dofs())
+            .map(|j| {
+                let range = k.col_range(j);
+                k.row_idx()[range.clone()]
+                    .iter()
+                    .zip(&k.val()[range])
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, &v)| v)
+                    .sum()
+            })
+            .collect();
+        let mut add = |rows: &super::ConstraintRows, eps: f64| {
+            for r in 0..rows.nrows() {
+                let (cols, vals) = rows.row(r);
+                for (&c, &v) in cols.iter().zip(vals) {
+                    d[c] += eps * v * v;
+                }
+            }
+        };
+        add(sys.normal_rows(), self.eps_n);
+        if let Some(f) = sys.friction() {
+            add(f.tangential_rows(), self.eps_t);
+        }
+        d
+    }
+}
+
+/// Result of the exact line search.
+enum Step {
+    /// Minimiser of `Pi` along the direction.
+    Length(f64),
+    /// `Pi` decreases without bound along the direction.
+    Unbounded,
+    /// The direction is not a descent direction.
+    NoDescent,
+}
+
+/// Exact minimisation of the convex piecewise quadratic `phi(t) = Pi(u + t d)` over `t >= 0`:
+/// `phi'` is piecewise linear and non-decreasing; its zero is located among the breakpoints by
+/// bisection, then interpolated linearly on its piece.
+fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
+    let sys = p.system;
+    let kd = sys.stiffness_apply(d);
+    let d_k_d: f64 = d.iter().zip(&kd).map(|(a, b)| a * b).sum();
+    let a0: f64 = state
+        .ku
+        .iter()
+        .zip(sys.load())
+        .zip(d)
+        .map(|((k, f), x)| (k - f) * x)
+        .sum();
+    let e = sys.normal_rows().apply(d);
+    let w = sys
+        .friction()
+        .map_or_else(Vec::new, |f| f.tangential_rows().apply(d));
+    let bounds = p.bounds();
+    let dphi = |t: f64| -> f64 {
+        let mut v = a0 + t * d_k_d;
+        for (c, ei) in state.constraint.iter().zip(&e) {
+            v += p.eps_n * (c + t * ei).max(0.0) * ei;
+        }
+        for ((s, wi), b) in state.slip.iter().zip(&w).zip(bounds) {
+            v += (p.eps_t * (s + t * wi)).clamp(-b, *b) * wi;
+        }
+        v
+    };
+    let mut breakpoints: Vec<f64> = Vec::new();
+    for (c, ei) in state.constraint.iter().zip(&e) {
+        if *ei != 0.0 {
+            breakpoints.push(-c / ei);
+        }
+    }
+    for ((s, wi), b) in state.slip.iter().zip(&w).zip(bounds) {
+        if *wi != 0.0 && *b > 0.0 {
+            breakpoints.push((b / p.eps_t - s) / wi);
+            breakpoints.push((-b / p.eps_t - s) / wi);
+        }
+    }
+    breakpoints.retain(|t| *t > 0.0 && t.is_finite());
+    breakpoints.sort_by(f64::total_cmp);
+    breakpoints.dedup();
+
+    let d0 = dphi(0.0);
+    if d0 >= 0.0 {
+        return Step::NoDescent;
+    }
+    // First breakpoint where phi' >= 0.
+    let k = breakpoints.partition_point(|&t| dphi(t) < 0.0);
+    if k < breakpoints.len() {
+        let (ta, da) = if k == 0 {
+            (0.0, d0)
+        } else {
+            (breakpoints[k - 1], dphi(breakpoints[k - 1]))
+        };
+        let (tb, db) = (breakpoints[k], dphi(breakpoints[k]));
+        return Step::Length(if db > da {
+            ta - da * (tb - ta) / (db - da)
+        } else {
+            tb
+        });
+    }
+    // Beyond the last breakpoint phi' is linear with the asymptotic curvature below.
+    let t_last = breakpoints.last().copied().unwrap_or(0.0);
+    let d_last = dphi(t_last);
+    let curvature = d_k_d
+        + p.eps_n
+            * e.iter()
+                .filter(|&&ei| ei > 0.0)
+                .map(|ei| ei * ei)
+                .sum::<f64>();
+    if curvature <= FREE_MODE_CURVATURE * d_diag_d {
+        Step::Unbounded
+    } else {
+        Step::Length(t_last - d_last / curvature)
+    }
+}
+
+impl ContactSolver for PenaltySolver {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
+        let start = Instant::now();
+        let s = self.settings;
+        let n = system.n_dofs();
+        let m = system.n_constraints();
+        let p = Penalised {
+            system,
+            eps_n: s.normal_penalty.value(system),
+            eps_t: s.tangential_penalty.value(system),
+        };
+        let matrix = match self.matrix.take() {
+            Some(matrix) if matrix.fits(system, s.parallelism) => matrix,
+            _ => NewtonMatrix::try_new(system, s.parallelism).map_err(|detail| {
+                ContactSolverError::Backend {
+                    solver: NAME,
+                    detail,
+                }
+            })?,
+        };
+        let matrix = self.matrix.insert(matrix);
+        let diagonal = p.full_diagonal();
+        let max_diag = diagonal.iter().fold(0.0f64, |a, &x| a.max(x));
+        let floor = if max_diag > 0.0 { max_diag } else { 1.0 };
+        // D with its zeros (unknowns that nothing touches) replaced by max D.
+        let metric: Vec<f64> = diagonal
+            .iter()
+            .map(|&x| if x > 0.0 { x } else { floor })
+            .collect();
+        let shift: Vec<f64> = metric.iter().map(|&x| SHIFT * x).collect();
+        let no_shift = vec![0.0; n];
+
+        let mut u = vec![0.0; n];
+        let mut state = p.state(&u);
+        let mut previous_sets: Option<Vec<bool>> = None;
+        let mut iterations = 0;
+        let mut factorisations = 0;
+        let outcome: Result<(), (SolveStatus, Option<Vec<f64>>)> = loop {
+            if state.relative_gradient <= s.tolerance.max(state.relative_noise)
+                && previous_sets.as_ref() == Some(&state.sets)
+            {
+                break Ok(());
+            }
+            if iterations == s.max_iter {
+                break Err((SolveStatus::MaxIterations, None));
+            }
+            iterations += 1;
+            let normal_weights: Vec<f64> = state.sets[..m]
+                .iter()
+                .map(|&a| if a { p.eps_n } else { 0.0 })
+                .collect();
+            let tangential_weights: Vec<f64> = state.sets[m..]
+                .iter()
+                .map(|&a| if a { p.eps_t } else { 0.0 })
+                .collect();
+            factorisations += 1;
+            let mut shifted = false;
+            if !matrix.refill_and_factorise(system, &normal_weights, &tangential_weights, &no_shift)
+            {
+                shifted = true;
+                factorisations += 1;
+                if !matrix.refill_and_factorise(
+                    system,
+                    &normal_weights,
+                    &tangential_weights,
+                    &shift,
+                ) {
+                    // Not definite even with the shift: K has a negative eigenvalue.
+                    break Err((SolveStatus::NumericalFailure, None));
+                }
+            }
+            let mut d: Vec<f64> = state.gradient.iter().map(|g| -g).collect();
+            matrix.solve_in_place(&mut d);
+            if d.iter().any(|x| !x.is_finite()) {
+                break Err((SolveStatus::NumericalFailure, None));
+            }
+            if shifted {
+                // One inverse iteration purifies the free mode that dominates `d`.
+                let mut mode: Vec<f64> = d.iter().zip(&metric).map(|(x, w)| w * x).collect();
+                matrix.solve_in_place(&mut mode);
+                if let Some(direction) = p.recession(&mode, &metric) {
+                    break Err((SolveStatus::Unbounded, Some(direction)));
+                }
+            }
+            let d_diag_d: f64 = d.iter().zip(&metric).map(|(x, w)| w * x * x).sum();
+            match line_search(&p, &state, &d, d_diag_d) {
+                Step::Length(t) => {
+                    u.iter_mut().zip(&d).for_each(|(ui, di)| *ui += t * di);
+                }
+                Step::Unbounded => break Err((SolveStatus::Unbounded, Some(d))),
+                Step::NoDescent => {
+                    // Round-off floor reached (or nothing to do): accept a small gradient.
+                    if state.relative_gradient <= s.tolerance.max(state.relative_noise) {
+                        break Ok(());
+                    }
+                    break Err((SolveStatus::NumericalFailure, None));
+                }
+            }
+            previous_sets = Some(std::mem::take(&mut state.sets));
+            state = p.state(&u);
+        };
+        let residuals =
+            KktResiduals::evaluate(system, &u, &state.normal_force, &state.tangential_force);
+        let report = SolveReport {
+            solver: NAME,
+            status: outcome
+                .as_ref()
+                .map_or_else(|(status, _)| *status, |_| SolveStatus::Converged),
+            iterations,
+            factorisations,
+            wall_time: start.elapsed(),
+            residuals,
+        };
+        match outcome {
+            Ok(()) => Ok(ContactSolution {
+                displacement: u,
+                normal_force: state.normal_force,
+                tangential_force: state.tangential_force,
+                report,
+            }),
+            Err((_, Some(direction))) => {
+                Err(classify_free_mode(system, &direction, Box::new(report)))
+            }
+            Err(_) => Err(ContactSolverError::NotConverged {
+                report: Box::new(report),
+            }),
+        }
+    }
+}

@@ -1,0 +1,581 @@
+//! The algebraic contact problem: stiffness, load, constraint rows, gaps and friction bounds.
+//!
+//! A [`ContactSystem`] is what every [`ContactSolver`](super::ContactSolver) sees. It knows
+//! nothing of meshes: the two-body layer turns the interface pairing into rows of `B_N`
+//! (normal jump `[u]_nu` at each interface node) and `B_T` (tangential jump `[u]_1tau`), the
+//! interpolated initial gap `g = h0_I` and the nodal friction bounds `b_i = l_i g_F(x_i)`
+//! (spec section 2, nodal quadrature `j_h`).
+
+use faer::sparse::SparseColMat;
+
+/// Why a [`ConstraintRows`] or a [`ContactSystem`] was rejected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ContactSystemError {
+    /// A constraint entry refers to a column (unknown) outside `0..ncols`.
+    #[error("{what}: row {row} refers to column {col}, but there are only {ncols} unknowns")]
+    ColumnOutOfRange {
+        /// Which matrix (`"normal rows"`, `"tangential rows"`, ...).
+        what: &'static str,
+        /// Row of the offending entry.
+        row: usize,
+        /// Column of the offending entry.
+        col: usize,
+        /// Number of columns.
+        ncols: usize,
+    },
+    /// A triplet refers to a row outside `0..nrows`.
+    #[error("{what}: entry refers to row {row}, but there are only {nrows} rows")]
+    RowOutOfRange {
+        /// Which matrix.
+        what: &'static str,
+        /// The offending row index.
+        row: usize,
+        /// Number of rows.
+        nrows: usize,
+    },
+    /// The CSR row pointer is not a non-decreasing sequence from 0 to the number of entries.
+    #[error("{what}: malformed CSR row pointer ({reason})")]
+    MalformedRowPointer {
+        /// Which matrix.
+        what: &'static str,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A matrix or vector entry is NaN or infinite.
+    #[error("{what}: entry {index} is not finite ({value})")]
+    NonFinite {
+        /// Which matrix or vector.
+        what: &'static str,
+        /// Entry index (row for vectors, position in storage for matrices).
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// Two sizes that must agree do not.
+    #[error("{what}: expected length {expected}, got {actual}")]
+    DimensionMismatch {
+        /// Which quantity.
+        what: &'static str,
+        /// Expected size.
+        expected: usize,
+        /// Actual size.
+        actual: usize,
+    },
+    /// The stiffness matrix is not square.
+    #[error("stiffness matrix is {nrows} x {ncols}, not square")]
+    StiffnessNotSquare {
+        /// Rows.
+        nrows: usize,
+        /// Columns.
+        ncols: usize,
+    },
+    /// The stiffness matrix is not stored in full symmetric form (entry `(row, col)` differs
+    /// from entry `(col, row)` or one of them is missing).
+    #[error("stiffness matrix is not symmetric: K[{row}, {col}] = {value} but K[{col}, {row}] = {transposed}")]
+    StiffnessNotSymmetric {
+        /// Row of the entry.
+        row: usize,
+        /// Column of the entry.
+        col: usize,
+        /// `K[row, col]`.
+        value: f64,
+        /// `K[col, row]` (0 if not stored).
+        transposed: f64,
+    },
+    /// A diagonal entry of the stiffness is negative, so it cannot be positive semi-definite.
+    #[error("stiffness matrix has a negative diagonal entry K[{dof}, {dof}] = {value}")]
+    NegativeDiagonal {
+        /// The unknown.
+        dof: usize,
+        /// The diagonal value.
+        value: f64,
+    },
+    /// A friction bound is negative.
+    #[error("friction bound b[{row}] = {value} is negative")]
+    NegativeFrictionBound {
+        /// Interface node (constraint row).
+        row: usize,
+        /// The bound.
+        value: f64,
+    },
+}
+
+/// A sparse block of constraint rows (`B_N` or `B_T`), stored row by row (CSR).
+///
+/// Row `i` is a linear form `(B x)_i = sum_k values[k] x[col_idx[k]]` over the unknowns, for
+/// example the normal jump `[u]_nu = (u_1 - u_2) . nu_1` at interface node `i`. Columns within
+/// a row are sorted and unique; every value is finite.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstraintRows {
+    ncols: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl ConstraintRows {
+    /// Builds `nrows x ncols` rows from `(row, col, value)` triplets; duplicates are summed.
+    ///
+    /// # Errors
+    /// [`ContactSystemError::RowOutOfRange`], [`ContactSystemError::ColumnOutOfRange`] or
+    /// [`ContactSystemError::NonFinite`] naming the offending entry.
+    pub fn try_from_triplets(
+        nrows: usize,
+        ncols: usize,
+        triplets: &[(usize, usize, f64)],
+    ) -> Result<Self, ContactSystemError> {
+        const WHAT: &str = "constraint triplets";
+        for (k, &(row, col, value)) in triplets.iter().enumerate() {
+            if row >= nrows {
+                return Err(ContactSystemError::RowOutOfRange {
+                    what: WHAT,
+                    row,
+                    nrows,
+                });
+            }
+            if col >= ncols {
+                return Err(ContactSystemError::ColumnOutOfRange {
+                    what: WHAT,
+                    row,
+                    col,
+                    ncols,
+                });
+            }
+            if !value.is_finite() {
+                return Err(ContactSystemError::NonFinite {
+                    what: WHAT,
+                    index: k,
+                    value,
+                });
+            }
+        }
+        let mut sorted: Vec<(usize, usize, f64)> = triplets.to_vec();
+        sorted.sort_by_key(|&(row, col, _)| (row, col));
+        let mut row_ptr = vec![0usize; nrows + 1];
+        let mut col_idx = Vec::with_capacity(sorted.len());
+        let mut values: Vec<f64> = Vec::with_capacity(sorted.len());
+        let mut last: Option<(usize, usize)> = None;
+        for (row, col, value) in sorted {
+            if last == Some((row, col)) {
+                if let Some(v) = values.last_mut() {
+                    *v += value;
+                }
+            } else {
+                col_idx.push(col);
+                values.push(value);
+                row_ptr[row + 1] += 1;
+                last = Some((row, col));
+            }
+        }
+        for i in 0..nrows {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        Ok(Self {
+            ncols,
+            row_ptr,
+            col_idx,
+            values,
+        })
+    }
+
+    /// Builds rows from CSR arrays. Columns within a row may come in any order but must be
+    /// unique.
+    ///
+    /// # Errors
+    /// [`ContactSystemError::MalformedRowPointer`], [`ContactSystemError::ColumnOutOfRange`]
+    /// (also for a repeated column), [`ContactSystemError::NonFinite`] or
+    /// [`ContactSystemError::DimensionMismatch`].
+    pub fn try_from_csr(
+        ncols: usize,
+        row_ptr: Vec<usize>,
+        col_idx: Vec<usize>,
+        values: Vec<f64>,
+    ) -> Result<Self, ContactSystemError> {
+        const WHAT: &str = "constraint rows (CSR)";
+        if col_idx.len() != values.len() {
+            return Err(ContactSystemError::DimensionMismatch {
+                what: "CSR values vs column indices",
+                expected: col_idx.len(),
+                actual: values.len(),
+            });
+        }
+        if row_ptr.first() != Some(&0) {
+            return Err(ContactSystemError::MalformedRowPointer {
+                what: WHAT,
+                reason: "must start with 0",
+            });
+        }
+        if row_ptr.windows(2).any(|w| w[0] > w[1]) {
+            return Err(ContactSystemError::MalformedRowPointer {
+                what: WHAT,
+                reason: "must be non-decreasing",
+            });
+        }
+        if row_ptr.last() != Some(&col_idx.len()) {
+            return Err(ContactSystemError::MalformedRowPointer {
+                what: WHAT,
+                reason: "last entry must equal the number of stored entries",
+            });
+        }
+        let nrows = row_ptr.len() - 1;
+        let mut triplets = Vec::with_capacity(values.len());
+        for row in 0..nrows {
+            let range = row_ptr[row]..row_ptr[row + 1];
+            let mut cols: Vec<usize> = col_idx[range.clone()].to_vec();
+            cols.sort_unstable();
+            if let Some(w) = cols.windows(2).find(|w| w[0] == w[1]) {
+                return Err(ContactSystemError::ColumnOutOfRange {
+                    what: "constraint rows (CSR, repeated column)",
+                    row,
+                    col: w[0],
+                    ncols,
+                });
+            }
+            for k in range {
+                triplets.push((row, col_idx[k], values[k]));
+            }
+        }
+        Self::try_from_triplets(nrows, ncols, &triplets)
+    }
+
+    /// Number of rows (interface nodes).
+    pub fn nrows(&self) -> usize {
+        self.row_ptr.len() - 1
+    }
+
+    /// Number of columns (unknowns).
+    pub fn ncols(&self) -> usize {
+        self.ncols
+    }
+
+    /// Number of stored entries.
+    pub fn nnz(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Column indices and values of row `i` (columns sorted increasingly).
+    ///
+    /// # Panics
+    /// If `i >= self.nrows()`.
+    pub fn row(&self, i: usize) -> (&[usize], &[f64]) {
+        let range = self.row_ptr[i]..self.row_ptr[i + 1];
+        (&self.col_idx[range.clone()], &self.values[range])
+    }
+
+    /// `(B x)_i`, the linear form of row `i` applied to `x`.
+    ///
+    /// # Panics
+    /// If `i >= self.nrows()` or `x.len() != self.ncols()`.
+    pub fn row_dot(&self, i: usize, x: &[f64]) -> f64 {
+        let (cols, vals) = self.row(i);
+        cols.iter().zip(vals).map(|(&c, &v)| v * x[c]).sum()
+    }
+
+    /// `B x` for all rows.
+    ///
+    /// # Panics
+    /// If `x.len() != self.ncols()`.
+    pub fn apply(&self, x: &[f64]) -> Vec<f64> {
+        assert_eq!(x.len(), self.ncols, "ConstraintRows::apply: wrong length");
+        (0..self.nrows()).map(|i| self.row_dot(i, x)).collect()
+    }
+
+    /// `out += B' y`.
+    ///
+    /// # Panics
+    /// If `y.len() != self.nrows()` or `out.len() != self.ncols()`.
+    pub fn add_transpose_apply(&self, y: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            y.len(),
+            self.nrows(),
+            "ConstraintRows: wrong multiplier length"
+        );
+        assert_eq!(out.len(), self.ncols, "ConstraintRows: wrong output length");
+        for (i, &yi) in y.iter().enumerate() {
+            if yi == 0.0 {
+                continue;
+            }
+            let (cols, vals) = self.row(i);
+            for (&c, &v) in cols.iter().zip(vals) {
+                out[c] += v * yi;
+            }
+        }
+    }
+}
+
+/// Tresca friction data: tangential rows `B_T` and nodal friction bounds
+/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; spec section 2, `j_h`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Friction {
+    tangential_rows: ConstraintRows,
+    bounds: Vec<f64>,
+}
+
+impl Friction {
+    /// Tangential rows (one per interface node, the same nodes and order as the normal rows)
+    /// and their bounds.
+    ///
+    /// # Errors
+    /// [`ContactSystemError::DimensionMismatch`] if `bounds.len() != tangential_rows.nrows()`,
+    /// [`ContactSystemError::NonFinite`] or [`ContactSystemError::NegativeFrictionBound`].
+    pub fn try_new(
+        tangential_rows: ConstraintRows,
+        bounds: Vec<f64>,
+    ) -> Result<Self, ContactSystemError> {
+        if bounds.len() != tangential_rows.nrows() {
+            return Err(ContactSystemError::DimensionMismatch {
+                what: "friction bounds vs tangential rows",
+                expected: tangential_rows.nrows(),
+                actual: bounds.len(),
+            });
+        }
+        for (row, &value) in bounds.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(ContactSystemError::NonFinite {
+                    what: "friction bounds",
+                    index: row,
+                    value,
+                });
+            }
+            if value < 0.0 {
+                return Err(ContactSystemError::NegativeFrictionBound { row, value });
+            }
+        }
+        Ok(Self {
+            tangential_rows,
+            bounds,
+        })
+    }
+
+    /// The tangential rows `B_T`: `(B_T u)_i = [u]_1tau` at node `i`.
+    pub fn tangential_rows(&self) -> &ConstraintRows {
+        &self.tangential_rows
+    }
+
+    /// The nodal friction bounds `b_i`.
+    pub fn bounds(&self) -> &[f64] {
+        &self.bounds
+    }
+}
+
+/// The discrete contact problem (P1^h, or P2^h with nodal friction quadrature):
+///
+/// ```text
+/// frictionless:  min 1/2 u'Ku - f'u                          s.t.  B_N u <= g
+/// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i|   s.t.  B_N u <= g
+/// ```
+///
+/// `K` is symmetric positive semi-definite in full (both triangles) storage; a singular `K`
+/// is allowed when the constraints (or friction) hold the rigid modes.
+#[derive(Debug, Clone)]
+pub struct ContactSystem {
+    stiffness: SparseColMat<usize, f64>,
+    load: Vec<f64>,
+    normal_rows: ConstraintRows,
+    gap: Vec<f64>,
+    friction: Option<Friction>,
+}
+
+impl ContactSystem {
+    /// Validates and assembles the problem.
+    ///
+    /// # Errors
+    /// A [`ContactSystemError`] naming the inconsistent quantity: non-square, non-symmetric
+    /// (relative tolerance `1e-12` of the largest entry) or non-finite stiffness, a negative
+    /// diagonal entry, wrong vector lengths, non-finite load or gap, rows whose column count
+    /// differs from the number of unknowns, tangential rows that do not pair one-to-one with
+    /// the normal rows.
+    pub fn try_new(
+        stiffness: SparseColMat<usize, f64>,
+        load: Vec<f64>,
+        normal_rows: ConstraintRows,
+        gap: Vec<f64>,
+        friction: Option<Friction>,
+    ) -> Result<Self, ContactSystemError> {
+        let (nrows, ncols) = (stiffness.nrows(), stiffness.ncols());
+        if nrows != ncols {
+            return Err(ContactSystemError::StiffnessNotSquare { nrows, ncols });
+        }
+        let n = ncols;
+        check_stiffness(&stiffness)?;
+        check_len("load", n, load.len())?;
+        check_finite("load", &load)?;
+        check_len("normal rows: columns", n, normal_rows.ncols())?;
+        check_len("gap vs normal rows", normal_rows.nrows(), gap.len())?;
+        check_finite("gap", &gap)?;
+        if let Some(fr) = &friction {
+            check_len("tangential rows: columns", n, fr.tangential_rows.ncols())?;
+            check_len(
+                "tangential rows vs normal rows",
+                normal_rows.nrows(),
+                fr.tangential_rows.nrows(),
+            )?;
+        }
+        Ok(Self {
+            stiffness,
+            load,
+            normal_rows,
+            gap,
+            friction,
+        })
+    }
+
+    /// Number of unknowns `n`.
+    pub fn n_dofs(&self) -> usize {
+        self.load.len()
+    }
+
+    /// Number of contact constraints `m` (interface nodes).
+    pub fn n_constraints(&self) -> usize {
+        self.gap.len()
+    }
+
+    /// The stiffness `K` (full symmetric storage).
+    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
+        &self.stiffness
+    }
+
+    /// The load `f`.
+    pub fn load(&self) -> &[f64] {
+        &self.load
+    }
+
+    /// The normal rows `B_N`: `(B_N u)_i = [u]_nu` at interface node `i`.
+    pub fn normal_rows(&self) -> &ConstraintRows {
+        &self.normal_rows
+    }
+
+    /// The gaps `g`: the constraint is `B_N u <= g`.
+    pub fn gap(&self) -> &[f64] {
+        &self.gap
+    }
+
+    /// Tresca friction data, `None` for frictionless contact.
+    pub fn friction(&self) -> Option<&Friction> {
+        self.friction.as_ref()
+    }
+
+    /// `K x` (uses the full symmetric storage).
+    ///
+    /// # Panics
+    /// If `x.len() != self.n_dofs()`.
+    pub fn stiffness_apply(&self, x: &[f64]) -> Vec<f64> {
+        let n = self.n_dofs();
+        assert_eq!(x.len(), n, "ContactSystem::stiffness_apply: wrong length");
+        let k = self.stiffness.as_ref();
+        let mut y = vec![0.0; n];
+        for (j, &xj) in x.iter().enumerate() {
+            if xj == 0.0 {
+                continue;
+            }
+            let range = k.col_range(j);
+            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
+                y[i] += v * xj;
+            }
+        }
+        y
+    }
+
+    /// Largest diagonal entry of `K` over the unknowns that appear in a normal or tangential
+    /// row (the "constrained DOFs"); 0 if there are none.
+    pub fn max_constrained_diagonal(&self) -> f64 {
+        let n = self.n_dofs();
+        let mut constrained = vec![false; n];
+        let mut mark = |rows: &ConstraintRows| {
+            for i in 0..rows.nrows() {
+                for &c in rows.row(i).0 {
+                    constrained[c] = true;
+                }
+            }
+        };
+        mark(&self.normal_rows);
+        if let Some(fr) = &self.friction {
+            mark(&fr.tangential_rows);
+        }
+        let k = self.stiffness.as_ref();
+        let mut max = 0.0f64;
+        for (j, &is_constrained) in constrained.iter().enumerate() {
+            if !is_constrained {
+                continue;
+            }
+            let range = k.col_range(j);
+            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
+                if i == j {
+                    max = max.max(v);
+                }
+            }
+        }
+        max
+    }
+}
+
+fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), ContactSystemError> {
+    if expected == actual {
+        Ok(())
+    } else {
+        Err(ContactSystemError::DimensionMismatch {
+            what,
+            expected,
+            actual,
+        })
+    }
+}
+
+fn check_finite(what: &'static str, v: &[f64]) -> Result<(), ContactSystemError> {
+    match v.iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(ContactSystemError::NonFinite {
+            what,
+            index,
+            value: v[index],
+        }),
+    }
+}
+
+/// Finite entries, non-negative diagonal, symmetric pattern and values.
+fn check_stiffness(k: &SparseColMat<usize, f64>) -> Result<(), ContactSystemError> {
+    let k = k.as_ref();
+    check_finite("stiffness values", k.val())?;
+    let scale = k.val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let tol = 1e-12 * scale;
+    let sorted =
+        (0..k.ncols()).all(|j| k.row_idx()[k.col_range(j)].windows(2).all(|w| w[0] < w[1]));
+    let entry = |i: usize, j: usize| -> f64 {
+        let range = k.col_range(j);
+        let rows = &k.row_idx()[range.clone()];
+        let vals = &k.val()[range];
+        if sorted {
+            rows.binary_search(&i).map_or(0.0, |p| vals[p])
+        } else {
+            // Unsorted storage may repeat an entry: sum the copies.
+            rows.iter()
+                .zip(vals)
+                .filter(|(&r, _)| r == i)
+                .map(|(_, &v)| v)
+                .sum()
+        }
+    };
+    for j in 0..k.ncols() {
+        let range = k.col_range(j);
+        for &i in &k.row_idx()[range] {
+            let value = entry(i, j);
+            if i == j {
+                if value < 0.0 {
+                    return Err(ContactSystemError::NegativeDiagonal { dof: j, value });
+                }
+            } else {
+                let transposed = entry(j, i);
+                if (value - transposed).abs() > tol {
+                    return Err(ContactSystemError::StiffnessNotSymmetric {
+                        row: i,
+                        col: j,
+                        value,
+                        transposed,
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
