@@ -383,6 +383,49 @@ fn circular_indenter_gaps_match_the_analytic_distances() {
 }
 
 #[test]
+fn flat_nodes_on_the_indenter_rays_project_back_onto_its_nodes() {
+    // The projection of b onto a (along a's interpolated normal field) inverts the ray cast
+    // of a's nodes: a flat whose nodes sit where those rays land pairs without insertion.
+    let a = indenter();
+    let chain = boundary_chain(&a, "bottom").unwrap();
+    let mut xs = vec![-0.6];
+    for node in &chain {
+        let t = -node.point.y / node.normal.y;
+        xs.push(node.point.x + t * node.normal.x);
+    }
+    xs.push(0.6);
+    let cells = xs.len() - 1;
+    let unit = structured_quads(&Rectangle::unit_square(), cells, 1).unwrap();
+    let vertices: Vec<Point> = unit
+        .vertices()
+        .iter()
+        .map(|p| Point::new(xs[(p.x * cells as f64).round() as usize], 0.5 * (p.y - 1.0)))
+        .collect();
+    let b = Mesh::from_compact(
+        vertices,
+        unit.polygon_offsets().to_vec(),
+        unit.polygon_vertex_indices().to_vec(),
+        unit.part_specs(),
+    )
+    .unwrap();
+    let exact = InterfaceOptions {
+        min_edge_fraction: 0.0,
+        ..InterfaceOptions::default()
+    };
+    let interface = insert_interface_nodes(&a, "bottom", &b, "top", &exact).unwrap();
+    assert_eq!((interface.inserted_a, interface.inserted_b), (0, 0));
+    assert_eq!(interface.pairs.len(), ARC_CELLS + 1);
+    for (pair, node) in interface.pairs.iter().zip(&chain) {
+        assert_eq!(pair.node_a, node.vertex);
+        assert_relative_eq!(
+            pair.initial_gap,
+            (pair.point_b - pair.point_a).norm(),
+            max_relative = 1e-13
+        );
+    }
+}
+
+#[test]
 fn different_extents_pair_only_the_overlap() {
     // Body 1 on (0.25, 0.75) with 3 cells above body 2 on (0, 1) with 8 cells.
     let a = structured_quads(&rect(0.25, 0.0, 0.75, 1.0), 3, 2).unwrap();
