@@ -173,6 +173,15 @@ fn missing_and_garbled_files_name_the_file() {
 }
 
 #[test]
+fn every_truncation_of_a_binary_file_is_an_error() {
+    let bytes = std::fs::read(data("unit_square_binary.msh")).unwrap();
+    for cut in (0..bytes.len() - 20).step_by(37) {
+        let err = read_gmsh_bytes(&bytes[..cut], "cut.msh").unwrap_err();
+        assert!(err.to_string().starts_with("cut.msh: "), "{err}");
+    }
+}
+
+#[test]
 fn half_disc_reads_with_its_arc_and_flat_top() {
     let mesh = read_gmsh(data("half_disc.msh")).unwrap();
     assert_eq!(mesh.part_names(), ["arc", "top"]);

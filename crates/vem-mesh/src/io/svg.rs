@@ -136,6 +136,26 @@ pub fn write_svg(
 /// Writes a picture of several meshes drawn over one another in the given order, at one
 /// scale (e.g. two bodies in contact, each with its displacement).
 ///
+/// ```
+/// use vem_mesh::generators::{structured_quads, Rectangle};
+/// use vem_mesh::io::{write_svg_layers, SvgLayer, SvgOptions};
+/// use vem_mesh::{Point, Vector};
+///
+/// let foundation = structured_quads(&Rectangle::new(Point::new(0.0, -1.0), Point::new(2.0, 0.0)), 4, 2)?;
+/// let punch = structured_quads(&Rectangle::new(Point::new(0.5, 0.0), Point::new(1.5, 0.5)), 2, 1)?;
+/// let settlement = vec![Vector::new(0.0, -1e-3); punch.n_vertices()];
+/// let depth: Vec<f64> = (0..foundation.n_polygons()).map(|p| foundation.centroid(p).y).collect();
+/// let layers = [
+///     SvgLayer::new(&foundation).with_label("foundation").with_cell_values(&depth),
+///     SvgLayer::new(&punch).with_label("punch").with_displacement(&settlement),
+/// ];
+/// let options = SvgOptions { magnification: 100.0, value_label: "depth".into(), ..SvgOptions::default() };
+/// let path = std::env::temp_dir().join(format!("vem-mesh-layers-doc-{}.svg", std::process::id()));
+/// write_svg_layers(&path, &layers, &options)?;
+/// # std::fs::remove_file(&path).unwrap();
+/// # Ok::<(), vem_mesh::MeshError>(())
+/// ```
+///
 /// Checks before writing (a failure is [`MeshError::Write`] naming the layer): at least one
 /// layer, one finite cell value per polygon, one finite displacement per vertex, a finite
 /// magnification, a finite increasing value range, a width that leaves room for the drawing.
