@@ -236,3 +236,125 @@ impl NewtonMatrix {
         );
     }
 }
+
+/// Relative diagonal shift `delta` used when a Newton matrix is singular.
+const SHIFT: f64 = 1e-10;
+
+/// A direction along which the curvature `d'Kd` is below this fraction of `d'Dd` is taken as a
+/// free (rigid) mode of `K`.
+pub(crate) const FREE_MODE_CURVATURE: f64 = 1e-10;
+
+/// Guards a Newton iteration against singular matrices: the metric
+/// `D = diag(K + eps_N B_N'B_N + eps_T B_T'B_T)` (zeros, i.e. unknowns nothing touches,
+/// replaced by `max D`) and the shift `delta D` used when `H` itself is not definite.
+#[derive(Debug, Clone)]
+pub(crate) struct SingularGuard {
+    metric: Vec<f64>,
+    shift: Vec<f64>,
+    no_shift: Vec<f64>,
+}
+
+impl SingularGuard {
+    pub(crate) fn new(system: &ContactSystem, eps_n: f64, eps_t: f64) -> Self {
+        let k = system.stiffness().as_ref();
+        let mut d: Vec<f64> = (0..system.n_dofs())
+            .map(|j| {
+                let range = k.col_range(j);
+                k.row_idx()[range.clone()]
+                    .iter()
+                    .zip(&k.val()[range])
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, &v)| v)
+                    .sum()
+            })
+            .collect();
+        let mut add = |rows: &ConstraintRows, eps: f64| {
+            for r in 0..rows.nrows() {
+                let (cols, vals) = rows.row(r);
+                for (&c, &v) in cols.iter().zip(vals) {
+                    d[c] += eps * v * v;
+                }
+            }
+        };
+        add(system.normal_rows(), eps_n);
+        if let Some(f) = system.friction() {
+            add(f.tangential_rows(), eps_t);
+        }
+        let max = d.iter().fold(0.0f64, |a, &x| a.max(x));
+        let floor = if max > 0.0 { max } else { 1.0 };
+        let metric: Vec<f64> = d.iter().map(|&x| if x > 0.0 { x } else { floor }).collect();
+        let shift = metric.iter().map(|&x| SHIFT * x).collect();
+        let no_shift = vec![0.0; metric.len()];
+        Self {
+            metric,
+            shift,
+            no_shift,
+        }
+    }
+
+    /// `d'Dd`.
+    pub(crate) fn size(&self, d: &[f64]) -> f64 {
+        d.iter().zip(&self.metric).map(|(x, w)| w * x * x).sum()
+    }
+
+    /// Factorises `K + sum wn bn bn' + sum wt bt bt'`, or, if that is not definite, the same
+    /// plus `delta D`. Returns the number of factorisations done and whether the shift was
+    /// needed, or `None` if even the shifted matrix is not definite (`K` indefinite).
+    pub(crate) fn factorise(
+        &self,
+        matrix: &mut NewtonMatrix,
+        system: &ContactSystem,
+        normal_weights: &[f64],
+        tangential_weights: &[f64],
+    ) -> Option<(usize, bool)> {
+        if matrix.refill_and_factorise(system, normal_weights, tangential_weights, &self.no_shift) {
+            Some((1, false))
+        } else if matrix.refill_and_factorise(
+            system,
+            normal_weights,
+            tangential_weights,
+            &self.shift,
+        ) {
+            Some((2, true))
+        } else {
+            None
+        }
+    }
+
+    /// After a shifted factorisation, purifies the free mode that dominates `d` by one inverse
+    /// iteration and returns it (or its opposite) if the energy decreases without bound along
+    /// it: `K mode = 0` (relative to `D`), `B_N mode <= 0` (no penetration grows) and load
+    /// along it larger than the friction capacity `sum_i b_i |(B_T mode)_i|`.
+    pub(crate) fn free_mode(
+        &self,
+        matrix: &mut NewtonMatrix,
+        system: &ContactSystem,
+        d: &[f64],
+    ) -> Option<Vec<f64>> {
+        let mut mode: Vec<f64> = d.iter().zip(&self.metric).map(|(x, w)| w * x).collect();
+        matrix.solve_in_place(&mut mode);
+        let km = system.stiffness_apply(&mode);
+        let curvature: f64 = mode.iter().zip(&km).map(|(a, b)| a * b).sum();
+        let size = self.size(&mode);
+        if size <= 0.0 || size.is_nan() || curvature > FREE_MODE_CURVATURE * size {
+            return None;
+        }
+        let e = system.normal_rows().apply(&mode);
+        let tol = 1e-8 * mode.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let capacity: f64 = system.friction().map_or(0.0, |f| {
+            f.tangential_rows()
+                .apply(&mode)
+                .iter()
+                .zip(f.bounds())
+                .map(|(w, b)| b * w.abs())
+                .sum()
+        });
+        let load: f64 = system.load().iter().zip(&mode).map(|(f, x)| f * x).sum();
+        for sign in [1.0, -1.0] {
+            if e.iter().all(|&ei| sign * ei <= tol) && sign * load > capacity {
+                return Some(mode.iter().map(|x| sign * x).collect());
+            }
+        }
+        None
+    }
+}

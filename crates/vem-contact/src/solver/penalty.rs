@@ -32,19 +32,12 @@ use faer::Par;
 
 use super::error::{ContactSolverError, SettingsError};
 use super::exact::classify_free_mode;
-use super::newton_matrix::NewtonMatrix;
+use super::newton_matrix::{NewtonMatrix, SingularGuard, FREE_MODE_CURVATURE};
 use super::report::{KktResiduals, SolveReport, SolveStatus};
 use super::system::ContactSystem;
 use super::{ContactSolution, ContactSolver};
 
 const NAME: &str = "penalty (semismooth Newton)";
-
-/// Relative diagonal shift `delta` of a singular Newton matrix.
-const SHIFT: f64 = 1e-10;
-
-/// A direction along which the curvature of `Pi` is below this fraction of `d'Dd` is taken as
-/// a free (rigid) mode.
-const FREE_MODE_CURVATURE: f64 = 1e-10;
 
 /// How a penalty parameter is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -351,68 +344,6 @@ impl Penalised<'_> {
         }
         out
     }
-
-    /// If `mode` (or its opposite) is a direction of recession along which the energy
-    /// decreases without bound, returns it: `K mode = 0` (relative to the metric),
-    /// `B_N mode <= 0` (no penetration grows) and load along it larger than the friction
-    /// capacity `sum_i b_i |(B_T mode)_i|`.
-    fn recession(&self, mode: &[f64], metric: &[f64]) -> Option<Vec<f64>> {
-        let sys = self.system;
-        let km = sys.stiffness_apply(mode);
-        let curvature: f64 = mode.iter().zip(&km).map(|(a, b)| a * b).sum();
-        let size: f64 = mode.iter().zip(metric).map(|(x, w)| w * x * x).sum();
-        if size <= 0.0 || size.is_nan() || curvature > FREE_MODE_CURVATURE * size {
-            return None;
-        }
-        let e = sys.normal_rows().apply(mode);
-        let mode_inf = mode.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let tol = 1e-8 * mode_inf;
-        let capacity: f64 = sys.friction().map_or(0.0, |f| {
-            f.tangential_rows()
-                .apply(mode)
-                .iter()
-                .zip(f.bounds())
-                .map(|(w, b)| b * w.abs())
-                .sum()
-        });
-        let load: f64 = sys.load().iter().zip(mode).map(|(f, x)| f * x).sum();
-        for sign in [1.0, -1.0] {
-            if e.iter().all(|&ei| sign * ei <= tol) && sign * load > capacity {
-                return Some(mode.iter().map(|x| sign * x).collect());
-            }
-        }
-        None
-    }
-
-    /// `D = diag(K + eps_N B_N'B_N + eps_T B_T'B_T)`.
-    fn full_diagonal(&self) -> Vec<f64> {
-        let sys = self.system;
-        let k = sys.stiffness().as_ref();
-        let mut d: Vec<f64> = (0..sys.n_dofs())
-            .map(|j| {
-                let range = k.col_range(j);
-                k.row_idx()[range.clone()]
-                    .iter()
-                    .zip(&k.val()[range])
-                    .filter(|(&i, _)| i == j)
-                    .map(|(_, &v)| v)
-                    .sum()
-            })
-            .collect();
-        let mut add = |rows: &super::ConstraintRows, eps: f64| {
-            for r in 0..rows.nrows() {
-                let (cols, vals) = rows.row(r);
-                for (&c, &v) in cols.iter().zip(vals) {
-                    d[c] += eps * v * v;
-                }
-            }
-        };
-        add(sys.normal_rows(), self.eps_n);
-        if let Some(f) = sys.friction() {
-            add(f.tangential_rows(), self.eps_t);
-        }
-        d
-    }
 }
 
 /// Result of the exact line search.
@@ -530,16 +461,7 @@ impl ContactSolver for PenaltySolver {
             })?,
         };
         let matrix = self.matrix.insert(matrix);
-        let diagonal = p.full_diagonal();
-        let max_diag = diagonal.iter().fold(0.0f64, |a, &x| a.max(x));
-        let floor = if max_diag > 0.0 { max_diag } else { 1.0 };
-        // D with its zeros (unknowns that nothing touches) replaced by max D.
-        let metric: Vec<f64> = diagonal
-            .iter()
-            .map(|&x| if x > 0.0 { x } else { floor })
-            .collect();
-        let shift: Vec<f64> = metric.iter().map(|&x| SHIFT * x).collect();
-        let no_shift = vec![0.0; n];
+        let guard = SingularGuard::new(system, p.eps_n, p.eps_t);
 
         let mut u = vec![0.0; n];
         let mut state = p.state(&u);
@@ -564,36 +486,24 @@ impl ContactSolver for PenaltySolver {
                 .iter()
                 .map(|&a| if a { p.eps_t } else { 0.0 })
                 .collect();
-            factorisations += 1;
-            let mut shifted = false;
-            if !matrix.refill_and_factorise(system, &normal_weights, &tangential_weights, &no_shift)
-            {
-                shifted = true;
-                factorisations += 1;
-                if !matrix.refill_and_factorise(
-                    system,
-                    &normal_weights,
-                    &tangential_weights,
-                    &shift,
-                ) {
-                    // Not definite even with the shift: K has a negative eigenvalue.
-                    break Err((SolveStatus::NumericalFailure, None));
-                }
-            }
+            let Some((count, shifted)) =
+                guard.factorise(matrix, system, &normal_weights, &tangential_weights)
+            else {
+                // Not definite even with the shift: K has a negative eigenvalue.
+                break Err((SolveStatus::NumericalFailure, None));
+            };
+            factorisations += count;
             let mut d: Vec<f64> = state.gradient.iter().map(|g| -g).collect();
             matrix.solve_in_place(&mut d);
             if d.iter().any(|x| !x.is_finite()) {
                 break Err((SolveStatus::NumericalFailure, None));
             }
             if shifted {
-                // One inverse iteration purifies the free mode that dominates `d`.
-                let mut mode: Vec<f64> = d.iter().zip(&metric).map(|(x, w)| w * x).collect();
-                matrix.solve_in_place(&mut mode);
-                if let Some(direction) = p.recession(&mode, &metric) {
+                if let Some(direction) = guard.free_mode(matrix, system, &d) {
                     break Err((SolveStatus::Unbounded, Some(direction)));
                 }
             }
-            let d_diag_d: f64 = d.iter().zip(&metric).map(|(x, w)| w * x * x).sum();
+            let d_diag_d = guard.size(&d);
             match line_search(&p, &state, &d, d_diag_d) {
                 Step::Length(t) => {
                     u.iter_mut().zip(&d).for_each(|(ui, di)| *ui += t * di);
