@@ -1,0 +1,57 @@
+//! Errors of the contact problem layer.
+
+use vem_elastic::ElasticError;
+use vem_mesh::MeshError;
+
+use crate::{ContactSolverError, ContactSystemError, SolveReport};
+
+/// What can go wrong when a contact problem is built or solved.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ContactError {
+    /// A mesh-level failure (unknown part, interface insertion), with the body it concerns.
+    #[error("{context}: {source}")]
+    Mesh {
+        /// Where it happened (body, part, interface).
+        context: String,
+        /// The mesh error.
+        #[source]
+        source: MeshError,
+    },
+    /// An elasticity failure (material, boundary condition, singular stiffness).
+    #[error(transparent)]
+    Elastic(#[from] ElasticError),
+    /// The algebraic contact system was inconsistent (a bug or non-finite data).
+    #[error("contact system: {0}")]
+    System(#[from] ContactSystemError),
+    /// The contact solver failed (no convergence, rigid sliding, ...); carries its report.
+    #[error(transparent)]
+    Solver(#[from] ContactSolverError),
+    /// A rigid obstacle's data are invalid.
+    #[error("invalid obstacle: {reason}")]
+    InvalidObstacle {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A setting or a data function is invalid (friction bound, coefficient, gap).
+    #[error("invalid contact setting: {reason}")]
+    InvalidSetting {
+        /// What is wrong, and where.
+        reason: String,
+    },
+    /// The Coulomb fixed point of Tresca problems did not converge.
+    #[error(
+        "Coulomb fixed point did not converge in {steps} steps: relative change of the normal \
+         forces {residual:e} > tolerance {tolerance:e}"
+    )]
+    FixedPointNotConverged {
+        /// Tresca solves done.
+        steps: usize,
+        /// Last relative change of the normal forces.
+        residual: f64,
+        /// The tolerance in force.
+        tolerance: f64,
+        /// The report of the last Tresca solve.
+        report: Box<SolveReport>,
+    },
+}

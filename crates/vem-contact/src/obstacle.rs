@@ -1,0 +1,200 @@
+//! Rigid obstacles: a gap function, not a mesh.
+//!
+//! A body pressed against a rigid obstacle is the one-body contact problem: nothing is meshed
+//! or assembled for the obstacle. At each contact node `x` of the body the obstacle gives a
+//! contact direction `nu` (unit, pointing from the body into the obstacle) and the gap `g(x)`
+//! along it; the nodal constraint is `u(x) . nu <= g(x)` (the linearised non-penetration
+//! condition, exact for a straight obstacle).
+
+use vem_mesh::{Point, Vector};
+
+use crate::ContactError;
+
+/// A rigid obstacle.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Obstacle {
+    /// The straight line through `point` bounding the half-plane obstacle; `normal` is the unit
+    /// normal pointing out of the obstacle, towards the body.
+    Line {
+        /// A point of the line.
+        point: Point,
+        /// Outward normal of the obstacle (normalised on use).
+        normal: Vector,
+    },
+    /// A rigid disc; the body lies outside it.
+    Circle {
+        /// Centre of the disc.
+        centre: Point,
+        /// Radius (> 0).
+        radius: f64,
+    },
+    /// A polyline (at least two distinct points); the obstacle lies to the RIGHT of the
+    /// direction of travel, so its outward normal is the left normal of each segment.
+    Polyline(Vec<Point>),
+}
+
+/// What an obstacle says at one body node: the contact direction and the gap along it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObstacleGap {
+    /// Unit contact direction `nu`, from the body into the obstacle.
+    pub normal: Vector,
+    /// Signed gap along `nu` (negative: the node starts inside the obstacle).
+    pub gap: f64,
+}
+
+impl Obstacle {
+    /// Checks the obstacle's data (finite values, positive radius, non-degenerate line).
+    pub fn validate(&self) -> Result<(), ContactError> {
+        let bad = |reason: String| Err(ContactError::InvalidObstacle { reason });
+        match self {
+            Obstacle::Line { point, normal } => {
+                if !(point
+                    .coords
+                    .iter()
+                    .chain(normal.iter())
+                    .all(|c| c.is_finite()))
+                {
+                    return bad(format!(
+                        "line through {point} with normal {normal} is not finite"
+                    ));
+                }
+                if normal.norm() == 0.0 {
+                    return bad("line normal is the zero vector".into());
+                }
+            }
+            Obstacle::Circle { centre, radius } => {
+                if !(centre.coords.iter().all(|c| c.is_finite()) && radius.is_finite()) {
+                    return bad(format!(
+                        "circle at {centre} with radius {radius} is not finite"
+                    ));
+                }
+                if *radius <= 0.0 {
+                    return bad(format!("circle radius {radius} must be positive"));
+                }
+            }
+            Obstacle::Polyline(points) => {
+                if points.len() < 2 {
+                    return bad(format!(
+                        "a polyline needs at least 2 points, got {}",
+                        points.len()
+                    ));
+                }
+                if let Some((i, p)) = points
+                    .iter()
+                    .enumerate()
+                    .find(|(_, p)| !p.coords.iter().all(|c| c.is_finite()))
+                {
+                    return bad(format!("polyline point {i} ({p}) is not finite"));
+                }
+                if let Some(i) = points.windows(2).position(|w| w[0] == w[1]) {
+                    return bad(format!("polyline points {i} and {} coincide", i + 1));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Contact direction and gap at the body point `x` (see the module docs).
+    pub fn gap_at(&self, x: Point) -> ObstacleGap {
+        match self {
+            Obstacle::Line { point, normal } => {
+                let n = normal / normal.norm();
+                ObstacleGap {
+                    normal: -n,
+                    gap: (x - point).dot(&n),
+                }
+            }
+            Obstacle::Circle { centre, radius } => {
+                let to_centre = centre - x;
+                let distance = to_centre.norm();
+                ObstacleGap {
+                    normal: to_centre / distance,
+                    gap: distance - radius,
+                }
+            }
+            Obstacle::Polyline(points) => polyline_gap(points, x),
+        }
+    }
+}
+
+/// Closest-point projection onto a polyline whose obstacle side is to the right.
+fn polyline_gap(points: &[Point], x: Point) -> ObstacleGap {
+    let mut best: Option<(f64, Point, Vector, bool)> = None; // (distance, closest, left normal, at an end)
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let t = b - a;
+        let s = ((x - a).dot(&t) / t.norm_squared()).clamp(0.0, 1.0);
+        let q = a + t * s;
+        let d = (x - q).norm();
+        let left = Vector::new(-t.y, t.x) / t.norm();
+        if best.is_none_or(|(bd, ..)| d < bd) {
+            best = Some((d, q, left, s == 0.0 || s == 1.0));
+        }
+    }
+    let (distance, closest, left, at_vertex) = best.expect("validated polyline has a segment");
+    let signed = (x - closest).dot(&left);
+    if at_vertex && distance > 0.0 && signed > 0.0 {
+        // Outside a convex corner: the closest point is the vertex; contact along x -> q.
+        ObstacleGap {
+            normal: (closest - x) / distance,
+            gap: distance,
+        }
+    } else {
+        ObstacleGap {
+            normal: -left,
+            gap: signed,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_gap_is_signed_distance() {
+        let floor = Obstacle::Line {
+            point: Point::new(0.0, -0.5),
+            normal: Vector::new(0.0, 2.0),
+        };
+        let g = floor.gap_at(Point::new(3.0, 0.25));
+        assert_eq!(g.normal, Vector::new(0.0, -1.0));
+        assert!((g.gap - 0.75).abs() < 1e-15);
+    }
+
+    #[test]
+    fn circle_gap_is_distance_to_surface() {
+        let disc = Obstacle::Circle {
+            centre: Point::new(0.0, 0.0),
+            radius: 1.0,
+        };
+        let g = disc.gap_at(Point::new(3.0, 4.0));
+        assert!((g.gap - 4.0).abs() < 1e-15);
+        assert!((g.normal - Vector::new(-0.6, -0.8)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn polyline_matches_line_on_a_segment_and_corner_distance() {
+        // Obstacle below the polyline (to the right of travel in +x).
+        let ground = Obstacle::Polyline(vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)]);
+        let g = ground.gap_at(Point::new(0.3, 0.2));
+        assert!((g.gap - 0.2).abs() < 1e-15);
+        assert_eq!(g.normal, Vector::new(0.0, -1.0));
+        let corner = ground.gap_at(Point::new(1.3, 0.4));
+        assert!((corner.gap - 0.5).abs() < 1e-15);
+        assert!((corner.normal - Vector::new(-0.6, -0.8)).norm() < 1e-15);
+        let inside = ground.gap_at(Point::new(0.5, -0.1));
+        assert!((inside.gap + 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_obstacles_are_errors() {
+        let zero = Obstacle::Circle {
+            centre: Point::origin(),
+            radius: 0.0,
+        };
+        assert!(zero.validate().unwrap_err().to_string().contains("radius"));
+        let short = Obstacle::Polyline(vec![Point::origin()]);
+        assert!(short.validate().is_err());
+    }
+}

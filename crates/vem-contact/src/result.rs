@@ -1,0 +1,213 @@
+//! What a contact solve returns: per-body solutions, per-node interface results, resultants,
+//! the solver's report and a summary of what was modelled.
+
+use std::time::Duration;
+
+use vem_elastic::{AssembledSystem, ElasticBody, Solution};
+use vem_mesh::{Point, Vector};
+
+use crate::SolveReport;
+
+/// The contact state of an interface node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NodeStatus {
+    /// No contact force: the node is (or may be) separated.
+    Open,
+    /// In contact, friction force strictly below its bound: no slip.
+    Stick,
+    /// In contact and sliding: frictionless contact, or friction force at its bound.
+    Slip,
+}
+
+impl NodeStatus {
+    /// Lower-case name ("open", "stick", "slip").
+    pub fn name(self) -> &'static str {
+        match self {
+            NodeStatus::Open => "open",
+            NodeStatus::Stick => "stick",
+            NodeStatus::Slip => "slip",
+        }
+    }
+}
+
+/// Classifies a node from its forces: open when the normal force is below `force_tolerance`;
+/// with friction, slip when the friction force reaches its bound (to 1e-6 relative), else stick;
+/// frictionless contact nodes slide freely (slip).
+pub(crate) fn classify(
+    normal_force: f64,
+    force_tolerance: f64,
+    friction_force: f64,
+    friction_bound: Option<f64>,
+    has_friction: bool,
+) -> NodeStatus {
+    if normal_force <= force_tolerance {
+        return NodeStatus::Open;
+    }
+    match (has_friction, friction_bound) {
+        (true, Some(bound)) if friction_force.abs() < bound * (1.0 - 1e-6) => NodeStatus::Stick,
+        _ => NodeStatus::Slip,
+    }
+}
+
+/// The result at one interface node (a node pair of the two bodies, or a body node facing an
+/// obstacle). Signs follow the spec: `nu` is the outward normal of body A (into the obstacle),
+/// `tau = (-nu_y, nu_x)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InterfaceNode {
+    /// Position (on body A, reference configuration).
+    pub position: Point,
+    /// The normal `nu`.
+    pub normal: Vector,
+    /// The tangent `tau`.
+    pub tangent: Vector,
+    /// Tributary length `l_x` of the node.
+    pub tributary_length: f64,
+    /// Total initial gap `h0` (geometric gap plus the user gap).
+    pub initial_gap: f64,
+    /// The normal jump `[u]_nu = (u_A - u_B) . nu` (`u_A . nu` against an obstacle);
+    /// `[u]_nu <= h0`.
+    pub normal_jump: f64,
+    /// Nodal contact force `lambda_N >= 0` (compression), `= -sigma_nu l_x`.
+    pub normal_force: f64,
+    /// Contact pressure `lambda_N / l_x`, approximating `-sigma_nu`.
+    pub pressure: f64,
+    /// Nodal friction force on body A along `tau`, `= sigma_1tau l_x`; it opposes the slip.
+    pub tangential_force: f64,
+    /// The slip `[u]_1tau = (u_A - u_B) . tau` (zero for frictionless laws: not modelled).
+    pub slip: f64,
+    /// Open, stick or slip.
+    pub status: NodeStatus,
+    /// The vertex of body A's (enlarged) mesh.
+    pub vertex_a: usize,
+    /// The partner vertex of body B's (enlarged) mesh; `None` against an obstacle.
+    pub vertex_b: Option<usize>,
+}
+
+/// One body after the solve: the body on its enlarged mesh, its assembled system and its
+/// solution (displacement, reactions, strain energy).
+#[derive(Debug, Clone)]
+pub struct BodyResult {
+    /// The body, on the mesh with the inserted interface nodes.
+    pub body: ElasticBody,
+    /// Its assembled (reduced) system.
+    pub system: AssembledSystem,
+    /// Its solution.
+    pub solution: Solution,
+}
+
+/// Size and content of one modelled body.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BodySummary {
+    /// The body's name.
+    pub name: String,
+    /// Vertices of its enlarged mesh.
+    pub vertices: usize,
+    /// Polygons.
+    pub polygons: usize,
+    /// Unknowns.
+    pub free_dofs: usize,
+    /// Dirichlet degrees of freedom.
+    pub prescribed_dofs: usize,
+}
+
+/// What was built for the solve: only what the scene requires.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSummary {
+    /// The contact law ("frictionless", "tresca", "coulomb").
+    pub law: &'static str,
+    /// The contact solver.
+    pub solver: &'static str,
+    /// The bodies (one against an obstacle).
+    pub bodies: Vec<BodySummary>,
+    /// True when the counterpart is a rigid obstacle (nothing meshed for it).
+    pub obstacle: bool,
+    /// Normal constraint rows (one per interface node).
+    pub normal_rows: usize,
+    /// Tangential rows (zero for frictionless contact).
+    pub tangential_rows: usize,
+    /// Vertices inserted by the interface node insertion (both sides).
+    pub inserted_nodes: usize,
+    /// Interface insertion and assembly time.
+    pub assembly_time: Duration,
+    /// Contact solve time (all steps of a Coulomb fixed point).
+    pub solve_time: Duration,
+    /// Total time.
+    pub total_time: Duration,
+}
+
+/// How the Coulomb fixed point went.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixedPointReport {
+    /// Tresca solves after the initial frictionless one.
+    pub steps: usize,
+    /// The last relative change of the normal forces.
+    pub residual: f64,
+    /// The relative change at every step.
+    pub history: Vec<f64>,
+    /// Solver iterations summed over all solves.
+    pub solver_iterations: usize,
+    /// Nodal friction bounds `F lambda_N` of the last Tresca step.
+    pub final_bounds: Vec<f64>,
+}
+
+/// The result of a contact solve.
+#[derive(Debug, Clone)]
+pub struct ContactResult {
+    /// The bodies: A first, then B (absent against an obstacle).
+    pub bodies: Vec<BodyResult>,
+    /// The interface nodes, ordered along the contact part of body A.
+    pub nodes: Vec<InterfaceNode>,
+    /// The report of the (last) contact solve.
+    pub report: SolveReport,
+    /// Coulomb only: the fixed-point report.
+    pub fixed_point: Option<FixedPointReport>,
+    /// What was modelled, and the times.
+    pub model: ModelSummary,
+}
+
+impl ContactResult {
+    pub(crate) fn new(
+        bodies: Vec<BodyResult>,
+        nodes: Vec<InterfaceNode>,
+        report: SolveReport,
+        fixed_point: Option<FixedPointReport>,
+        model: ModelSummary,
+    ) -> Self {
+        Self {
+            bodies,
+            nodes,
+            report,
+            fixed_point,
+            model,
+        }
+    }
+
+    /// Sum of the nodal contact forces `sum lambda_N` (= `-int sigma_nu ds` in the limit).
+    pub fn normal_resultant(&self) -> f64 {
+        self.nodes.iter().map(|n| n.normal_force).sum()
+    }
+
+    /// Sum of the nodal friction forces on body A along `tau` (= `int sigma_1tau ds`).
+    pub fn tangential_resultant(&self) -> f64 {
+        self.nodes.iter().map(|n| n.tangential_force).sum()
+    }
+
+    /// The total contact force exerted on body A, `sum (-lambda_N nu + t tau)`.
+    pub fn force_on_body_a(&self) -> Vector {
+        self.nodes
+            .iter()
+            .map(|n| -n.normal_force * n.normal + n.tangential_force * n.tangent)
+            .sum()
+    }
+
+    /// Number of nodes with each status: (open, stick, slip).
+    pub fn status_counts(&self) -> (usize, usize, usize) {
+        self.nodes
+            .iter()
+            .fold((0, 0, 0), |(o, st, sl), n| match n.status {
+                NodeStatus::Open => (o + 1, st, sl),
+                NodeStatus::Stick => (o, st + 1, sl),
+                NodeStatus::Slip => (o, st, sl + 1),
+            })
+    }
+}
