@@ -1,12 +1,49 @@
 //! Reproducible mesh generators on a rectangle.
 //!
 //! Each generator is parameterised by a size `n` (a refinement family: the mesh size falls
-//! like 1/n) and, where random, a seed (same seed, same mesh, bit for bit). Every generated mesh
-//! names the boundary parts "left", "right", "bottom" and "top".
+//! like 1/n) and, where random, a seed (same seed, same mesh, bit for bit: the random numbers
+//! come from a `ChaCha8Rng` seeded with the `u64`, and nothing depends on hash-map order).
+//! Every generated mesh names the boundary parts "left", "right", "bottom" and "top" and is
+//! validated like any other [`Mesh`].
+//!
+//! | family | function | cells |
+//! | --- | --- | --- |
+//! | quads | [`structured_quads`] | rectangles |
+//! | triangles | [`structured_triangles`] | right triangles |
+//! | hexagons | [`hexagons`] | honeycomb, pentagons and quadrilaterals on the boundary |
+//! | voronoi | [`voronoi`] | centroidal Voronoi (Lloyd), short edges merged |
+//! | perturbed | [`perturbed_quads`] | quadrilaterals with randomly moved nodes |
+//! | nonconvex | [`nonconvex`] | chevrons (one reflex vertex each) |
+//! | hanging | [`hanging_nodes`] | checkerboard of split squares, hanging nodes |
+//!
+//! [`MeshFamily`] names them all for command lines and convergence studies:
+//!
+//! ```
+//! use vem_mesh::generators::{MeshFamily, Rectangle};
+//! for family in MeshFamily::all() {
+//!     let mesh = family.generate(&Rectangle::unit_square(), 4, 7)?;
+//!     assert_eq!(family.name().parse::<MeshFamily>()?.name(), family.name());
+//!     let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
+//!     assert!((area - 1.0).abs() < 1e-12);
+//! }
+//! # Ok::<(), vem_mesh::MeshError>(())
+//! ```
 
+mod family;
+mod hanging;
+mod hexagons;
+mod nonconvex;
+mod perturbed;
 mod structured;
+mod voronoi;
 
+pub use family::MeshFamily;
+pub use hanging::hanging_nodes;
+pub use hexagons::hexagons;
+pub use nonconvex::{nonconvex, CHEVRON_RISE};
+pub use perturbed::perturbed_quads;
 pub use structured::{structured_quads, structured_triangles};
+pub use voronoi::{voronoi, LLOYD_ITERATIONS, SHORT_EDGE_RATIO};
 
 use crate::{Mesh, MeshError, PartSpec, Point};
 
@@ -61,42 +98,70 @@ impl Rectangle {
     }
 }
 
-/// Builds a mesh on `rect` and names "left", "right", "bottom", "top" from the boundary edges
+/// Builds a mesh on `rect` and names "left", "right", "bottom", "top" from the polygon edges
 /// lying on each side of the rectangle (to a tolerance relative to its size).
+///
+/// In a partition of the rectangle, an edge with both end points on one side lies on that side
+/// and is a boundary edge, so the parts are read off the polygon loops and the mesh is built
+/// (and validated) once.
 pub(crate) fn mesh_with_sides(
     rect: &Rectangle,
     vertices: Vec<Point>,
     polygons: &[Vec<usize>],
 ) -> Result<Mesh, MeshError> {
-    let mesh = Mesh::from_polygons(vertices, polygons, vec![])?;
     let tol = 1e-9 * rect.width().max(rect.height());
     let on = |value: f64, side: f64| (value - side).abs() <= tol;
     let mut parts: Vec<PartSpec> = ["left", "right", "bottom", "top"]
         .iter()
         .map(|name| PartSpec::new(*name, Vec::new()))
         .collect();
-    for e in mesh.boundary_edges() {
-        let [a, b] = mesh.edge(e).vertices;
-        let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
-        let side = if on(pa.x, rect.min.x) && on(pb.x, rect.min.x) {
-            0
-        } else if on(pa.x, rect.max.x) && on(pb.x, rect.max.x) {
-            1
-        } else if on(pa.y, rect.min.y) && on(pb.y, rect.min.y) {
-            2
-        } else if on(pa.y, rect.max.y) && on(pb.y, rect.max.y) {
-            3
-        } else {
-            continue;
-        };
-        parts[side].edges.push([a, b]);
+    for polygon in polygons {
+        let m = polygon.len();
+        for k in 0..m {
+            let (a, b) = (polygon[k], polygon[(k + 1) % m]);
+            let (Some(pa), Some(pb)) = (vertices.get(a), vertices.get(b)) else {
+                continue; // reported by the mesh constructor
+            };
+            let side = if on(pa.x, rect.min.x) && on(pb.x, rect.min.x) {
+                0
+            } else if on(pa.x, rect.max.x) && on(pb.x, rect.max.x) {
+                1
+            } else if on(pa.y, rect.min.y) && on(pb.y, rect.min.y) {
+                2
+            } else if on(pa.y, rect.max.y) && on(pb.y, rect.max.y) {
+                3
+            } else {
+                continue;
+            };
+            parts[side].edges.push([a, b]);
+        }
     }
-    let (vertices, offsets, indices) = (
-        mesh.vertices().to_vec(),
-        mesh.polygon_offsets().to_vec(),
-        mesh.polygon_vertex_indices().to_vec(),
-    );
-    Mesh::from_compact(vertices, offsets, indices, parts)
+    Mesh::from_polygons(vertices, polygons, parts)
+}
+
+/// Largest number of cells a generator agrees to make (about 10^8 vertices' worth of memory).
+pub const MAX_CELLS: usize = 50_000_000;
+
+/// Cells across and up for a lattice of about `n` >= 1 cells across `rect` with near-square
+/// cells: (n, max(1, round(n * height / width))), at most [`MAX_CELLS`] in all.
+pub(crate) fn cell_counts(
+    generator: &'static str,
+    rect: &Rectangle,
+    n: usize,
+) -> Result<(usize, usize), MeshError> {
+    rect.check(generator)?;
+    check_size(generator, n, 1)?;
+    let ny = (n as f64 * rect.height() / rect.width()).round().max(1.0);
+    let cells = n as f64 * ny;
+    if cells > MAX_CELLS as f64 {
+        return Err(MeshError::BadGeneratorParameter {
+            generator,
+            reason: format!(
+                "size n = {n} asks for {cells:e} cells on this rectangle, more than {MAX_CELLS}"
+            ),
+        });
+    }
+    Ok((n, ny as usize))
 }
 
 /// Checks a size parameter n >= `min`.

@@ -1,0 +1,495 @@
+//! Centroidal Voronoi meshes clipped to the rectangle.
+//!
+//! The Voronoi cell of a site is computed directly as the rectangle clipped by the bisector
+//! half-planes of the nearby sites (found through a uniform grid of sites, ring by ring, until
+//! the next ring is farther than twice the cell's radius). Lloyd iterations move every site to
+//! the exact centroid of its cell. The cells are then made into one conforming mesh: cell
+//! vertices closer than 1e-9 of the site spacing are identified (they are the same Voronoi
+//! vertex computed from different cells), and edges shorter than [`SHORT_EDGE_RATIO`] h_T are
+//! collapsed so that assumption A1 holds with a gamma independent of n.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::{cell_counts, mesh_with_sides, Rectangle};
+use crate::{geometry, Mesh, MeshError, Point, Vector};
+
+/// Number of Lloyd iterations [`voronoi`] runs.
+pub const LLOYD_ITERATIONS: usize = 30;
+
+/// Edges shorter than this fraction of the larger diameter of the two cells sharing them are
+/// collapsed.
+pub const SHORT_EDGE_RATIO: f64 = 0.1;
+
+/// Largest number of collapsing passes (each pass collapses non-adjacent short edges).
+const MERGE_PASSES: usize = 10;
+
+/// A centroidal Voronoi mesh of `rect` with about `n` cells across (`n` x `round(n height /
+/// width)` sites drawn uniformly from a `ChaCha8Rng` seeded with `seed`, then
+/// [`LLOYD_ITERATIONS`] Lloyd iterations).
+///
+/// Edges shorter than [`SHORT_EDGE_RATIO`] times the diameter of either adjacent cell are
+/// collapsed to a point: the midpoint for two interior vertices, the boundary vertex when one
+/// lies on the boundary, the midpoint when both lie on the same side; the corners of the
+/// rectangle are always vertices and never move. Collapsing is done on the shared mesh, so
+/// neighbours stay conforming.
+///
+/// ```
+/// use vem_mesh::generators::{voronoi, Rectangle};
+/// let mesh = voronoi(&Rectangle::unit_square(), 6, 1)?;
+/// assert_eq!(mesh.n_polygons(), 36);
+/// assert!(mesh.quality().shortest_edge_ratio.min >= vem_mesh::generators::SHORT_EDGE_RATIO / 2.0);
+/// # Ok::<(), vem_mesh::MeshError>(())
+/// ```
+pub fn voronoi(rect: &Rectangle, n: usize, seed: u64) -> Result<Mesh, MeshError> {
+    let (nx, ny) = cell_counts("voronoi", rect, n)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut sites: Vec<Point> = (0..nx * ny)
+        .map(|_| {
+            Point::new(
+                rng.gen_range(rect.min.x..rect.max.x),
+                rng.gen_range(rect.min.y..rect.max.y),
+            )
+        })
+        .collect();
+    let grid = SiteGrid::new(rect, nx, ny);
+    for _ in 0..LLOYD_ITERATIONS {
+        let cells = voronoi_cells(&grid, &sites);
+        for (site, cell) in sites.iter_mut().zip(&cells) {
+            if cell.len() >= 3 {
+                *site = geometry::centroid(cell);
+            }
+        }
+    }
+    let cells = voronoi_cells(&grid, &sites);
+    let spacing = (rect.width() * rect.height() / sites.len() as f64).sqrt();
+    let (vertices, polygons) = conforming(rect, &cells, 1e-9 * spacing);
+    let (vertices, polygons) = collapse_short_edges(rect, vertices, polygons);
+    mesh_with_sides(rect, vertices, &polygons)
+}
+
+/// The rectangle cut into nx x ny equal cells, to bucket the sites.
+struct SiteGrid {
+    rect: Rectangle,
+    nx: usize,
+    ny: usize,
+}
+
+impl SiteGrid {
+    fn new(rect: &Rectangle, nx: usize, ny: usize) -> Self {
+        Self {
+            rect: *rect,
+            nx,
+            ny,
+        }
+    }
+
+    fn cell_of(&self, p: Point) -> (usize, usize) {
+        let index = |value: f64, min: f64, extent: f64, count: usize| -> usize {
+            let i = ((value - min) / extent * count as f64).floor();
+            if i <= 0.0 {
+                0
+            } else {
+                (i as usize).min(count - 1)
+            }
+        };
+        (
+            index(p.x, self.rect.min.x, self.rect.width(), self.nx),
+            index(p.y, self.rect.min.y, self.rect.height(), self.ny),
+        )
+    }
+
+    /// Sites per cell, compressed: `items[start[c]..start[c + 1]]` are the sites of cell c.
+    fn bucket(&self, sites: &[Point]) -> (Vec<usize>, Vec<usize>) {
+        let cells = self.nx * self.ny;
+        let mut start = vec![0usize; cells + 1];
+        let keys: Vec<usize> = sites
+            .iter()
+            .map(|&p| {
+                let (i, j) = self.cell_of(p);
+                j * self.nx + i
+            })
+            .collect();
+        for &k in &keys {
+            start[k + 1] += 1;
+        }
+        for c in 0..cells {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0; sites.len()];
+        for (site, &k) in keys.iter().enumerate() {
+            items[fill[k]] = site;
+            fill[k] += 1;
+        }
+        (start, items)
+    }
+}
+
+/// The Voronoi cell of every site, clipped to the rectangle, counter-clockwise.
+fn voronoi_cells(grid: &SiteGrid, sites: &[Point]) -> Vec<Vec<Point>> {
+    let (start, items) = grid.bucket(sites);
+    let rect = grid.rect;
+    let (hx, hy) = (
+        rect.width() / grid.nx as f64,
+        rect.height() / grid.ny as f64,
+    );
+    let max_ring = grid.nx.max(grid.ny);
+    let mut scratch = Vec::new();
+    sites
+        .iter()
+        .enumerate()
+        .map(|(i, &site)| {
+            let mut cell = vec![
+                rect.min,
+                Point::new(rect.max.x, rect.min.y),
+                rect.max,
+                Point::new(rect.min.x, rect.max.y),
+            ];
+            let mut radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
+            let (ci, cj) = grid.cell_of(site);
+            for ring in 0..=max_ring {
+                for (gi, gj) in ring_cells(ci, cj, ring, grid.nx, grid.ny) {
+                    let c = gj * grid.nx + gi;
+                    for &other in &items[start[c]..start[c + 1]] {
+                        // A site at least twice the cell's radius away cannot cut it.
+                        if other != i && (sites[other] - site).norm() < 2.0 * radius {
+                            clip_bisector(&cell, site, sites[other], &mut scratch);
+                            std::mem::swap(&mut cell, &mut scratch);
+                            radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
+                        }
+                    }
+                }
+                // Sites outside the block of cells (ci +- ring, cj +- ring) are at least `reach`
+                // away; they cut the cell only if closer than twice its radius.
+                let r = ring as f64;
+                let reach = [
+                    site.x - (rect.min.x + (ci as f64 - r) * hx),
+                    rect.min.x + (ci as f64 + r + 1.0) * hx - site.x,
+                    site.y - (rect.min.y + (cj as f64 - r) * hy),
+                    rect.min.y + (cj as f64 + r + 1.0) * hy - site.y,
+                ]
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
+                if reach >= 2.0 * radius {
+                    break;
+                }
+            }
+            cell
+        })
+        .collect()
+}
+
+/// Grid cells at Chebyshev distance `ring` from (ci, cj), inside the grid.
+fn ring_cells(
+    ci: usize,
+    cj: usize,
+    ring: usize,
+    nx: usize,
+    ny: usize,
+) -> impl Iterator<Item = (usize, usize)> {
+    let (ci, cj, r) = (ci as i64, cj as i64, ring as i64);
+    (cj - r..=cj + r)
+        .flat_map(move |j| (ci - r..=ci + r).map(move |i| (i, j)))
+        .filter(move |&(i, j)| {
+            (i - ci).abs().max((j - cj).abs()) == r
+                && i >= 0
+                && j >= 0
+                && i < nx as i64
+                && j < ny as i64
+        })
+        .map(|(i, j)| (i as usize, j as usize))
+}
+
+/// Clips the convex polygon `cell` to the half-plane of points closer to `site` than to
+/// `other`, into `out`.
+fn clip_bisector(cell: &[Point], site: Point, other: Point, out: &mut Vec<Point>) {
+    out.clear();
+    let normal: Vector = other - site;
+    if normal == Vector::zeros() {
+        out.extend_from_slice(cell);
+        return;
+    }
+    let middle = site + 0.5 * normal;
+    let count = cell.len();
+    for k in 0..count {
+        let (a, b) = (cell[k], cell[(k + 1) % count]);
+        let (sa, sb) = ((a - middle).dot(&normal), (b - middle).dot(&normal));
+        if sa <= 0.0 {
+            out.push(a);
+        }
+        if (sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0) {
+            out.push(a + (b - a) * (sa / (sa - sb)));
+        }
+    }
+}
+
+/// Identifies cell vertices closer than `tolerance` (union of all such pairs) and returns the
+/// shared vertices (first member's position, snapped onto the rectangle's sides) and the
+/// cells as loops of vertex indices without repeats.
+fn conforming(
+    rect: &Rectangle,
+    cells: &[Vec<Point>],
+    tolerance: f64,
+) -> (Vec<Point>, Vec<Vec<usize>>) {
+    let points: Vec<Point> = cells.iter().flatten().copied().collect();
+    let mut parent: Vec<usize> = (0..points.len()).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    let size = 4.0 * tolerance;
+    let key = |p: Point| ((p.x / size).floor() as i64, (p.y / size).floor() as i64);
+    let mut sorted: Vec<((i64, i64), usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| (key(p), k))
+        .collect();
+    sorted.sort_unstable();
+    for a in 0..points.len() {
+        let p = points[a];
+        let lo = key(p - Vector::new(tolerance, tolerance));
+        let hi = key(p + Vector::new(tolerance, tolerance));
+        for cx in lo.0..=hi.0 {
+            for cy in lo.1..=hi.1 {
+                let from = sorted.partition_point(|&(k, _)| k < (cx, cy));
+                for &(k, b) in &sorted[from..] {
+                    if k != (cx, cy) {
+                        break;
+                    }
+                    if b > a && (points[b] - p).norm() <= tolerance {
+                        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                        if ra != rb {
+                            parent[ra.max(rb)] = ra.min(rb);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Number the clusters in order of first appearance; the root is the first member.
+    let snap_tolerance = 1e-9 * rect.width().max(rect.height());
+    let snap = |value: f64, min: f64, max: f64| {
+        if (value - min).abs() <= snap_tolerance {
+            min
+        } else if (value - max).abs() <= snap_tolerance {
+            max
+        } else {
+            value
+        }
+    };
+    let mut number = vec![usize::MAX; points.len()];
+    let mut vertices = Vec::new();
+    let mut polygons = Vec::with_capacity(cells.len());
+    let mut k = 0;
+    for cell in cells {
+        let mut polygon: Vec<usize> = Vec::with_capacity(cell.len());
+        for _ in cell {
+            let r = root(&mut parent, k);
+            if number[r] == usize::MAX {
+                number[r] = vertices.len();
+                let p = points[r];
+                vertices.push(Point::new(
+                    snap(p.x, rect.min.x, rect.max.x),
+                    snap(p.y, rect.min.y, rect.max.y),
+                ));
+            }
+            polygon.push(number[r]);
+            k += 1;
+        }
+        polygons.push(without_repeats(polygon));
+    }
+    (vertices, polygons)
+}
+
+/// Removes consecutive repeats of a closed loop (including last = first).
+fn without_repeats(mut polygon: Vec<usize>) -> Vec<usize> {
+    polygon.dedup();
+    while polygon.len() > 1 && polygon.first() == polygon.last() {
+        polygon.pop();
+    }
+    polygon
+}
+
+/// Where a vertex lies relative to the rectangle: bit 0 left, 1 right, 2 bottom, 3 top.
+fn sides(rect: &Rectangle, p: Point) -> u8 {
+    u8::from(p.x == rect.min.x)
+        | u8::from(p.x == rect.max.x) << 1
+        | u8::from(p.y == rect.min.y) << 2
+        | u8::from(p.y == rect.max.y) << 3
+}
+
+/// Collapses edges shorter than [`SHORT_EDGE_RATIO`] times the largest diameter of the cells
+/// sharing them, in passes; each pass collapses the shortest such edges first and leaves the
+/// vertices it moved alone until the next pass. An edge is kept when collapsing it would leave
+/// a cell with fewer than three vertices, join two vertices a cell does not visit one after
+/// the other, or move a corner or a vertex off its side of the rectangle.
+fn collapse_short_edges(
+    rect: &Rectangle,
+    mut vertices: Vec<Point>,
+    mut polygons: Vec<Vec<usize>>,
+) -> (Vec<Point>, Vec<Vec<usize>>) {
+    for _ in 0..MERGE_PASSES {
+        let diameters: Vec<f64> = polygons
+            .iter()
+            .map(|loop_| {
+                let points: Vec<Point> = loop_.iter().map(|&v| vertices[v]).collect();
+                geometry::diameter(&points)
+            })
+            .collect();
+        // Polygons around each vertex (compressed).
+        let mut start = vec![0usize; vertices.len() + 1];
+        for &v in polygons.iter().flatten() {
+            start[v + 1] += 1;
+        }
+        for v in 0..vertices.len() {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut around = vec![0usize; start[vertices.len()]];
+        for (p, loop_) in polygons.iter().enumerate() {
+            for &v in loop_ {
+                around[fill[v]] = p;
+                fill[v] += 1;
+            }
+        }
+        // Short edges, shortest (relative) first.
+        let mut short: Vec<(f64, usize, usize)> = Vec::new();
+        for loop_ in &polygons {
+            let m = loop_.len();
+            for k in 0..m {
+                let (a, b) = (
+                    loop_[k].min(loop_[(k + 1) % m]),
+                    loop_[k].max(loop_[(k + 1) % m]),
+                );
+                let shared = around[start[a]..start[a + 1]]
+                    .iter()
+                    .filter(|p| around[start[b]..start[b + 1]].contains(p));
+                let h = shared.map(|&p| diameters[p]).fold(0.0, f64::max);
+                let ratio = (vertices[b] - vertices[a]).norm() / h;
+                if ratio < SHORT_EDGE_RATIO {
+                    short.push((ratio, a, b));
+                }
+            }
+        }
+        short.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+        short.dedup_by(|x, y| (x.1, x.2) == (y.1, y.2));
+        let mut touched = vec![false; vertices.len()];
+        let mut sizes: Vec<usize> = polygons.iter().map(Vec::len).collect();
+        let mut target: Vec<usize> = (0..vertices.len()).collect();
+        let mut merged = 0;
+        for &(_, a, b) in &short {
+            if touched[a] || touched[b] {
+                continue;
+            }
+            let shared: Vec<usize> = around[start[a]..start[a + 1]]
+                .iter()
+                .copied()
+                .filter(|p| around[start[b]..start[b + 1]].contains(p))
+                .collect();
+            let consecutive = |p: usize| {
+                let loop_ = &polygons[p];
+                let m = loop_.len();
+                (0..m).any(|k| {
+                    let (x, y) = (loop_[k], loop_[(k + 1) % m]);
+                    (x, y) == (a, b) || (x, y) == (b, a)
+                })
+            };
+            if shared.iter().any(|&p| sizes[p] <= 3 || !consecutive(p)) {
+                continue;
+            }
+            let (pa, pb) = (vertices[a], vertices[b]);
+            let (sa, sb) = (sides(rect, pa), sides(rect, pb));
+            let corner = |s: u8| s.count_ones() >= 2;
+            let position = match (sa, sb) {
+                (0, 0) => Some(Point::from((pa.coords + pb.coords) * 0.5)),
+                (_, 0) => Some(pa),
+                (0, _) => Some(pb),
+                _ if corner(sa) && !corner(sb) && sa & sb != 0 => Some(pa),
+                _ if corner(sb) && !corner(sa) && sa & sb != 0 => Some(pb),
+                _ if sa == sb && !corner(sa) => {
+                    // Both on one side: the midpoint stays on it exactly.
+                    let mut m = Point::from((pa.coords + pb.coords) * 0.5);
+                    if sa & 0b0011 != 0 {
+                        m.x = pa.x;
+                    } else {
+                        m.y = pa.y;
+                    }
+                    Some(m)
+                }
+                _ => None,
+            };
+            let Some(position) = position else { continue };
+            vertices[a] = position;
+            target[b] = a;
+            touched[a] = true;
+            touched[b] = true;
+            for p in shared {
+                sizes[p] -= 1;
+            }
+            merged += 1;
+        }
+        if merged == 0 {
+            break;
+        }
+        for loop_ in &mut polygons {
+            let relabelled: Vec<usize> = loop_.iter().map(|&v| target[v]).collect();
+            *loop_ = without_repeats(relabelled);
+        }
+    }
+    // Drop the vertices no polygon uses any more, keeping the order of the others.
+    let mut number = vec![usize::MAX; vertices.len()];
+    let mut kept = Vec::with_capacity(vertices.len());
+    for loop_ in &mut polygons {
+        for v in loop_.iter_mut() {
+            if number[*v] == usize::MAX {
+                number[*v] = kept.len();
+                kept.push(vertices[*v]);
+            }
+            *v = number[*v];
+        }
+    }
+    (kept, polygons)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_of_a_regular_lattice_of_sites_are_squares() {
+        let rect = Rectangle::unit_square();
+        let grid = SiteGrid::new(&rect, 4, 4);
+        let sites: Vec<Point> = (0..16)
+            .map(|k| Point::new(0.125 + 0.25 * (k % 4) as f64, 0.125 + 0.25 * (k / 4) as f64))
+            .collect();
+        for (cell, site) in voronoi_cells(&grid, &sites).iter().zip(&sites) {
+            let c = geometry::centroid(cell);
+            assert!((c - site).norm() < 1e-15);
+            assert!((geometry::signed_area(cell) - 0.0625).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn collapsing_keeps_corners_and_sides() {
+        // Two cells split by a nearly vertical polyline with a tiny kink at the bottom side.
+        let rect = Rectangle::unit_square();
+        let vertices = vec![
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.0),
+            Point::new(0.501, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.5, 1.0),
+            Point::new(0.0, 1.0),
+        ];
+        let polygons = vec![vec![0, 1, 2, 5, 6], vec![2, 3, 4, 5]];
+        let (vertices, polygons) = collapse_short_edges(&rect, vertices, polygons);
+        assert_eq!(vertices.len(), 6);
+        assert_eq!(polygons, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
+        assert_eq!(vertices[1], Point::new(0.5005, 0.0));
+    }
+}
