@@ -1,0 +1,535 @@
+//! Global assembly: the sparsity pattern once from the mesh connectivity, element matrices in
+//! parallel, values scattered straight into the compressed-column value arrays.
+//!
+//! Dirichlet conditions are eliminated: with the free (f) and prescribed (p) degrees of
+//! freedom of a [`DofMap`], the global system `K u = f` splits into
+//!
+//! ```text
+//! [K_ff K_fp] [u_f]   [f_f]                    K_ff u_f = f_f - K_fp u_p      (solved)
+//! [K_pf K_pp] [u_p] = [f_p] + r_p     =>       r_p = K_pf u_f + K_pp u_p - f_p (reactions)
+//! ```
+//!
+//! Three blocks are stored, each in compressed-column form with full (not triangular) storage:
+//! `K_ff` (the reduced stiffness), `K_fp` (the lifting of the Dirichlet data) and `K_pp`.
+//! `K_pf = K_fp^T` is not stored.
+
+use std::ops::Range;
+
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+use vem_mesh::Mesh;
+
+use crate::{DofMap, DofStatus, ElasticError};
+
+/// Number of elements whose matrices are computed together before they are scattered: bounds
+/// the memory held in element matrices independently of the mesh size.
+const CHUNK: usize = 8192;
+
+/// The stiffness, load and Dirichlet lifting of one body, ready for a linear solver.
+///
+/// The pattern is built once from the mesh connectivity; values can be recomputed on the same
+/// pattern (e.g. for another material) with [`crate::ElasticBody::reassemble`].
+#[derive(Debug, Clone)]
+pub struct AssembledSystem {
+    body: String,
+    n_vertices: usize,
+    n_polygons: usize,
+    dofs: DofMap,
+    stiffness: SparseColMat<usize, f64>,
+    coupling: SparseColMat<usize, f64>,
+    prescribed_block: SparseColMat<usize, f64>,
+    load: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+/// What one element contributes: its global degrees of freedom, matrix and load vector.
+pub(crate) struct ElementContribution {
+    pub(crate) dofs: Vec<usize>,
+    pub(crate) matrix: DMatrix<f64>,
+    pub(crate) load: Option<DVector<f64>>,
+}
+
+impl AssembledSystem {
+    /// An all-zero system with the pattern of `mesh` and the split of `dofs`.
+    pub(crate) fn with_pattern(body: &str, mesh: &Mesh, dofs: DofMap) -> Self {
+        let adjacency = vertex_adjacency(mesh);
+        let (ff, fp, pp) = block_patterns(&adjacency, &dofs);
+        let zeros = |p: SymbolicSparseColMat<usize>| {
+            let nnz = p.row_idx().len();
+            SparseColMat::new(p, vec![0.0; nnz])
+        };
+        Self {
+            body: body.to_string(),
+            n_vertices: mesh.n_vertices(),
+            n_polygons: mesh.n_polygons(),
+            load: vec![0.0; dofs.n_dofs()],
+            rhs: vec![0.0; dofs.n_free()],
+            dofs,
+            stiffness: zeros(ff),
+            coupling: zeros(fp),
+            prescribed_block: zeros(pp),
+        }
+    }
+
+    /// True when this system was built for a mesh of this size and this dof split.
+    pub(crate) fn matches(&self, mesh: &Mesh, dofs: &DofMap) -> bool {
+        self.n_vertices == mesh.n_vertices()
+            && self.n_polygons == mesh.n_polygons()
+            && &self.dofs == dofs
+    }
+
+    /// Sets every value (matrices, load, right-hand side) to zero, keeping the pattern.
+    pub(crate) fn clear_values(&mut self) {
+        self.stiffness.val_mut().fill(0.0);
+        self.coupling.val_mut().fill(0.0);
+        self.prescribed_block.val_mut().fill(0.0);
+        self.load.fill(0.0);
+        self.rhs.fill(0.0);
+    }
+
+    /// Computes the contributions of all polygons with `element` (in parallel, chunk by
+    /// chunk) and scatters them (in parallel over disjoint column blocks).
+    pub(crate) fn scatter_elements<F>(
+        &mut self,
+        n_polygons: usize,
+        element: F,
+    ) -> Result<(), ElasticError>
+    where
+        F: Fn(usize) -> Result<ElementContribution, ElasticError> + Sync,
+    {
+        let dofs = &self.dofs;
+        let mut blocks = column_blocks(
+            dofs,
+            &mut self.stiffness,
+            &mut self.coupling,
+            &mut self.prescribed_block,
+            &mut self.load,
+            rayon::current_num_threads(),
+        );
+        let mut start = 0;
+        while start < n_polygons {
+            let end = (start + CHUNK).min(n_polygons);
+            let contributions: Vec<ElementContribution> = (start..end)
+                .into_par_iter()
+                .map(&element)
+                .collect::<Result<_, _>>()?;
+            blocks
+                .par_iter_mut()
+                .for_each(|block| block.scatter(dofs, &contributions));
+            start = end;
+        }
+        Ok(())
+    }
+
+    /// Adds `values` at the global degrees of freedom `global` of the load vector
+    /// (tractions; sequential, boundary-sized).
+    pub(crate) fn add_load(&mut self, global: &[usize], values: &[f64]) {
+        for (&g, &v) in global.iter().zip(values) {
+            self.load[g] += v;
+        }
+    }
+
+    /// Forms the reduced right-hand side `f_f - K_fp u_p` from the load and the Dirichlet data.
+    pub(crate) fn finish_rhs(&mut self) {
+        for (i, &g) in self.dofs.free_dofs().iter().enumerate() {
+            self.rhs[i] = self.load[g];
+        }
+        let u_p = self.dofs.prescribed_values();
+        matvec_add(&self.coupling, u_p, -1.0, &mut self.rhs);
+    }
+
+    /// The name of the body this system belongs to.
+    pub fn body(&self) -> &str {
+        &self.body
+    }
+
+    /// The free/prescribed split of the degrees of freedom.
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The reduced stiffness `K_ff` (free x free, symmetric, full storage).
+    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
+        &self.stiffness
+    }
+
+    /// The coupling block `K_fp` (free rows x prescribed columns) that lifts the Dirichlet data.
+    pub fn coupling(&self) -> &SparseColMat<usize, f64> {
+        &self.coupling
+    }
+
+    /// The prescribed block `K_pp` (prescribed x prescribed).
+    pub fn prescribed_block(&self) -> &SparseColMat<usize, f64> {
+        &self.prescribed_block
+    }
+
+    /// The full load vector `f` (body force and tractions, every global degree of freedom).
+    pub fn load(&self) -> &[f64] {
+        &self.load
+    }
+
+    /// The reduced right-hand side `f_f - K_fp u_p`.
+    pub fn rhs(&self) -> &[f64] {
+        &self.rhs
+    }
+
+    /// The full displacement vector (global numbering) from the free values `u_free`.
+    pub fn expand(&self, u_free: &[f64]) -> Result<Vec<f64>, ElasticError> {
+        self.check_length("u_free", u_free, self.dofs.n_free())?;
+        Ok(self.dofs.expand_unchecked(u_free))
+    }
+
+    /// The free values of a full displacement vector.
+    pub fn restrict(&self, displacement: &[f64]) -> Result<Vec<f64>, ElasticError> {
+        self.check_length("displacement", displacement, self.dofs.n_dofs())?;
+        Ok(self
+            .dofs
+            .free_dofs()
+            .iter()
+            .map(|&g| displacement[g])
+            .collect())
+    }
+
+    /// The reaction forces `r_p = K_pf u_f + K_pp u_p - f_p` at the prescribed degrees of
+    /// freedom (prescribed numbering) for the full displacement `displacement`: the force the
+    /// support exerts on the body.
+    pub fn reactions(&self, displacement: &[f64]) -> Result<Vec<f64>, ElasticError> {
+        self.check_length("displacement", displacement, self.dofs.n_dofs())?;
+        let u_f = self.restrict(displacement)?;
+        let u_p: Vec<f64> = self
+            .dofs
+            .prescribed_dofs()
+            .iter()
+            .map(|&g| displacement[g])
+            .collect();
+        let mut reactions: Vec<f64> = self
+            .dofs
+            .prescribed_dofs()
+            .iter()
+            .map(|&g| -self.load[g])
+            .collect();
+        transpose_matvec_add(&self.coupling, &u_f, &mut reactions);
+        matvec_add(&self.prescribed_block, &u_p, 1.0, &mut reactions);
+        Ok(reactions)
+    }
+
+    /// The discrete strain energy `1/2 u^T K u = 1/2 a_h(u, u)` of the full displacement.
+    pub fn strain_energy(&self, displacement: &[f64]) -> Result<f64, ElasticError> {
+        self.check_length("displacement", displacement, self.dofs.n_dofs())?;
+        let u_f = self.restrict(displacement)?;
+        let u_p: Vec<f64> = self
+            .dofs
+            .prescribed_dofs()
+            .iter()
+            .map(|&g| displacement[g])
+            .collect();
+        // K u restricted to the free rows: K_ff u_f + K_fp u_p; to the prescribed rows:
+        // K_pf u_f + K_pp u_p.
+        let mut k_u_f = vec![0.0; u_f.len()];
+        matvec_add(&self.stiffness, &u_f, 1.0, &mut k_u_f);
+        matvec_add(&self.coupling, &u_p, 1.0, &mut k_u_f);
+        let mut k_u_p = vec![0.0; u_p.len()];
+        transpose_matvec_add(&self.coupling, &u_f, &mut k_u_p);
+        matvec_add(&self.prescribed_block, &u_p, 1.0, &mut k_u_p);
+        Ok(0.5 * (dot(&u_f, &k_u_f) + dot(&u_p, &k_u_p)))
+    }
+
+    fn check_length(
+        &self,
+        what: &'static str,
+        v: &[f64],
+        expected: usize,
+    ) -> Result<(), ElasticError> {
+        if v.len() == expected {
+            Ok(())
+        } else {
+            Err(ElasticError::WrongLength {
+                body: self.body.clone(),
+                what,
+                found: v.len(),
+                expected,
+            })
+        }
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `y += alpha A x` for a compressed-column `A`.
+fn matvec_add(a: &SparseColMat<usize, f64>, x: &[f64], alpha: f64, y: &mut [f64]) {
+    let (symbolic, values) = a.parts();
+    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    for (j, &xj) in x.iter().enumerate() {
+        let scaled = alpha * xj;
+        if scaled == 0.0 {
+            continue;
+        }
+        for k in col_ptr[j]..col_ptr[j + 1] {
+            y[row_idx[k]] += values[k] * scaled;
+        }
+    }
+}
+
+/// `y += A^T x` for a compressed-column `A`.
+fn transpose_matvec_add(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
+    let (symbolic, values) = a.parts();
+    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    for (j, yj) in y.iter_mut().enumerate() {
+        *yj += (col_ptr[j]..col_ptr[j + 1])
+            .map(|k| values[k] * x[row_idx[k]])
+            .sum::<f64>();
+    }
+}
+
+/// For each vertex, the sorted distinct vertices that share a polygon with it (itself included).
+fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
+    // Vertex -> polygons incidence in compressed form.
+    let n = mesh.n_vertices();
+    let mut offsets = vec![0usize; n + 1];
+    for &v in mesh.polygon_vertex_indices() {
+        offsets[v + 1] += 1;
+    }
+    for v in 0..n {
+        offsets[v + 1] += offsets[v];
+    }
+    let mut next = offsets.clone();
+    let mut incident = vec![0usize; offsets[n]];
+    for (p, polygon) in mesh.polygons().enumerate() {
+        for &v in polygon {
+            incident[next[v]] = p;
+            next[v] += 1;
+        }
+    }
+    (0..n)
+        .into_par_iter()
+        .map(|v| {
+            let mut neighbours: Vec<usize> = incident[offsets[v]..offsets[v + 1]]
+                .iter()
+                .flat_map(|&p| mesh.polygon(p).iter().copied())
+                .collect();
+            neighbours.sort_unstable();
+            neighbours.dedup();
+            neighbours
+        })
+        .collect()
+}
+
+/// The patterns of `K_ff`, `K_fp` and `K_pp`: global column `2v + c` couples to the rows
+/// `2w, 2w + 1` of every neighbour `w` of `v`.
+fn block_patterns(
+    adjacency: &[Vec<usize>],
+    dofs: &DofMap,
+) -> (
+    SymbolicSparseColMat<usize>,
+    SymbolicSparseColMat<usize>,
+    SymbolicSparseColMat<usize>,
+) {
+    let (n_f, n_p) = (dofs.n_free(), dofs.n_prescribed());
+    let nnz_estimate = 4 * adjacency.iter().map(Vec::len).sum::<usize>();
+    let mut ff = CscBuilder::new(n_f, nnz_estimate);
+    let mut fp = CscBuilder::new(n_p, 0);
+    let mut pp = CscBuilder::new(n_p, 0);
+    for (v, neighbours) in adjacency.iter().enumerate() {
+        for c in 0..2 {
+            let column = dofs.status(2 * v + c);
+            for &w in neighbours {
+                for k in 0..2 {
+                    match (column, dofs.status(2 * w + k)) {
+                        (DofStatus::Free(_), DofStatus::Free(i)) => ff.row_idx.push(i),
+                        (DofStatus::Prescribed(_), DofStatus::Free(i)) => fp.row_idx.push(i),
+                        (DofStatus::Prescribed(_), DofStatus::Prescribed(i)) => pp.row_idx.push(i),
+                        (DofStatus::Free(_), DofStatus::Prescribed(_)) => {}
+                    }
+                }
+            }
+            match column {
+                DofStatus::Free(_) => ff.close_column(),
+                DofStatus::Prescribed(_) => {
+                    fp.close_column();
+                    pp.close_column();
+                }
+            }
+        }
+    }
+    (
+        ff.finish(n_f, n_f),
+        fp.finish(n_f, n_p),
+        pp.finish(n_p, n_p),
+    )
+}
+
+/// Compressed-column storage built column by column.
+struct CscBuilder {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+}
+
+impl CscBuilder {
+    fn new(n_cols: usize, nnz_estimate: usize) -> Self {
+        let mut col_ptr = Vec::with_capacity(n_cols + 1);
+        col_ptr.push(0);
+        Self {
+            col_ptr,
+            row_idx: Vec::with_capacity(nnz_estimate),
+        }
+    }
+
+    fn close_column(&mut self) {
+        self.col_ptr.push(self.row_idx.len());
+    }
+
+    fn finish(self, n_rows: usize, n_cols: usize) -> SymbolicSparseColMat<usize> {
+        SymbolicSparseColMat::new_checked(n_rows, n_cols, self.col_ptr, None, self.row_idx)
+    }
+}
+
+/// A view of the values of one block of columns of `K_ff`, `K_fp`, `K_pp` and of the load,
+/// owned by one thread during the scatter.
+struct ColumnBlock<'a> {
+    global: Range<usize>,
+    ff: BlockValues<'a>,
+    fp: BlockValues<'a>,
+    pp: BlockValues<'a>,
+    load: &'a mut [f64],
+}
+
+/// The values of columns `first_col..` of a compressed-column matrix, with the pattern.
+struct BlockValues<'a> {
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+    first_col: usize,
+    values: &'a mut [f64],
+}
+
+impl BlockValues<'_> {
+    /// Adds `value` at (`row`, `col`); the entry is in the pattern by construction.
+    #[inline]
+    fn add(&mut self, row: usize, col: usize, value: f64) {
+        let range = self.col_ptr[col]..self.col_ptr[col + 1];
+        let k = range.start
+            + self.row_idx[range]
+                .binary_search(&row)
+                .expect("the pattern holds every element coupling");
+        self.values[k - self.col_ptr[self.first_col]] += value;
+    }
+}
+
+impl ColumnBlock<'_> {
+    /// Adds the columns of every contribution that fall in this block's global range.
+    fn scatter(&mut self, dofs: &DofMap, contributions: &[ElementContribution]) {
+        for contribution in contributions {
+            let local = &contribution.dofs;
+            for (b, &gb) in local.iter().enumerate() {
+                if !self.global.contains(&gb) {
+                    continue;
+                }
+                if let Some(load) = &contribution.load {
+                    self.load[gb - self.global.start] += load[b];
+                }
+                let column = contribution.matrix.column(b);
+                match dofs.status(gb) {
+                    DofStatus::Free(col) => {
+                        for (a, &ga) in local.iter().enumerate() {
+                            if let DofStatus::Free(row) = dofs.status(ga) {
+                                self.ff.add(row, col, column[a]);
+                            }
+                        }
+                    }
+                    DofStatus::Prescribed(col) => {
+                        for (a, &ga) in local.iter().enumerate() {
+                            match dofs.status(ga) {
+                                DofStatus::Free(row) => self.fp.add(row, col, column[a]),
+                                DofStatus::Prescribed(row) => self.pp.add(row, col, column[a]),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Splits off the first `len` values of `values`.
+fn take<'a>(values: &mut &'a mut [f64], len: usize) -> &'a mut [f64] {
+    let (head, tail) = std::mem::take(values).split_at_mut(len);
+    *values = tail;
+    head
+}
+
+/// Splits the global degrees of freedom into about `n_blocks` contiguous ranges of similar
+/// numbers of stored entries and hands out the corresponding disjoint value slices.
+fn column_blocks<'a>(
+    dofs: &DofMap,
+    ff: &'a mut SparseColMat<usize, f64>,
+    fp: &'a mut SparseColMat<usize, f64>,
+    pp: &'a mut SparseColMat<usize, f64>,
+    load: &'a mut [f64],
+    n_blocks: usize,
+) -> Vec<ColumnBlock<'a>> {
+    let n_dofs = dofs.n_dofs();
+    let (ff_pattern, mut ff_values) = ff.parts_mut();
+    let (fp_pattern, mut fp_values) = fp.parts_mut();
+    let (pp_pattern, mut pp_values) = pp.parts_mut();
+    let (ff_ptr, fp_ptr, pp_ptr) = (
+        ff_pattern.col_ptr(),
+        fp_pattern.col_ptr(),
+        pp_pattern.col_ptr(),
+    );
+    let total = ff_ptr[ff_ptr.len() - 1] + fp_ptr[fp_ptr.len() - 1] + pp_ptr[pp_ptr.len() - 1];
+    let target = total.div_ceil(n_blocks.max(1)).max(1);
+    // Stored entries before global dof g.
+    let entries_before = |g: usize| {
+        let (f, p) = dofs.split_point(g);
+        ff_ptr[f] + fp_ptr[p] + pp_ptr[p]
+    };
+    let mut blocks = Vec::with_capacity(n_blocks);
+    let mut load = load;
+    let mut start = 0;
+    while start < n_dofs {
+        // The first dof at which the block holds at least `target` entries.
+        let base = entries_before(start);
+        let (mut lo, mut hi) = (start + 1, n_dofs);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if entries_before(mid) - base >= target {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        let end = lo;
+        let (f0, p0) = dofs.split_point(start);
+        let (f1, p1) = dofs.split_point(end);
+        let ff_block = take(&mut ff_values, ff_ptr[f1] - ff_ptr[f0]);
+        let fp_block = take(&mut fp_values, fp_ptr[p1] - fp_ptr[p0]);
+        let pp_block = take(&mut pp_values, pp_ptr[p1] - pp_ptr[p0]);
+        let load_block = take(&mut load, end - start);
+        blocks.push(ColumnBlock {
+            global: start..end,
+            ff: BlockValues {
+                col_ptr: ff_ptr,
+                row_idx: ff_pattern.row_idx(),
+                first_col: f0,
+                values: ff_block,
+            },
+            fp: BlockValues {
+                col_ptr: fp_ptr,
+                row_idx: fp_pattern.row_idx(),
+                first_col: p0,
+                values: fp_block,
+            },
+            pp: BlockValues {
+                col_ptr: pp_ptr,
+                row_idx: pp_pattern.row_idx(),
+                first_col: p0,
+                values: pp_block,
+            },
+            load: load_block,
+        });
+        start = end;
+    }
+    blocks
+}

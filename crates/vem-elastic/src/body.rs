@@ -1,0 +1,460 @@
+//! One elastic body: mesh, material, element, boundary conditions; assembly and solve.
+
+use std::fmt;
+use std::sync::Arc;
+
+use nalgebra::DVector;
+use vem_mesh::{Mesh, Point, Vector};
+use vem_space::quadrature::GaussLegendre;
+use vem_space::{edge_traction_load, ElasticityTensor, ElementSpace};
+
+use crate::assembly::ElementContribution;
+use crate::boundary::VectorField;
+use crate::post::{ElementField, PartReaction, Solution};
+use crate::{
+    AssembledSystem, CholeskySolver, Component, Dirichlet, DofMap, ElasticError, LinearSolver,
+    Material, Traction,
+};
+
+/// A linear elastic body discretised by an [`ElementSpace`] on a polygonal mesh, with its
+/// boundary conditions (by boundary-part name) and body force. Built and validated by
+/// [`ElasticBody::builder`].
+#[derive(Clone)]
+pub struct ElasticBody {
+    name: String,
+    mesh: Arc<Mesh>,
+    material: Material,
+    tensor: ElasticityTensor,
+    element: Arc<dyn ElementSpace>,
+    dirichlet: Vec<Dirichlet>,
+    tractions: Vec<Traction>,
+    body_force: Option<VectorField>,
+    traction_points: usize,
+    dofs: DofMap,
+}
+
+/// Builder of an [`ElasticBody`]; [`ElasticBodyBuilder::build`] checks everything.
+#[derive(Clone)]
+pub struct ElasticBodyBuilder {
+    name: String,
+    mesh: Arc<Mesh>,
+    material: Material,
+    element: Arc<dyn ElementSpace>,
+    dirichlet: Vec<Dirichlet>,
+    tractions: Vec<Traction>,
+    body_force: Option<VectorField>,
+    traction_points: usize,
+}
+
+impl ElasticBodyBuilder {
+    /// The default number of Gauss points per edge for tractions: 2, exact for tractions
+    /// quadratic along the edge (the integrand, traction times the linear trace, is cubic).
+    pub const DEFAULT_TRACTION_POINTS: usize = 2;
+
+    /// Adds a Dirichlet condition.
+    pub fn dirichlet(mut self, condition: Dirichlet) -> Self {
+        self.dirichlet.push(condition);
+        self
+    }
+
+    /// Clamps `part`: zero displacement in both components.
+    pub fn clamp(self, part: impl Into<String>) -> Self {
+        self.dirichlet(Dirichlet::fixed(part, Component::Both))
+    }
+
+    /// Adds a traction `g(x)` on `part`.
+    pub fn traction(
+        mut self,
+        part: impl Into<String>,
+        traction: impl Fn(Point) -> Vector + Send + Sync + 'static,
+    ) -> Self {
+        self.tractions.push(Traction::new(part, traction));
+        self
+    }
+
+    /// Sets the body force `f(x)` (per unit area).
+    pub fn body_force(mut self, force: impl Fn(Point) -> Vector + Send + Sync + 'static) -> Self {
+        self.body_force = Some(Arc::new(force));
+        self
+    }
+
+    /// Sets the number of Gauss–Legendre points per edge for tractions (exact for tractions
+    /// of degree `2 points - 2` along the edge).
+    pub fn traction_points(mut self, points: usize) -> Self {
+        self.traction_points = points;
+        self
+    }
+
+    /// Checks the material, the quadrature setting, that every named part exists and that the
+    /// Dirichlet data are finite and consistent, and builds the body.
+    pub fn build(self) -> Result<ElasticBody, ElasticError> {
+        let tensor = self.material.tensor()?;
+        GaussLegendre::new(self.traction_points).map_err(|e| ElasticError::InvalidSetting {
+            reason: format!("traction_points = {}: {e}", self.traction_points),
+        })?;
+        for traction in &self.tractions {
+            self.mesh
+                .part(traction.part())
+                .map_err(|source| ElasticError::Mesh {
+                    body: self.name.clone(),
+                    source,
+                })?;
+        }
+        let dofs = DofMap::new(&self.mesh, &self.dirichlet, &self.name)?;
+        Ok(ElasticBody {
+            name: self.name,
+            mesh: self.mesh,
+            material: self.material,
+            tensor,
+            element: self.element,
+            dirichlet: self.dirichlet,
+            tractions: self.tractions,
+            body_force: self.body_force,
+            traction_points: self.traction_points,
+            dofs,
+        })
+    }
+}
+
+impl ElasticBody {
+    /// Starts a body named `name` (used in every error and report) on `mesh`.
+    pub fn builder(
+        name: impl Into<String>,
+        mesh: impl Into<Arc<Mesh>>,
+        material: Material,
+        element: Arc<dyn ElementSpace>,
+    ) -> ElasticBodyBuilder {
+        ElasticBodyBuilder {
+            name: name.into(),
+            mesh: mesh.into(),
+            material,
+            element,
+            dirichlet: Vec::new(),
+            tractions: Vec::new(),
+            body_force: None,
+            traction_points: ElasticBodyBuilder::DEFAULT_TRACTION_POINTS,
+        }
+    }
+
+    /// The same body (material, element, conditions) on another mesh that has the same
+    /// boundary-part names, e.g. the mesh enlarged by interface node insertion. The degrees of
+    /// freedom are rebuilt and every condition is checked again on the new mesh.
+    pub fn with_mesh(&self, mesh: impl Into<Arc<Mesh>>) -> Result<Self, ElasticError> {
+        ElasticBodyBuilder {
+            name: self.name.clone(),
+            mesh: mesh.into(),
+            material: self.material,
+            element: Arc::clone(&self.element),
+            dirichlet: self.dirichlet.clone(),
+            tractions: self.tractions.clone(),
+            body_force: self.body_force.clone(),
+            traction_points: self.traction_points,
+        }
+        .build()
+    }
+
+    /// The same body with another material (same mesh, conditions and degrees of freedom:
+    /// its systems can be refilled with [`ElasticBody::reassemble`]).
+    pub fn with_material(&self, material: Material) -> Result<Self, ElasticError> {
+        let tensor = material.tensor()?;
+        Ok(Self {
+            material,
+            tensor,
+            ..self.clone()
+        })
+    }
+
+    /// The body's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The shared mesh.
+    pub fn mesh_arc(&self) -> &Arc<Mesh> {
+        &self.mesh
+    }
+
+    /// The material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// The element's elasticity tensor.
+    pub fn tensor(&self) -> &ElasticityTensor {
+        &self.tensor
+    }
+
+    /// The element space.
+    pub fn element(&self) -> &dyn ElementSpace {
+        &*self.element
+    }
+
+    /// The Dirichlet conditions, in the order given.
+    pub fn dirichlet(&self) -> &[Dirichlet] {
+        &self.dirichlet
+    }
+
+    /// The tractions, in the order given.
+    pub fn tractions(&self) -> &[Traction] {
+        &self.tractions
+    }
+
+    /// The number of Gauss points per edge for tractions.
+    pub fn traction_points(&self) -> usize {
+        self.traction_points
+    }
+
+    /// The split into free and prescribed degrees of freedom.
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// Builds the pattern and assembles stiffness, load and Dirichlet lifting (in parallel).
+    pub fn assemble(&self) -> Result<AssembledSystem, ElasticError> {
+        let mut system = AssembledSystem::with_pattern(&self.name, &self.mesh, self.dofs.clone());
+        self.fill(&mut system)?;
+        Ok(system)
+    }
+
+    /// Recomputes the values of `system` (built by [`ElasticBody::assemble`] for this mesh and
+    /// these Dirichlet conditions) on its existing pattern.
+    pub fn reassemble(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
+        if !system.matches(&self.mesh, &self.dofs) {
+            return Err(ElasticError::ForeignSystem {
+                body: self.name.clone(),
+            });
+        }
+        self.fill(system)
+    }
+
+    fn fill(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
+        system.clear_values();
+        system.scatter_elements(self.mesh.n_polygons(), |p| self.element_contribution(p))?;
+        for traction in &self.tractions {
+            let part = self
+                .mesh
+                .part(traction.part())
+                .map_err(|source| ElasticError::Mesh {
+                    body: self.name.clone(),
+                    source,
+                })?;
+            for &e in &part.edges {
+                let [a, b] = self.mesh.edge(e).vertices;
+                let load = edge_traction_load(
+                    self.mesh.vertex(a),
+                    self.mesh.vertex(b),
+                    &|x| traction.value_at(x),
+                    self.traction_points,
+                )
+                .map_err(|source| ElasticError::Traction {
+                    body: self.name.clone(),
+                    part: traction.part().to_string(),
+                    a,
+                    b,
+                    source,
+                })?;
+                system.add_load(&[2 * a, 2 * a + 1, 2 * b, 2 * b + 1], &load);
+            }
+        }
+        system.finish_rhs();
+        Ok(())
+    }
+
+    /// The local matrix `consistency + stabilisation` and body load of polygon `p`.
+    fn element_contribution(&self, p: usize) -> Result<ElementContribution, ElasticError> {
+        let points = self.mesh.polygon_points(p);
+        let element_error = |source| ElasticError::Element {
+            body: self.name.clone(),
+            polygon: p,
+            source,
+        };
+        let expected = 2 * points.len();
+        let size_error = |what, found| ElasticError::ElementSize {
+            body: self.name.clone(),
+            polygon: p,
+            vertices: points.len(),
+            what,
+            found,
+            expected,
+        };
+        let matrix = self
+            .element
+            .stiffness(&points, &self.tensor)
+            .map_err(element_error)?
+            .total();
+        if matrix.nrows() != expected || matrix.ncols() != expected {
+            return Err(size_error("a stiffness matrix", matrix.nrows()));
+        }
+        let load = match &self.body_force {
+            Some(force) => {
+                let load = self
+                    .element
+                    .body_load(&points, &**force)
+                    .map_err(element_error)?;
+                if load.len() != expected {
+                    return Err(size_error("a load vector", load.len()));
+                }
+                Some(load)
+            }
+            None => None,
+        };
+        let dofs = self
+            .mesh
+            .polygon(p)
+            .iter()
+            .flat_map(|&v| [2 * v, 2 * v + 1])
+            .collect();
+        Ok(ElementContribution { dofs, matrix, load })
+    }
+
+    /// Assembles and solves with the default sparse Cholesky solver.
+    pub fn solve(&self) -> Result<Solution, ElasticError> {
+        self.solve_with(&mut CholeskySolver::default())
+    }
+
+    /// Assembles and solves with `solver` (analyse, factorise, solve).
+    pub fn solve_with(&self, solver: &mut dyn LinearSolver) -> Result<Solution, ElasticError> {
+        let system = self.assemble()?;
+        self.solve_system(&system, solver)
+    }
+
+    /// Solves the assembled `system` with `solver` (analyse, factorise, solve) and
+    /// post-processes: full displacement, reactions, strain energy. A non-positive-definite
+    /// stiffness is [`ElasticError::SingularStiffness`].
+    pub fn solve_system(
+        &self,
+        system: &AssembledSystem,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<Solution, ElasticError> {
+        let u_free = if system.dofs().n_free() == 0 {
+            Vec::new()
+        } else {
+            let map = |e| ElasticError::from_solver(&self.name, e);
+            solver.analyse(system.stiffness().symbolic()).map_err(map)?;
+            solver.factorise(system.stiffness().as_ref()).map_err(map)?;
+            solver.solve(system.rhs()).map_err(map)?
+        };
+        let displacement = system.expand(&u_free)?;
+        self.solution(system, displacement)
+    }
+
+    /// Post-processes a full displacement vector: reactions per Dirichlet condition and the
+    /// strain energy.
+    pub fn solution(
+        &self,
+        system: &AssembledSystem,
+        displacement: Vec<f64>,
+    ) -> Result<Solution, ElasticError> {
+        if !system.matches(&self.mesh, &self.dofs) {
+            return Err(ElasticError::ForeignSystem {
+                body: self.name.clone(),
+            });
+        }
+        let reactions = self.part_reactions(system, &displacement)?;
+        let strain_energy = system.strain_energy(&displacement)?;
+        Ok(Solution::new(displacement, reactions, strain_energy))
+    }
+
+    /// The reaction force on each Dirichlet condition: the sum of `K u - f` over the
+    /// prescribed degrees of freedom the condition owns (a degree of freedom shared by two
+    /// conditions belongs to the first, see [`DofMap::new`]). With the applied loads they are
+    /// in equilibrium: sum of reactions + int f + int g = 0.
+    pub fn part_reactions(
+        &self,
+        system: &AssembledSystem,
+        displacement: &[f64],
+    ) -> Result<Vec<PartReaction>, ElasticError> {
+        let nodal = system.reactions(displacement)?;
+        let mut forces = vec![Vector::zeros(); self.dirichlet.len()];
+        let dofs = system.dofs();
+        for ((&g, &owner), r) in dofs
+            .prescribed_dofs()
+            .iter()
+            .zip(dofs.prescribed_owners())
+            .zip(nodal)
+        {
+            forces[owner][g % 2] += r;
+        }
+        Ok(self
+            .dirichlet
+            .iter()
+            .zip(forces)
+            .map(|(condition, force)| PartReaction {
+                part: condition.part().to_string(),
+                component: condition.component(),
+                force,
+            })
+            .collect())
+    }
+
+    /// Strain, stress and von Mises stress of every element from the energy projection of
+    /// the full displacement `displacement` (constant per element), computed in parallel.
+    pub fn element_fields(&self, displacement: &[f64]) -> Result<Vec<ElementField>, ElasticError> {
+        use rayon::prelude::*;
+        if displacement.len() != self.dofs.n_dofs() {
+            return Err(ElasticError::WrongLength {
+                body: self.name.clone(),
+                what: "displacement",
+                found: displacement.len(),
+                expected: self.dofs.n_dofs(),
+            });
+        }
+        (0..self.mesh.n_polygons())
+            .into_par_iter()
+            .map(|p| {
+                let projection = self
+                    .element
+                    .projection(&self.mesh.polygon_points(p))
+                    .map_err(|source| ElasticError::Element {
+                        body: self.name.clone(),
+                        polygon: p,
+                        source,
+                    })?;
+                let local = DVector::from_iterator(
+                    2 * self.mesh.polygon(p).len(),
+                    self.mesh
+                        .polygon(p)
+                        .iter()
+                        .flat_map(|&v| [displacement[2 * v], displacement[2 * v + 1]]),
+                );
+                Ok(ElementField::from_strain(
+                    projection.strain(&local),
+                    &self.tensor,
+                    &self.material,
+                ))
+            })
+            .collect()
+    }
+}
+
+impl fmt::Debug for ElasticBody {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("ElasticBody")
+            .field("name", &self.name)
+            .field("vertices", &self.mesh.n_vertices())
+            .field("polygons", &self.mesh.n_polygons())
+            .field("material", &self.material)
+            .field("element", &self.element.name())
+            .field("dirichlet", &self.dirichlet)
+            .field("tractions", &self.tractions)
+            .field("body_force", &self.body_force.is_some())
+            .field("traction_points", &self.traction_points)
+            .finish()
+    }
+}
+
+impl fmt::Debug for ElasticBodyBuilder {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("ElasticBodyBuilder")
+            .field("name", &self.name)
+            .field("element", &self.element.name())
+            .field("dirichlet", &self.dirichlet)
+            .field("tractions", &self.tractions)
+            .finish_non_exhaustive()
+    }
+}

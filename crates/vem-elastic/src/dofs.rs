@@ -1,0 +1,194 @@
+//! Degrees of freedom: global numbering `dof = 2 * vertex + component` and the split into free
+//! and prescribed (Dirichlet) degrees of freedom used by elimination.
+
+use vem_mesh::Mesh;
+
+use crate::{Dirichlet, ElasticError};
+
+/// The global degree of freedom of `component` (0 = x, 1 = y) at `vertex`.
+#[inline]
+pub fn dof(vertex: usize, component: usize) -> usize {
+    2 * vertex + component
+}
+
+/// The status of one global degree of freedom.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DofStatus {
+    /// An unknown, with its index in the reduced (free) numbering.
+    Free(usize),
+    /// A Dirichlet degree of freedom, with its index in the prescribed numbering.
+    Prescribed(usize),
+}
+
+/// The split of the global degrees of freedom into free and prescribed ones.
+///
+/// Both numberings keep the global order: free index `i < j` implies global `free[i] < free[j]`
+/// (and likewise for prescribed ones), so a contiguous global range maps to contiguous free and
+/// prescribed ranges.
+///
+/// ```
+/// use vem_elastic::{Component, Dirichlet, DofMap, DofStatus};
+/// use vem_mesh::generators::{structured_quads, Rectangle};
+/// let mesh = structured_quads(&Rectangle::unit_square(), 2, 2)?;
+/// let dofs = DofMap::new(&mesh, &[Dirichlet::fixed("left", Component::Both)], "plate").unwrap();
+/// assert_eq!(dofs.n_dofs(), 18);
+/// assert_eq!(dofs.n_prescribed(), 6); // 3 vertices on the left, 2 components each
+/// assert_eq!(dofs.status(0), DofStatus::Prescribed(0)); // vertex 0 = (0, 0)
+/// assert_eq!(dofs.status(2), DofStatus::Free(0));       // vertex 1 = (1/2, 0), x
+/// # Ok::<(), vem_mesh::MeshError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct DofMap {
+    status: Vec<DofStatus>,
+    free: Vec<usize>,
+    prescribed: Vec<usize>,
+    prescribed_values: Vec<f64>,
+    prescribed_owner: Vec<usize>,
+}
+
+impl DofMap {
+    /// Builds the map for `mesh` and the Dirichlet conditions `dirichlet` (evaluated at the
+    /// part's vertices). A degree of freedom prescribed by several conditions (a corner shared
+    /// by two parts) belongs to the first one; their values must agree (to 1e-12 relative).
+    /// `body` names the body in errors.
+    pub fn new(mesh: &Mesh, dirichlet: &[Dirichlet], body: &str) -> Result<Self, ElasticError> {
+        let n_dofs = 2 * mesh.n_vertices();
+        // (owner condition, value) of every prescribed global dof.
+        let mut prescribed_by: Vec<Option<(usize, f64)>> = vec![None; n_dofs];
+        for (c, condition) in dirichlet.iter().enumerate() {
+            let vertices =
+                mesh.part_vertices(condition.part())
+                    .map_err(|source| ElasticError::Mesh {
+                        body: body.to_string(),
+                        source,
+                    })?;
+            for v in vertices {
+                let value = condition.value_at(mesh.vertex(v));
+                for &k in condition.component().indices() {
+                    let g = value[k];
+                    if !g.is_finite() {
+                        return Err(ElasticError::NonFiniteDirichlet {
+                            body: body.to_string(),
+                            part: condition.part().to_string(),
+                            vertex: v,
+                            value: g,
+                        });
+                    }
+                    match prescribed_by[dof(v, k)] {
+                        None => prescribed_by[dof(v, k)] = Some((c, g)),
+                        Some((first, first_value)) => {
+                            let scale = first_value.abs().max(g.abs());
+                            if (first_value - g).abs() > 1e-12 * scale {
+                                return Err(ElasticError::ConflictingDirichlet {
+                                    body: body.to_string(),
+                                    vertex: v,
+                                    component: k,
+                                    first: dirichlet[first].part().to_string(),
+                                    first_value,
+                                    second: condition.part().to_string(),
+                                    second_value: g,
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut map = DofMap {
+            status: Vec::with_capacity(n_dofs),
+            free: Vec::new(),
+            prescribed: Vec::new(),
+            prescribed_values: Vec::new(),
+            prescribed_owner: Vec::new(),
+        };
+        for (g, entry) in prescribed_by.into_iter().enumerate() {
+            match entry {
+                None => {
+                    map.status.push(DofStatus::Free(map.free.len()));
+                    map.free.push(g);
+                }
+                Some((owner, value)) => {
+                    map.status.push(DofStatus::Prescribed(map.prescribed.len()));
+                    map.prescribed.push(g);
+                    map.prescribed_values.push(value);
+                    map.prescribed_owner.push(owner);
+                }
+            }
+        }
+        Ok(map)
+    }
+
+    /// Number of global degrees of freedom (`2 * n_vertices`).
+    pub fn n_dofs(&self) -> usize {
+        self.status.len()
+    }
+
+    /// Number of free degrees of freedom (the size of the reduced system).
+    pub fn n_free(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Number of prescribed degrees of freedom.
+    pub fn n_prescribed(&self) -> usize {
+        self.prescribed.len()
+    }
+
+    /// The status of global degree of freedom `dof`.
+    pub fn status(&self, dof: usize) -> DofStatus {
+        self.status[dof]
+    }
+
+    /// The statuses of all global degrees of freedom.
+    pub fn statuses(&self) -> &[DofStatus] {
+        &self.status
+    }
+
+    /// The free index of global `dof`, if it is free.
+    pub fn free_index(&self, dof: usize) -> Option<usize> {
+        match self.status[dof] {
+            DofStatus::Free(i) => Some(i),
+            DofStatus::Prescribed(_) => None,
+        }
+    }
+
+    /// The global degrees of freedom of the free numbering (free index -> global).
+    pub fn free_dofs(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// The global degrees of freedom of the prescribed numbering (prescribed index -> global).
+    pub fn prescribed_dofs(&self) -> &[usize] {
+        &self.prescribed
+    }
+
+    /// The prescribed values `u_p`, in the prescribed numbering.
+    pub fn prescribed_values(&self) -> &[f64] {
+        &self.prescribed_values
+    }
+
+    /// For each prescribed degree of freedom, the index (in the body's list) of the Dirichlet
+    /// condition that owns it.
+    pub fn prescribed_owners(&self) -> &[usize] {
+        &self.prescribed_owner
+    }
+
+    /// The number of free (and of prescribed) degrees of freedom with a global index below
+    /// `dof`: where a global range starts in the two numberings.
+    pub(crate) fn split_point(&self, dof: usize) -> (usize, usize) {
+        let free = self.free.partition_point(|&g| g < dof);
+        (free, dof - free)
+    }
+
+    /// The full displacement vector from the free values `u_free`: free entries from
+    /// `u_free`, prescribed entries from the Dirichlet data. Panics if the length is wrong;
+    /// see [`crate::AssembledSystem::expand`] for the checked version.
+    pub(crate) fn expand_unchecked(&self, u_free: &[f64]) -> Vec<f64> {
+        self.status
+            .iter()
+            .map(|s| match *s {
+                DofStatus::Free(i) => u_free[i],
+                DofStatus::Prescribed(j) => self.prescribed_values[j],
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,194 @@
+//! Errors of the elasticity layer.
+
+use vem_mesh::MeshError;
+use vem_space::SpaceError;
+
+/// What can go wrong in a linear solver behind [`crate::LinearSolver`], independent of any body.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// The matrix is not (numerically) positive definite: a pivot of the Cholesky factorisation
+    /// was zero or negative.
+    #[error("the matrix is not positive definite (non-positive pivot at elimination step {step})")]
+    NotPositiveDefinite {
+        /// The elimination step (in the fill-reducing order) at which the pivot failed.
+        step: usize,
+    },
+    /// `factorise` or `solve` was called before the step it depends on.
+    #[error("linear solver used out of order: {reason}")]
+    OutOfOrder {
+        /// What was missing.
+        reason: &'static str,
+    },
+    /// The matrix or right-hand side does not match the analysed pattern.
+    #[error("dimension or pattern mismatch: {reason}")]
+    Mismatch {
+        /// What does not match.
+        reason: String,
+    },
+    /// A solver setting is out of range.
+    #[error("invalid solver setting: {reason}")]
+    InvalidSetting {
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// The backend failed for a reason of its own (out of memory, ...).
+    #[error("linear solver backend failed: {reason}")]
+    Backend {
+        /// The backend's message.
+        reason: String,
+    },
+}
+
+/// Everything that can go wrong while setting up, assembling, solving or post-processing one
+/// elastic body. Variants carry the body's name and, where it applies, the part, polygon or
+/// vertex concerned.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ElasticError {
+    /// The material parameters are not admissible (spec (2.8)).
+    #[error("invalid material: {reason}")]
+    InvalidMaterial {
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// A setting is out of its admissible range.
+    #[error("invalid setting: {reason}")]
+    InvalidSetting {
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// A mesh-level problem, typically a boundary part that does not exist.
+    #[error("body '{body}': {source}")]
+    Mesh {
+        /// The body's name.
+        body: String,
+        /// The mesh error (for an unknown part it lists the parts that exist).
+        #[source]
+        source: MeshError,
+    },
+    /// The element layer failed on one polygon.
+    #[error("body '{body}', polygon {polygon}: {source}")]
+    Element {
+        /// The body's name.
+        body: String,
+        /// The polygon index.
+        polygon: usize,
+        /// The element error.
+        #[source]
+        source: SpaceError,
+    },
+    /// An element returned a local matrix or load vector of the wrong size.
+    #[error("body '{body}', polygon {polygon}: the element returned {what} of size {found} for {vertices} vertices (expected {expected})")]
+    ElementSize {
+        /// The body's name.
+        body: String,
+        /// The polygon index.
+        polygon: usize,
+        /// The polygon's number of vertices.
+        vertices: usize,
+        /// Which array.
+        what: &'static str,
+        /// Its size as returned (rows or length).
+        found: usize,
+        /// The expected size (2 per vertex).
+        expected: usize,
+    },
+    /// A traction failed on one boundary edge.
+    #[error("body '{body}', traction on part '{part}', edge ({a}, {b}): {source}")]
+    Traction {
+        /// The body's name.
+        body: String,
+        /// The boundary part.
+        part: String,
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+        /// The element error.
+        #[source]
+        source: SpaceError,
+    },
+    /// Prescribed displacement data returned a non-finite value.
+    #[error("body '{body}', Dirichlet part '{part}': non-finite displacement {value} at vertex {vertex}")]
+    NonFiniteDirichlet {
+        /// The body's name.
+        body: String,
+        /// The boundary part.
+        part: String,
+        /// The vertex at which the data was evaluated.
+        vertex: usize,
+        /// The value returned.
+        value: f64,
+    },
+    /// Two Dirichlet conditions prescribe different values for the same degree of freedom
+    /// (typically at a corner shared by two parts).
+    #[error("body '{body}': parts '{first}' and '{second}' prescribe different values ({first_value} and {second_value}) for component {component} of vertex {vertex}")]
+    ConflictingDirichlet {
+        /// The body's name.
+        body: String,
+        /// The vertex.
+        vertex: usize,
+        /// The component (0 = x, 1 = y).
+        component: usize,
+        /// The part that prescribed it first.
+        first: String,
+        /// Its value.
+        first_value: f64,
+        /// The part that prescribes it again.
+        second: String,
+        /// Its value.
+        second_value: f64,
+    },
+    /// The reduced stiffness is not positive definite: the body can move as a rigid body.
+    #[error(
+        "singular stiffness: body '{body}' is not held (no or insufficient Dirichlet condition)"
+    )]
+    SingularStiffness {
+        /// The body's name.
+        body: String,
+    },
+    /// The linear solver failed for another reason.
+    #[error("body '{body}': {source}")]
+    Solver {
+        /// The body's name.
+        body: String,
+        /// The solver error.
+        #[source]
+        source: SolveError,
+    },
+    /// A vector passed in has the wrong length.
+    #[error("body '{body}': {what} has length {found}, expected {expected}")]
+    WrongLength {
+        /// The body's name.
+        body: String,
+        /// Which vector.
+        what: &'static str,
+        /// Its length.
+        found: usize,
+        /// The expected length.
+        expected: usize,
+    },
+    /// An assembled system was passed to a body it was not built for.
+    #[error("body '{body}': the assembled system was built for a different mesh or set of Dirichlet conditions")]
+    ForeignSystem {
+        /// The body's name.
+        body: String,
+    },
+}
+
+impl ElasticError {
+    /// Maps a solver error to the body-level error: a non-positive-definite stiffness is a
+    /// body that is not held.
+    pub fn from_solver(body: &str, source: SolveError) -> Self {
+        match source {
+            SolveError::NotPositiveDefinite { .. } => ElasticError::SingularStiffness {
+                body: body.to_string(),
+            },
+            source => ElasticError::Solver {
+                body: body.to_string(),
+                source,
+            },
+        }
+    }
+}

@@ -1,0 +1,252 @@
+//! Linear elastic materials: isotropic (plane strain or plane stress) and general anisotropic.
+
+use nalgebra::{Matrix3, Vector3};
+use vem_space::ElasticityTensor;
+
+use crate::ElasticError;
+
+/// Which two-dimensional reduction of a three-dimensional isotropic material is meant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    /// Plane strain: `eps_zz = 0`, `sigma_zz = lambda tr(eps)` (thick bodies; the paper's
+    /// setting).
+    Strain,
+    /// Plane stress: `sigma_zz = 0`; the in-plane law uses `lambda* = 2 lambda mu / (lambda + 2 mu)`
+    /// (thin plates).
+    Stress,
+}
+
+/// A linear elastic material, validated when built (spec (2.8)).
+///
+/// ```
+/// use vem_elastic::{Material, Plane};
+/// let steel = Material::from_young_poisson(210e9, 0.3, Plane::Strain)?;
+/// let (lambda, mu) = steel.lame().unwrap();
+/// assert!((mu - 210e9 / 2.6).abs() < 1e-3 * mu);
+/// assert!((lambda - 210e9 * 0.3 / (1.3 * 0.4)).abs() < 1e-3 * lambda);
+/// let c = steel.tensor()?;
+/// assert_eq!(c.voigt()[(0, 1)], lambda);
+/// # Ok::<(), vem_elastic::ElasticError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    kind: Kind,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kind {
+    /// Three-dimensional Lame parameters and the plane reduction.
+    Isotropic { lambda: f64, mu: f64, plane: Plane },
+    /// A general symmetric positive definite Voigt tensor.
+    General { voigt: Matrix3<f64> },
+}
+
+impl Material {
+    /// An isotropic material from Young's modulus `e > 0` and Poisson's ratio
+    /// `nu` in (-1, 1/2).
+    pub fn from_young_poisson(e: f64, nu: f64, plane: Plane) -> Result<Self, ElasticError> {
+        if !e.is_finite() || e <= 0.0 {
+            return Err(invalid(format!(
+                "Young's modulus E = {e} must be finite and positive"
+            )));
+        }
+        if !nu.is_finite() || nu <= -1.0 || nu >= 0.5 {
+            return Err(invalid(format!(
+                "Poisson's ratio nu = {nu} is outside the open interval (-1, 0.5)"
+            )));
+        }
+        let mu = e / (2.0 * (1.0 + nu));
+        let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        Self::from_lame(lambda, mu, plane)
+    }
+
+    /// An isotropic material from the three-dimensional Lame parameters: `mu > 0` and a
+    /// positive bulk modulus `lambda + 2 mu / 3 > 0` (equivalently nu in (-1, 1/2)).
+    pub fn from_lame(lambda: f64, mu: f64, plane: Plane) -> Result<Self, ElasticError> {
+        if !lambda.is_finite() || !mu.is_finite() {
+            return Err(invalid(format!(
+                "non-finite Lame parameters lambda = {lambda}, mu = {mu}"
+            )));
+        }
+        if mu <= 0.0 {
+            return Err(invalid(format!("shear modulus mu = {mu} must be positive")));
+        }
+        if 3.0 * lambda + 2.0 * mu <= 0.0 {
+            return Err(invalid(format!(
+                "lambda = {lambda} with mu = {mu}: the bulk modulus lambda + 2 mu / 3 = {} must be positive",
+                lambda + 2.0 * mu / 3.0
+            )));
+        }
+        Ok(Self {
+            kind: Kind::Isotropic { lambda, mu, plane },
+        })
+    }
+
+    /// A general anisotropic material from its Voigt matrix (`sigma = C eps`,
+    /// `eps = [eps_xx, eps_yy, 2 eps_xy]`): finite, symmetric, positive definite.
+    ///
+    /// Such a material is a purely two-dimensional law: it carries no out-of-plane stress
+    /// (`sigma_zz = 0` in [`Material::out_of_plane_stress`]).
+    pub fn general(voigt: Matrix3<f64>) -> Result<Self, ElasticError> {
+        ElasticityTensor::from_voigt(voigt).map_err(|e| invalid(e.to_string()))?;
+        Ok(Self {
+            kind: Kind::General { voigt },
+        })
+    }
+
+    /// The three-dimensional Lame parameters `(lambda, mu)` of an isotropic material
+    /// (before any plane-stress reduction); `None` for a general tensor.
+    pub fn lame(&self) -> Option<(f64, f64)> {
+        match self.kind {
+            Kind::Isotropic { lambda, mu, .. } => Some((lambda, mu)),
+            Kind::General { .. } => None,
+        }
+    }
+
+    /// The plane reduction of an isotropic material; `None` for a general tensor.
+    pub fn plane(&self) -> Option<Plane> {
+        match self.kind {
+            Kind::Isotropic { plane, .. } => Some(plane),
+            Kind::General { .. } => None,
+        }
+    }
+
+    /// The in-plane Lame parameters that enter `C`: `(lambda, mu)` in plane strain,
+    /// `(2 lambda mu / (lambda + 2 mu), mu)` in plane stress; `None` for a general tensor.
+    pub fn in_plane_lame(&self) -> Option<(f64, f64)> {
+        match self.kind {
+            Kind::Isotropic { lambda, mu, plane } => Some(in_plane(lambda, mu, plane)),
+            Kind::General { .. } => None,
+        }
+    }
+
+    /// The elasticity tensor as the element sees it, checked for (2.8).
+    pub fn tensor(&self) -> Result<ElasticityTensor, ElasticError> {
+        let tensor = match self.kind {
+            Kind::Isotropic { lambda, mu, plane } => {
+                let (lambda, mu) = in_plane(lambda, mu, plane);
+                ElasticityTensor::isotropic(lambda, mu)
+            }
+            Kind::General { voigt } => ElasticityTensor::from_voigt(voigt),
+        };
+        tensor.map_err(|e| invalid(e.to_string()))
+    }
+
+    /// The out-of-plane stress `sigma_zz` for an in-plane strain `eps` (Voigt): `lambda tr(eps)`
+    /// in plane strain, zero in plane stress and for a general tensor.
+    pub fn out_of_plane_stress(&self, strain: &Vector3<f64>) -> f64 {
+        match self.kind {
+            Kind::Isotropic {
+                lambda,
+                plane: Plane::Strain,
+                ..
+            } => lambda * (strain[0] + strain[1]),
+            _ => 0.0,
+        }
+    }
+}
+
+/// The in-plane Lame pair of a three-dimensional isotropic material.
+fn in_plane(lambda: f64, mu: f64, plane: Plane) -> (f64, f64) {
+    match plane {
+        Plane::Strain => (lambda, mu),
+        Plane::Stress => (2.0 * lambda * mu / (lambda + 2.0 * mu), mu),
+    }
+}
+
+fn invalid(reason: String) -> ElasticError {
+    ElasticError::InvalidMaterial { reason }
+}
+
+/// The von Mises equivalent stress of the stress state `(sigma_xx, sigma_yy, sigma_xy)` with
+/// out-of-plane stress `sigma_zz`:
+/// `sqrt(((sxx - syy)^2 + (syy - szz)^2 + (szz - sxx)^2) / 2 + 3 sxy^2)`.
+pub fn von_mises(stress: &Vector3<f64>, sigma_zz: f64) -> f64 {
+    let (sxx, syy, sxy) = (stress[0], stress[1], stress[2]);
+    (0.5 * ((sxx - syy).powi(2) + (syy - sigma_zz).powi(2) + (sigma_zz - sxx).powi(2))
+        + 3.0 * sxy * sxy)
+        .sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn young_poisson_to_lame() {
+        // E = 8/3, nu = 1/3 gives lambda = 2, mu = 1 (the spec's reference pair).
+        let m = Material::from_young_poisson(8.0 / 3.0, 1.0 / 3.0, Plane::Strain).unwrap();
+        let (lambda, mu) = m.lame().unwrap();
+        assert_relative_eq!(lambda, 2.0, max_relative = 1e-14);
+        assert_relative_eq!(mu, 1.0, max_relative = 1e-14);
+        let c = m.tensor().unwrap();
+        assert_relative_eq!(c.voigt()[(0, 0)], 4.0, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn plane_stress_reduces_lambda() {
+        let m = Material::from_lame(2.0, 1.0, Plane::Stress).unwrap();
+        // lambda* = 2 * 2 * 1 / (2 + 2) = 1; C_11 = E / (1 - nu^2) = (8/3) / (8/9) = 3.
+        let c = m.tensor().unwrap();
+        assert_relative_eq!(c.voigt()[(0, 1)], 1.0, max_relative = 1e-14);
+        assert_relative_eq!(c.voigt()[(0, 0)], 3.0, max_relative = 1e-14);
+        assert_eq!(m.out_of_plane_stress(&Vector3::new(1.0, 1.0, 0.0)), 0.0);
+    }
+
+    #[test]
+    fn invalid_parameters_name_the_value() {
+        let cases = [
+            (
+                Material::from_young_poisson(1.0, 0.5, Plane::Strain),
+                "nu = 0.5",
+            ),
+            (
+                Material::from_young_poisson(1.0, -1.0, Plane::Strain),
+                "nu = -1",
+            ),
+            (
+                Material::from_young_poisson(-2.0, 0.3, Plane::Stress),
+                "E = -2",
+            ),
+            (
+                Material::from_young_poisson(f64::NAN, 0.3, Plane::Stress),
+                "E = NaN",
+            ),
+            (Material::from_lame(1.0, 0.0, Plane::Strain), "mu = 0"),
+            (
+                Material::from_lame(f64::INFINITY, 1.0, Plane::Strain),
+                "non-finite",
+            ),
+            (
+                Material::from_lame(-1.0, 1.0, Plane::Strain),
+                "bulk modulus",
+            ),
+            (
+                Material::general(Matrix3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0)),
+                "positive definite",
+            ),
+            (
+                Material::general(Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)),
+                "symmetric",
+            ),
+        ];
+        for (result, needle) in cases {
+            let err = result.unwrap_err();
+            assert!(matches!(err, ElasticError::InvalidMaterial { .. }));
+            assert!(err.to_string().contains(needle), "{err} lacks {needle}");
+        }
+    }
+
+    #[test]
+    fn von_mises_of_uniaxial_and_pure_shear() {
+        assert_relative_eq!(von_mises(&Vector3::new(2.0, 0.0, 0.0), 0.0), 2.0);
+        assert_relative_eq!(
+            von_mises(&Vector3::new(0.0, 0.0, 1.0), 0.0),
+            3f64.sqrt(),
+            max_relative = 1e-15
+        );
+        // A hydrostatic state has no deviatoric part.
+        assert_relative_eq!(von_mises(&Vector3::new(-3.0, -3.0, 0.0), -3.0), 0.0);
+    }
+}

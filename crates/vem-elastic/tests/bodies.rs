@@ -1,0 +1,174 @@
+//! Body-level behaviour: floating bodies, unknown parts, conflicting data, plane stress versus
+//! plane strain in uniaxial tension.
+
+mod common;
+
+use common::{lame, vem};
+use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane};
+use vem_mesh::generators::{structured_quads, structured_triangles, MeshFamily, Rectangle};
+use vem_mesh::{MeshError, Point, Vector};
+
+#[test]
+fn floating_body_is_a_singular_stiffness_error() {
+    // No Dirichlet condition at all, and one that leaves the x-translation free. On the
+    // Voronoi mesh faer accepts the round-off pivot of the sliding body (d_k / A_kk ~ 4e-15):
+    // the pivot tolerance catches it.
+    let square = Rectangle::unit_square();
+    let quads = structured_quads(&square, 6, 6).unwrap();
+    let voronoi = MeshFamily::Voronoi.generate(&square, 10, 3).unwrap();
+    let mut bodies = Vec::new();
+    for mesh in [quads, voronoi] {
+        let free = ElasticBody::builder("floating", mesh.clone(), lame(2.0, 1.0), vem())
+            .traction("right", |_| Vector::new(1.0, 0.0))
+            .build()
+            .unwrap();
+        let sliding = ElasticBody::builder("sliding", mesh, lame(2.0, 1.0), vem())
+            .dirichlet(Dirichlet::fixed("bottom", Component::Y))
+            .body_force(|_| Vector::new(0.0, -1.0))
+            .build()
+            .unwrap();
+        bodies.extend([(free, "floating"), (sliding, "sliding")]);
+    }
+    for (body, name) in bodies {
+        let err = body.solve().unwrap_err();
+        assert_eq!(
+            err,
+            ElasticError::SingularStiffness {
+                body: name.to_string()
+            }
+        );
+        assert_eq!(
+            err.to_string(),
+            format!("singular stiffness: body '{name}' is not held (no or insufficient Dirichlet condition)")
+        );
+    }
+}
+
+#[test]
+fn unknown_part_lists_the_parts_that_exist() {
+    let mesh = structured_quads(&Rectangle::unit_square(), 2, 2).unwrap();
+    let err = ElasticBody::builder("plate", mesh.clone(), lame(2.0, 1.0), vem())
+        .clamp("bottom")
+        .traction("east", |_| Vector::new(1.0, 0.0))
+        .build()
+        .unwrap_err();
+    match &err {
+        ElasticError::Mesh {
+            body,
+            source: MeshError::UnknownPart { part, available },
+        } => {
+            assert_eq!(body, "plate");
+            assert_eq!(part, "east");
+            assert_eq!(available, &["left", "right", "bottom", "top"]);
+        }
+        other => panic!("unexpected error {other:?}"),
+    }
+    assert!(err.to_string().contains("body 'plate'") && err.to_string().contains("\"top\""));
+    let err = ElasticBody::builder("plate", mesh, lame(2.0, 1.0), vem())
+        .clamp("west")
+        .build()
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("no boundary part named 'west'"),
+        "{err}"
+    );
+}
+
+#[test]
+fn conflicting_and_non_finite_dirichlet_data_are_errors() {
+    let mesh = structured_quads(&Rectangle::unit_square(), 2, 2).unwrap();
+    // The corner (0, 0) is on both parts with different prescribed x-displacements.
+    let err = ElasticBody::builder("plate", mesh.clone(), lame(2.0, 1.0), vem())
+        .clamp("left")
+        .dirichlet(Dirichlet::prescribed("bottom", Component::X, |_| {
+            Vector::new(0.1, 0.0)
+        }))
+        .build()
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            ElasticError::ConflictingDirichlet {
+                vertex: 0,
+                component: 0,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    let err = ElasticBody::builder("plate", mesh.clone(), lame(2.0, 1.0), vem())
+        .dirichlet(Dirichlet::prescribed("left", Component::Y, |_| {
+            Vector::new(0.0, f64::NAN)
+        }))
+        .build()
+        .unwrap_err();
+    assert!(
+        matches!(err, ElasticError::NonFiniteDirichlet { .. }),
+        "{err}"
+    );
+    let err = ElasticBody::builder("plate", mesh, lame(2.0, 1.0), vem())
+        .clamp("left")
+        .traction_points(0)
+        .build()
+        .unwrap_err();
+    assert!(matches!(err, ElasticError::InvalidSetting { .. }), "{err}");
+}
+
+/// A bar (0, L) x (0, H) on rollers (u_x = 0 on the left, u_y = 0 on the bottom) pulled by a
+/// uniform traction T on the right: a uniaxial stress state sigma_xx = T. Plane stress gives
+/// eps_xx = T / E, eps_yy = -nu T / E; plane strain (eps_zz = 0) gives
+/// eps_xx = (1 - nu^2) T / E, eps_yy = -nu (1 + nu) T / E. The field is linear: exact.
+#[test]
+fn uniaxial_tension_stretch_in_plane_stress_and_plane_strain() {
+    let (length, height, e, nu, t) = (4.0, 1.0, 200.0, 0.3, 2.0);
+    let rect = Rectangle::new(Point::new(0.0, 0.0), Point::new(length, height));
+    for mesh in [
+        structured_quads(&rect, 8, 3).unwrap(),
+        structured_triangles(&rect, 5, 2).unwrap(),
+    ] {
+        for (plane, eps_xx, eps_yy) in [
+            (Plane::Stress, t / e, -nu * t / e),
+            (
+                Plane::Strain,
+                (1.0 - nu * nu) * t / e,
+                -nu * (1.0 + nu) * t / e,
+            ),
+        ] {
+            let material = Material::from_young_poisson(e, nu, plane).unwrap();
+            let body = ElasticBody::builder("bar", mesh.clone(), material, vem())
+                .dirichlet(Dirichlet::fixed("left", Component::X))
+                .dirichlet(Dirichlet::fixed("bottom", Component::Y))
+                .traction("right", move |_| Vector::new(t, 0.0))
+                .build()
+                .unwrap();
+            let solution = body.solve().unwrap();
+            for v in 0..body.mesh().n_vertices() {
+                let x = body.mesh().vertex(v);
+                let u = solution.vertex_displacement(v);
+                assert!(
+                    (u.x - eps_xx * x.x).abs() < 1e-12,
+                    "{plane:?}: {u:?} at {x:?}"
+                );
+                assert!(
+                    (u.y - eps_yy * x.y).abs() < 1e-12,
+                    "{plane:?}: {u:?} at {x:?}"
+                );
+            }
+            let fields = body.element_fields(solution.displacement()).unwrap();
+            let sigma_zz = if plane == Plane::Strain { nu * t } else { 0.0 };
+            for f in fields {
+                assert!((f.stress - nalgebra::Vector3::new(t, 0.0, 0.0)).norm() < 1e-10);
+                assert!((f.sigma_zz - sigma_zz).abs() < 1e-10);
+                let von_mises = (t * t + sigma_zz * sigma_zz - t * sigma_zz).sqrt();
+                assert!((f.von_mises - von_mises).abs() < 1e-10);
+            }
+            // Each roller carries the load in its own direction only.
+            let left = solution.reaction("left").unwrap();
+            assert!(
+                (left.x + t * height).abs() < 1e-10 && left.y == 0.0,
+                "{left:?}"
+            );
+            assert!(solution.reaction("bottom").unwrap().norm() < 1e-10);
+        }
+    }
+}
