@@ -4,9 +4,9 @@ use faer::sparse::{SparseColMat, Triplet};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vem_contact::{
-    ConstraintRows, ContactSolution, ContactSolver, ContactSolverError, ContactSystem,
-    ContactSystemError, ExactSettings, ExactSolver, Friction, PenaltyParameter, PenaltySettings,
-    PenaltySolver, SolveStatus,
+    ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
+    ContactSolverError, ContactSystem, ContactSystemError, ExactSettings, ExactSolver, Friction,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SolveStatus,
 };
 
 fn matrix(n: usize, entries: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
@@ -23,6 +23,10 @@ fn rows(nrows: usize, ncols: usize, entries: &[(usize, usize, f64)]) -> Constrai
 
 fn exact() -> ExactSolver {
     ExactSolver::default()
+}
+
+fn active() -> ActiveSetSolver {
+    ActiveSetSolver::default()
 }
 
 /// Penalty solver with `eps_N = eps_T = factor x` the largest constrained diagonal of `K`.
@@ -77,6 +81,10 @@ fn one_dof_spring_touching_the_wall() {
     assert_eq!(s.report.status, SolveStatus::Converged);
     assert!(s.report.residuals.max_violation() < 1e-9);
     assert!(s.report.residuals.stationarity < 1e-9);
+    let a = solve(&mut active(), &spring(k, f, g));
+    assert_close(a.displacement[0], g, 1e-11, "active-set u");
+    assert_close(a.normal_force[0], f - k * g, 1e-10, "active-set lambda_N");
+    assert_eq!(a.report.iterations, 2, "one split to find, one to confirm");
 
     // Penalty: u = (f + eps g) / (k + eps) exactly, lambda = eps (u - g).
     let eps = 1e4;
@@ -97,6 +105,7 @@ fn one_dof_spring_short_of_the_wall() {
     let (k, f, g) = (2.0, 1.0, 1.0);
     for solver in [
         &mut exact() as &mut dyn ContactSolver,
+        &mut active() as &mut dyn ContactSolver,
         &mut penalty(1e3) as &mut dyn ContactSolver,
     ] {
         let s = solve(solver, &spring(k, f, g));
@@ -109,9 +118,14 @@ fn one_dof_spring_short_of_the_wall() {
 fn negative_gap_pushes_the_spring_back() {
     // The wall stands at -0.5: a spring without load is pushed back to it.
     let (k, g) = (4.0, -0.5);
-    let s = solve(&mut exact(), &spring(k, 0.0, g));
-    assert_close(s.displacement[0], g, 1e-9, "u");
-    assert_close(s.normal_force[0], -k * g, 1e-8, "lambda_N");
+    for solver in [
+        &mut exact() as &mut dyn ContactSolver,
+        &mut active() as &mut dyn ContactSolver,
+    ] {
+        let s = solve(solver, &spring(k, 0.0, g));
+        assert_close(s.displacement[0], g, 1e-9, "u");
+        assert_close(s.normal_force[0], -k * g, 1e-8, "lambda_N");
+    }
 }
 
 /// Wall - k1 - node 0 - k2 - node 1 - wall at `gap`; load `f` on node 1.
@@ -134,6 +148,7 @@ fn two_springs_in_series_against_a_wall() {
     // Penalty error ~ lambda / eps = 1e-8 here.
     for (solver, tol) in [
         (&mut exact() as &mut dyn ContactSolver, 1e-9),
+        (&mut active() as &mut dyn ContactSolver, 1e-12),
         (&mut relative_penalty(1e8) as &mut dyn ContactSolver, 1e-7),
     ] {
         let inactive = solve(solver, &two_springs(k1, k2, f, 3.0));
@@ -189,6 +204,7 @@ fn two_chains_pressed_together() {
     let lambda = f - g * k / 4.0;
     for (solver, tol) in [
         (&mut exact() as &mut dyn ContactSolver, 1e-9),
+        (&mut active() as &mut dyn ContactSolver, 1e-12),
         (&mut relative_penalty(1e8) as &mut dyn ContactSolver, 1e-7),
     ] {
         let s = solve(solver, &two_chains(k, f, g));
@@ -224,6 +240,8 @@ fn two_chains_pressed_together() {
     }
     let s = solve(&mut exact(), &two_chains(k, f, g));
     assert!(s.report.residuals.complementarity < 1e-8);
+    let s = solve(&mut active(), &two_chains(k, f, g));
+    assert!(s.report.residuals.complementarity < 1e-12);
 }
 
 /// A block with tangential spring `kx` (unknown 0) and normal spring `ky` (unknown 1) on a
@@ -248,12 +266,17 @@ fn block(kx: f64, ky: f64, load: [f64; 2], b: f64) -> ContactSystem {
 fn tresca_block_sticks_below_the_bound() {
     let (kx, ky, b) = (4.0, 9.0, 2.0);
     for fx in [1.5, -1.5, 0.0] {
-        let s = solve(&mut exact(), &block(kx, ky, [fx, 3.0], b));
-        assert_close(s.displacement[0], 0.0, 1e-9, "no slip");
-        assert_close(s.displacement[1], 0.0, 1e-9, "in contact");
-        assert_close(s.tangential_force[0], fx, 1e-8, "lambda_T = load");
-        assert_close(s.normal_force[0], 3.0, 1e-8, "lambda_N");
-        assert!(s.report.residuals.max_violation() < 1e-8);
+        for solver in [
+            &mut exact() as &mut dyn ContactSolver,
+            &mut active() as &mut dyn ContactSolver,
+        ] {
+            let s = solve(solver, &block(kx, ky, [fx, 3.0], b));
+            assert_close(s.displacement[0], 0.0, 1e-9, "no slip");
+            assert_close(s.displacement[1], 0.0, 1e-9, "in contact");
+            assert_close(s.tangential_force[0], fx, 1e-8, "lambda_T = load");
+            assert_close(s.normal_force[0], 3.0, 1e-8, "lambda_N");
+            assert!(s.report.residuals.max_violation() < 1e-8);
+        }
     }
     // Penalty: elastic slip fx / (kx + eps) exactly while |eps slip| < b.
     let eps = 1e6;
@@ -275,6 +298,7 @@ fn tresca_block_slips_above_the_bound() {
         let expected_slip = (fx - sign * b) / kx;
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
+            &mut active() as &mut dyn ContactSolver,
             &mut penalty(1e6) as &mut dyn ContactSolver,
         ] {
             let s = solve(solver, &block(kx, ky, [fx, 3.0], b));
@@ -296,9 +320,14 @@ fn tresca_block_slips_above_the_bound() {
 #[test]
 fn tresca_block_free_tangentially_holds_below_capacity() {
     // kx = 0: only friction holds the block.
-    let s = solve(&mut exact(), &block(0.0, 9.0, [1.0, 3.0], 2.0));
-    assert_close(s.displacement[0], 0.0, 1e-8, "no slip");
-    assert_close(s.tangential_force[0], 1.0, 1e-8, "lambda_T");
+    for solver in [
+        &mut exact() as &mut dyn ContactSolver,
+        &mut active() as &mut dyn ContactSolver,
+    ] {
+        let s = solve(solver, &block(0.0, 9.0, [1.0, 3.0], 2.0));
+        assert_close(s.displacement[0], 0.0, 1e-8, "no slip");
+        assert_close(s.tangential_force[0], 1.0, 1e-8, "lambda_T");
+    }
     let eps = 1e5;
     let p = solve(&mut penalty(eps), &block(0.0, 9.0, [1.0, 3.0], 2.0));
     assert_close(p.displacement[0], 1.0 / eps, 1e-15, "penalty elastic slip");
@@ -312,6 +341,7 @@ fn rigid_sliding_is_detected() {
     for fxs in [fx, -fx] {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
+            &mut active() as &mut dyn ContactSolver,
             &mut penalty(1e3) as &mut dyn ContactSolver,
         ] {
             match solver.solve(&block(0.0, 9.0, [fxs, 3.0], b)) {
@@ -350,6 +380,7 @@ fn floating_body_is_unbounded() {
     for system in [&frictionless, &pulled] {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
+            &mut active() as &mut dyn ContactSolver,
             &mut penalty(1e3) as &mut dyn ContactSolver,
         ] {
             match solver.solve(system) {
@@ -448,13 +479,20 @@ fn random_system(seed: u64, with_friction: bool) -> ContactSystem {
     ContactSystem::try_new(matrix(n, &entries), load, normal, gap, friction).expect("valid system")
 }
 
+fn max_difference<'a>(a: impl IntoIterator<Item = (&'a f64, &'a f64)>) -> f64 {
+    a.into_iter().fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
 #[test]
-fn exact_and_penalty_agree_on_a_random_system() {
+fn exact_penalty_and_active_set_agree_on_a_random_system() {
     for with_friction in [false, true] {
         let system = random_system(7, with_friction);
         let e = solve(&mut exact(), &system);
-        let active = e.normal_force.iter().filter(|&&l| l > 1e-6).count();
-        assert!((3..=17).contains(&active), "{active} active constraints");
+        let n_active = e.normal_force.iter().filter(|&&l| l > 1e-6).count();
+        assert!(
+            (3..=17).contains(&n_active),
+            "{n_active} active constraints"
+        );
         assert!(e.report.residuals.max_violation() < 1e-8, "{:?}", e.report);
         assert!(e.report.residuals.stationarity < 1e-8, "{:?}", e.report);
         let mut p = PenaltySolver::new(
@@ -484,6 +522,21 @@ fn exact_and_penalty_agree_on_a_random_system() {
         // A second solve reuses the symbolic analysis and gives the same answer.
         let again = solve(&mut p, &system);
         assert_eq!(again.displacement, s.displacement);
+
+        let a = solve(&mut active(), &system);
+        assert!(a.report.residuals.max_violation() < 1e-10, "{:?}", a.report);
+        assert!(a.report.residuals.stationarity < 1e-12, "{:?}", a.report);
+        let du = max_difference(e.displacement.iter().zip(&a.displacement));
+        let dl = max_difference(
+            e.normal_force
+                .iter()
+                .zip(&a.normal_force)
+                .chain(e.tangential_force.iter().zip(&a.tangential_force)),
+        );
+        assert!(
+            du < 1e-7 && dl < 1e-7,
+            "friction {with_friction}: du {du}, dlambda {dl}"
+        );
     }
 }
 
@@ -495,9 +548,14 @@ fn forced_non_convergence_carries_the_report() {
         .max_iter(1)
         .build()
         .expect("valid");
+    let active_1 = ActiveSetSettings::builder()
+        .max_iter(1)
+        .build()
+        .expect("valid");
     for solver in [
         &mut ExactSolver::new(exact_1) as &mut dyn ContactSolver,
         &mut PenaltySolver::new(penalty_1) as &mut dyn ContactSolver,
+        &mut ActiveSetSolver::new(active_1) as &mut dyn ContactSolver,
     ] {
         match solver.solve(&system) {
             Err(ContactSolverError::NotConverged { report }) => {

@@ -23,6 +23,7 @@
 //!   of body 1) is the friction force acting on body 1, opposing its slip.
 //!   For frictionless systems it is all zeros.
 
+mod active_set;
 mod error;
 mod exact;
 mod newton_matrix;
@@ -30,6 +31,7 @@ mod penalty;
 mod report;
 mod system;
 
+pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};
 pub use error::{ContactSolverError, SettingsError};
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
 pub use penalty::{PenaltyParameter, PenaltySettings, PenaltySettingsBuilder, PenaltySolver};
