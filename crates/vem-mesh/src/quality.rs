@@ -329,7 +329,7 @@ mod tests {
 
     #[test]
     fn not_star_shaped_has_radius_zero() {
-        // A U shape whose two arms cannot see each other's tips... a "C" with a deep notch.
+        // A U shape: no point sees the inner sides of both arms.
         let u_shape = [
             Point::new(0.0, 0.0),
             Point::new(3.0, 0.0),
@@ -342,6 +342,83 @@ mod tests {
         ];
         // Kernel: x <= 1 (from the edge (1,1)-(1,3)) and x >= 2 (from (2,3)-(2,1)): empty.
         assert_eq!(star_radius(&u_shape), 0.0);
+    }
+
+    #[test]
+    fn square_and_equilateral_triangle() {
+        // Unit square: shortest edge 1 and inscribed radius 1/2 against h_T = sqrt 2.
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+        ];
+        let q = element_quality(&square);
+        assert_relative_eq!(
+            q.shortest_edge_ratio,
+            1.0 / 2f64.sqrt(),
+            max_relative = 1e-15
+        );
+        assert_relative_eq!(q.star_ratio, 0.5 / 2f64.sqrt(), max_relative = 1e-12);
+        assert_relative_eq!(q.gamma(), 0.5 / 2f64.sqrt(), max_relative = 1e-12);
+        // Equilateral triangle of side 1: h_T = 1, inradius 1 / (2 sqrt 3).
+        let triangle = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(0.5, 3f64.sqrt() / 2.0),
+        ];
+        let q = element_quality(&triangle);
+        assert_relative_eq!(q.shortest_edge_ratio, 1.0, max_relative = 1e-15);
+        assert_relative_eq!(
+            q.star_ratio,
+            1.0 / (2.0 * 3f64.sqrt()),
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn figures_do_not_depend_on_position_or_scale() {
+        let chevron = [
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.25),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.5, 1.25),
+            Point::new(0.0, 1.0),
+        ];
+        let reference = element_quality(&chevron);
+        let moved: Vec<Point> = chevron
+            .iter()
+            .map(|p| Point::new(1e3 + 1e-3 * p.x, -3e2 + 1e-3 * p.y))
+            .collect();
+        let q = element_quality(&moved);
+        assert_relative_eq!(q.diameter, 1e-3 * reference.diameter, max_relative = 1e-8);
+        assert_relative_eq!(q.star_ratio, reference.star_ratio, max_relative = 1e-8);
+        // Chebyshev radius of the chevron's kernel: 1 / (2 sqrt(1 + 4 s^2)) with s = 1/4.
+        assert_relative_eq!(
+            star_radius(&chevron),
+            1.0 / (2.0 * 1.25f64.sqrt()),
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn hanging_node_splits_an_edge() {
+        // A square with a hanging node in the middle of its bottom side: shortest edge 1/2.
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+        ];
+        let q = element_quality(&square);
+        assert_relative_eq!(
+            q.shortest_edge_ratio,
+            0.5 / 2f64.sqrt(),
+            max_relative = 1e-15
+        );
+        assert_relative_eq!(q.star_ratio, 0.5 / 2f64.sqrt(), max_relative = 1e-12);
     }
 
     #[test]
