@@ -1,2 +1,56 @@
-//! vem-contact: work in progress; see the issue tracker.
+//! Two-body contact with the lowest-order virtual element method: the contact solvers.
+//!
+//! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
+//! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction
+//! with nodal quadrature, tangential rows `B_T` with nodal bounds `b`. Solvers implement
+//! [`ContactSolver`]: [`ExactSolver`] (convex QP by Clarabel), [`PenaltySolver`]
+//! (semismooth Newton on faer sparse Cholesky) and [`ActiveSetSolver`] (primal-dual active set
+//! on faer sparse Cholesky, exact KKT answer). Every answer carries a [`SolveReport`] with KKT
+//! residuals recomputed from it. Sign conventions are in the [`solver`] module docs:
+//! `normal_force >= 0` is compression.
+//!
+//! # Example: a spring against a wall
+//!
+//! One unknown `u` with stiffness `k = 2`, load `f = 3`, wall at gap `g = 1`: free, the spring
+//! would stretch to `f/k = 1.5 > g`, so it touches the wall, `u = 1`, and the wall carries
+//! `lambda_N = f - k g = 1`.
+//!
+//! ```
+//! use faer::sparse::{SparseColMat, Triplet};
+//! use vem_contact::{ConstraintRows, ContactSolver, ContactSystem, ExactSolver};
+//!
+//! let k = SparseColMat::<usize, f64>::try_new_from_triplets(1, 1, &[Triplet::new(0, 0, 2.0)])
+//!     .expect("valid triplets");
+//! let wall = ConstraintRows::try_from_triplets(1, 1, &[(0, 0, 1.0)])?;
+//! let system = ContactSystem::try_new(k, vec![3.0], wall, vec![1.0], None)?;
+//! let solution = ExactSolver::default().solve(&system)?;
+//! assert!((solution.displacement[0] - 1.0).abs() < 1e-8);
+//! assert!((solution.normal_force[0] - 1.0).abs() < 1e-8);
+//! assert!(solution.report.residuals.stationarity < 1e-8);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![deny(missing_docs)]
+
+mod error;
+mod obstacle;
+mod problem;
+mod result;
+pub mod solver;
+
+pub use error::ContactError;
+pub use obstacle::{Obstacle, ObstacleGap};
+pub use problem::{
+    tangent, ContactLaw, ContactProblem, Counterpart, FixedPointSettings, FrictionBound,
+    ScalarField,
+};
+pub use result::{
+    BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
+    NodeStatus,
+};
+
+pub use solver::{
+    ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
+    ContactSolverError, ContactSystem, ContactSystemError, ExactSettings, ExactSolver, Friction,
+    KktResiduals, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport,
+    SolveStatus,
+};
