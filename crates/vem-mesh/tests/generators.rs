@@ -166,7 +166,9 @@ fn shape_regularity_does_not_decay() {
         MeshFamily::Triangles => 0.19,
         MeshFamily::Hexagons => 0.2,
         MeshFamily::Voronoi => SHORT_EDGE_RATIO * 0.99,
-        MeshFamily::PerturbedQuads { .. } => 0.12,
+        // The worst single cell with moves up to 0.3 h has star ratio about 0.12 (a local
+        // search over the 8 corner moves of a unit cell); random meshes approach it slowly.
+        MeshFamily::PerturbedQuads { .. } => 0.1,
         MeshFamily::NonConvex => 0.24,
     };
     for rect in rectangles() {
