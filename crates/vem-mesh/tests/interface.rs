@@ -585,3 +585,77 @@ fn bad_input_is_reported_with_names() {
         assert!(err.to_string().contains("must"), "{err}");
     }
 }
+
+/// Distinct x positions of the nodes of two horizontal chains, and the smallest distance
+/// between two distinct ones.
+fn distinct_positions(a: &Mesh, part_a: &str, b: &Mesh, part_b: &str) -> (Vec<f64>, f64) {
+    let mut xs: Vec<f64> = boundary_chain(a, part_a)
+        .unwrap()
+        .iter()
+        .chain(&boundary_chain(b, part_b).unwrap())
+        .map(|node| node.point.x)
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|x, y| (*x - *y).abs() <= 1e-12);
+    let closest = xs
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    (xs, closest)
+}
+
+#[test]
+fn every_mesh_family_pairs_with_quads_at_all_distinct_positions() {
+    use vem_mesh::generators::{voronoi, MeshFamily};
+    let quads = body_2(5);
+    let mut cases: Vec<(String, Mesh, Mesh)> = Vec::new();
+    for family in MeshFamily::all() {
+        for (n, seed) in [(4, 1), (7, 2), (10, 3)] {
+            let a = family.generate(&rect(0.0, 0.0, 1.0, 1.0), n, seed).unwrap();
+            cases.push((format!("{} n = {n}", family.name()), a, quads.clone()));
+        }
+    }
+    // Voronoi over Voronoi, different sizes and seeds.
+    let upper = voronoi(&rect(0.0, 0.0, 1.0, 1.0), 6, 11).unwrap();
+    let lower = voronoi(&rect(0.0, -1.0, 1.0, 0.0), 9, 12).unwrap();
+    cases.push(("voronoi over voronoi".into(), upper, lower));
+    for (name, a, b) in &cases {
+        let interface = pair_up(a, "bottom", b, "top");
+        let (xs, closest) = distinct_positions(a, "bottom", b, "top");
+        // No two distinct positions are within the snapping distance, so none merge.
+        assert!(closest > 1e-3, "{name}: {closest}");
+        assert_eq!(interface.pairs.len(), xs.len(), "{name}");
+        for (pair, x) in interface.pairs.iter().zip(&xs) {
+            assert_relative_eq!(pair.point_a.x, *x, epsilon = 1e-14);
+            assert!(pair.initial_gap.abs() <= 1e-15, "{name}");
+        }
+        assert_eq!(
+            interface.inserted_a + interface.inserted_b,
+            2 * xs.len()
+                - a.part_vertices("bottom").unwrap().len()
+                - b.part_vertices("top").unwrap().len(),
+            "{name}"
+        );
+        assert_relative_eq!(total_tributary(&interface), 1.0, max_relative = 1e-13);
+        assert_relative_eq!(
+            total_area(&interface.mesh_a),
+            total_area(a),
+            max_relative = 1e-13
+        );
+        assert_relative_eq!(
+            total_area(&interface.mesh_b),
+            total_area(b),
+            max_relative = 1e-13
+        );
+        assert_each_node_once(
+            &interface.mesh_a,
+            "bottom",
+            interface.pairs.iter().map(|p| p.node_a),
+        );
+        assert_each_node_once(
+            &interface.mesh_b,
+            "top",
+            interface.pairs.iter().map(|p| p.node_b),
+        );
+    }
+}
