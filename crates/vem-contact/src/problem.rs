@@ -571,11 +571,14 @@ impl ContactProblem {
                 ),
                 _ => None,
             });
-        let max_force = solution
+        // A node is open when its force is negligible against the largest of the contact forces
+        // and the nodal loads (an interior-point solver leaves ~1e-10 relative on open nodes).
+        let force_scale = solution
             .normal_force
             .iter()
+            .chain(&discrete.load)
             .fold(0.0_f64, |m, &f| m.max(f.abs()));
-        let force_tolerance = 1e-6 * max_force.max(f64::MIN_POSITIVE);
+        let force_tolerance = 1e-6 * force_scale.max(f64::MIN_POSITIVE);
         let nodes: Vec<InterfaceNode> = discrete
             .nodes
             .iter()
