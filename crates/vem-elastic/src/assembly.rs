@@ -12,6 +12,13 @@
 //! Three blocks are stored, each in compressed-column form with full (not triangular) storage:
 //! `K_ff` (the reduced stiffness), `K_fp` (the lifting of the Dirichlet data) and `K_pp`.
 //! `K_pf = K_fp^T` is not stored.
+//!
+//! Element matrices are computed in parallel, a chunk of polygons at a time (bounded memory),
+//! and scattered in parallel by disjoint blocks of columns, each entry found by binary search
+//! in its column. Polygons are visited along a Morton curve of their vertex means, which keeps
+//! the scatter in cache on meshes with a random numbering (Voronoi): measured 2-3x faster
+//! there. Every entry is summed in the same order whatever the number of threads, so the
+//! values are reproducible bit for bit.
 
 use std::ops::Range;
 
@@ -41,6 +48,10 @@ pub struct AssembledSystem {
     prescribed_block: SparseColMat<usize, f64>,
     load: Vec<f64>,
     rhs: Vec<f64>,
+    /// The order in which polygons are assembled: along a Morton (Z-order) curve of their
+    /// vertex means, so that consecutive elements share vertices and the scatter stays in cache
+    /// whatever the mesh's numbering.
+    element_order: Vec<usize>,
 }
 
 /// What one element contributes: its global degrees of freedom, matrix and load vector.
@@ -65,6 +76,7 @@ impl AssembledSystem {
             n_polygons: mesh.n_polygons(),
             load: vec![0.0; dofs.n_dofs()],
             rhs: vec![0.0; dofs.n_free()],
+            element_order: morton_order(mesh),
             dofs,
             stiffness: zeros(ff),
             coupling: zeros(fp),
@@ -90,11 +102,7 @@ impl AssembledSystem {
 
     /// Computes the contributions of all polygons with `element` (in parallel, chunk by
     /// chunk) and scatters them (in parallel over disjoint column blocks).
-    pub(crate) fn scatter_elements<F>(
-        &mut self,
-        n_polygons: usize,
-        element: F,
-    ) -> Result<(), ElasticError>
+    pub(crate) fn scatter_elements<F>(&mut self, element: F) -> Result<(), ElasticError>
     where
         F: Fn(usize) -> Result<ElementContribution, ElasticError> + Sync,
     {
@@ -107,17 +115,19 @@ impl AssembledSystem {
             &mut self.load,
             rayon::current_num_threads(),
         );
-        let mut start = 0;
-        while start < n_polygons {
-            let end = (start + CHUNK).min(n_polygons);
-            let contributions: Vec<ElementContribution> = (start..end)
-                .into_par_iter()
-                .map(&element)
-                .collect::<Result<_, _>>()?;
+        for chunk in self.element_order.chunks(CHUNK) {
+            // Each contribution with the status of its degrees of freedom.
+            let contributions: Vec<(Vec<DofStatus>, ElementContribution)> = chunk
+                .par_iter()
+                .map(|&p| {
+                    let contribution = element(p)?;
+                    let statuses = contribution.dofs.iter().map(|&g| dofs.status(g)).collect();
+                    Ok((statuses, contribution))
+                })
+                .collect::<Result<_, ElasticError>>()?;
             blocks
                 .par_iter_mut()
-                .for_each(|block| block.scatter(dofs, &contributions));
-            start = end;
+                .for_each(|block| block.scatter(&contributions));
         }
         Ok(())
     }
@@ -284,6 +294,35 @@ fn transpose_matvec_add(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) 
     }
 }
 
+/// The polygons sorted along a Morton (Z-order) curve of their vertex means (16 bits per
+/// coordinate in the bounding box; ties keep the mesh order).
+fn morton_order(mesh: &Mesh) -> Vec<usize> {
+    let (mut min, mut max) = (mesh.vertex(0), mesh.vertex(0));
+    for x in mesh.vertices() {
+        min = min.inf(x);
+        max = max.sup(x);
+    }
+    let extent = (max - min).map(|e| if e > 0.0 { e } else { 1.0 });
+    let spread = |mut bits: u64| {
+        // Inserts a zero bit above each of the 16 low bits.
+        bits &= 0xffff;
+        bits = (bits | (bits << 8)) & 0x00ff_00ff;
+        bits = (bits | (bits << 4)) & 0x0f0f_0f0f;
+        bits = (bits | (bits << 2)) & 0x3333_3333;
+        (bits | (bits << 1)) & 0x5555_5555
+    };
+    let mut keyed: Vec<(u64, usize)> = (0..mesh.n_polygons())
+        .map(|p| {
+            let mean = vem_mesh::geometry::vertex_mean(&mesh.polygon_points(p));
+            let scaled = (mean - min).component_div(&extent) * 65535.0;
+            let key = spread(scaled.x as u64) | (spread(scaled.y as u64) << 1);
+            (key, p)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, p)| p).collect()
+}
+
 /// For each vertex, the sorted distinct vertices that share a polygon with it (itself included).
 fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
     // Vertex -> polygons incidence in compressed form.
@@ -419,10 +458,9 @@ impl BlockValues<'_> {
 
 impl ColumnBlock<'_> {
     /// Adds the columns of every contribution that fall in this block's global range.
-    fn scatter(&mut self, dofs: &DofMap, contributions: &[ElementContribution]) {
-        for contribution in contributions {
-            let local = &contribution.dofs;
-            for (b, &gb) in local.iter().enumerate() {
+    fn scatter(&mut self, contributions: &[(Vec<DofStatus>, ElementContribution)]) {
+        for (statuses, contribution) in contributions {
+            for (b, &gb) in contribution.dofs.iter().enumerate() {
                 if !self.global.contains(&gb) {
                     continue;
                 }
@@ -430,17 +468,17 @@ impl ColumnBlock<'_> {
                     self.load[gb - self.global.start] += load[b];
                 }
                 let column = contribution.matrix.column(b);
-                match dofs.status(gb) {
+                match statuses[b] {
                     DofStatus::Free(col) => {
-                        for (a, &ga) in local.iter().enumerate() {
-                            if let DofStatus::Free(row) = dofs.status(ga) {
+                        for (a, status) in statuses.iter().enumerate() {
+                            if let DofStatus::Free(row) = *status {
                                 self.ff.add(row, col, column[a]);
                             }
                         }
                     }
                     DofStatus::Prescribed(col) => {
-                        for (a, &ga) in local.iter().enumerate() {
-                            match dofs.status(ga) {
+                        for (a, status) in statuses.iter().enumerate() {
+                            match *status {
                                 DofStatus::Free(row) => self.fp.add(row, col, column[a]),
                                 DofStatus::Prescribed(row) => self.pp.add(row, col, column[a]),
                             }

@@ -234,7 +234,7 @@ impl ElasticBody {
 
     fn fill(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
         system.clear_values();
-        system.scatter_elements(self.mesh.n_polygons(), |p| self.element_contribution(p))?;
+        system.scatter_elements(|p| self.element_contribution(p))?;
         for traction in &self.tractions {
             let part = self
                 .mesh
