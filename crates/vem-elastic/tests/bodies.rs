@@ -172,3 +172,33 @@ fn uniaxial_tension_stretch_in_plane_stress_and_plane_strain() {
         }
     }
 }
+
+/// The traction load is exact for polynomial tractions of degree 2 points - 2 along an edge:
+/// with g = (0, y^2) on x = 1 the nodal loads must reproduce int g_y = 1/3 and the moment
+/// int y g_y = 1/4 (the trace y is linear on each edge, so sum_v F_v y_v = int y g_y exactly).
+#[test]
+fn traction_quadrature_is_exact_for_quadratic_tractions() {
+    let mesh = structured_quads(&Rectangle::unit_square(), 2, 3).unwrap();
+    let moments = |points: usize| {
+        let body = ElasticBody::builder("plate", mesh.clone(), lame(2.0, 1.0), vem())
+            .clamp("left")
+            .traction("right", |x| Vector::new(0.0, x.y * x.y))
+            .traction_points(points)
+            .build()
+            .unwrap();
+        let system = body.assemble().unwrap();
+        let load = system.load();
+        let (mut force, mut moment) = (0.0, 0.0);
+        for v in 0..mesh.n_vertices() {
+            force += load[2 * v + 1];
+            moment += load[2 * v + 1] * mesh.vertex(v).y;
+            assert_eq!(load[2 * v], 0.0);
+        }
+        (force, moment)
+    };
+    let (force, moment) = moments(2);
+    assert!((force - 1.0 / 3.0).abs() < 1e-15 && (moment - 0.25).abs() < 1e-15);
+    // The one-point (midpoint) rule misses the quadratic: sum h y_mid^2 = 35/108.
+    let (force, _) = moments(1);
+    assert!((force - 35.0 / 108.0).abs() < 1e-15, "{force}");
+}
