@@ -222,7 +222,8 @@ impl ElasticBody {
     }
 
     /// Recomputes the values of `system` (built by [`ElasticBody::assemble`] for this mesh and
-    /// these Dirichlet conditions) on its existing pattern.
+    /// these Dirichlet conditions) on its existing pattern. If an element fails, the error is
+    /// returned and the values of `system` are incomplete until the next successful call.
     pub fn reassemble(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
         if !system.matches(&self.mesh, &self.dofs) {
             return Err(ElasticError::ForeignSystem {
