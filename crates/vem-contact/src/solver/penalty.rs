@@ -16,10 +16,13 @@
 //! `K + B_N'B_N + B_T'B_T` (and kept across solves while the pattern does not change). When
 //! `H` is singular (`K` singular along a mode that only inactive or sliding rows control) the
 //! step is computed with `H + delta D` instead (`D = diag(K + eps_N B_N'B_N + eps_T B_T'B_T)`,
-//! `delta = 1e-10`): a direction dominated by the free mode. The step length is the exact
-//! minimiser of `Pi` along the Newton direction, found among the breakpoints of the
-//! piecewise-linear derivative; an energy that decreases without bound along the direction
-//! is reported as rigid sliding or a floating body.
+//! `delta = 1e-10`): a direction dominated by the free mode. The first step tries the
+//! minimiser of the model with every node in contact and sticking, kept if it lowers `Pi`
+//! (it usually lands near the final sets). Otherwise the step length is 1 (full semismooth Newton
+//! step) when it satisfies the Armijo condition, else the exact minimiser of `Pi` along the
+//! Newton direction, found among the breakpoints of the piecewise-linear derivative; an
+//! energy that decreases without bound along the direction is reported as rigid sliding or a
+//! floating body.
 //!
 //! Stopping: the penetrating and sticking sets did not change over the last step and
 //! `||grad Pi||_inf` is below the relative tolerance or below the round-off floor of its own
@@ -346,6 +349,9 @@ impl Penalised<'_> {
     }
 }
 
+/// Sufficient-decrease fraction of the full Newton step.
+const ARMIJO: f64 = 1e-4;
+
 /// Result of the exact line search.
 enum Step {
     /// Minimiser of `Pi` along the direction.
@@ -354,6 +360,38 @@ enum Step {
     Unbounded,
     /// The direction is not a descent direction.
     NoDescent,
+}
+
+/// `Pi(u + d) - Pi(u)`, evaluated term by term.
+fn energy_change(p: &Penalised, state: &State, d: &[f64]) -> f64 {
+    let sys = p.system;
+    let kd = sys.stiffness_apply(d);
+    let mut change: f64 = state
+        .ku
+        .iter()
+        .zip(sys.load())
+        .zip(d.iter().zip(&kd))
+        .map(|((k, f), (x, kx))| (k - f + 0.5 * kx) * x)
+        .sum();
+    let e = sys.normal_rows().apply(d);
+    for (c, ei) in state.constraint.iter().zip(&e) {
+        change += 0.5 * p.eps_n * ((c + ei).max(0.0).powi(2) - c.max(0.0).powi(2));
+    }
+    if let Some(f) = sys.friction() {
+        let w = f.tangential_rows().apply(d);
+        let huber = |x: f64, b: f64| {
+            let y = p.eps_t * x;
+            if y.abs() <= b {
+                0.5 * y * x
+            } else {
+                b * x.abs() - 0.5 * b * b / p.eps_t
+            }
+        };
+        for ((s, wi), b) in state.slip.iter().zip(&w).zip(f.bounds()) {
+            change += huber(s + wi, *b) - huber(*s, *b);
+        }
+    }
+    change
 }
 
 /// Exact minimisation of the convex piecewise quadratic `phi(t) = Pi(u + t d)` over `t >= 0`:
@@ -407,32 +445,41 @@ fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
     }
     // First breakpoint where phi' >= 0.
     let k = breakpoints.partition_point(|&t| dphi(t) < 0.0);
-    if k < breakpoints.len() {
+    let exact = if k < breakpoints.len() {
         let (ta, da) = if k == 0 {
             (0.0, d0)
         } else {
             (breakpoints[k - 1], dphi(breakpoints[k - 1]))
         };
         let (tb, db) = (breakpoints[k], dphi(breakpoints[k]));
-        return Step::Length(if db > da {
+        if db > da {
             ta - da * (tb - ta) / (db - da)
         } else {
             tb
-        });
-    }
-    // Beyond the last breakpoint phi' is linear with the asymptotic curvature below.
-    let t_last = breakpoints.last().copied().unwrap_or(0.0);
-    let d_last = dphi(t_last);
-    let curvature = d_k_d
-        + p.eps_n
-            * e.iter()
-                .filter(|&&ei| ei > 0.0)
-                .map(|ei| ei * ei)
-                .sum::<f64>();
-    if curvature <= FREE_MODE_CURVATURE * d_diag_d {
-        Step::Unbounded
+        }
     } else {
-        Step::Length(t_last - d_last / curvature)
+        // Beyond the last breakpoint phi' is linear with the asymptotic curvature below.
+        let t_last = breakpoints.last().copied().unwrap_or(0.0);
+        let d_last = dphi(t_last);
+        let curvature = d_k_d
+            + p.eps_n
+                * e.iter()
+                    .filter(|&&ei| ei > 0.0)
+                    .map(|ei| ei * ei)
+                    .sum::<f64>();
+        if curvature <= FREE_MODE_CURVATURE * d_diag_d {
+            return Step::Unbounded;
+        }
+        t_last - d_last / curvature
+    };
+    // Prefer the full Newton step when it decreases the energy enough (Armijo): it changes
+    // the active sets at once, where the exact minimiser along a direction computed for the
+    // old sets would admit only a few nodes per step.
+    let full_step = energy_change(p, state, d);
+    if full_step <= ARMIJO * d0 {
+        Step::Length(1.0)
+    } else {
+        Step::Length(exact)
     }
 }
 
@@ -478,6 +525,41 @@ impl ContactSolver for PenaltySolver {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
+            if iterations == 1 {
+                // First try the model with every node in contact and sticking (where friction
+                // acts): its minimiser usually lies near the final sets, where Newton steps
+                // from u = 0 would cross them one layer of nodes per step. Kept only if it
+                // lowers the energy.
+                let all_normal = vec![p.eps_n; m];
+                let all_stick: Vec<f64> = p
+                    .bounds()
+                    .iter()
+                    .map(|&b| if b > 0.0 { p.eps_t } else { 0.0 })
+                    .collect();
+                if let Some((count, false)) =
+                    guard.factorise(matrix, system, &all_normal, &all_stick)
+                {
+                    factorisations += count;
+                    // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v|^2.
+                    let mut v = system.load().to_vec();
+                    let weighted_gap: Vec<f64> = system.gap().iter().map(|g| p.eps_n * g).collect();
+                    system
+                        .normal_rows()
+                        .add_transpose_apply(&weighted_gap, &mut v);
+                    matrix.solve_in_place(&mut v);
+                    let d: Vec<f64> = v.iter().zip(&u).map(|(a, b)| a - b).collect();
+                    if d.iter().all(|x| x.is_finite()) && energy_change(&p, &state, &d) < 0.0 {
+                        u = v;
+                        let mut forced: Vec<bool> = vec![true; m];
+                        forced.extend(all_stick.iter().map(|&w| w > 0.0));
+                        previous_sets = Some(forced);
+                        state = p.state(&u);
+                        continue;
+                    }
+                } else {
+                    factorisations += 2;
+                }
+            }
             let normal_weights: Vec<f64> = state.sets[..m]
                 .iter()
                 .map(|&a| if a { p.eps_n } else { 0.0 })
