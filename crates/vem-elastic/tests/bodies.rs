@@ -202,3 +202,46 @@ fn traction_quadrature_is_exact_for_quadratic_tractions() {
     let (force, _) = moments(1);
     assert!((force - 35.0 / 108.0).abs() < 1e-15, "{force}");
 }
+
+/// `with_mesh` keeps material, element and conditions and checks them on the new mesh.
+#[test]
+fn with_mesh_rebuilds_the_body_on_another_mesh() {
+    let square = Rectangle::unit_square();
+    let body = ElasticBody::builder(
+        "plate",
+        structured_quads(&square, 3, 3).unwrap(),
+        lame(2.0, 1.0),
+        vem(),
+    )
+    .clamp("top")
+    .traction("right", |x| Vector::new(x.y, 0.0))
+    .body_force(|_| Vector::new(0.0, -1.0))
+    .build()
+    .unwrap();
+    let fine = structured_quads(&square, 6, 6).unwrap();
+    let moved = body.with_mesh(fine.clone()).unwrap();
+    let direct = ElasticBody::builder("plate", fine.clone(), lame(2.0, 1.0), vem())
+        .clamp("top")
+        .traction("right", |x| Vector::new(x.y, 0.0))
+        .body_force(|_| Vector::new(0.0, -1.0))
+        .build()
+        .unwrap();
+    assert_eq!(moved.dofs(), direct.dofs());
+    assert_eq!(
+        moved.solve().unwrap().displacement(),
+        direct.solve().unwrap().displacement()
+    );
+    // The same polygons without named parts: the conditions cannot be placed.
+    let unnamed = vem_mesh::Mesh::from_compact(
+        fine.vertices().to_vec(),
+        fine.polygon_offsets().to_vec(),
+        fine.polygon_vertex_indices().to_vec(),
+        vec![],
+    )
+    .unwrap();
+    let err = body.with_mesh(unnamed).unwrap_err();
+    assert!(
+        matches!(&err, ElasticError::Mesh { source: MeshError::UnknownPart { available, .. }, .. } if available.is_empty()),
+        "{err}"
+    );
+}
