@@ -625,3 +625,26 @@ fn invalid_systems_are_rejected() {
     let summed = rows(1, 3, &[(0, 2, 1.0), (0, 0, 2.0), (0, 2, 0.5)]);
     assert_eq!(summed.row(0), (&[0usize, 2][..], &[2.0, 1.5][..]));
 }
+
+#[test]
+fn no_constraints_is_a_linear_solve() {
+    // K = [[2, -1], [-1, 2]], f = (1, 0): u = (2/3, 1/3).
+    let system = ContactSystem::try_new(
+        matrix(2, &[(0, 0, 2.0), (0, 1, -1.0), (1, 0, -1.0), (1, 1, 2.0)]),
+        vec![1.0, 0.0],
+        rows(0, 2, &[]),
+        vec![],
+        None,
+    )
+    .expect("valid system");
+    for solver in [
+        &mut exact() as &mut dyn ContactSolver,
+        &mut active() as &mut dyn ContactSolver,
+        &mut penalty(1e3) as &mut dyn ContactSolver,
+    ] {
+        let s = solve(solver, &system);
+        assert_close(s.displacement[0], 2.0 / 3.0, 1e-9, "u0");
+        assert_close(s.displacement[1], 1.0 / 3.0, 1e-9, "u1");
+        assert!(s.normal_force.is_empty());
+    }
+}

@@ -59,6 +59,9 @@ pub enum ContactSolverError {
     ///
     /// The mode `d` is scaled so that its largest nodal slip `max_i |(B_T d)_i|` is 1; then
     /// `load_along_mode = f . d` and `friction_capacity = sum_i b_i |(B_T d)_i|` are forces.
+    /// `d` is the direction the solver detected: the free mode itself for the Newton solvers,
+    /// Clarabel's dual-infeasibility certificate for the exact solver (which may add a little
+    /// separating motion to the mode, so its figures are accurate to about 1%).
     #[error("rigid sliding: load along the free mode {load_along_mode:.6e} exceeds the friction capacity {friction_capacity:.6e} ({})", report.solver)]
     RigidSliding {
         /// `f . d` for the unit-slip mode `d`.

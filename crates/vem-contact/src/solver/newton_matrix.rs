@@ -256,18 +256,7 @@ pub(crate) struct SingularGuard {
 
 impl SingularGuard {
     pub(crate) fn new(system: &ContactSystem, eps_n: f64, eps_t: f64) -> Self {
-        let k = system.stiffness().as_ref();
-        let mut d: Vec<f64> = (0..system.n_dofs())
-            .map(|j| {
-                let range = k.col_range(j);
-                k.row_idx()[range.clone()]
-                    .iter()
-                    .zip(&k.val()[range])
-                    .filter(|(&i, _)| i == j)
-                    .map(|(_, &v)| v)
-                    .sum()
-            })
-            .collect();
+        let mut d = system.stiffness_diagonal();
         let mut add = |rows: &ConstraintRows, eps: f64| {
             for r in 0..rows.nrows() {
                 let (cols, vals) = rows.row(r);

@@ -66,17 +66,7 @@ impl PenaltyParameter {
             Self::RelativeToStiffness(factor) => {
                 let mut scale = system.max_constrained_diagonal();
                 if scale <= 0.0 {
-                    let k = system.stiffness().as_ref();
-                    scale = (0..k.ncols())
-                        .flat_map(|j| {
-                            let range = k.col_range(j);
-                            k.row_idx()[range.clone()]
-                                .iter()
-                                .zip(&k.val()[range])
-                                .filter(move |(&i, _)| i == j)
-                                .map(|(_, &v)| v)
-                        })
-                        .fold(0.0, f64::max);
+                    scale = system.stiffness_diagonal().into_iter().fold(0.0, f64::max);
                 }
                 factor * if scale > 0.0 { scale } else { 1.0 }
             }

@@ -124,7 +124,8 @@ pub struct SolveReport {
     pub solver: &'static str,
     /// How the run ended.
     pub status: SolveStatus,
-    /// Iterations of the solver (interior-point or Newton iterations).
+    /// Iterations of the solver: interior-point iterations (exact), Newton steps (penalty) or
+    /// active-set splits solved (active set).
     pub iterations: usize,
     /// Numeric factorisations performed (0 when the backend does not tell).
     pub factorisations: usize,

@@ -477,11 +477,26 @@ impl ContactSystem {
         y
     }
 
+    /// The diagonal of `K` (duplicates of unsorted storage summed).
+    pub fn stiffness_diagonal(&self) -> Vec<f64> {
+        let k = self.stiffness.as_ref();
+        (0..k.ncols())
+            .map(|j| {
+                let range = k.col_range(j);
+                k.row_idx()[range.clone()]
+                    .iter()
+                    .zip(&k.val()[range])
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, &v)| v)
+                    .sum()
+            })
+            .collect()
+    }
+
     /// Largest diagonal entry of `K` over the unknowns that appear in a normal or tangential
     /// row (the "constrained DOFs"); 0 if there are none.
     pub fn max_constrained_diagonal(&self) -> f64 {
-        let n = self.n_dofs();
-        let mut constrained = vec![false; n];
+        let mut constrained = vec![false; self.n_dofs()];
         let mut mark = |rows: &ConstraintRows| {
             for i in 0..rows.nrows() {
                 for &c in rows.row(i).0 {
@@ -493,20 +508,11 @@ impl ContactSystem {
         if let Some(fr) = &self.friction {
             mark(&fr.tangential_rows);
         }
-        let k = self.stiffness.as_ref();
-        let mut max = 0.0f64;
-        for (j, &is_constrained) in constrained.iter().enumerate() {
-            if !is_constrained {
-                continue;
-            }
-            let range = k.col_range(j);
-            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
-                if i == j {
-                    max = max.max(v);
-                }
-            }
-        }
-        max
+        self.stiffness_diagonal()
+            .iter()
+            .zip(&constrained)
+            .filter(|(_, &c)| c)
+            .fold(0.0f64, |max, (&d, _)| max.max(d))
     }
 }
 
