@@ -1,0 +1,161 @@
+//! `vem`: contact scenes in TOML, solved with the lowest-order virtual element method.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use vem_cli::{convert_mesh, default_output_dir, generate_mesh, CliError, Model, Scene};
+
+/// Contact of elastic bodies with the lowest-order virtual element method (VEM).
+///
+/// A scene file (TOML) describes the bodies (mesh, material, boundary conditions by part
+/// name) and at most one contact pair (another body or a rigid obstacle; frictionless,
+/// Tresca or Coulomb). The format is documented key by key in docs/scenes.md; example scenes
+/// are in crates/vem-cli/scenes/.
+#[derive(Debug, Parser)]
+#[command(name = "vem", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Solve a scene and write its results.
+    ///
+    /// Writes into DIR: one <body>.vtu per body (displacement; stress, von Mises stress and
+    /// the A1 quality figures per element; contact pressure at interface nodes), contact.csv
+    /// (one row per interface node), summary.json (what was built, DOFs, constraint rows,
+    /// solver, iterations, KKT residuals, resultants, times), deformed.svg (the deformed
+    /// bodies, magnified, coloured by von Mises stress, with the obstacle), pressure.svg and,
+    /// with friction, slip.svg. Prints a short summary.
+    Run {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Output directory [default: out/<scene file stem>].
+        #[arg(long, short, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
+    /// Check a scene without solving it.
+    ///
+    /// Reads the scene, builds its meshes and checks every name against them; prints the
+    /// mesh quality (the A1 figures: shortest edge and star-shapedness radius relative to the
+    /// element diameter) of every body and what will be modelled.
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+    },
+    /// Generate a mesh of a family, or convert a Gmsh file, to .vtu and .svg.
+    ///
+    /// Examples: `vem mesh --family voronoi --n 16 --seed 1 --rect 0,0,1,1` writes
+    /// out/mesh/voronoi-16.vtu and .svg; `vem mesh disc.msh` writes out/mesh/disc.vtu and
+    /// .svg. Prints the A1 quality figures.
+    Mesh {
+        /// A Gmsh .msh file (format 4.1) to convert (instead of --family).
+        #[arg(conflicts_with = "family", required_unless_present = "family")]
+        file: Option<PathBuf>,
+        /// Mesh family: quads, triangles, hexagons, voronoi, perturbed (or perturbed:0.2),
+        /// nonconvex, hanging.
+        #[arg(long)]
+        family: Option<String>,
+        /// Size: about N cells across the rectangle.
+        #[arg(long, default_value_t = 8)]
+        n: usize,
+        /// Seed of the random families (voronoi, perturbed).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The rectangle x0,y0,x1,y1.
+        #[arg(long, default_value = "0,0,1,1", value_parser = parse_rectangle)]
+        rect: [f64; 4],
+        /// Output directory.
+        #[arg(long, short, value_name = "DIR", default_value = "out/mesh")]
+        out: PathBuf,
+    },
+}
+
+/// Parses `x0,y0,x1,y1`.
+fn parse_rectangle(text: &str) -> Result<[f64; 4], String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("'{text}': {e}; expected x0,y0,x1,y1"))?;
+    values
+        .try_into()
+        .map_err(|v: Vec<f64>| format!("'{text}' has {} numbers; expected x0,y0,x1,y1", v.len()))
+}
+
+/// A spinner on standard error, hidden when standard error is not a terminal.
+fn spinner() -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new_spinner();
+    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} ({elapsed})") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(Duration::from_millis(100));
+    bar
+}
+
+fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
+    let progress = spinner();
+    progress.set_message(format!("reading {}", scene.display()));
+    let scene = Scene::load(scene)?;
+    progress.set_message("building meshes and bodies");
+    let model = Model::build(&scene)?;
+    progress.set_message("solving");
+    let mut outcome = model.solve()?;
+    let dir = out.unwrap_or_else(|| default_output_dir(&scene));
+    progress.set_message(format!("writing {}", dir.display()));
+    let files = outcome.write(&dir)?;
+    progress.finish_and_clear();
+    print!("{}", outcome.summary());
+    let names: Vec<String> = files
+        .iter()
+        .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect();
+    println!("wrote {}: {}", dir.display(), names.join(", "));
+    Ok(())
+}
+
+fn check(scene: &Path) -> Result<(), CliError> {
+    let progress = spinner();
+    progress.set_message(format!("checking {}", scene.display()));
+    let scene = Scene::load(scene)?;
+    let report = Model::build(&scene)?.check()?;
+    progress.finish_and_clear();
+    print!("{report}");
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run { scene, out } => run(&scene, out),
+        Command::Check { scene } => check(&scene),
+        Command::Mesh {
+            file,
+            family,
+            n,
+            seed,
+            rect,
+            out,
+        } => match (file, family) {
+            (Some(file), _) => convert_mesh(&file, &out),
+            (None, Some(family)) => generate_mesh(&family, n, seed, rect, &out),
+            (None, None) => Err(CliError::Usage("give a .msh file or --family".to_string())),
+        }
+        .map(|report| print!("{report}")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

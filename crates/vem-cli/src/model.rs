@@ -1,0 +1,789 @@
+//! From a checked [`Scene`] to library objects: meshes, elastic bodies, the contact problem
+//! and the contact solver. Only what the scene requires is built: no contact pair, no contact
+//! problem (plain elasticity); a rigid obstacle is a gap function, not a mesh.
+
+use std::fmt;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use toml::Spanned;
+use vem_contact::{
+    ActiveSetSettings, ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings,
+    ExactSolver, FixedPointSettings, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver,
+    SettingsError,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_mesh::generators::{MeshFamily, Rectangle};
+use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
+use vem_mesh::{Mesh, Point, Vector};
+use vem_space::{LowestOrderVem, Stabilisation, StabilisationScaling};
+
+use crate::scene::{
+    list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
+    SolverKind, StabilisationKind,
+};
+use crate::{CliError, Scene};
+
+/// One body as built: its elastic body (mesh, material, conditions) and where its mesh came
+/// from.
+#[derive(Debug, Clone)]
+pub struct ModelBody {
+    /// The elastic body.
+    pub body: ElasticBody,
+    /// Where the mesh came from ("voronoi, n = 16, seed 1, on [0, 1] x [0, 1]" or a file).
+    pub mesh_source: String,
+    /// The stabilisation used.
+    pub stabilisation: Stabilisation,
+}
+
+/// What body A is in contact with, as built.
+#[derive(Debug, Clone)]
+pub enum ModelCounterpart {
+    /// Another body of the scene (its index) and its contact part.
+    Body {
+        /// Index into [`Model::bodies`].
+        index: usize,
+        /// Its contact part.
+        part: String,
+    },
+    /// A rigid obstacle (nothing meshed).
+    Obstacle(Obstacle),
+}
+
+/// The contact pair as built.
+#[derive(Debug, Clone)]
+pub struct ModelContact {
+    /// Index of body A into [`Model::bodies`].
+    pub body: usize,
+    /// Body A's contact part.
+    pub part: String,
+    /// Body B or the obstacle.
+    pub counterpart: ModelCounterpart,
+    /// The problem handed to the contact library.
+    pub problem: ContactProblem,
+    /// The solver and its settings.
+    pub solver: SolverChoice,
+    /// Radius of the Hertz comparison, if asked for.
+    pub hertz_radius: Option<f64>,
+}
+
+/// A contact solver with validated settings; [`SolverChoice::make`] creates it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SolverChoice {
+    /// Interior-point QP (Clarabel).
+    Exact(ExactSettings),
+    /// Penalty, semismooth Newton.
+    Penalty(PenaltySettings),
+    /// Primal-dual active set.
+    ActiveSet(ActiveSetSettings),
+}
+
+impl SolverChoice {
+    /// A new solver with these settings.
+    pub fn make(&self) -> Box<dyn ContactSolver> {
+        match *self {
+            SolverChoice::Exact(s) => Box::new(ExactSolver::new(s)),
+            SolverChoice::Penalty(s) => Box::new(PenaltySolver::new(s)),
+            SolverChoice::ActiveSet(s) => Box::new(ActiveSetSolver::new(s)),
+        }
+    }
+
+    /// The name used in the scene file ("exact", "penalty", "active-set").
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolverChoice::Exact(_) => SolverKind::Exact.name(),
+            SolverChoice::Penalty(_) => SolverKind::Penalty.name(),
+            SolverChoice::ActiveSet(_) => SolverKind::ActiveSet.name(),
+        }
+    }
+}
+
+/// A scene turned into library objects, ready to solve.
+#[derive(Debug, Clone)]
+pub struct Model {
+    scene: Scene,
+    bodies: Vec<ModelBody>,
+    contact: Option<ModelContact>,
+    mesh_time: Duration,
+}
+
+impl Model {
+    /// Generates or reads every mesh, checks every part name against its mesh and builds the
+    /// bodies, the contact problem and the solver settings.
+    pub fn build(scene: &Scene) -> Result<Self, CliError> {
+        let start = Instant::now();
+        let meshes = scene
+            .file()
+            .bodies
+            .iter()
+            .map(|spec| build_mesh(scene, spec))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mesh_time = start.elapsed();
+        let mut bodies = Vec::with_capacity(meshes.len());
+        for (spec, (mesh, mesh_source)) in scene.file().bodies.iter().zip(meshes) {
+            bodies.push(build_body(scene, spec, mesh, mesh_source)?);
+        }
+        let contact = match scene.file().contacts.first() {
+            Some(spec) => Some(build_contact(scene, spec.get_ref(), &bodies)?),
+            None => None,
+        };
+        Ok(Self {
+            scene: scene.clone(),
+            bodies,
+            contact,
+            mesh_time,
+        })
+    }
+
+    /// The scene this model was built from.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The bodies, in the order of the scene file.
+    pub fn bodies(&self) -> &[ModelBody] {
+        &self.bodies
+    }
+
+    /// The contact pair, if the scene has one.
+    pub fn contact(&self) -> Option<&ModelContact> {
+        self.contact.as_ref()
+    }
+
+    /// Time spent generating and reading meshes.
+    pub fn mesh_time(&self) -> Duration {
+        self.mesh_time
+    }
+
+    /// A description of what will be modelled, with the A1 quality figures of every mesh and
+    /// the size of the contact interface, without solving (`vem check`).
+    pub fn check(&self) -> Result<CheckReport, CliError> {
+        let bodies = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let mesh = b.body.mesh();
+                CheckedBody {
+                    name: b.body.name().to_string(),
+                    mesh_source: b.mesh_source.clone(),
+                    vertices: mesh.n_vertices(),
+                    polygons: mesh.n_polygons(),
+                    parts: mesh
+                        .parts()
+                        .iter()
+                        .map(|p| (p.name.clone(), p.edges.len()))
+                        .collect(),
+                    quality: mesh.quality(),
+                    material: describe_material(b.body.material()),
+                    stabilisation: describe_stabilisation(&b.stabilisation),
+                    conditions: describe_conditions(&self.scene, b.body.name()),
+                }
+            })
+            .collect();
+        let contact = match &self.contact {
+            None => None,
+            Some(c) => {
+                let a = &self.bodies[c.body].body;
+                let interface_nodes = match &c.counterpart {
+                    ModelCounterpart::Body { index, part } => {
+                        let b = &self.bodies[*index].body;
+                        insert_interface_nodes(
+                            a.mesh(),
+                            &c.part,
+                            b.mesh(),
+                            part,
+                            &interface_options(&self.scene),
+                        )
+                        .map_err(|source| CliError::Mesh {
+                            context: format!(
+                                "interface between '{}' of '{}' and '{part}' of '{}'",
+                                c.part,
+                                a.name(),
+                                b.name()
+                            ),
+                            source,
+                        })?
+                        .pairs
+                        .len()
+                    }
+                    ModelCounterpart::Obstacle(_) => boundary_chain(a.mesh(), &c.part)
+                        .map_err(|source| CliError::Mesh {
+                            context: format!("contact part of '{}'", a.name()),
+                            source,
+                        })?
+                        .len(),
+                };
+                Some(CheckedContact {
+                    description: self.describe_contact(c),
+                    law: c.problem.law().name(),
+                    friction: c.problem.law().has_friction(),
+                    interface_nodes,
+                    solver: c.solver.name(),
+                })
+            }
+        };
+        Ok(CheckReport {
+            scene: self.scene.path().display().to_string(),
+            title: self.scene.title(),
+            bodies,
+            contact,
+        })
+    }
+
+    /// "'disc' part 'arc' against 'block' part 'top'" or "... against a rigid line".
+    pub fn describe_contact(&self, contact: &ModelContact) -> String {
+        let a = self.bodies[contact.body].body.name();
+        let other = match &contact.counterpart {
+            ModelCounterpart::Body { index, part } => {
+                format!("body '{}' part '{part}'", self.bodies[*index].body.name())
+            }
+            ModelCounterpart::Obstacle(o) => format!("a rigid {}", obstacle_name(o)),
+        };
+        format!("body '{a}' part '{}' against {other}", contact.part)
+    }
+}
+
+/// "line", "circle" or "polyline".
+pub(crate) fn obstacle_name(obstacle: &Obstacle) -> &'static str {
+    match obstacle {
+        Obstacle::Line { .. } => "line",
+        Obstacle::Circle { .. } => "circle",
+        Obstacle::Polyline(_) => "polyline",
+    }
+}
+
+/// The interface options of the scene's contact pair.
+fn interface_options(scene: &Scene) -> InterfaceOptions {
+    InterfaceOptions {
+        max_distance: scene
+            .file()
+            .contacts
+            .first()
+            .and_then(|c| c.get_ref().max_distance.as_ref().map(|d| *d.get_ref())),
+        ..InterfaceOptions::default()
+    }
+}
+
+/// The mesh of one body and a description of where it came from.
+fn build_mesh(scene: &Scene, spec: &BodySpec) -> Result<(Mesh, String), CliError> {
+    let name = spec.name.get_ref();
+    let mesh = spec.mesh.get_ref();
+    if let Some(file) = &mesh.file {
+        let path = scene.resolve(file.get_ref());
+        let read = vem_mesh::io::read_gmsh(&path)
+            .map_err(|e| scene.error(Some(file.span()), format!("body '{name}': {e}")))?;
+        return Ok((read, format!("Gmsh file {}", file.get_ref())));
+    }
+    // Checked by Scene::check: a generated mesh has family, rectangle and n.
+    let (Some(family), Some(rectangle), Some(n)) = (&mesh.family, &mesh.rectangle, &mesh.n) else {
+        return Err(scene.error(Some(spec.mesh.span()), "incomplete mesh"));
+    };
+    let parsed: MeshFamily = family
+        .get_ref()
+        .parse()
+        .map_err(|e: vem_mesh::MeshError| scene.error(Some(family.span()), e.to_string()))?;
+    let [[x0, y0], [x1, y1]] = *rectangle.get_ref();
+    let rect = Rectangle::new(Point::new(x0, y0), Point::new(x1, y1));
+    let seed = mesh.seed.unwrap_or(1);
+    let generated = parsed
+        .generate(&rect, *n.get_ref(), seed)
+        .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
+    let random = if parsed.is_random() {
+        format!(", seed {seed}")
+    } else {
+        String::new()
+    };
+    Ok((
+        generated,
+        format!(
+            "{parsed}, n = {}{random}, on [{x0}, {x1}] x [{y0}, {y1}]",
+            n.get_ref()
+        ),
+    ))
+}
+
+/// Checks that `part` names a boundary part of `mesh`; the error lists the parts.
+fn check_part(
+    scene: &Scene,
+    mesh: &Mesh,
+    body: &str,
+    part: &Spanned<String>,
+) -> Result<(), CliError> {
+    if mesh.part(part.get_ref()).is_ok() {
+        return Ok(());
+    }
+    Err(scene.error(
+        Some(part.span()),
+        format!(
+            "body '{body}' has no boundary part named '{}'; its mesh has {}",
+            part.get_ref(),
+            list(&mesh.part_names())
+        ),
+    ))
+}
+
+fn build_body(
+    scene: &Scene,
+    spec: &BodySpec,
+    mesh: Mesh,
+    mesh_source: String,
+) -> Result<ModelBody, CliError> {
+    let name = spec.name.get_ref().clone();
+    let m = spec.material.get_ref();
+    let plane = match m.plane {
+        PlaneSpec::Strain => Plane::Strain,
+        PlaneSpec::Stress => Plane::Stress,
+    };
+    let material = match (m.young, m.nu, m.lambda, m.mu) {
+        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
+        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
+        _ => return Err(scene.error(Some(spec.material.span()), "incomplete material")),
+    }
+    .map_err(|e| scene.error(Some(spec.material.span()), format!("body '{name}': {e}")))?;
+    let stabilisation = match &spec.stabilisation {
+        None => Stabilisation::dofi_dofi(StabilisationScaling::TraceOfC),
+        Some(s) => match s.get_ref().kind {
+            StabilisationKind::DRecipe => Stabilisation::DRecipe,
+            StabilisationKind::DofiDofi => Stabilisation::DofiDofi {
+                scaling: match s.get_ref().scaling {
+                    None | Some(ScalingSpec::Trace) => StabilisationScaling::TraceOfC,
+                    Some(ScalingSpec::Shear) => StabilisationScaling::ShearModulus,
+                },
+                scale: s.get_ref().scale.unwrap_or(Stabilisation::DEFAULT_SCALE),
+            },
+        },
+    };
+    let element = LowestOrderVem::new(stabilisation).map_err(|e| {
+        scene.error(
+            spec.stabilisation.as_ref().map(|s| s.span()),
+            format!("body '{name}': {e}"),
+        )
+    })?;
+    let mut builder = ElasticBody::builder(name.clone(), mesh.clone(), material, Arc::new(element));
+    for d in &spec.dirichlet {
+        let d = d.get_ref();
+        check_part(scene, &mesh, &name, &d.part)?;
+        let component = match (d.x, d.y) {
+            (Some(_), Some(_)) => Component::Both,
+            (Some(_), None) => Component::X,
+            _ => Component::Y,
+        };
+        let value = Vector::new(d.x.unwrap_or(0.0), d.y.unwrap_or(0.0));
+        let part = d.part.get_ref().clone();
+        builder = builder.dirichlet(if value == Vector::zeros() {
+            Dirichlet::fixed(part, component)
+        } else {
+            Dirichlet::prescribed(part, component, move |_| value)
+        });
+    }
+    for t in &spec.traction {
+        let t = t.get_ref();
+        check_part(scene, &mesh, &name, &t.part)?;
+        let part = t.part.get_ref().clone();
+        builder = match (t.value, t.pressure) {
+            (Some([gx, gy]), _) => builder.traction(part, move |_| Vector::new(gx, gy)),
+            (None, Some(p)) => {
+                let field = PressureField::new(&mesh, &part, p);
+                builder.traction(part, move |x| field.traction(x))
+            }
+            (None, None) => builder,
+        };
+    }
+    if let Some(f) = &spec.body_force {
+        let [fx, fy] = *f.get_ref();
+        builder = builder.body_force(move |_| Vector::new(fx, fy));
+    }
+    let body = builder
+        .build()
+        .map_err(|e| scene.error(Some(spec.name.span()), e.to_string()))?;
+    Ok(ModelBody {
+        body,
+        mesh_source,
+        stabilisation,
+    })
+}
+
+/// A normal pressure `p` on a boundary part as a traction field: at a point of the part, `-p`
+/// times the outward unit normal of the part's edge nearest to it. The elastic layer evaluates
+/// tractions at Gauss points inside an edge, where that edge is the nearest; edges split later
+/// by interface node insertion are collinear with the original ones, so the normal is the same.
+struct PressureField {
+    pressure: f64,
+    /// (start point, edge vector, outward unit normal) of each edge of the part.
+    edges: Vec<(Point, Vector, Vector)>,
+}
+
+impl PressureField {
+    fn new(mesh: &Mesh, part: &str, pressure: f64) -> Self {
+        let edges = mesh
+            .part(part)
+            .map(|p| {
+                p.edges
+                    .iter()
+                    .map(|&e| {
+                        // The polygon lies to the left of a -> b: the outward normal is on the right.
+                        let [a, b] = mesh.edge(e).vertices;
+                        let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
+                        let t = pb - pa;
+                        (pa, t, Vector::new(t.y, -t.x) / t.norm())
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        Self { pressure, edges }
+    }
+
+    fn traction(&self, x: Point) -> Vector {
+        let nearest = self.edges.iter().min_by(|(a1, t1, _), (a2, t2, _)| {
+            distance_squared(x, *a1, *t1).total_cmp(&distance_squared(x, *a2, *t2))
+        });
+        nearest.map_or_else(Vector::zeros, |(_, _, n)| -self.pressure * n)
+    }
+}
+
+/// Squared distance from `x` to the segment `a, a + t`.
+fn distance_squared(x: Point, a: Point, t: Vector) -> f64 {
+    let s = ((x - a).dot(&t) / t.norm_squared()).clamp(0.0, 1.0);
+    (x - (a + s * t)).norm_squared()
+}
+
+fn build_contact(
+    scene: &Scene,
+    spec: &ContactSpec,
+    bodies: &[ModelBody],
+) -> Result<ModelContact, CliError> {
+    let a = scene.body_index(&spec.body)?;
+    let body_a = &bodies[a].body;
+    check_part(scene, body_a.mesh(), body_a.name(), &spec.part)?;
+    let law = match spec.law() {
+        LawKind::Frictionless => ContactLaw::Frictionless,
+        LawKind::Tresca => {
+            ContactLaw::tresca(spec.friction_bound.as_ref().map_or(0.0, |g| *g.get_ref()))
+        }
+        LawKind::Coulomb => {
+            let defaults = FixedPointSettings::default();
+            ContactLaw::Coulomb {
+                coefficient: spec.coefficient.as_ref().map_or(0.0, |f| *f.get_ref()),
+                fixed_point: FixedPointSettings {
+                    max_steps: spec
+                        .fixed_point_max_steps
+                        .as_ref()
+                        .map_or(defaults.max_steps, |s| *s.get_ref()),
+                    tolerance: spec
+                        .fixed_point_tolerance
+                        .as_ref()
+                        .map_or(defaults.tolerance, |s| *s.get_ref()),
+                },
+            }
+        }
+    };
+    let (counterpart, problem) = match (&spec.other_body, &spec.other_part, &spec.obstacle) {
+        (Some(other), Some(other_part), _) => {
+            let b = scene.body_index(other)?;
+            let body_b = &bodies[b].body;
+            check_part(scene, body_b.mesh(), body_b.name(), other_part)?;
+            (
+                ModelCounterpart::Body {
+                    index: b,
+                    part: other_part.get_ref().clone(),
+                },
+                ContactProblem::two_bodies(
+                    body_a.clone(),
+                    spec.part.get_ref().clone(),
+                    body_b.clone(),
+                    other_part.get_ref().clone(),
+                    law,
+                ),
+            )
+        }
+        (_, _, Some(obstacle)) => {
+            let built = build_obstacle(obstacle.get_ref());
+            built
+                .validate()
+                .map_err(|e| scene.error(Some(obstacle.span()), e.to_string()))?;
+            (
+                ModelCounterpart::Obstacle(built.clone()),
+                ContactProblem::against_obstacle(
+                    body_a.clone(),
+                    spec.part.get_ref().clone(),
+                    built,
+                    law,
+                ),
+            )
+        }
+        _ => return Err(scene.error(Some(spec.body.span()), "incomplete contact pair")),
+    };
+    let mut problem = problem.with_interface_options(interface_options(scene));
+    if let Some(gap) = spec.gap {
+        problem = problem.with_initial_gap(move |_| gap);
+    }
+    Ok(ModelContact {
+        body: a,
+        part: spec.part.get_ref().clone(),
+        counterpart,
+        problem,
+        solver: build_solver(scene, spec)?,
+        hertz_radius: spec.hertz.as_ref().map(|h| h.get_ref().radius),
+    })
+}
+
+fn build_obstacle(spec: &ObstacleSpec) -> Obstacle {
+    let point = |[x, y]: [f64; 2]| Point::new(x, y);
+    if let Some(line) = &spec.line {
+        Obstacle::Line {
+            point: point(line.point),
+            normal: Vector::new(line.normal[0], line.normal[1]),
+        }
+    } else if let Some(circle) = &spec.circle {
+        Obstacle::Circle {
+            centre: point(circle.centre),
+            radius: circle.radius,
+        }
+    } else {
+        Obstacle::Polyline(spec.polyline.iter().flatten().map(|&p| point(p)).collect())
+    }
+}
+
+fn penalty_parameter(spec: &PenaltySpec) -> PenaltyParameter {
+    match (spec.factor, spec.value) {
+        (_, Some(value)) => PenaltyParameter::Absolute(value),
+        (factor, None) => PenaltyParameter::RelativeToStiffness(factor.unwrap_or(1e3)),
+    }
+}
+
+fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliError> {
+    let located = |e: SettingsError| {
+        let span = match e.setting {
+            "eps_abs" => spec.eps_abs.as_ref().map(|s| s.span()),
+            "eps_rel" => spec.eps_rel.as_ref().map(|s| s.span()),
+            "tolerance" => spec.tolerance.as_ref().map(|s| s.span()),
+            "max_iter" => spec.max_iterations.as_ref().map(|s| s.span()),
+            _ => spec.solver.as_ref().map(|s| s.span()),
+        };
+        scene.error(span, e.to_string())
+    };
+    let max_iterations = spec.max_iterations.as_ref().map(|m| *m.get_ref());
+    let tolerance = spec.tolerance.as_ref().map(|t| *t.get_ref());
+    Ok(match spec.solver() {
+        SolverKind::Exact => {
+            let mut b = ExactSettings::builder();
+            if let Some(v) = &spec.eps_abs {
+                b = b.eps_abs(*v.get_ref());
+            }
+            if let Some(v) = &spec.eps_rel {
+                b = b.eps_rel(*v.get_ref());
+            }
+            if let Some(m) = max_iterations {
+                b = b.max_iter(m);
+            }
+            SolverChoice::Exact(b.build().map_err(located)?)
+        }
+        SolverKind::Penalty => {
+            let mut b = PenaltySettings::builder();
+            if let Some(p) = &spec.penalty {
+                b = b.penalty(penalty_parameter(p.get_ref()));
+            }
+            if let Some(t) = tolerance {
+                b = b.tolerance(t);
+            }
+            if let Some(m) = max_iterations {
+                b = b.max_iter(m);
+            }
+            SolverChoice::Penalty(b.build().map_err(located)?)
+        }
+        SolverKind::ActiveSet => {
+            let mut b = ActiveSetSettings::builder();
+            if let Some(p) = &spec.augmentation {
+                b = b.augmentation(penalty_parameter(p.get_ref()));
+            }
+            if let Some(t) = tolerance {
+                b = b.tolerance(t);
+            }
+            if let Some(m) = max_iterations {
+                b = b.max_iter(m);
+            }
+            SolverChoice::ActiveSet(b.build().map_err(located)?)
+        }
+    })
+}
+
+/// "E = 1, nu = 0.3, plane strain" (isotropic) for reports.
+pub(crate) fn describe_material(material: &Material) -> String {
+    let plane = match material.plane() {
+        Some(Plane::Strain) => "plane strain",
+        Some(Plane::Stress) => "plane stress",
+        None => "general",
+    };
+    match young_poisson(material) {
+        Some((e, nu)) => format!("E = {e:.6}, nu = {nu:.6}, {plane}"),
+        None => plane.to_string(),
+    }
+}
+
+/// Young's modulus and Poisson's ratio of an isotropic material.
+pub(crate) fn young_poisson(material: &Material) -> Option<(f64, f64)> {
+    material.lame().map(|(lambda, mu)| {
+        (
+            mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu),
+            lambda / (2.0 * (lambda + mu)),
+        )
+    })
+}
+
+fn describe_stabilisation(s: &Stabilisation) -> String {
+    match s {
+        Stabilisation::DofiDofi { scaling, scale } => {
+            let constant = match scaling {
+                StabilisationScaling::TraceOfC => "trace(C)",
+                StabilisationScaling::ShearModulus => "5 mu",
+            };
+            format!("dofi-dofi, alpha = {scale} {constant}")
+        }
+        Stabilisation::DRecipe => "D-recipe".to_string(),
+    }
+}
+
+/// The boundary conditions of body `name` as written in the scene.
+fn describe_conditions(scene: &Scene, name: &str) -> Vec<String> {
+    let Some(spec) = scene
+        .file()
+        .bodies
+        .iter()
+        .find(|b| b.name.get_ref() == name)
+    else {
+        return Vec::new();
+    };
+    let mut lines = Vec::new();
+    for d in &spec.dirichlet {
+        let d = d.get_ref();
+        let fmt = |c: &str, v: Option<f64>| v.map(|v| format!("u_{c} = {v}"));
+        let parts: Vec<String> = [fmt("x", d.x), fmt("y", d.y)]
+            .into_iter()
+            .flatten()
+            .collect();
+        lines.push(format!(
+            "dirichlet on '{}': {}",
+            d.part.get_ref(),
+            parts.join(", ")
+        ));
+    }
+    for t in &spec.traction {
+        let t = t.get_ref();
+        match (t.value, t.pressure) {
+            (Some([gx, gy]), _) => {
+                lines.push(format!("traction on '{}': ({gx}, {gy})", t.part.get_ref()))
+            }
+            (None, Some(p)) => lines.push(format!("pressure on '{}': {p}", t.part.get_ref())),
+            (None, None) => {}
+        }
+    }
+    if let Some(f) = &spec.body_force {
+        let [fx, fy] = *f.get_ref();
+        lines.push(format!("body force: ({fx}, {fy})"));
+    }
+    lines
+}
+
+/// What `vem check` reports for one body.
+#[derive(Debug, Clone)]
+pub struct CheckedBody {
+    /// Name.
+    pub name: String,
+    /// Where the mesh came from.
+    pub mesh_source: String,
+    /// Vertices.
+    pub vertices: usize,
+    /// Polygons.
+    pub polygons: usize,
+    /// Boundary parts and their numbers of edges.
+    pub parts: Vec<(String, usize)>,
+    /// A1 figures.
+    pub quality: vem_mesh::quality::QualitySummary,
+    /// The material.
+    pub material: String,
+    /// The stabilisation.
+    pub stabilisation: String,
+    /// Boundary conditions and body force.
+    pub conditions: Vec<String>,
+}
+
+/// What `vem check` reports for the contact pair.
+#[derive(Debug, Clone)]
+pub struct CheckedContact {
+    /// Which parts face what.
+    pub description: String,
+    /// The law's name.
+    pub law: &'static str,
+    /// True when tangential rows will be built.
+    pub friction: bool,
+    /// Interface nodes (node pairs, or body nodes facing the obstacle): one normal row each.
+    pub interface_nodes: usize,
+    /// The solver's name.
+    pub solver: &'static str,
+}
+
+/// What `vem check` prints: the meshes, their quality and what will be modelled.
+#[derive(Debug, Clone)]
+pub struct CheckReport {
+    /// The scene file.
+    pub scene: String,
+    /// Its title.
+    pub title: String,
+    /// Every body.
+    pub bodies: Vec<CheckedBody>,
+    /// The contact pair, if any.
+    pub contact: Option<CheckedContact>,
+}
+
+impl fmt::Display for CheckReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "scene {} ({}): valid", self.scene, self.title)?;
+        for b in &self.bodies {
+            writeln!(f, "\nbody '{}': {}", b.name, b.mesh_source)?;
+            let parts: Vec<String> = b
+                .parts
+                .iter()
+                .map(|(name, edges)| format!("{name} ({edges} edges)"))
+                .collect();
+            writeln!(
+                f,
+                "  {} vertices, {} polygons; parts: {}",
+                b.vertices,
+                b.polygons,
+                parts.join(", ")
+            )?;
+            writeln!(
+                f,
+                "  material: {}; stabilisation: {}",
+                b.material, b.stabilisation
+            )?;
+            for c in &b.conditions {
+                writeln!(f, "  {c}")?;
+            }
+            writeln!(f, "  mesh quality (A1):")?;
+            for line in b.quality.to_string().lines() {
+                writeln!(f, "    {line}")?;
+            }
+        }
+        writeln!(f)?;
+        match &self.contact {
+            None => writeln!(
+                f,
+                "model: no contact pair: each body is solved as plain linear elasticity"
+            ),
+            Some(c) => {
+                writeln!(f, "model: {}, law {}", c.description, c.law)?;
+                let tangential = if c.friction {
+                    format!("{} tangential rows", c.interface_nodes)
+                } else {
+                    "no tangential rows (frictionless)".to_string()
+                };
+                writeln!(
+                    f,
+                    "  {} interface nodes: {} normal rows, {tangential}; solver {}",
+                    c.interface_nodes, c.interface_nodes, c.solver
+                )
+            }
+        }
+    }
+}

@@ -1,0 +1,442 @@
+//! The files of `vem run`, each written whole or not at all: one `.vtu` per body,
+//! `contact.csv`, the pictures and plots (SVG), and `summary.json` last.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use vem_contact::{InterfaceNode, Obstacle};
+use vem_mesh::io::{write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions, VtuData};
+use vem_mesh::{Mesh, PartSpec, Point, Vector};
+
+use crate::outcome::SolvedBody;
+use crate::plot;
+use crate::{CliError, Outcome};
+
+/// The columns of `contact.csv`, in order.
+pub const CONTACT_COLUMNS: &str =
+    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,tangential_force,slip,status";
+
+/// Default width of pictures and plots, in pixels.
+pub const DEFAULT_WIDTH: f64 = 900.0;
+
+/// Fraction of the picture's extent that the largest displacement is drawn as, when the
+/// scene does not give a magnification.
+const AUTO_DISPLACEMENT_FRACTION: f64 = 0.08;
+
+impl Outcome {
+    /// Writes every output file into `dir` (created if needed) and returns their paths:
+    /// `<body>.vtu` for each body, `deformed.svg`, and with a contact pair `contact.csv`,
+    /// `pressure.svg` (and `slip.svg` with friction); `summary.json` last, with the output
+    /// and total times.
+    pub fn write(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let start = Instant::now();
+        std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        let mesh_error = |path: &Path| {
+            let context = path.display().to_string();
+            move |source| CliError::Mesh { context, source }
+        };
+        let mut written = Vec::new();
+        let contact_pressure = self.contact_pressure_at_vertices();
+        for (k, solved) in self.bodies.iter().enumerate() {
+            let path = dir.join(format!("{}.vtu", solved.body.name()));
+            write_vtu(
+                &path,
+                solved.body.mesh(),
+                &vtu_data(solved, contact_pressure[k].clone()),
+            )
+            .map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        let width = self.width();
+        let path = dir.join("deformed.svg");
+        self.write_deformed(&path, width)
+            .map_err(mesh_error(&path))?;
+        written.push(path);
+        if let Some(contact) = &self.contact {
+            let path = dir.join("contact.csv");
+            write_atomically(&path, |w| write_contact_csv(w, &contact.nodes))
+                .map_err(mesh_error(&path))?;
+            written.push(path);
+            let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.as_ref());
+            let path = dir.join("pressure.svg");
+            plot::pressure(
+                &path,
+                &self.summary.title,
+                &contact.nodes,
+                hertz,
+                self.friction_bound(),
+                width,
+            )?;
+            written.push(path);
+            if contact.model.tangential_rows > 0 {
+                let path = dir.join("slip.svg");
+                plot::slip(&path, &self.summary.title, &contact.nodes, width)?;
+                written.push(path);
+            }
+        }
+        let path = dir.join("summary.json");
+        self.set_output_time(start.elapsed());
+        let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
+            path: path.clone(),
+            source: e.into(),
+        })?;
+        write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
+        written.push(path);
+        Ok(written)
+    }
+
+    /// Picture width: the scene's `[output] width` or [`DEFAULT_WIDTH`].
+    fn width(&self) -> f64 {
+        self.output_width.unwrap_or(DEFAULT_WIDTH)
+    }
+
+    /// The friction bound per unit length at each interface node, for plots: `g_F` (Tresca)
+    /// or `F p` (Coulomb); `None` when frictionless.
+    fn friction_bound(&self) -> Option<Vec<f64>> {
+        let contact = self.summary.contact.as_ref()?;
+        let nodes = &self.contact.as_ref()?.nodes;
+        match (contact.friction_bound, contact.coefficient) {
+            (Some(g), _) => Some(vec![g; nodes.len()]),
+            (None, Some(f)) => Some(nodes.iter().map(|n| f * n.pressure).collect()),
+            _ => None,
+        }
+    }
+
+    /// For each body, the contact pressure at its interface vertices (zero elsewhere).
+    fn contact_pressure_at_vertices(&self) -> Vec<Option<Vec<f64>>> {
+        let mut pressure: Vec<Option<Vec<f64>>> = vec![None; self.bodies.len()];
+        let (Some(contact), Some(indices)) = (&self.contact, &self.contact_bodies) else {
+            return pressure;
+        };
+        for (side, &index) in indices.iter().enumerate() {
+            let mut values = vec![0.0; self.bodies[index].body.mesh().n_vertices()];
+            for node in &contact.nodes {
+                let vertex = if side == 0 {
+                    Some(node.vertex_a)
+                } else {
+                    node.vertex_b
+                };
+                if let Some(v) = vertex {
+                    values[v] = node.pressure;
+                }
+            }
+            pressure[index] = Some(values);
+        }
+        pressure
+    }
+
+    /// The deformed bodies, coloured by von Mises stress, over their undeformed outlines; the
+    /// obstacle as an outline.
+    fn write_deformed(&self, path: &Path, width: f64) -> Result<(), vem_mesh::MeshError> {
+        let displacements: Vec<Vec<Vector>> = self
+            .bodies
+            .iter()
+            .map(|b| b.solution.vertex_displacements())
+            .collect();
+        let von_mises: Vec<Vec<f64>> = self
+            .bodies
+            .iter()
+            .map(|b| b.fields.iter().map(|f| f.von_mises).collect())
+            .collect();
+        let (min, max) = bounding_box(self.bodies.iter().map(|b| b.body.mesh()));
+        let extent = (max - min).norm();
+        let largest = displacements
+            .iter()
+            .flatten()
+            .map(|u| u.norm())
+            .fold(0.0, f64::max);
+        let magnification = self.magnification.unwrap_or_else(|| {
+            if largest > 0.0 {
+                round_down_to_nice(AUTO_DISPLACEMENT_FRACTION * extent / largest)
+            } else {
+                1.0
+            }
+        });
+        let mut layers: Vec<SvgLayer> = self
+            .bodies
+            .iter()
+            .zip(&displacements)
+            .zip(&von_mises)
+            .map(|((b, u), s)| {
+                SvgLayer::new(b.body.mesh())
+                    .with_label(b.body.name())
+                    .with_displacement(u)
+                    .with_cell_values(s)
+            })
+            .collect();
+        let obstacle = self
+            .obstacle
+            .as_ref()
+            .and_then(|o| obstacle_outline(o, min, max));
+        if let Some(mesh) = &obstacle {
+            layers.push(SvgLayer::new(mesh).with_label("obstacle"));
+        }
+        let (lo, hi) = von_mises
+            .iter()
+            .flatten()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        // A uniform stress (to round-off) gets one colour, not a map of its rounding noise.
+        let value_range = (hi - lo <= 1e-6 * hi.abs()).then(|| {
+            let pad = 0.05 * hi.abs().max(f64::MIN_POSITIVE);
+            (lo - pad, hi + pad)
+        });
+        let options = SvgOptions {
+            width,
+            value_range,
+            title: Some(format!(
+                "{}: von Mises stress, displacement x {magnification}",
+                self.summary.title
+            )),
+            magnification,
+            value_label: "von Mises stress".into(),
+            ..SvgOptions::default()
+        };
+        write_svg_layers(path, &layers, &options)
+    }
+}
+
+/// The largest of 1, 2, 5 times a power of ten not above `value` (value > 0).
+fn round_down_to_nice(value: f64) -> f64 {
+    let power = 10f64.powf(value.log10().floor());
+    let mantissa = value / power;
+    let nice = if mantissa >= 5.0 {
+        5.0
+    } else if mantissa >= 2.0 {
+        2.0
+    } else {
+        1.0
+    };
+    nice * power
+}
+
+/// Point data (displacement, contact pressure) and cell data (stress, von Mises, A1 figures)
+/// of one body.
+fn vtu_data(solved: &SolvedBody, contact_pressure: Option<Vec<f64>>) -> VtuData {
+    let fields = &solved.fields;
+    let stress: Vec<f64> = fields
+        .iter()
+        .flat_map(|f| [f.stress[0], f.stress[1], f.stress[2]])
+        .collect();
+    let mut data = VtuData::new()
+        .with_point_vectors("displacement", &solved.solution.vertex_displacements())
+        .with_cell_data(vem_mesh::io::DataArray::new("stress_xx_yy_xy", 3, stress))
+        .with_cell_scalars("sigma_zz", fields.iter().map(|f| f.sigma_zz).collect())
+        .with_cell_scalars("von_mises", fields.iter().map(|f| f.von_mises).collect())
+        .with_cell_scalars(
+            "quality_gamma",
+            solved.qualities.iter().map(|q| q.gamma()).collect(),
+        )
+        .with_cell_scalars(
+            "shortest_edge_ratio",
+            solved
+                .qualities
+                .iter()
+                .map(|q| q.shortest_edge_ratio)
+                .collect(),
+        )
+        .with_cell_scalars(
+            "star_ratio",
+            solved.qualities.iter().map(|q| q.star_ratio).collect(),
+        );
+    if let Some(p) = contact_pressure {
+        data = data.with_point_scalars("contact_pressure", p);
+    }
+    data
+}
+
+/// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`], numbers in
+/// shortest round-trip scientific notation.
+fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Result<()> {
+    writeln!(w, "{CONTACT_COLUMNS}")?;
+    for n in nodes {
+        writeln!(
+            w,
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            // `+ 0.0` writes a negative zero as 0.
+            n.position.x + 0.0,
+            n.position.y + 0.0,
+            n.normal.x + 0.0,
+            n.normal.y + 0.0,
+            n.initial_gap + 0.0,
+            n.normal_jump + 0.0,
+            n.normal_force + 0.0,
+            n.pressure + 0.0,
+            n.tangential_force + 0.0,
+            n.slip + 0.0,
+            n.status.name()
+        )?;
+    }
+    Ok(())
+}
+
+/// The bounding box of the vertices of `meshes`.
+fn bounding_box<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> (Point, Point) {
+    let mut min = Point::new(f64::INFINITY, f64::INFINITY);
+    let mut max = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for p in meshes.flat_map(|m| m.vertices().iter()) {
+        min = Point::new(min.x.min(p.x), min.y.min(p.y));
+        max = Point::new(max.x.max(p.x), max.y.max(p.y));
+    }
+    (min, max)
+}
+
+/// An outline of the obstacle near the bodies (box `min`, `max`), as a one-polygon mesh for
+/// the picture: a band on the obstacle's side of its surface, whose surface edges form the
+/// part "surface"; a small disc is drawn whole. `None` when nothing of it is near the bodies
+/// or its band is not a simple polygon (a very sharp polyline).
+fn obstacle_outline(obstacle: &Obstacle, min: Point, max: Point) -> Option<Mesh> {
+    let extent = (max - min).norm();
+    let margin = Vector::new(0.15 * extent, 0.15 * extent);
+    let (lo, hi) = (min - margin, max + margin);
+    let band = 0.04 * extent;
+    let far = 10.0 * extent;
+    // The surface as a polyline with the obstacle on its right.
+    let surface: Vec<Point> = match obstacle {
+        Obstacle::Line { point, normal } => {
+            let n = normal / normal.norm();
+            let t = Vector::new(n.y, -n.x);
+            vec![point - far * t, point + far * t]
+        }
+        Obstacle::Circle { centre, radius } => {
+            let middle = lo + 0.5 * (hi - lo);
+            let towards = (middle - centre).y.atan2((middle - centre).x);
+            let half_angle = (0.75 * extent / radius).min(std::f64::consts::PI);
+            if half_angle >= std::f64::consts::PI {
+                return disc(*centre, *radius);
+            }
+            // Clockwise: the disc is on the right.
+            (0..=64)
+                .map(|k| {
+                    let angle = towards + half_angle - 2.0 * half_angle * k as f64 / 64.0;
+                    centre + *radius * Vector::new(angle.cos(), angle.sin())
+                })
+                .collect()
+        }
+        Obstacle::Polyline(points) => points.clone(),
+    };
+    let surface = clip_polyline(&surface, lo, hi);
+    if surface.len() < 2 {
+        return None;
+    }
+    // Offset into the obstacle (to the right) by the band width, with averaged normals.
+    let right = |a: Point, b: Point| {
+        let t = (b - a).normalize();
+        Vector::new(t.y, -t.x)
+    };
+    let m = surface.len();
+    let offset: Vec<Point> = (0..m)
+        .map(|i| {
+            let before = (i > 0).then(|| right(surface[i - 1], surface[i]));
+            let after = (i + 1 < m).then(|| right(surface[i], surface[i + 1]));
+            let n = match (before, after) {
+                (Some(a), Some(b)) => (a + b).normalize(),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => Vector::zeros(),
+            };
+            surface[i] + band * n
+        })
+        .collect();
+    let mut vertices = surface.clone();
+    vertices.extend(offset.iter().rev());
+    // Surface traversed forwards with the band on its right: clockwise; reverse the loop.
+    let polygon: Vec<usize> = (0..vertices.len()).rev().collect();
+    let part = PartSpec::new("surface", (0..m - 1).map(|i| [i, i + 1]).collect());
+    Mesh::from_polygons(vertices, &[polygon], vec![part]).ok()
+}
+
+/// A disc as a 96-gon whose edges form the part "surface".
+fn disc(centre: Point, radius: f64) -> Option<Mesh> {
+    const SIDES: usize = 96;
+    let vertices: Vec<Point> = (0..SIDES)
+        .map(|k| {
+            let angle = 2.0 * std::f64::consts::PI * k as f64 / SIDES as f64;
+            centre + radius * Vector::new(angle.cos(), angle.sin())
+        })
+        .collect();
+    let part = PartSpec::new(
+        "surface",
+        (0..SIDES).map(|k| [k, (k + 1) % SIDES]).collect(),
+    );
+    Mesh::from_polygons(vertices, &[(0..SIDES).collect()], vec![part]).ok()
+}
+
+/// The pieces of the polyline `points` inside the box `lo`, `hi`, joined in order.
+fn clip_polyline(points: &[Point], lo: Point, hi: Point) -> Vec<Point> {
+    let mut kept: Vec<Point> = Vec::new();
+    for w in points.windows(2) {
+        let (a, d) = (w[0], w[1] - w[0]);
+        // Liang-Barsky: the parameter range of a + s d inside the box.
+        let (mut s0, mut s1) = (0.0_f64, 1.0_f64);
+        for (p, q) in [
+            (-d.x, a.x - lo.x),
+            (d.x, hi.x - a.x),
+            (-d.y, a.y - lo.y),
+            (d.y, hi.y - a.y),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    s1 = -1.0;
+                }
+            } else if p < 0.0 {
+                s0 = s0.max(q / p);
+            } else {
+                s1 = s1.min(q / p);
+            }
+        }
+        if s0 < s1 {
+            for s in [s0, s1] {
+                let x = a + s * d;
+                if kept.last().is_none_or(|last| (last - x).norm() > 0.0) {
+                    kept.push(x);
+                }
+            }
+        }
+    }
+    kept
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_magnifications() {
+        assert_eq!(round_down_to_nice(37.0), 20.0);
+        assert_eq!(round_down_to_nice(0.7), 0.5);
+        assert_eq!(round_down_to_nice(1.0), 1.0);
+        assert!((round_down_to_nice(1.9e3) - 1e3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn line_obstacle_is_a_band_below_the_bodies() {
+        let floor = Obstacle::Line {
+            point: Point::new(0.0, 0.0),
+            normal: Vector::new(0.0, 1.0),
+        };
+        let mesh = obstacle_outline(&floor, Point::new(0.0, 0.0), Point::new(1.0, 1.0)).unwrap();
+        assert_eq!(mesh.n_polygons(), 1);
+        // The surface is the clipped line y = 0; the band lies below it.
+        let surface = mesh.part_vertices("surface").unwrap();
+        assert!(surface.iter().all(|&v| mesh.vertex(v).y.abs() < 1e-12));
+        assert!(mesh.vertices().iter().all(|p| p.y <= 1e-12));
+        let area = mesh.area(0);
+        let expected = (1.0 + 2.0 * 0.15 * 2f64.sqrt()) * 0.04 * 2f64.sqrt();
+        assert!((area - expected).abs() < 1e-12, "{area} vs {expected}");
+    }
+
+    #[test]
+    fn clipping_keeps_the_inside_piece() {
+        let clipped = clip_polyline(
+            &[Point::new(-5.0, 0.5), Point::new(5.0, 0.5)],
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 1.0),
+        );
+        assert_eq!(clipped, vec![Point::new(0.0, 0.5), Point::new(1.0, 0.5)]);
+    }
+}

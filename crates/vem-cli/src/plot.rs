@@ -1,0 +1,264 @@
+//! Plots along the contact interface (plotters, SVG): the contact pressure (with the Hertz
+//! curve when asked for, and the friction traction against its bound with friction), and the
+//! slip coloured by node status.
+//!
+//! The horizontal axis is the coordinate (x or y) along which the interface runs furthest,
+//! so that a flat or gently curved interface reads left to right.
+
+use std::ops::Range;
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use vem_contact::{InterfaceNode, NodeStatus};
+use vem_mesh::io::write_atomically;
+
+use crate::outcome::HertzComparison;
+use crate::CliError;
+
+/// Points of a curve.
+type Curve = Vec<(f64, f64)>;
+
+/// A drawing error of plotters, as text.
+type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+const PRESSURE: RGBColor = RGBColor(31, 119, 180);
+const HERTZ: RGBColor = RGBColor(214, 39, 40);
+const FRICTION: RGBColor = RGBColor(44, 160, 44);
+const BOUND: RGBColor = RGBColor(127, 127, 127);
+const STICK: RGBColor = RGBColor(31, 119, 180);
+const SLIP: RGBColor = RGBColor(214, 39, 40);
+const OPEN: RGBColor = RGBColor(170, 170, 170);
+
+/// Which coordinate the interface runs along: 0 for x, 1 for y.
+fn axis(nodes: &[InterfaceNode]) -> usize {
+    let extent = |c: usize| {
+        let values = nodes.iter().map(|n| n.position[c]);
+        values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
+    };
+    usize::from(extent(1) > extent(0))
+}
+
+/// `lo..hi` padded by 5% below and `top` (a fraction of the span) above, or a unit range
+/// around a single value.
+fn padded(values: impl Iterator<Item = f64>, top: f64) -> Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        return 0.0..1.0;
+    }
+    let span = hi - lo;
+    if span <= 1e-300 {
+        let half = if lo.abs() > 0.0 { 0.5 * lo.abs() } else { 1.0 };
+        return (lo - half)..(hi + half);
+    }
+    (lo - 0.05 * span)..(hi + top * span)
+}
+
+/// Room above the curves for the legend, as a fraction of the value span.
+const LEGEND_ROOM: f64 = 0.35;
+
+/// Renders `draw` into an SVG document and writes it atomically to `path`.
+fn svg_file(
+    path: &Path,
+    width: f64,
+    draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> DrawResult,
+) -> Result<(), CliError> {
+    let size = (width.round() as u32, (0.6 * width).round() as u32);
+    let mut document = String::new();
+    let fail = |reason: String| CliError::Plot {
+        path: path.to_path_buf(),
+        reason,
+    };
+    {
+        let root = SVGBackend::with_string(&mut document, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail(e.to_string()))?;
+        draw(&root).map_err(|e| fail(e.to_string()))?;
+        root.present().map_err(|e| fail(e.to_string()))?;
+    }
+    write_atomically(path, |w| w.write_all(document.as_bytes())).map_err(|source| CliError::Mesh {
+        context: path.display().to_string(),
+        source,
+    })
+}
+
+/// `pressure.svg`: nodal contact pressure along the interface; with `hertz`, Hertz's
+/// elliptical distribution for the same load; with `friction_bound` (per node, per unit
+/// length), the friction traction `tangential_force / l_x` and the bound `±g`.
+pub(crate) fn pressure(
+    path: &Path,
+    title: &str,
+    nodes: &[InterfaceNode],
+    hertz: Option<&HertzComparison>,
+    friction_bound: Option<Vec<f64>>,
+    width: f64,
+) -> Result<(), CliError> {
+    let c = axis(nodes);
+    let name = ["x", "y"][c];
+    let position = |n: &InterfaceNode| n.position[c];
+    let pressure: Vec<(f64, f64)> = nodes.iter().map(|n| (position(n), n.pressure)).collect();
+    let hertz_curve: Vec<(f64, f64)> = hertz
+        .filter(|h| h.half_width > 0.0)
+        .map(|h| {
+            let (centre, a) = (h.centre[c], h.half_width);
+            (0..=200)
+                .map(|k| {
+                    let s = -1.0 + 2.0 * k as f64 / 200.0;
+                    (
+                        centre + s * a,
+                        h.peak_pressure * (1.0 - s * s).max(0.0).sqrt(),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let friction: Option<(Curve, Curve)> = friction_bound.map(|bound| {
+        let traction = nodes
+            .iter()
+            .map(|n| (position(n), n.tangential_force / n.tributary_length))
+            .collect();
+        let bounds = nodes
+            .iter()
+            .zip(bound)
+            .map(|(n, g)| (position(n), g))
+            .collect();
+        (traction, bounds)
+    });
+    let x_range = padded(pressure.iter().chain(&hertz_curve).map(|p| p.0), 0.05);
+    let y_range = padded(
+        pressure
+            .iter()
+            .chain(&hertz_curve)
+            .map(|p| p.1)
+            .chain(friction.iter().flat_map(|(t, b)| {
+                t.iter()
+                    .map(|p| p.1)
+                    .chain(b.iter().flat_map(|p| [p.1, -p.1]))
+            }))
+            .chain([0.0]),
+        LEGEND_ROOM,
+    );
+    svg_file(path, width, |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("{title}: contact pressure"), ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_range, y_range)?;
+        chart
+            .configure_mesh()
+            .x_desc(name)
+            .y_desc("pressure, friction traction")
+            .light_line_style(WHITE.mix(0.0))
+            .draw()?;
+        if !hertz_curve.is_empty() {
+            chart
+                .draw_series(LineSeries::new(
+                    hertz_curve.iter().copied(),
+                    HERTZ.stroke_width(2),
+                ))?
+                .label("Hertz p0 sqrt(1 - (x - c)^2 / a^2)")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], HERTZ.stroke_width(2))
+                });
+        }
+        chart
+            .draw_series(LineSeries::new(
+                pressure.iter().copied(),
+                PRESSURE.stroke_width(2),
+            ))?
+            .label("contact pressure p = normal force / tributary length")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PRESSURE.stroke_width(2)));
+        chart.draw_series(
+            pressure
+                .iter()
+                .map(|&p| Circle::new(p, 2, PRESSURE.filled())),
+        )?;
+        if let Some((traction, bounds)) = &friction {
+            chart
+                .draw_series(LineSeries::new(
+                    traction.iter().copied(),
+                    FRICTION.stroke_width(2),
+                ))?
+                .label("friction traction (tangential force / tributary length)")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], FRICTION.stroke_width(2))
+                });
+            chart
+                .draw_series(LineSeries::new(
+                    bounds.iter().copied(),
+                    BOUND.stroke_width(1),
+                ))?
+                .label("+/- friction bound")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BOUND));
+            chart.draw_series(LineSeries::new(
+                bounds.iter().map(|&(x, g)| (x, -g)),
+                BOUND.stroke_width(1),
+            ))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })
+}
+
+/// `slip.svg`: the slip `[u]_tau` along the interface, each node marked by its status.
+pub(crate) fn slip(
+    path: &Path,
+    title: &str,
+    nodes: &[InterfaceNode],
+    width: f64,
+) -> Result<(), CliError> {
+    let c = axis(nodes);
+    let points: Vec<(f64, f64)> = nodes.iter().map(|n| (n.position[c], n.slip)).collect();
+    let x_range = padded(points.iter().map(|p| p.0), 0.05);
+    let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), LEGEND_ROOM);
+    svg_file(path, width, |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("{title}: slip"), ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_range, y_range)?;
+        chart
+            .configure_mesh()
+            .x_desc(["x", "y"][c])
+            .y_desc("slip [u]_tau")
+            .light_line_style(WHITE.mix(0.0))
+            .draw()?;
+        chart.draw_series(LineSeries::new(points.iter().copied(), BLACK.mix(0.4)))?;
+        for (status, colour) in [
+            (NodeStatus::Stick, STICK),
+            (NodeStatus::Slip, SLIP),
+            (NodeStatus::Open, OPEN),
+        ] {
+            let marked: Vec<(f64, f64)> = nodes
+                .iter()
+                .zip(&points)
+                .filter(|(n, _)| n.status == status)
+                .map(|(_, &p)| p)
+                .collect();
+            if marked.is_empty() {
+                continue;
+            }
+            chart
+                .draw_series(marked.iter().map(|&p| Circle::new(p, 3, colour.filled())))?
+                .label(status.name())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, colour.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })
+}

@@ -1,0 +1,848 @@
+//! The scene file: what the user writes (TOML), read with serde (`deny_unknown_fields`, so a
+//! misspelt key is an error with its line and column) and checked before anything is built.
+//!
+//! Every key is documented in `docs/scenes.md`. The structures here mirror the file one to
+//! one; [`Scene::load`] parses and checks what can be checked without meshes (names, exactly
+//! one of two alternatives, values that apply to the chosen law or solver). Checks that need
+//! the meshes (part names) are done by [`crate::Model::build`], with the same kind of
+//! located error.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::CliError;
+
+/// The whole scene file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// A title for pictures and reports.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// The bodies (`[[body]]`), at least one.
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<BodySpec>,
+    /// The contact pairs (`[[contact]]`), at most one.
+    #[serde(default, rename = "contact")]
+    pub contacts: Vec<Spanned<ContactSpec>>,
+    /// Output options (`[output]`).
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// One elastic body (`[[body]]`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// The body's name: letters, digits, `-`, `_` and `.`; also the name of its `.vtu` file.
+    pub name: Spanned<String>,
+    /// Its mesh: a generator or a Gmsh file.
+    pub mesh: Spanned<MeshSpec>,
+    /// Its material.
+    pub material: Spanned<MaterialSpec>,
+    /// The VEM stabilisation (default: dofi-dofi, trace of C, scale 1/8).
+    #[serde(default)]
+    pub stabilisation: Option<Spanned<StabilisationSpec>>,
+    /// Prescribed displacements by part (`[[body.dirichlet]]`).
+    #[serde(default)]
+    pub dirichlet: Vec<Spanned<DirichletSpec>>,
+    /// Tractions by part (`[[body.traction]]`).
+    #[serde(default)]
+    pub traction: Vec<Spanned<TractionSpec>>,
+    /// A constant body force per unit area `[fx, fy]`.
+    #[serde(default)]
+    pub body_force: Option<Spanned<[f64; 2]>>,
+}
+
+/// A mesh: either `family` (with `rectangle`, `n`, optional `seed`) or `file`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// A mesh family name ("quads", "triangles", "hexagons", "voronoi", "perturbed",
+    /// "perturbed:0.2", "nonconvex", "hanging").
+    #[serde(default)]
+    pub family: Option<Spanned<String>>,
+    /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh.
+    #[serde(default)]
+    pub rectangle: Option<Spanned<[[f64; 2]; 2]>>,
+    /// The size parameter of a generated mesh (about `n` cells across).
+    #[serde(default)]
+    pub n: Option<Spanned<usize>>,
+    /// The seed of a random family (default 1).
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// A Gmsh `.msh` 4.1 file, relative to the scene file.
+    #[serde(default)]
+    pub file: Option<Spanned<String>>,
+}
+
+/// Plane strain or plane stress.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PlaneSpec {
+    /// Plane strain.
+    Strain,
+    /// Plane stress.
+    Stress,
+}
+
+/// An isotropic material: `E` and `nu`, or `lambda` and `mu`, and `plane`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus.
+    #[serde(default, rename = "E")]
+    pub young: Option<f64>,
+    /// Poisson's ratio.
+    #[serde(default)]
+    pub nu: Option<f64>,
+    /// First Lamé parameter.
+    #[serde(default)]
+    pub lambda: Option<f64>,
+    /// Shear modulus.
+    #[serde(default)]
+    pub mu: Option<f64>,
+    /// Plane strain or plane stress.
+    pub plane: PlaneSpec,
+}
+
+/// The stabilisation kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StabilisationKind {
+    /// `S = alpha I`.
+    DofiDofi,
+    /// The diagonal D-recipe.
+    DRecipe,
+}
+
+/// The material constant of the dofi-dofi stabilisation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ScalingSpec {
+    /// `alpha = scale * trace(C)`.
+    Trace,
+    /// `alpha = scale * 5 mu`.
+    Shear,
+}
+
+/// `[body.stabilisation]`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilisationSpec {
+    /// "dofi-dofi" or "d-recipe".
+    pub kind: StabilisationKind,
+    /// dofi-dofi only: "trace" (default) or "shear".
+    #[serde(default)]
+    pub scaling: Option<ScalingSpec>,
+    /// dofi-dofi only: the factor (default 1/8).
+    #[serde(default)]
+    pub scale: Option<f64>,
+}
+
+/// `[[body.dirichlet]]`: prescribed displacement components on a part.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletSpec {
+    /// The boundary part.
+    pub part: Spanned<String>,
+    /// `u_x` on the part (absent: free).
+    #[serde(default)]
+    pub x: Option<f64>,
+    /// `u_y` on the part (absent: free).
+    #[serde(default)]
+    pub y: Option<f64>,
+}
+
+/// `[[body.traction]]`: a constant traction vector or a normal pressure on a part.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    /// The boundary part.
+    pub part: Spanned<String>,
+    /// A constant traction `[gx, gy]`.
+    #[serde(default)]
+    pub value: Option<[f64; 2]>,
+    /// A normal pressure, positive compressive (along the inward normal of each edge).
+    #[serde(default)]
+    pub pressure: Option<f64>,
+}
+
+/// The contact law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LawKind {
+    /// Frictionless.
+    #[default]
+    Frictionless,
+    /// Tresca friction (`friction_bound`).
+    Tresca,
+    /// Coulomb friction (`coefficient`).
+    Coulomb,
+}
+
+/// The contact solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SolverKind {
+    /// Interior-point QP (Clarabel).
+    #[default]
+    Exact,
+    /// Penalty, semismooth Newton.
+    Penalty,
+    /// Primal-dual active set.
+    ActiveSet,
+}
+
+impl SolverKind {
+    /// The name used in the scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            SolverKind::Exact => "exact",
+            SolverKind::Penalty => "penalty",
+            SolverKind::ActiveSet => "active-set",
+        }
+    }
+}
+
+/// A penalty or augmentation parameter: `factor` (times the largest constrained diagonal
+/// entry of the stiffness) or an absolute `value`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PenaltySpec {
+    /// Relative to the stiffness.
+    #[serde(default)]
+    pub factor: Option<f64>,
+    /// Absolute (force per length).
+    #[serde(default)]
+    pub value: Option<f64>,
+}
+
+/// `[[contact]]`: one contact pair.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Body A (its outward normal is the contact normal).
+    pub body: Spanned<String>,
+    /// Body A's contact part.
+    pub part: Spanned<String>,
+    /// Body B.
+    #[serde(default)]
+    pub other_body: Option<Spanned<String>>,
+    /// Body B's contact part.
+    #[serde(default)]
+    pub other_part: Option<Spanned<String>>,
+    /// A rigid obstacle instead of body B.
+    #[serde(default)]
+    pub obstacle: Option<Spanned<ObstacleSpec>>,
+    /// "frictionless" (default), "tresca" or "coulomb".
+    #[serde(default)]
+    pub law: Option<Spanned<LawKind>>,
+    /// Tresca: the friction bound `g_F` (force per length).
+    #[serde(default)]
+    pub friction_bound: Option<Spanned<f64>>,
+    /// Coulomb: the friction coefficient `F`.
+    #[serde(default)]
+    pub coefficient: Option<Spanned<f64>>,
+    /// Coulomb: largest number of Tresca solves (default 50).
+    #[serde(default)]
+    pub fixed_point_max_steps: Option<Spanned<usize>>,
+    /// Coulomb: relative change of the normal forces at which to stop (default 1e-8).
+    #[serde(default)]
+    pub fixed_point_tolerance: Option<Spanned<f64>>,
+    /// Extra constant initial gap added to the geometric one.
+    #[serde(default)]
+    pub gap: Option<f64>,
+    /// Only points of the two sides closer than this (along the normal) are paired.
+    #[serde(default)]
+    pub max_distance: Option<Spanned<f64>>,
+    /// "exact" (default), "penalty" or "active-set".
+    #[serde(default)]
+    pub solver: Option<Spanned<SolverKind>>,
+    /// Exact: absolute gap tolerance.
+    #[serde(default)]
+    pub eps_abs: Option<Spanned<f64>>,
+    /// Exact: relative gap and feasibility tolerance.
+    #[serde(default)]
+    pub eps_rel: Option<Spanned<f64>>,
+    /// Penalty and active set: relative tolerance.
+    #[serde(default)]
+    pub tolerance: Option<Spanned<f64>>,
+    /// Iteration limit of the solver.
+    #[serde(default)]
+    pub max_iterations: Option<Spanned<usize>>,
+    /// Penalty: the penalty parameter (normal and tangential).
+    #[serde(default)]
+    pub penalty: Option<Spanned<PenaltySpec>>,
+    /// Active set: the augmentation parameter.
+    #[serde(default)]
+    pub augmentation: Option<Spanned<PenaltySpec>>,
+    /// Compare with Hertz's cylinder on a half-space: body A near the contact is a cylinder of
+    /// this radius.
+    #[serde(default)]
+    pub hertz: Option<Spanned<HertzSpec>>,
+}
+
+impl ContactSpec {
+    /// The contact law (frictionless when not given).
+    pub fn law(&self) -> LawKind {
+        self.law
+            .as_ref()
+            .map_or_else(LawKind::default, |l| *l.get_ref())
+    }
+
+    /// The contact solver (exact when not given).
+    pub fn solver(&self) -> SolverKind {
+        self.solver
+            .as_ref()
+            .map_or_else(SolverKind::default, |s| *s.get_ref())
+    }
+}
+
+/// `hertz = { radius = R }`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HertzSpec {
+    /// Radius of the cylinder (body A).
+    pub radius: f64,
+}
+
+/// A rigid obstacle: exactly one of `line`, `circle`, `polyline`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// A straight line bounding a half-plane.
+    #[serde(default)]
+    pub line: Option<LineSpec>,
+    /// A rigid disc.
+    #[serde(default)]
+    pub circle: Option<CircleSpec>,
+    /// A polyline with the obstacle on its right.
+    #[serde(default)]
+    pub polyline: Option<Vec<[f64; 2]>>,
+}
+
+/// `line = { point = [x, y], normal = [nx, ny] }`, the normal pointing out of the obstacle.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineSpec {
+    /// A point of the line.
+    pub point: [f64; 2],
+    /// The normal pointing out of the obstacle, towards the body.
+    pub normal: [f64; 2],
+}
+
+/// `circle = { centre = [x, y], radius = r }`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CircleSpec {
+    /// Centre.
+    pub centre: [f64; 2],
+    /// Radius.
+    pub radius: f64,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Displacement magnification of the deformed picture (default: the largest displacement
+    /// drawn as 8% of the picture's extent).
+    #[serde(default)]
+    pub magnification: Option<Spanned<f64>>,
+    /// Width of the pictures in pixels (default 900).
+    #[serde(default)]
+    pub width: Option<Spanned<f64>>,
+}
+
+/// A parsed and checked scene file.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    path: PathBuf,
+    source: String,
+    file: SceneFile,
+}
+
+impl Scene {
+    /// Reads, parses and checks the scene file at `path`.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, CliError> {
+        let path = path.as_ref();
+        let source = std::fs::read_to_string(path).map_err(|source| CliError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(path, source)
+    }
+
+    /// Parses and checks `source`, the text of the scene file `path` (mesh files are looked
+    /// up relative to `path`'s directory).
+    pub fn parse(path: impl AsRef<Path>, source: impl Into<String>) -> Result<Self, CliError> {
+        let path = path.as_ref().to_path_buf();
+        let source = source.into();
+        let file: SceneFile = toml::from_str(&source)
+            .map_err(|e| CliError::at(&path, &source, e.span(), e.message().trim_end()))?;
+        let scene = Self { path, source, file };
+        scene.check()?;
+        Ok(scene)
+    }
+
+    /// The scene file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The file's stem ("hertz" for `scenes/hertz.toml`).
+    pub fn stem(&self) -> String {
+        self.path
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
+    }
+
+    /// The parsed contents.
+    pub fn file(&self) -> &SceneFile {
+        &self.file
+    }
+
+    /// The title, or the file stem.
+    pub fn title(&self) -> String {
+        self.file.title.clone().unwrap_or_else(|| self.stem())
+    }
+
+    /// A path given in the scene, relative to the scene file's directory.
+    pub fn resolve(&self, relative: &str) -> PathBuf {
+        let base = self.path.parent().unwrap_or(Path::new(""));
+        base.join(relative)
+    }
+
+    /// A located error at `span`.
+    pub(crate) fn error(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        message: impl Into<String>,
+    ) -> CliError {
+        CliError::at(&self.path, &self.source, span, message)
+    }
+
+    /// The index of the body named `name`; the error lists the bodies.
+    pub(crate) fn body_index(&self, name: &Spanned<String>) -> Result<usize, CliError> {
+        self.file
+            .bodies
+            .iter()
+            .position(|b| b.name.get_ref() == name.get_ref())
+            .ok_or_else(|| {
+                let names: Vec<&str> = self
+                    .file
+                    .bodies
+                    .iter()
+                    .map(|b| b.name.get_ref().as_str())
+                    .collect();
+                self.error(
+                    Some(name.span()),
+                    format!(
+                        "no body named '{}'; the scene has {}",
+                        name.get_ref(),
+                        list(&names)
+                    ),
+                )
+            })
+    }
+
+    /// Checks everything that does not need the meshes.
+    fn check(&self) -> Result<(), CliError> {
+        let file = &self.file;
+        if file.bodies.is_empty() {
+            return Err(self.error(None, "the scene has no [[body]]"));
+        }
+        let mut names = HashSet::new();
+        for body in &file.bodies {
+            self.check_body(body)?;
+            if !names.insert(body.name.get_ref().as_str()) {
+                return Err(self.error(
+                    Some(body.name.span()),
+                    format!("a second body is named '{}'", body.name.get_ref()),
+                ));
+            }
+        }
+        if let Some(second) = file.contacts.get(1) {
+            return Err(self.error(
+                Some(second.span()),
+                "a second [[contact]] pair: one contact pair per scene is supported",
+            ));
+        }
+        if let Some(contact) = file.contacts.first() {
+            self.check_contact(contact.get_ref())?;
+        }
+        let output = &file.output;
+        if let Some(m) = &output.magnification {
+            self.positive(m, "magnification")?;
+        }
+        if let Some(w) = &output.width {
+            if !(w.get_ref().is_finite() && *w.get_ref() >= 200.0) {
+                return Err(self.error(
+                    Some(w.span()),
+                    format!("width = {} pixels: give at least 200", w.get_ref()),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_body(&self, body: &BodySpec) -> Result<(), CliError> {
+        let name = body.name.get_ref();
+        let valid = !name.is_empty()
+            && !name.starts_with('.')
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
+        if !valid {
+            return Err(self.error(
+                Some(body.name.span()),
+                format!(
+                    "body name '{name}': use letters, digits, '-', '_' and '.' (it names the \
+                     body's .vtu file)"
+                ),
+            ));
+        }
+        let mesh = body.mesh.get_ref();
+        match (&mesh.family, &mesh.file) {
+            (Some(_), Some(_)) | (None, None) => {
+                return Err(self.error(
+                    Some(body.mesh.span()),
+                    format!(
+                        "body '{name}': the mesh needs either `family` (a generator, with \
+                         `rectangle` and `n`) or `file` (a Gmsh .msh file), not both"
+                    ),
+                ))
+            }
+            (Some(family), None) => {
+                if let Err(e) = family.get_ref().parse::<vem_mesh::generators::MeshFamily>() {
+                    return Err(self.error(Some(family.span()), e.to_string()));
+                }
+                if mesh.rectangle.is_none() || mesh.n.is_none() {
+                    return Err(self.error(
+                        Some(body.mesh.span()),
+                        format!("body '{name}': a generated mesh needs `rectangle` and `n`"),
+                    ));
+                }
+            }
+            (None, Some(_)) => {
+                if mesh.rectangle.is_some() || mesh.n.is_some() || mesh.seed.is_some() {
+                    return Err(self.error(
+                        Some(body.mesh.span()),
+                        format!(
+                            "body '{name}': `rectangle`, `n` and `seed` belong to a generated \
+                             mesh, not to a mesh `file`"
+                        ),
+                    ));
+                }
+            }
+        }
+        let material = body.material.get_ref();
+        let pairs = (
+            material.young.is_some() || material.nu.is_some(),
+            material.lambda.is_some() || material.mu.is_some(),
+        );
+        let complete = match pairs {
+            (true, false) => material.young.is_some() && material.nu.is_some(),
+            (false, true) => material.lambda.is_some() && material.mu.is_some(),
+            _ => false,
+        };
+        if !complete {
+            return Err(self.error(
+                Some(body.material.span()),
+                format!(
+                    "body '{name}': give the material as `E` and `nu`, or as `lambda` and `mu`"
+                ),
+            ));
+        }
+        if let Some(s) = &body.stabilisation {
+            let spec = s.get_ref();
+            if spec.kind == StabilisationKind::DRecipe
+                && (spec.scaling.is_some() || spec.scale.is_some())
+            {
+                return Err(self.error(
+                    Some(s.span()),
+                    format!(
+                        "body '{name}': `scaling` and `scale` apply to kind = \"dofi-dofi\" only"
+                    ),
+                ));
+            }
+        }
+        for d in &body.dirichlet {
+            let spec = d.get_ref();
+            if spec.x.is_none() && spec.y.is_none() {
+                return Err(self.error(
+                    Some(d.span()),
+                    format!(
+                        "body '{name}': the Dirichlet condition on part '{}' prescribes nothing: \
+                         give `x`, `y` or both",
+                        spec.part.get_ref()
+                    ),
+                ));
+            }
+            for value in [spec.x, spec.y].into_iter().flatten() {
+                self.finite(value, d.span(), "a prescribed displacement")?;
+            }
+        }
+        for t in &body.traction {
+            let spec = t.get_ref();
+            match (spec.value, spec.pressure) {
+                (Some(v), None) => {
+                    for c in v {
+                        self.finite(c, t.span(), "a traction")?;
+                    }
+                }
+                (None, Some(p)) => self.finite(p, t.span(), "a pressure")?,
+                _ => {
+                    return Err(self.error(
+                        Some(t.span()),
+                        format!(
+                            "body '{name}': the traction on part '{}' needs either `value = [gx, \
+                             gy]` or `pressure = p`, not both",
+                            spec.part.get_ref()
+                        ),
+                    ))
+                }
+            }
+        }
+        if let Some(f) = &body.body_force {
+            for c in f.get_ref() {
+                self.finite(*c, f.span(), "a body force")?;
+            }
+        }
+        Ok(())
+    }
+
+    fn check_contact(&self, contact: &ContactSpec) -> Result<(), CliError> {
+        let a = self.body_index(&contact.body)?;
+        match (&contact.other_body, &contact.other_part, &contact.obstacle) {
+            (Some(other), Some(_), None) => {
+                if self.body_index(other)? == a {
+                    return Err(self.error(
+                        Some(other.span()),
+                        format!(
+                            "`other_body` is '{}' again: contact of a body with itself is not \
+                             supported",
+                            other.get_ref()
+                        ),
+                    ));
+                }
+            }
+            (None, None, Some(obstacle)) => self.check_obstacle(obstacle)?,
+            _ => {
+                return Err(self.error(
+                    Some(contact.body.span()),
+                    "a contact pair needs either `other_body` and `other_part`, or an `obstacle`",
+                ))
+            }
+        }
+        let law = contact.law();
+        let law_span = contact.law.as_ref().map(|l| l.span());
+        let misplaced = |value: bool, span: Option<std::ops::Range<usize>>, key: &str| {
+            if value {
+                Err(self.error(
+                    span,
+                    format!("`{key}` does not apply to law = \"{}\"", law_name(law)),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match law {
+            LawKind::Frictionless => {}
+            LawKind::Tresca => match &contact.friction_bound {
+                Some(g) => self.non_negative(g, "friction_bound")?,
+                None => {
+                    return Err(self.error(
+                        law_span.clone(),
+                        "law = \"tresca\" needs `friction_bound` (force per length)",
+                    ))
+                }
+            },
+            LawKind::Coulomb => match &contact.coefficient {
+                Some(f) => self.non_negative(f, "coefficient")?,
+                None => {
+                    return Err(self.error(
+                        law_span.clone(),
+                        "law = \"coulomb\" needs the friction `coefficient`",
+                    ))
+                }
+            },
+        }
+        let spans = |s: &Option<Spanned<f64>>| s.as_ref().map(|s| s.span());
+        misplaced(
+            law != LawKind::Tresca && contact.friction_bound.is_some(),
+            spans(&contact.friction_bound),
+            "friction_bound",
+        )?;
+        misplaced(
+            law != LawKind::Coulomb && contact.coefficient.is_some(),
+            spans(&contact.coefficient),
+            "coefficient",
+        )?;
+        misplaced(
+            law != LawKind::Coulomb && contact.fixed_point_tolerance.is_some(),
+            spans(&contact.fixed_point_tolerance),
+            "fixed_point_tolerance",
+        )?;
+        misplaced(
+            law != LawKind::Coulomb && contact.fixed_point_max_steps.is_some(),
+            contact.fixed_point_max_steps.as_ref().map(|s| s.span()),
+            "fixed_point_max_steps",
+        )?;
+        if let Some(t) = &contact.fixed_point_tolerance {
+            self.positive(t, "fixed_point_tolerance")?;
+        }
+        if let Some(d) = &contact.max_distance {
+            self.positive(d, "max_distance")?;
+        }
+        if let Some(g) = contact.gap {
+            self.finite(g, contact.body.span(), "the gap")?;
+        }
+        // Solver keys must belong to the chosen solver.
+        let solver = contact.solver();
+        let solver_keys: [SolverKey; 6] = [
+            ("eps_abs", spans(&contact.eps_abs), &[SolverKind::Exact]),
+            ("eps_rel", spans(&contact.eps_rel), &[SolverKind::Exact]),
+            (
+                "tolerance",
+                spans(&contact.tolerance),
+                &[SolverKind::Penalty, SolverKind::ActiveSet],
+            ),
+            (
+                "max_iterations",
+                contact.max_iterations.as_ref().map(|s| s.span()),
+                &[
+                    SolverKind::Exact,
+                    SolverKind::Penalty,
+                    SolverKind::ActiveSet,
+                ],
+            ),
+            (
+                "penalty",
+                contact.penalty.as_ref().map(|s| s.span()),
+                &[SolverKind::Penalty],
+            ),
+            (
+                "augmentation",
+                contact.augmentation.as_ref().map(|s| s.span()),
+                &[SolverKind::ActiveSet],
+            ),
+        ];
+        for (key, span, owners) in solver_keys {
+            if span.is_some() && !owners.contains(&solver) {
+                let owners: Vec<String> =
+                    owners.iter().map(|s| format!("\"{}\"", s.name())).collect();
+                return Err(self.error(
+                    span,
+                    format!(
+                        "`{key}` does not apply to solver = \"{}\" (it is a setting of solver = {})",
+                        solver.name(),
+                        owners.join(" or ")
+                    ),
+                ));
+            }
+        }
+        for p in [&contact.penalty, &contact.augmentation]
+            .into_iter()
+            .flatten()
+        {
+            let spec = p.get_ref();
+            let value =
+                match (spec.factor, spec.value) {
+                    (Some(v), None) | (None, Some(v)) => v,
+                    _ => return Err(self.error(
+                        Some(p.span()),
+                        "give either `factor` (relative to the stiffness) or `value` (absolute)",
+                    )),
+                };
+            if !(value.is_finite() && value > 0.0) {
+                return Err(self.error(
+                    Some(p.span()),
+                    format!("the penalty {value} must be finite and positive"),
+                ));
+            }
+        }
+        if let Some(h) = &contact.hertz {
+            let r = h.get_ref().radius;
+            if !(r.is_finite() && r > 0.0) {
+                return Err(self.error(
+                    Some(h.span()),
+                    format!("hertz radius {r} must be finite and positive"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_obstacle(&self, obstacle: &Spanned<ObstacleSpec>) -> Result<(), CliError> {
+        let spec = obstacle.get_ref();
+        let given = [
+            spec.line.is_some(),
+            spec.circle.is_some(),
+            spec.polyline.is_some(),
+        ];
+        if given.iter().filter(|&&g| g).count() != 1 {
+            return Err(self.error(
+                Some(obstacle.span()),
+                "an obstacle is exactly one of `line = { point, normal }`, `circle = { centre, \
+                 radius }` or `polyline = [[x, y], ...]`",
+            ));
+        }
+        // The values themselves are checked by the contact library when the obstacle is built.
+        Ok(())
+    }
+
+    fn finite(&self, value: f64, span: std::ops::Range<usize>, what: &str) -> Result<(), CliError> {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(self.error(Some(span), format!("{what} must be finite, got {value}")))
+        }
+    }
+
+    fn positive(&self, value: &Spanned<f64>, key: &str) -> Result<(), CliError> {
+        let v = *value.get_ref();
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(self.error(
+                Some(value.span()),
+                format!("`{key}` = {v} must be finite and positive"),
+            ))
+        }
+    }
+
+    fn non_negative(&self, value: &Spanned<f64>, key: &str) -> Result<(), CliError> {
+        let v = *value.get_ref();
+        if v.is_finite() && v >= 0.0 {
+            Ok(())
+        } else {
+            Err(self.error(
+                Some(value.span()),
+                format!("`{key}` = {v} must be finite and >= 0"),
+            ))
+        }
+    }
+}
+
+/// A solver setting: its key, where it is (if given) and the solvers it belongs to.
+type SolverKey<'a> = (&'a str, Option<std::ops::Range<usize>>, &'a [SolverKind]);
+
+/// The law's name in the scene file.
+pub(crate) fn law_name(law: LawKind) -> &'static str {
+    match law {
+        LawKind::Frictionless => "frictionless",
+        LawKind::Tresca => "tresca",
+        LawKind::Coulomb => "coulomb",
+    }
+}
+
+/// `['a', 'b']` for error messages.
+pub(crate) fn list<S: AsRef<str>>(names: &[S]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("'{}'", n.as_ref())).collect();
+    format!("[{}]", quoted.join(", "))
+}
