@@ -166,7 +166,7 @@ pub enum Counterpart {
     /// A second elastic body and its contact part.
     Body {
         /// The body.
-        body: ElasticBody,
+        body: Box<ElasticBody>,
         /// Its boundary part facing body A.
         part: String,
     },
@@ -236,7 +236,7 @@ impl ContactProblem {
             body: body_a,
             part: part_a.into(),
             counterpart: Counterpart::Body {
-                body: body_b,
+                body: Box::new(body_b),
                 part: part_b.into(),
             },
             law,
