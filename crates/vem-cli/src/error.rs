@@ -85,15 +85,10 @@ pub enum CliError {
         #[source]
         source: MeshError,
     },
-    /// Setting up or solving an elastic body failed.
-    #[error("{context}: {source}")]
-    Elastic {
-        /// Which body.
-        context: String,
-        /// The elasticity error.
-        #[source]
-        source: Box<ElasticError>,
-    },
+    /// Assembling, solving or post-processing an elastic body failed (the error names the
+    /// body).
+    #[error(transparent)]
+    Elastic(Box<ElasticError>),
     /// The contact problem failed (interface, solver, fixed point).
     #[error("contact: {0}")]
     Contact(#[from] ContactError),

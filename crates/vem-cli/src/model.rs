@@ -787,3 +787,29 @@ impl fmt::Display for CheckReport {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pressure_acts_along_the_inward_normal_of_each_edge() {
+        // The half-disc of radius 1 centred at (0, 1): on the arc the inward normal points to
+        // the centre, on the flat top it is (0, -1).
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/hertz_disc.msh");
+        let mesh = vem_mesh::io::read_gmsh(path).unwrap();
+        let centre = Point::new(0.0, 1.0);
+        let arc = PressureField::new(&mesh, "arc", 2.0);
+        for &e in &mesh.part("arc").unwrap().edges {
+            let [a, b] = mesh.edge(e).vertices;
+            let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
+            let midpoint = pa + 0.5 * (pb - pa);
+            let g = arc.traction(midpoint);
+            // The edge's normal is the radial direction at its midpoint (a chord of the circle).
+            let inward = (centre - midpoint).normalize();
+            assert!((g - 2.0 * inward).norm() < 1e-12, "{g} vs {inward}");
+        }
+        let top = PressureField::new(&mesh, "top", -0.5);
+        assert!((top.traction(Point::new(0.3, 1.0)) - Vector::new(0.0, 0.5)).norm() < 1e-15);
+    }
+}

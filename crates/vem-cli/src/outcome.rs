@@ -87,20 +87,15 @@ impl Model {
         for (index, slot) in slots.iter_mut().enumerate() {
             if slot.is_none() {
                 let body = &self.bodies()[index].body;
-                let context = || format!("body '{}'", body.name());
                 let start = Instant::now();
-                let system = body.assemble().map_err(|source| CliError::Elastic {
-                    context: context(),
-                    source: Box::new(source),
-                })?;
+                let system = body
+                    .assemble()
+                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
                 times.assembly_s += start.elapsed().as_secs_f64();
                 let start = Instant::now();
                 let solution = body
                     .solve_system(&system, &mut CholeskySolver::default())
-                    .map_err(|source| CliError::Elastic {
-                        context: context(),
-                        source: Box::new(source),
-                    })?;
+                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
                 times.solve_s += start.elapsed().as_secs_f64();
                 *slot = Some((body.clone(), solution));
             }
@@ -112,10 +107,7 @@ impl Model {
             .map(|(body, solution)| {
                 let fields = body
                     .element_fields(solution.displacement())
-                    .map_err(|source| CliError::Elastic {
-                        context: format!("body '{}'", body.name()),
-                        source: Box::new(source),
-                    })?;
+                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
                 let qualities = vem_mesh::quality::element_qualities(body.mesh());
                 Ok(SolvedBody {
                     body,
