@@ -5,6 +5,15 @@
 //! own), its contact companion [`ContactSolution`] and the built-in cases M1–M4, E1, E2,
 //! PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3.
 //!
+//! On top of them:
+//! - [`problem`]: the discrete (VEM elasticity or contact) problem of an exact solution on given
+//!   meshes, and its solve;
+//! - [`norms`]: the error measures `E_grad = ||grad(u - Pi u_h)||`, `E_0 = ||u - Pi u_h||`
+//!   and `E_a = a_h(u_I - u_h, u_I - u_h)^(1/2)` (`manufactured.md`, section 8);
+//! - [`diagnostics`]: resultants, switch points and expected sets of contact solutions;
+//! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
+//! - [`report`]: Markdown tables, log-log SVG plots and JSON.
+//!
 //! ```
 //! use vem_verify::{all_cases, BodyId, ExactSolution, Lame};
 //! use vem_mesh::Point;
@@ -21,8 +30,15 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod diagnostics;
+mod error;
 pub mod exact;
+pub mod norms;
+pub mod problem;
+pub mod report;
+pub mod study;
 
+pub use error::VerifyError;
 pub use exact::{
     all_cases, case_by_name, BodyId, ContactLaw, ContactSolution, ExactError, ExactSolution, Lame,
     Side,

@@ -1,0 +1,131 @@
+//! Errors of the discrete problems, error norms, studies and reports.
+
+use std::path::PathBuf;
+
+use vem_contact::ContactError;
+use vem_elastic::ElasticError;
+use vem_mesh::MeshError;
+use vem_space::SpaceError;
+
+use crate::exact::ExactError;
+
+/// What can go wrong when a discrete problem is built from an exact solution, solved, measured
+/// or reported. Variants name the case, body, size, polygon or file concerned.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum VerifyError {
+    /// A study or problem setting is out of range (no sizes, a size factor of zero, ...).
+    #[error("invalid setting: {reason}")]
+    InvalidSetting {
+        /// What is wrong, with the offending value.
+        reason: String,
+    },
+    /// The exact solution does not fit what was asked of it (a two-body pairing for a
+    /// one-body case, a contact case without a contact description, ...).
+    #[error("case {case}: {reason}")]
+    Case {
+        /// The case's name.
+        case: String,
+        /// What does not fit.
+        reason: String,
+    },
+    /// The exact-solution layer refused a request.
+    #[error(transparent)]
+    Exact(#[from] ExactError),
+    /// Mesh generation failed.
+    #[error("case {case}, body {body}, mesh '{family}' of size {n}: {source}")]
+    Mesh {
+        /// The case's name.
+        case: String,
+        /// The body (1 or 2).
+        body: usize,
+        /// The mesh family.
+        family: String,
+        /// The size parameter.
+        n: usize,
+        /// The mesh error.
+        #[source]
+        source: Box<MeshError>,
+    },
+    /// Building, assembling or solving an elastic body failed.
+    #[error("case {case}: {source}")]
+    Elastic {
+        /// The case's name.
+        case: String,
+        /// The elasticity error (it names the body).
+        #[source]
+        source: Box<ElasticError>,
+    },
+    /// Building or solving the contact problem failed.
+    #[error("case {case}: {source}")]
+    Contact {
+        /// The case's name.
+        case: String,
+        /// The contact error.
+        #[source]
+        source: Box<ContactError>,
+    },
+    /// The element layer failed on one polygon while errors were measured.
+    #[error("body {body}, polygon {polygon}: {source}")]
+    Element {
+        /// The body (1 or 2).
+        body: usize,
+        /// The polygon index.
+        polygon: usize,
+        /// The element error.
+        #[source]
+        source: Box<SpaceError>,
+    },
+    /// A polygon could not be split into triangles for quadrature (it is not simple).
+    #[error("body {body}, polygon {polygon}: no valid triangulation ({reason})")]
+    Triangulation {
+        /// The body (1 or 2).
+        body: usize,
+        /// The polygon index.
+        polygon: usize,
+        /// Why.
+        reason: String,
+    },
+    /// A displacement vector does not match the mesh.
+    #[error(
+        "body {body}: displacement has {found} entries, the mesh has {expected} degrees of freedom"
+    )]
+    WrongLength {
+        /// The body (1 or 2).
+        body: usize,
+        /// Entries given.
+        found: usize,
+        /// Degrees of freedom of the mesh.
+        expected: usize,
+    },
+    /// A measured quantity is not finite (an exact solution or a solve produced NaN or inf).
+    #[error("body {body}: {what} is not finite")]
+    NonFinite {
+        /// The body (1 or 2).
+        body: usize,
+        /// What was measured.
+        what: &'static str,
+    },
+    /// A report could not be written.
+    #[error("cannot write {}: {reason}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl VerifyError {
+    /// Wraps a failed atomic write of `vem_mesh::io::write_atomically` (it names the path).
+    pub(crate) fn from_write(path: &std::path::Path, error: MeshError) -> Self {
+        let reason = match error {
+            MeshError::Write { reason, .. } => reason,
+            other => other.to_string(),
+        };
+        VerifyError::Write {
+            path: path.to_path_buf(),
+            reason,
+        }
+    }
+}

@@ -1,0 +1,794 @@
+//! Convergence studies: one exact solution, one mesh family (and size factor) per body, a list
+//! of sizes, a solver; per size the mesh size, the unknowns, every error measure, the contact
+//! diagnostics and the time of each stage; rates fitted by least squares over the finest sizes
+//! and a verdict against the expected rates (`manufactured.md`, section 8).
+//!
+//! ```
+//! use std::sync::Arc;
+//! use vem_mesh::generators::MeshFamily;
+//! use vem_verify::exact::{case_by_name, Lame};
+//! use vem_verify::study::{MeshPairing, Study};
+//! // Elasticity E1 on structured quads, n = 4, 8, 16: O(h) in energy, O(h^2) in L2.
+//! let e1: Arc<_> = case_by_name("E1", Lame::default())?.into();
+//! let result = Study::new(e1, MeshPairing::single(MeshFamily::Quads))
+//!     .sizes([4, 8, 16])
+//!     .run()?;
+//! assert_eq!(result.records.len(), 3);
+//! assert!(result.rates.grad.unwrap() > 0.9 && result.rates.l2.unwrap() > 1.8);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+use vem_contact::{ContactSolver, ExactSettings, ExactSolver, PenaltySettings, PenaltySolver};
+use vem_mesh::generators::MeshFamily;
+use vem_mesh::Mesh;
+
+use crate::diagnostics::{contact_diagnostics, ContactDiagnostics};
+use crate::exact::{BodyId, ContactLaw, ExactSolution};
+use crate::norms::ErrorNorms;
+use crate::problem::{DiscreteProblem, ProblemSettings};
+use crate::VerifyError;
+
+/// How one body is meshed in a study: a family, and the factor by which its size parameter
+/// exceeds the study's `n` (a factor 3 on body two with 1 on body one gives the non-matching
+/// ratio 1:3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMeshing {
+    /// The mesh family.
+    pub family: MeshFamily,
+    /// Size factor (>= 1): the body's mesh has size parameter `factor * n`.
+    pub factor: usize,
+}
+
+/// The meshing of every body of a study.
+///
+/// Written and parsed as `family[*factor]` per body, bodies separated by `/`:
+/// `"quads"`, `"quads/quads*3"`, `"voronoi/quads"`, `"perturbed:0.2/hexagons"`.
+///
+/// ```
+/// use vem_mesh::generators::MeshFamily;
+/// use vem_verify::study::MeshPairing;
+/// let pairing: MeshPairing = "quads/quads*3".parse()?;
+/// assert_eq!(pairing, MeshPairing::pair(MeshFamily::Quads, 1, MeshFamily::Quads, 3));
+/// assert_eq!(pairing.to_string(), "quads/quads*3");
+/// assert_eq!(pairing.describe(), "quads/quads (n/3n)");
+/// # Ok::<(), vem_verify::VerifyError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshPairing {
+    bodies: Vec<BodyMeshing>,
+}
+
+impl MeshPairing {
+    /// One body meshed by `family`.
+    pub fn single(family: MeshFamily) -> Self {
+        Self {
+            bodies: vec![BodyMeshing { family, factor: 1 }],
+        }
+    }
+
+    /// Two bodies: body one by `family_1` with size factor `factor_1`, body two likewise.
+    pub fn pair(
+        family_1: MeshFamily,
+        factor_1: usize,
+        family_2: MeshFamily,
+        factor_2: usize,
+    ) -> Self {
+        Self {
+            bodies: vec![
+                BodyMeshing {
+                    family: family_1,
+                    factor: factor_1,
+                },
+                BodyMeshing {
+                    family: family_2,
+                    factor: factor_2,
+                },
+            ],
+        }
+    }
+
+    /// The meshing of each body.
+    pub fn bodies(&self) -> &[BodyMeshing] {
+        &self.bodies
+    }
+
+    /// A readable label: the families separated by `/`, then the size ratio when the factors
+    /// differ, e.g. `"quads/quads (n/3n)"`, `"voronoi/quads"`.
+    pub fn describe(&self) -> String {
+        let families: Vec<String> = self.bodies.iter().map(|b| b.family.to_string()).collect();
+        let mut label = families.join("/");
+        if self
+            .bodies
+            .iter()
+            .any(|b| b.factor != self.bodies[0].factor)
+        {
+            let ratio: Vec<String> = self
+                .bodies
+                .iter()
+                .map(|b| match b.factor {
+                    1 => "n".to_string(),
+                    k => format!("{k}n"),
+                })
+                .collect();
+            label.push_str(&format!(" ({})", ratio.join("/")));
+        }
+        label
+    }
+
+    /// A file-name friendly form of [`describe`](Self::describe): `"quads-quads-1x3"`.
+    pub fn slug(&self) -> String {
+        let families: Vec<String> = self
+            .bodies
+            .iter()
+            .map(|b| b.family.to_string().replace([':', '.'], ""))
+            .collect();
+        let mut slug = families.join("-");
+        if self
+            .bodies
+            .iter()
+            .any(|b| b.factor != self.bodies[0].factor)
+        {
+            let ratio: Vec<String> = self.bodies.iter().map(|b| b.factor.to_string()).collect();
+            slug.push('-');
+            slug.push_str(&ratio.join("x"));
+        }
+        slug
+    }
+
+    /// The meshes of `exact`'s bodies at size `n`: body `k` (0-based) gets the mesh of size
+    /// `factor_k n` of its family on its domain, generated with seed `seed + 2 factor_k n + k`.
+    ///
+    /// # Errors
+    /// A pairing with another number of bodies than `exact`, a mesh generator error.
+    pub fn generate(
+        &self,
+        exact: &dyn ExactSolution,
+        n: usize,
+        seed: u64,
+    ) -> Result<Vec<Mesh>, VerifyError> {
+        let ids = exact.bodies();
+        if ids.len() != self.bodies.len() {
+            return Err(VerifyError::Case {
+                case: exact.name().to_string(),
+                reason: format!(
+                    "{} bodies but the mesh pairing '{self}' describes {}",
+                    ids.len(),
+                    self.bodies.len()
+                ),
+            });
+        }
+        ids.iter()
+            .zip(&self.bodies)
+            .map(|(&id, meshing)| {
+                let size = meshing.factor * n;
+                let body_seed = seed
+                    .wrapping_add(2 * size as u64)
+                    .wrapping_add(id.index() as u64);
+                meshing
+                    .family
+                    .generate(&exact.domain(id), size, body_seed)
+                    .map_err(|source| VerifyError::Mesh {
+                        case: exact.name().to_string(),
+                        body: id.index() + 1,
+                        family: meshing.family.to_string(),
+                        n: size,
+                        source: Box::new(source),
+                    })
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for MeshPairing {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, body) in self.bodies.iter().enumerate() {
+            if k > 0 {
+                f.write_str("/")?;
+            }
+            write!(f, "{}", body.family)?;
+            if body.factor != 1 {
+                write!(f, "*{}", body.factor)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for MeshPairing {
+    type Err = VerifyError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let invalid = |reason: String| VerifyError::InvalidSetting {
+            reason: format!("mesh pairing '{s}': {reason}"),
+        };
+        let bodies = s
+            .split('/')
+            .map(|body| {
+                let (family, factor) = match body.split_once('*') {
+                    Some((family, factor)) => {
+                        let factor: usize = factor.trim().parse().map_err(|_| {
+                            invalid(format!("size factor '{factor}' is not a positive integer"))
+                        })?;
+                        (family, factor)
+                    }
+                    None => (body, 1),
+                };
+                if factor == 0 {
+                    return Err(invalid("a size factor must be at least 1".to_string()));
+                }
+                let family: MeshFamily = family
+                    .parse()
+                    .map_err(|e: vem_mesh::MeshError| invalid(e.to_string()))?;
+                Ok(BodyMeshing { family, factor })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        if bodies.len() > 2 {
+            return Err(invalid(format!("{} bodies; at most two", bodies.len())));
+        }
+        Ok(Self { bodies })
+    }
+}
+
+/// The solver of the contact problems of a study (elasticity cases always use the sparse
+/// Cholesky solver).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SolverChoice {
+    /// The exact QP solver (Clarabel) with these settings.
+    Exact(ExactSettings),
+    /// The penalty solver with these settings.
+    Penalty(PenaltySettings),
+}
+
+impl SolverChoice {
+    /// "exact" or "penalty".
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolverChoice::Exact(_) => "exact",
+            SolverChoice::Penalty(_) => "penalty",
+        }
+    }
+
+    /// A fresh solver.
+    pub fn solver(&self) -> Box<dyn ContactSolver> {
+        match *self {
+            SolverChoice::Exact(settings) => Box::new(ExactSolver::new(settings)),
+            SolverChoice::Penalty(settings) => Box::new(PenaltySolver::new(settings)),
+        }
+    }
+}
+
+impl Default for SolverChoice {
+    /// The exact solver with its default settings.
+    fn default() -> Self {
+        SolverChoice::Exact(ExactSettings::default())
+    }
+}
+
+/// What a study must show.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Expectation {
+    /// Fitted rates at least these (Theorems 4.1/4.2 and the expected L2 rate).
+    Rates {
+        /// Least rate of `E_grad`.
+        grad: f64,
+        /// Least rate of `E_a`.
+        energy: f64,
+        /// Least rate of `E_0`.
+        l2: f64,
+    },
+    /// A patch test: at every size the relative errors `E_grad / |u|_1`, `E_a / |u_I|_a`,
+    /// `E_0 / ||u||_0` are at most `tolerance`.
+    Exact {
+        /// The largest relative error.
+        tolerance: f64,
+    },
+}
+
+impl Expectation {
+    /// The verdict of `manufactured.md`, section 8: `E_grad` and `E_a` rates >= 0.9, `E_0` rate
+    /// >= 1.8.
+    pub const OPTIMAL_RATES: Expectation = Expectation::Rates {
+        grad: 0.9,
+        energy: 0.9,
+        l2: 1.8,
+    };
+}
+
+/// Seconds spent in each stage of one size.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct StageTimes {
+    /// Mesh generation.
+    pub mesh: f64,
+    /// Interface node insertion and assembly.
+    pub assembly: f64,
+    /// Linear or contact solve.
+    pub solve: f64,
+    /// Error measures and diagnostics.
+    pub errors: f64,
+}
+
+impl StageTimes {
+    /// The sum of the stages.
+    pub fn total(&self) -> f64 {
+        self.mesh + self.assembly + self.solve + self.errors
+    }
+}
+
+/// What one size of a study measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SizeRecord {
+    /// The size parameter of each body's mesh.
+    pub n: Vec<usize>,
+    /// The mesh size: the largest polygon diameter over all bodies.
+    pub h: f64,
+    /// Polygons over all bodies.
+    pub polygons: usize,
+    /// Vertices over all bodies (after interface node insertion).
+    pub vertices: usize,
+    /// Unknowns (free degrees of freedom over all bodies).
+    pub dofs: usize,
+    /// The error measures of all bodies combined.
+    pub errors: ErrorNorms,
+    /// The error measures of each body.
+    pub body_errors: Vec<ErrorNorms>,
+    /// Contact cases: the interface diagnostics.
+    pub contact: Option<ContactDiagnostics>,
+    /// Contact cases: iterations of the contact solver.
+    pub solver_iterations: Option<usize>,
+    /// Contact cases: the solver's largest penetration `max (B_N u - g)^+`.
+    pub max_penetration: Option<f64>,
+    /// Contact cases: vertices inserted to make the interface node-to-node.
+    pub inserted_nodes: Option<usize>,
+    /// Time of each stage.
+    pub times: StageTimes,
+}
+
+/// Rates fitted by least squares to `log error = rate log h + c` over the finest sizes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Rates {
+    /// Rate of `E_grad` (`None` when undefined: fewer than two sizes or a zero error).
+    pub grad: Option<f64>,
+    /// Rate of `E_a`.
+    pub energy: Option<f64>,
+    /// Rate of `E_0`.
+    pub l2: Option<f64>,
+    /// How many of the finest sizes were fitted.
+    pub fitted: usize,
+}
+
+/// Whether a study showed what was expected.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Verdict {
+    /// True when nothing falls short.
+    pub passed: bool,
+    /// What falls short, one line each.
+    pub shortfalls: Vec<String>,
+}
+
+/// The result of a study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudyResult {
+    /// The case's name.
+    pub case: String,
+    /// "frictionless", "tresca" or "elasticity".
+    pub law: String,
+    /// The meshing ([`MeshPairing`]'s `Display` form, e.g. "quads/quads*3").
+    pub pairing: String,
+    /// A readable form of the meshing ([`MeshPairing::describe`]).
+    pub pairing_label: String,
+    /// A file-name friendly form ([`MeshPairing::slug`]).
+    pub slug: String,
+    /// The contact solver ("exact", "penalty"; unused by elasticity cases).
+    pub solver: String,
+    /// The element space's name.
+    pub element: String,
+    /// The Lamé parameters `(lambda, mu)`.
+    pub lame: (f64, f64),
+    /// The base seed of the random mesh families.
+    pub seed: u64,
+    /// One record per size, coarse to fine.
+    pub records: Vec<SizeRecord>,
+    /// The fitted rates.
+    pub rates: Rates,
+    /// What was expected.
+    pub expectation: Expectation,
+    /// Whether it was met.
+    pub verdict: Verdict,
+    /// Wall-clock seconds of the whole study.
+    pub seconds: f64,
+}
+
+impl StudyResult {
+    /// A title such as "M1 (frictionless) on quads/quads (n/3n)".
+    pub fn title(&self) -> String {
+        format!("{} ({}) on {}", self.case, self.law, self.pairing_label)
+    }
+
+    /// The record of the finest size.
+    pub fn finest(&self) -> Option<&SizeRecord> {
+        self.records.last()
+    }
+}
+
+/// The least-squares slope of `log e` against `log h`: the observed convergence rate. `None`
+/// for fewer than two points, a non-positive or non-finite value, or equal mesh sizes.
+///
+/// ```
+/// use vem_verify::study::fitted_rate;
+/// let h = [0.5, 0.25, 0.125];
+/// let e: Vec<f64> = h.iter().map(|h: &f64| 3.0 * h.powi(2)).collect();
+/// assert!((fitted_rate(&h, &e).unwrap() - 2.0).abs() < 1e-12);
+/// assert_eq!(fitted_rate(&h, &[1.0, 0.0, 1.0]), None);
+/// ```
+pub fn fitted_rate(h: &[f64], e: &[f64]) -> Option<f64> {
+    if h.len() != e.len() || h.len() < 2 {
+        return None;
+    }
+    let valid = |v: &f64| v.is_finite() && *v > 0.0;
+    if !(h.iter().all(valid) && e.iter().all(valid)) {
+        return None;
+    }
+    let x: Vec<f64> = h.iter().map(|v| v.ln()).collect();
+    let y: Vec<f64> = e.iter().map(|v| v.ln()).collect();
+    let m = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / m, y.iter().sum::<f64>() / m);
+    let sxx: f64 = x.iter().map(|x| (x - mx).powi(2)).sum();
+    let sxy: f64 = x.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The rate between each pair of successive sizes (`None` before the first, or where
+/// undefined).
+pub fn successive_rates(h: &[f64], e: &[f64]) -> Vec<Option<f64>> {
+    (0..h.len().min(e.len()))
+        .map(|k| {
+            if k == 0 {
+                None
+            } else {
+                fitted_rate(&h[k - 1..=k], &e[k - 1..=k])
+            }
+        })
+        .collect()
+}
+
+/// A convergence study of one exact solution on one mesh pairing (see the module docs).
+#[derive(Clone)]
+pub struct Study {
+    exact: Arc<dyn ExactSolution>,
+    pairing: MeshPairing,
+    sizes: Vec<usize>,
+    solver: SolverChoice,
+    settings: ProblemSettings,
+    seed: u64,
+    fitted: usize,
+    expectation: Expectation,
+}
+
+impl fmt::Debug for Study {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Study")
+            .field("case", &self.exact.name())
+            .field("pairing", &self.pairing.to_string())
+            .field("sizes", &self.sizes)
+            .field("solver", &self.solver)
+            .field("settings", &self.settings)
+            .field("seed", &self.seed)
+            .field("fitted", &self.fitted)
+            .field("expectation", &self.expectation)
+            .finish()
+    }
+}
+
+impl Study {
+    /// Default sizes: n = 4, 8, 16, 32.
+    pub const DEFAULT_SIZES: [usize; 4] = [4, 8, 16, 32];
+    /// Default number of finest sizes the rates are fitted over.
+    pub const DEFAULT_FITTED: usize = 3;
+    /// Default base seed of the random mesh families.
+    pub const DEFAULT_SEED: u64 = 2016;
+
+    /// A study of `exact` meshed by `pairing`, with the default sizes, the exact contact solver,
+    /// the default problem settings, rates fitted over the last three sizes and
+    /// [`Expectation::OPTIMAL_RATES`].
+    pub fn new(exact: Arc<dyn ExactSolution>, pairing: MeshPairing) -> Self {
+        Self {
+            exact,
+            pairing,
+            sizes: Self::DEFAULT_SIZES.to_vec(),
+            solver: SolverChoice::default(),
+            settings: ProblemSettings::default(),
+            seed: Self::DEFAULT_SEED,
+            fitted: Self::DEFAULT_FITTED,
+            expectation: Expectation::OPTIMAL_RATES,
+        }
+    }
+
+    /// The sizes `n`, coarse to fine.
+    pub fn sizes(mut self, sizes: impl Into<Vec<usize>>) -> Self {
+        self.sizes = sizes.into();
+        self
+    }
+
+    /// The contact solver.
+    pub fn solver(mut self, solver: SolverChoice) -> Self {
+        self.solver = solver;
+        self
+    }
+
+    /// The element space and traction quadrature.
+    pub fn settings(mut self, settings: ProblemSettings) -> Self {
+        self.settings = settings;
+        self
+    }
+
+    /// The base seed of the random mesh families.
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Fit the rates over the `fitted` finest sizes (at least two).
+    pub fn fitted(mut self, fitted: usize) -> Self {
+        self.fitted = fitted;
+        self
+    }
+
+    /// What the study must show.
+    pub fn expect(mut self, expectation: Expectation) -> Self {
+        self.expectation = expectation;
+        self
+    }
+
+    /// The exact solution.
+    pub fn exact(&self) -> &Arc<dyn ExactSolution> {
+        &self.exact
+    }
+
+    /// The mesh pairing.
+    pub fn pairing(&self) -> &MeshPairing {
+        &self.pairing
+    }
+
+    /// The sizes.
+    pub fn size_list(&self) -> &[usize] {
+        &self.sizes
+    }
+
+    /// A title such as "M1 (frictionless) on quads/quads (n/3n)".
+    pub fn title(&self) -> String {
+        format!(
+            "{} ({}) on {}",
+            self.exact.name(),
+            self.law(),
+            self.pairing.describe()
+        )
+    }
+
+    fn law(&self) -> &'static str {
+        match self.exact.contact().map(|c| c.law()) {
+            None => "elasticity",
+            Some(ContactLaw::Frictionless) => "frictionless",
+            Some(ContactLaw::Tresca { .. }) => "tresca",
+        }
+    }
+
+    /// Checks the settings: at least one size, sizes positive and increasing, at least two
+    /// fitted sizes, as many meshings as bodies, positive size factors.
+    ///
+    /// # Errors
+    /// [`VerifyError::InvalidSetting`] or [`VerifyError::Case`] naming the first problem.
+    pub fn validate(&self) -> Result<(), VerifyError> {
+        let invalid = |reason: String| {
+            Err(VerifyError::InvalidSetting {
+                reason: format!("study of {}: {reason}", self.exact.name()),
+            })
+        };
+        if self.sizes.is_empty() {
+            return invalid("no sizes".to_string());
+        }
+        if self.sizes[0] == 0 || self.sizes.windows(2).any(|w| w[1] <= w[0]) {
+            return invalid(format!(
+                "sizes {:?} must be positive and increasing",
+                self.sizes
+            ));
+        }
+        if self.fitted < 2 {
+            return invalid(format!(
+                "rates need at least 2 fitted sizes, got {}",
+                self.fitted
+            ));
+        }
+        if self.pairing.bodies.iter().any(|b| b.factor == 0) {
+            return invalid(format!("pairing '{}' has a zero size factor", self.pairing));
+        }
+        if self.pairing.bodies.len() != self.exact.bodies().len() {
+            return Err(VerifyError::Case {
+                case: self.exact.name().to_string(),
+                reason: format!(
+                    "{} bodies but the mesh pairing '{}' describes {}",
+                    self.exact.bodies().len(),
+                    self.pairing,
+                    self.pairing.bodies.len()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Measures one size `n`.
+    ///
+    /// # Errors
+    /// Mesh generation, assembly, solve or measurement failures.
+    pub fn run_size(&self, n: usize) -> Result<SizeRecord, VerifyError> {
+        let exact = &*self.exact;
+        let start = Instant::now();
+        let meshes = self.pairing.generate(exact, n, self.seed)?;
+        let mesh_time = start.elapsed().as_secs_f64();
+        let problem = DiscreteProblem::new(Arc::clone(&self.exact), meshes, &self.settings)?;
+        let h = problem.mesh_size();
+        let mut solver = self.solver.solver();
+        let solution = problem.solve(&mut *solver)?;
+        let start = Instant::now();
+        let body_errors = solution.errors(exact)?;
+        let contact = match (exact.contact(), &solution.interface) {
+            (Some(contact), Some(interface)) => {
+                Some(contact_diagnostics(contact, &interface.nodes))
+            }
+            _ => None,
+        };
+        let errors_time = start.elapsed().as_secs_f64();
+        let interface = solution.interface.as_ref();
+        Ok(SizeRecord {
+            n: self.pairing.bodies.iter().map(|b| b.factor * n).collect(),
+            h,
+            polygons: solution
+                .bodies
+                .iter()
+                .map(|b| b.body.mesh().n_polygons())
+                .sum(),
+            vertices: solution
+                .bodies
+                .iter()
+                .map(|b| b.body.mesh().n_vertices())
+                .sum(),
+            dofs: solution
+                .bodies
+                .iter()
+                .map(|b| b.system.dofs().n_free())
+                .sum(),
+            errors: ErrorNorms::combine(&body_errors),
+            body_errors,
+            contact,
+            solver_iterations: interface.map(|i| i.report.iterations),
+            max_penetration: interface.map(|i| i.report.residuals.max_penetration),
+            inserted_nodes: interface.map(|i| i.inserted_nodes),
+            times: StageTimes {
+                mesh: mesh_time,
+                assembly: solution.assembly_time.as_secs_f64(),
+                solve: solution.solve_time.as_secs_f64(),
+                errors: errors_time,
+            },
+        })
+    }
+
+    /// Runs every size.
+    ///
+    /// # Errors
+    /// Invalid settings, or the first failure of [`run_size`](Self::run_size).
+    pub fn run(&self) -> Result<StudyResult, VerifyError> {
+        self.run_with(|_| {})
+    }
+
+    /// Runs every size, calling `progress` with each record as soon as it is measured.
+    ///
+    /// # Errors
+    /// Invalid settings, or the first failure of [`run_size`](Self::run_size).
+    pub fn run_with(
+        &self,
+        mut progress: impl FnMut(&SizeRecord),
+    ) -> Result<StudyResult, VerifyError> {
+        self.validate()?;
+        let start = Instant::now();
+        let mut records = Vec::with_capacity(self.sizes.len());
+        for &n in &self.sizes {
+            let record = self.run_size(n)?;
+            progress(&record);
+            records.push(record);
+        }
+        let rates = fit_rates(&records, self.fitted);
+        let verdict = judge(&self.expectation, &records, &rates);
+        let lame = self.exact.lame();
+        Ok(StudyResult {
+            case: self.exact.name().to_string(),
+            law: self.law().to_string(),
+            pairing: self.pairing.to_string(),
+            pairing_label: self.pairing.describe(),
+            slug: self.pairing.slug(),
+            solver: self.solver.name().to_string(),
+            element: self.settings.element.name().to_string(),
+            lame: (lame.lambda(), lame.mu()),
+            seed: self.seed,
+            records,
+            rates,
+            expectation: self.expectation,
+            verdict,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Rates over the `fitted` finest records (all of them if fewer).
+fn fit_rates(records: &[SizeRecord], fitted: usize) -> Rates {
+    let first = records.len().saturating_sub(fitted);
+    let tail = &records[first..];
+    let h: Vec<f64> = tail.iter().map(|r| r.h).collect();
+    let rate = |f: fn(&ErrorNorms) -> f64| {
+        let e: Vec<f64> = tail.iter().map(|r| f(&r.errors)).collect();
+        fitted_rate(&h, &e)
+    };
+    Rates {
+        grad: rate(|e| e.grad),
+        energy: rate(|e| e.energy),
+        l2: rate(|e| e.l2),
+        fitted: tail.len(),
+    }
+}
+
+/// The verdict of `records` with fitted `rates` against `expectation`.
+fn judge(expectation: &Expectation, records: &[SizeRecord], rates: &Rates) -> Verdict {
+    let mut shortfalls = Vec::new();
+    match *expectation {
+        Expectation::Rates { grad, energy, l2 } => {
+            for (name, rate, least) in [
+                ("E_grad", rates.grad, grad),
+                ("E_a", rates.energy, energy),
+                ("E_0", rates.l2, l2),
+            ] {
+                match rate {
+                    Some(r) if r >= least => {}
+                    Some(r) => shortfalls.push(format!("{name} rate {r:.3} < {least}")),
+                    None => shortfalls.push(format!("{name} rate undefined")),
+                }
+            }
+        }
+        Expectation::Exact { tolerance } => {
+            for record in records {
+                let e = &record.errors;
+                for (name, value) in [
+                    ("E_grad/|u|_1", e.relative_grad()),
+                    ("E_a/|u_I|_a", e.relative_energy()),
+                    ("E_0/||u||_0", e.relative_l2()),
+                ] {
+                    if value.is_nan() || value > tolerance {
+                        shortfalls.push(format!(
+                            "n = {:?}: {name} = {value:.3e} > {tolerance:e}",
+                            record.n
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Verdict {
+        passed: shortfalls.is_empty(),
+        shortfalls,
+    }
+}
+
+/// The bodies of `exact` with the size factor 1, each meshed by `family` (a convenience for
+/// one-family studies of one- or two-body cases).
+pub fn same_family(exact: &dyn ExactSolution, family: MeshFamily) -> MeshPairing {
+    MeshPairing {
+        bodies: exact
+            .bodies()
+            .iter()
+            .map(|_: &BodyId| BodyMeshing { family, factor: 1 })
+            .collect(),
+    }
+}
