@@ -178,7 +178,11 @@ pub fn summary_markdown(studies: &[StudyResult]) -> String {
     );
     for study in studies {
         let sizes = match (study.records.first(), study.records.last()) {
-            (Some(a), Some(b)) => format!("{}..{}", a.n[0], b.n[0]),
+            (Some(a), Some(b)) => {
+                let join =
+                    |n: &[usize]| n.iter().map(usize::to_string).collect::<Vec<_>>().join("/");
+                format!("{}..{}", join(&a.n), join(&b.n))
+            }
             _ => "—".to_string(),
         };
         let contact = study.finest().and_then(|r| r.contact.as_ref());

@@ -1,0 +1,293 @@
+//! `cargo xtask convergence`: the convergence studies of the project (Theorems 4.1 and 4.2 of
+//! the paper, `contact-vem.md` section 3; measurement as in `manufactured.md` section 8).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use vem_contact::{ExactSettings, PenaltySettings};
+use vem_verify::exact::{case_by_name, ExactSolution, Lame};
+use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
+use vem_verify::study::{MeshPairing, SolverChoice, Study, StudyResult};
+
+/// Options of `cargo xtask convergence`.
+#[derive(Debug, Args)]
+pub struct ConvergenceArgs {
+    /// Run a reduced set of smaller sizes (a minute or two, for CI).
+    #[arg(long)]
+    quick: bool,
+    /// Where the JSON, Markdown and SVG files are written.
+    #[arg(long, default_value = "target/convergence")]
+    out: PathBuf,
+    /// The contact solver.
+    #[arg(long, value_enum, default_value_t = SolverArg::Exact)]
+    solver: SolverArg,
+    /// Run only the studies of these cases (M1, M2, E1); repeatable.
+    #[arg(long = "case", value_name = "CASE")]
+    cases: Vec<String>,
+}
+
+/// The contact solver of the studies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum SolverArg {
+    /// The exact QP (Clarabel interior point).
+    Exact,
+    /// The penalty method (semismooth Newton).
+    Penalty,
+}
+
+impl SolverArg {
+    fn choice(self) -> SolverChoice {
+        match self {
+            SolverArg::Exact => SolverChoice::Exact(ExactSettings::default()),
+            SolverArg::Penalty => SolverChoice::Penalty(PenaltySettings::default()),
+        }
+    }
+}
+
+/// One planned study.
+struct Planned {
+    case: &'static str,
+    pairing: &'static str,
+    sizes: &'static [usize],
+}
+
+/// Mesh pairings (body 1 / body 2) of the contact studies: matching structured quads,
+/// non-matching 1:3 quads, Voronoi over quads, non-convex over triangles, perturbed quads over
+/// hexagons.
+const CONTACT_PAIRINGS: [&str; 5] = [
+    "quads/quads",
+    "quads/quads*3",
+    "voronoi/quads",
+    "nonconvex/triangles",
+    "perturbed/hexagons",
+];
+/// Mesh families of the elasticity study E1.
+const ELASTICITY_FAMILIES: [&str; 3] = ["quads", "voronoi", "perturbed"];
+
+/// Sizes n of the default run (body 2 of the 1:3 pairing has 3n cells across).
+const SIZES: &[usize] = &[8, 16, 32, 64, 128];
+/// Sizes of the 1:3 pairing in the default run (its finest mesh has 3 x 64 = 192 cells across).
+const SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32, 64];
+/// Sizes of `--quick`.
+const QUICK_SIZES: &[usize] = &[8, 16, 32];
+/// Sizes of the 1:3 pairing with `--quick`.
+const QUICK_SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32];
+
+fn plan(quick: bool) -> Vec<Planned> {
+    let sizes_for = |pairing: &str| match (quick, pairing.contains("*3")) {
+        (false, false) => SIZES,
+        (false, true) => SIZES_ONE_TO_THREE,
+        (true, false) => QUICK_SIZES,
+        (true, true) => QUICK_SIZES_ONE_TO_THREE,
+    };
+    let mut studies = Vec::new();
+    for case in ["M1", "M2"] {
+        for pairing in CONTACT_PAIRINGS {
+            studies.push(Planned {
+                case,
+                pairing,
+                sizes: sizes_for(pairing),
+            });
+        }
+    }
+    for pairing in ELASTICITY_FAMILIES {
+        studies.push(Planned {
+            case: "E1",
+            pairing,
+            sizes: sizes_for(pairing),
+        });
+    }
+    studies
+}
+
+/// What the studies measure, for the head of the Markdown report.
+const INTRODUCTION: &str = r#"# Convergence of the lowest-order VEM for two-body contact
+
+The paper proves (Theorems 4.1 and 4.2, `contact-vem.md` section 3) that the lowest-order
+virtual element method converges at the optimal rate O(h) in the energy norm for the contact
+of two elastic bodies, frictionless (P1) and with Tresca friction (P2), on meshes that do not
+match on the contact interface. This report checks it with manufactured solutions
+(`manufactured.md`):
+
+- **M1** (Theorem 4.1): frictionless; contact on [0, x_c), separation on (x_c, 1],
+  x_c = (sqrt 5 - 1)/2.
+- **M2** (Theorem 4.2): Tresca with g_F = 1/4; contact everywhere, stick on [0, x_s), slip on
+  (x_s, 1], x_s = sqrt 2 / 2.
+- **E1**: elasticity alone (one body clamped all round), the reference for the rates.
+
+Body 1 = (0,1) x (0,1) on top, body 2 = (0,1) x (-1,0) below, Gamma_C = (0,1) x {0};
+lambda = 2, mu = 1 (plane strain). Each body is meshed by its own family; the interface nodes
+of each side are inserted into the other side's boundary polygons, so the contact constraint
+is node-to-node (`vem-contact`). The contact problem is solved by the exact QP (Clarabel).
+
+**Measured** (per body, then the square root of the sum of squares over the bodies;
+`vem_verify::norms`):
+
+- E_grad = ||grad(u - Pi u_h)||, broken over the elements (Pi = the energy projection);
+- E_a = a_h(u_I - u_h, u_I - u_h)^(1/2), u_I the nodal interpolant, a_h the assembled VEM form;
+- E_0 = ||u - Pi u_h||_0;
+
+integrals on a sub-triangulation of every polygon with a degree-5 rule. h is the largest
+element diameter over both bodies. Contact columns: ΔN = |sum of nodal contact forces +
+int sigma_nu ds|, ΔT = |sum of nodal friction forces - int sigma_1tau ds|, the discrete switch
+point (last active node for M1, first slipping node for M2) with its distance to x_c or x_s,
+and the number of interface nodes whose status contradicts the sets that must hold
+(M1: active for x <= x_c - 0.2, open for x >= x_c + 0.2; M2: stick for x <= x_s - 0.35, slip
+for x >= x_s + 0.2).
+
+**Expected**: E_grad and E_a at least first order (E_a may superconverge on structured
+meshes), E_0 second order (expected, not proved for contact). Verdict per study: the
+least-squares rates over the three finest sizes are E_grad >= 0.9, E_a >= 0.9, E_0 >= 1.8.
+The switch points are reported, not asserted: the transitions are flat by design
+(`manufactured.md` section 8), so nodes just past them may take either status.
+
+**Reproduce**: `cargo xtask convergence` (this report, about the time given below on 2 cores),
+`cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default `target/convergence`),
+`--solver penalty`, `--case M1`. One study of your own: `cargo run --release -p vem-verify
+--example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
+`cargo run --release -p vem-verify --example custom_solution`.
+"#;
+
+/// Runs the planned studies; `Ok(true)` when every study passes.
+pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    let start = Instant::now();
+    let wanted: Vec<String> = args.cases.iter().map(|c| c.to_ascii_uppercase()).collect();
+    let planned: Vec<Planned> = plan(args.quick)
+        .into_iter()
+        .filter(|p| wanted.is_empty() || wanted.iter().any(|c| c == p.case))
+        .collect();
+    if planned.is_empty() {
+        return Err(format!(
+            "no study of the cases {:?}; the cases are M1, M2, E1",
+            args.cases
+        )
+        .into());
+    }
+    let plots = args.out.join("convergence");
+    std::fs::create_dir_all(&plots)
+        .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;
+    let solver = args.solver.choice();
+    let bars = MultiProgress::new();
+    let style = ProgressStyle::with_template("{prefix:<40} [{bar:30}] {elapsed:>4} {msg}")?
+        .progress_chars("=> ");
+    let mut results: Vec<StudyResult> = Vec::with_capacity(planned.len());
+    for p in &planned {
+        let exact: Arc<dyn ExactSolution> = case_by_name(p.case, Lame::default())?.into();
+        let pairing: MeshPairing = p.pairing.parse()?;
+        let study = Study::new(exact, pairing.clone())
+            .sizes(p.sizes)
+            .solver(solver);
+        // Work grows like the number of cells: weight each size by it.
+        let weight = |n: usize| -> u64 {
+            pairing
+                .bodies()
+                .iter()
+                .map(|b| ((b.factor * n) as u64).pow(2))
+                .sum()
+        };
+        let bar = bars.add(ProgressBar::new(p.sizes.iter().map(|&n| weight(n)).sum()));
+        bar.set_style(style.clone());
+        bar.set_prefix(study.title());
+        let result = study.run_with(|record| {
+            bar.inc(weight(record.n[0] / pairing.bodies()[0].factor));
+            bar.set_message(format!("n = {:?}", record.n));
+        })?;
+        bar.finish_with_message(if result.verdict.passed {
+            "pass"
+        } else {
+            "FAIL"
+        });
+        let plot = plots.join(format!("{}-{}.svg", result.case, result.slug));
+        write_plot(&plot, &result)?;
+        bars.suspend(|| println!("{}", study_markdown(&result)));
+        results.push(result);
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let passed = results.iter().all(|r| r.verdict.passed);
+    let summary = summary_markdown(&results);
+    println!("{summary}");
+    println!(
+        "{} studies in {seconds:.0} s: {}",
+        results.len(),
+        if passed {
+            "all pass"
+        } else {
+            "SOME FALL SHORT"
+        }
+    );
+    write_text(
+        args.out.join("convergence.md"),
+        &markdown(&results, args, seconds),
+    )?;
+    write_json(
+        args.out.join("convergence.json"),
+        &serde_json_report(&results, args, seconds),
+    )?;
+    eprintln!(
+        "wrote {}/convergence.md, convergence.json and convergence/*.svg",
+        args.out.display()
+    );
+    Ok(passed)
+}
+
+/// The whole Markdown report: introduction, summary, one section per case with its plots.
+fn markdown(results: &[StudyResult], args: &ConvergenceArgs, seconds: f64) -> String {
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    let mut out = String::from(INTRODUCTION);
+    out.push_str(&format!(
+        "\n## Summary\n\nRun: `cargo xtask convergence{}{}`, {} studies in {seconds:.0} s on {threads} \
+         threads, contact solver: {}.\n\n",
+        if args.quick { " --quick" } else { "" },
+        if args.solver == SolverArg::Penalty { " --solver penalty" } else { "" },
+        results.len(),
+        results.first().map_or("exact", |r| r.solver.as_str()),
+    ));
+    out.push_str(&summary_markdown(results));
+    let mut case = "";
+    for result in results {
+        if result.case != case {
+            case = &result.case;
+            out.push_str(&format!("\n## {case}\n"));
+        }
+        out.push('\n');
+        out.push_str(&study_markdown(result));
+        out.push_str(&format!(
+            "\n![{}](convergence/{}-{}.svg)\n",
+            result.title(),
+            result.case,
+            result.slug
+        ));
+    }
+    out
+}
+
+/// The JSON document: run metadata and every study.
+fn serde_json_report<'a>(
+    results: &'a [StudyResult],
+    args: &ConvergenceArgs,
+    seconds: f64,
+) -> JsonReport<'a> {
+    JsonReport {
+        quick: args.quick,
+        solver: match args.solver {
+            SolverArg::Exact => "exact",
+            SolverArg::Penalty => "penalty",
+        },
+        seconds,
+        passed: results.iter().all(|r| r.verdict.passed),
+        studies: results,
+    }
+}
+
+/// The JSON form of a run.
+#[derive(serde::Serialize)]
+struct JsonReport<'a> {
+    quick: bool,
+    solver: &'static str,
+    seconds: f64,
+    passed: bool,
+    studies: &'a [StudyResult],
+}
