@@ -182,7 +182,7 @@ impl Model {
                                 Component::Y => "y",
                                 Component::Both => "x, y",
                             },
-                            force: [r.force.x, r.force.y],
+                            force: [tidy(r.force.x), tidy(r.force.y)],
                         })
                         .collect(),
                 }
@@ -229,9 +229,9 @@ impl Model {
                         solver_iterations: fp.solver_iterations,
                     }),
                     resultants: Resultants {
-                        normal: result.normal_resultant(),
-                        tangential: result.tangential_resultant(),
-                        force_on_body_a: [force.x, force.y],
+                        normal: tidy(result.normal_resultant()),
+                        tangential: tidy(result.tangential_resultant()),
+                        force_on_body_a: [tidy(force.x), tidy(force.y)],
                     },
                     nodes: NodeCounts {
                         total: result.nodes.len(),
@@ -279,6 +279,12 @@ impl Outcome {
         self.summary.times.output_s = output.as_secs_f64();
         self.summary.times.total_s = self.started.elapsed().as_secs_f64();
     }
+}
+
+/// `value` with a negative zero turned into 0 (a frictionless law's tangential resultant
+/// sums `-0.0` terms), so that reports do not print "-0".
+pub(crate) fn tidy(value: f64) -> f64 {
+    value + 0.0
 }
 
 /// Everything `vem run` reports, printed as text and written as `summary.json`.

@@ -9,7 +9,7 @@ use vem_contact::{InterfaceNode, Obstacle};
 use vem_mesh::io::{write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions, VtuData};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
-use crate::outcome::SolvedBody;
+use crate::outcome::{tidy, SolvedBody};
 use crate::plot;
 use crate::{CliError, Outcome};
 
@@ -258,17 +258,16 @@ fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Res
         writeln!(
             w,
             "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
-            // `+ 0.0` writes a negative zero as 0.
-            n.position.x + 0.0,
-            n.position.y + 0.0,
-            n.normal.x + 0.0,
-            n.normal.y + 0.0,
-            n.initial_gap + 0.0,
-            n.normal_jump + 0.0,
-            n.normal_force + 0.0,
-            n.pressure + 0.0,
-            n.tangential_force + 0.0,
-            n.slip + 0.0,
+            tidy(n.position.x),
+            tidy(n.position.y),
+            tidy(n.normal.x),
+            tidy(n.normal.y),
+            tidy(n.initial_gap),
+            tidy(n.normal_jump),
+            tidy(n.normal_force),
+            tidy(n.pressure),
+            tidy(n.tangential_force),
+            tidy(n.slip),
             n.status.name()
         )?;
     }
@@ -366,8 +365,10 @@ fn disc(centre: Point, radius: f64) -> Option<Mesh> {
     Mesh::from_polygons(vertices, &[(0..SIDES).collect()], vec![part]).ok()
 }
 
-/// The pieces of the polyline `points` inside the box `lo`, `hi`, joined in order.
+/// The pieces of the polyline `points` inside the box `lo`, `hi`, joined in order (points
+/// closer than 1e-9 of the box's size to the previous one are dropped).
 fn clip_polyline(points: &[Point], lo: Point, hi: Point) -> Vec<Point> {
+    let tolerance = 1e-9 * (hi - lo).norm();
     let mut kept: Vec<Point> = Vec::new();
     for w in points.windows(2) {
         let (a, d) = (w[0], w[1] - w[0]);
@@ -392,7 +393,7 @@ fn clip_polyline(points: &[Point], lo: Point, hi: Point) -> Vec<Point> {
         if s0 < s1 {
             for s in [s0, s1] {
                 let x = a + s * d;
-                if kept.last().is_none_or(|last| (last - x).norm() > 0.0) {
+                if kept.last().is_none_or(|last| (last - x).norm() > tolerance) {
                     kept.push(x);
                 }
             }
@@ -428,6 +429,25 @@ mod tests {
         let area = mesh.area(0);
         let expected = (1.0 + 2.0 * 0.15 * 2f64.sqrt()) * 0.04 * 2f64.sqrt();
         assert!((area - expected).abs() < 1e-12, "{area} vs {expected}");
+    }
+
+    #[test]
+    fn circle_obstacle_near_the_bodies_is_an_arc_band() {
+        let disc = Obstacle::Circle {
+            centre: Point::new(0.0, -1.0),
+            radius: 1.0,
+        };
+        let mesh = obstacle_outline(&disc, Point::new(-1.0, 0.0), Point::new(1.0, 0.5)).unwrap();
+        // The surface vertices lie on the circle (the two clipped ends on a chord of the
+        // 64-gon, within its sagitta 3e-4), the band inside the disc.
+        for v in mesh.part_vertices("surface").unwrap() {
+            let r = (mesh.vertex(v) - Point::new(0.0, -1.0)).norm();
+            assert!(r <= 1.0 + 1e-12 && r > 1.0 - 3e-4, "{r}");
+        }
+        assert!(mesh
+            .vertices()
+            .iter()
+            .all(|p| (p - Point::new(0.0, -1.0)).norm() <= 1.0 + 1e-12));
     }
 
     #[test]
