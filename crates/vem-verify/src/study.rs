@@ -270,7 +270,8 @@ impl Default for SolverChoice {
     }
 }
 
-/// What a study must show.
+/// What a study must show (for contact cases also: on the finest mesh no interface node
+/// contradicts [`ContactSolution::expected_sets`](crate::ContactSolution::expected_sets)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Expectation {
     /// Fitted rates at least these (Theorems 4.1/4.2 and the expected L2 rate).
@@ -740,7 +741,8 @@ fn fit_rates(records: &[SizeRecord], fitted: usize) -> Rates {
     }
 }
 
-/// The verdict of `records` with fitted `rates` against `expectation`.
+/// The verdict of `records` with fitted `rates` against `expectation`, plus, for contact
+/// cases, no interface node contradicting the expected sets on the finest mesh.
 fn judge(expectation: &Expectation, records: &[SizeRecord], rates: &Rates) -> Verdict {
     let mut shortfalls = Vec::new();
     match *expectation {
@@ -773,6 +775,21 @@ fn judge(expectation: &Expectation, records: &[SizeRecord], rates: &Rates) -> Ve
                     }
                 }
             }
+        }
+    }
+    // The statuses away from the switch points must be right on the finest mesh (they held
+    // from n = 32 on in the prototype of manufactured.md, section 8).
+    if let Some(finest) = records.last() {
+        if let Some(violation) = finest.contact.iter().flat_map(|c| &c.set_violations).next() {
+            let count = finest
+                .contact
+                .as_ref()
+                .map_or(0, |c| c.set_violations.len());
+            shortfalls.push(format!(
+                "n = {:?}: {count} interface node(s) contradict the expected sets, first at \
+                 x = {:.4} (expected {}, found {})",
+                finest.n, violation.x, violation.expected, violation.found
+            ));
         }
     }
     Verdict {

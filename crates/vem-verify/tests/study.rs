@@ -175,6 +175,38 @@ fn contact_diagnostics_of_m1_and_m2_converge() {
     }
 }
 
+/// On the coarse 8 x 8 quads the flat M1 transition leaves the node at x = 7/8 (beyond
+/// x_c + 0.2) in contact: the verdict names it.
+#[test]
+fn a_node_contradicting_the_expected_sets_fails_the_verdict() {
+    let result = Study::new(case("M1"), "quads/quads".parse().unwrap())
+        .sizes([4, 8])
+        .run()
+        .unwrap();
+    let violations = &result
+        .finest()
+        .unwrap()
+        .contact
+        .as_ref()
+        .unwrap()
+        .set_violations;
+    assert_eq!(violations.len(), 1, "{violations:?}");
+    assert_eq!(
+        (violations[0].x, violations[0].expected.as_str()),
+        (0.875, "open")
+    );
+    assert!(!result.verdict.passed);
+    assert!(
+        result
+            .verdict
+            .shortfalls
+            .iter()
+            .any(|s| s.contains("expected sets") && s.contains("x = 0.8750")),
+        "{:?}",
+        result.verdict
+    );
+}
+
 #[test]
 fn rates_of_exact_power_laws() {
     let h = [0.4, 0.2, 0.1, 0.05];
