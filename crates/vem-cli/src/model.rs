@@ -514,7 +514,7 @@ fn build_contact(
         _ => return Err(scene.error(Some(spec.body.span()), "incomplete contact pair")),
     };
     let mut problem = problem.with_interface_options(interface_options(scene));
-    if let Some(gap) = spec.gap {
+    if let Some(gap) = spec.gap.as_ref().map(|g| *g.get_ref()) {
         problem = problem.with_initial_gap(move |_| gap);
     }
     Ok(ModelContact {

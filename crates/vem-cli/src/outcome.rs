@@ -52,7 +52,8 @@ impl Model {
     /// Solves the scene: the contact pair with its bodies by the contact library, every other
     /// body as plain elasticity (assembly and sparse Cholesky).
     pub fn solve(&self) -> Result<Outcome, CliError> {
-        let started = Instant::now() - self.mesh_time();
+        let now = Instant::now();
+        let started = now.checked_sub(self.mesh_time()).unwrap_or(now);
         let mut slots: Vec<Option<(ElasticBody, Solution)>> = vec![None; self.bodies().len()];
         let mut times = Times {
             mesh_s: self.mesh_time().as_secs_f64(),

@@ -255,7 +255,7 @@ pub struct ContactSpec {
     pub fixed_point_tolerance: Option<Spanned<f64>>,
     /// Extra constant initial gap added to the geometric one.
     #[serde(default)]
-    pub gap: Option<f64>,
+    pub gap: Option<Spanned<f64>>,
     /// Only points of the two sides closer than this (along the normal) are paired.
     #[serde(default)]
     pub max_distance: Option<Spanned<f64>>,
@@ -699,8 +699,8 @@ impl Scene {
         if let Some(d) = &contact.max_distance {
             self.positive(d, "max_distance")?;
         }
-        if let Some(g) = contact.gap {
-            self.finite(g, contact.body.span(), "the gap")?;
+        if let Some(g) = &contact.gap {
+            self.finite(*g.get_ref(), g.span(), "the gap")?;
         }
         // Solver keys must belong to the chosen solver.
         let solver = contact.solver();
