@@ -615,8 +615,31 @@ pub(crate) fn describe_material(material: &Material) -> String {
         None => "general",
     };
     match young_poisson(material) {
-        Some((e, nu)) => format!("E = {e:.6}, nu = {nu:.6}, {plane}"),
+        Some((e, nu)) => format!("E = {}, nu = {}, {plane}", short(e), short(nu)),
         None => plane.to_string(),
+    }
+}
+
+/// A number to six significant digits without trailing zeros: "100", "0.3", "2.1e11".
+fn short(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 {
+        return "0".into();
+    }
+    let trim = |text: &str| {
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            text.to_string()
+        }
+    };
+    if (1e-3..1e6).contains(&magnitude) {
+        let digits = (5 - magnitude.log10().floor() as i32).max(0) as usize;
+        trim(&format!("{value:.digits$}"))
+    } else {
+        let text = format!("{value:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        format!("{}e{exponent}", trim(mantissa))
     }
 }
 
@@ -791,6 +814,17 @@ impl fmt::Display for CheckReport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn short_numbers() {
+        assert_eq!(short(100.00000000000001), "100");
+        assert_eq!(short(0.3), "0.3");
+        assert_eq!(short(0.30000000000000004), "0.3");
+        assert_eq!(short(2.1e11), "2.1e11");
+        assert_eq!(short(-1.5e-7), "-1.5e-7");
+        assert_eq!(short(0.0), "0");
+        assert_eq!(short(123456.7), "123457");
+    }
 
     #[test]
     fn pressure_acts_along_the_inward_normal_of_each_edge() {

@@ -601,10 +601,16 @@ impl fmt::Display for RunSummary {
                     "    {} normal rows, {tangential}, {} vertices inserted",
                     c.normal_rows, c.inserted_nodes
                 )?;
+                // Factorisations are counted by the Cholesky-based solvers only.
+                let factorisations = if c.factorisations > 0 {
+                    format!(", {} factorisations", c.factorisations)
+                } else {
+                    String::new()
+                };
                 writeln!(
                     f,
-                    "    solver {}: {}, {} iterations, {} factorisations",
-                    c.solver, c.status, c.iterations, c.factorisations
+                    "    solver {}: {}, {} iterations{factorisations}",
+                    c.solver, c.status, c.iterations
                 )?;
                 if let Some(fp) = &c.fixed_point {
                     writeln!(
