@@ -189,9 +189,10 @@ impl Outcome {
         let options = SvgOptions {
             width,
             value_range,
-            title: Some(format!(
-                "{}: von Mises stress, displacement x {magnification}",
-                self.summary.title
+            title: Some(picture_title(
+                &self.summary.title,
+                &format!("von Mises stress, displacement x {magnification}"),
+                width,
             )),
             magnification,
             value_label: "von Mises stress".into(),
@@ -199,6 +200,19 @@ impl Outcome {
         };
         write_svg_layers(path, &layers, &options)
     }
+}
+
+/// "<title>: <detail>", the title shortened with an ellipsis so that the line fits a
+/// picture `width` pixels wide (16-pixel sans-serif: about 9 pixels a character).
+fn picture_title(title: &str, detail: &str, width: f64) -> String {
+    let room = ((width - 40.0) / 9.0).max(0.0) as usize;
+    let full = format!("{title}: {detail}");
+    if full.chars().count() <= room {
+        return full;
+    }
+    let keep = room.saturating_sub(detail.chars().count() + 3);
+    let short: String = title.chars().take(keep).collect();
+    format!("{}…: {detail}", short.trim_end())
 }
 
 /// The largest of 1, 2, 5 times a power of ten not above `value` (value > 0).
@@ -405,6 +419,14 @@ fn clip_polyline(points: &[Point], lo: Point, hi: Point) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_titles_are_shortened_to_fit() {
+        assert_eq!(picture_title("Hertz", "stress", 900.0), "Hertz: stress");
+        let title = picture_title(&"a".repeat(200), "von Mises stress", 900.0);
+        assert_eq!(title.chars().count(), (860.0_f64 / 9.0) as usize);
+        assert!(title.ends_with("a…: von Mises stress"), "{title}");
+    }
 
     #[test]
     fn nice_magnifications() {

@@ -151,7 +151,11 @@ pub(crate) fn pressure(
         chart
             .configure_mesh()
             .x_desc(name)
-            .y_desc("pressure, friction traction")
+            .y_desc(if friction.is_some() {
+                "pressure, friction traction"
+            } else {
+                "contact pressure"
+            })
             .light_line_style(WHITE.mix(0.0))
             .draw()?;
         if !hertz_curve.is_empty() {
