@@ -230,7 +230,8 @@ impl Model {
         })
     }
 
-    /// "'disc' part 'arc' against 'block' part 'top'" or "... against a rigid line".
+    /// "body 'disc' part 'arc' against body 'block' part 'top'", or "... against a rigid
+    /// line".
     pub fn describe_contact(&self, contact: &ModelContact) -> String {
         let a = self.bodies[contact.body].body.name();
         let other = match &contact.counterpart {

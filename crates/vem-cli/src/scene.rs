@@ -696,6 +696,16 @@ impl Scene {
         if let Some(t) = &contact.fixed_point_tolerance {
             self.positive(t, "fixed_point_tolerance")?;
         }
+        if let Some(steps) = contact
+            .fixed_point_max_steps
+            .as_ref()
+            .filter(|s| *s.get_ref() == 0)
+        {
+            return Err(self.error(
+                Some(steps.span()),
+                "`fixed_point_max_steps` must be at least 1",
+            ));
+        }
         if let Some(d) = &contact.max_distance {
             self.positive(d, "max_distance")?;
         }
