@@ -41,14 +41,10 @@ impl Outcome {
         };
         let mut written = Vec::new();
         let contact_pressure = self.contact_pressure_at_vertices();
-        for (k, solved) in self.bodies.iter().enumerate() {
+        for (solved, pressure) in self.bodies.iter().zip(contact_pressure) {
             let path = dir.join(format!("{}.vtu", solved.body.name()));
-            write_vtu(
-                &path,
-                solved.body.mesh(),
-                &vtu_data(solved, contact_pressure[k].clone()),
-            )
-            .map_err(mesh_error(&path))?;
+            write_vtu(&path, solved.body.mesh(), &vtu_data(solved, pressure))
+                .map_err(mesh_error(&path))?;
             written.push(path);
         }
         let width = self.width();
