@@ -254,13 +254,20 @@ pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
             .margin(16)
             .x_label_area_size(44)
             .y_label_area_size(70)
-            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
+            .build_cartesian_2d(
+                x_range.log_scale().with_key_points(h_ticks(&all)),
+                y_range
+                    .clone()
+                    .log_scale()
+                    .with_key_points(error_ticks(y_range)),
+            )
             .map_err(|e| draw(&e))?;
         chart
             .configure_mesh()
             .x_desc("h (largest element diameter)")
             .y_desc("error")
-            .x_label_formatter(&|v| format!("{v:.3}"))
+            .max_light_lines(0)
+            .x_label_formatter(&|v| three_digits(*v))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(|e| draw(&e))?;
@@ -314,6 +321,38 @@ pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
         root.present().map_err(|e| draw(&e))?;
     }
     Ok(svg)
+}
+
+/// The distinct mesh sizes of the plotted points: the ticks of the h axis.
+fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
+    let mut h: Vec<f64> = points.iter().map(|p| p.0).collect();
+    h.sort_by(f64::total_cmp);
+    h.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
+    h
+}
+
+/// Ticks of the error axis: the powers of ten in `range`, and 2 and 5 times them when the
+/// range spans fewer than three decades.
+fn error_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
+    let (low, high) = (
+        range.start.log10().floor() as i32,
+        range.end.log10().ceil() as i32,
+    );
+    let mantissas: &[f64] = if high - low < 3 {
+        &[1.0, 2.0, 5.0]
+    } else {
+        &[1.0]
+    };
+    (low..=high)
+        .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
+        .filter(|v| range.contains(v))
+        .collect()
+}
+
+/// `v` with three significant digits in fixed notation (0.354, 0.0221).
+fn three_digits(v: f64) -> String {
+    let precision = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.precision$}")
 }
 
 /// The positive points `(h, error)` of a study.
