@@ -121,7 +121,8 @@ match on the contact interface. This report checks it with manufactured solution
 Body 1 = (0,1) x (0,1) on top, body 2 = (0,1) x (-1,0) below, Gamma_C = (0,1) x {0};
 lambda = 2, mu = 1 (plane strain). Each body is meshed by its own family; the interface nodes
 of each side are inserted into the other side's boundary polygons, so the contact constraint
-is node-to-node (`vem-contact`). The contact problem is solved by the exact QP (Clarabel).
+is node-to-node (`vem-contact`). The contact solver is named in the summary (default: the
+exact QP by Clarabel).
 
 **Measured** (per body, then the square root of the sum of squares over the bodies;
 `vem_verify::norms`):
@@ -225,7 +226,7 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
     )?;
     write_json(
         args.out.join("convergence.json"),
-        &serde_json_report(&results, args, seconds),
+        &json_report(&results, args, seconds),
     )?;
     eprintln!(
         "wrote {}/convergence.md, convergence.json and convergence/*.svg",
@@ -266,7 +267,7 @@ fn markdown(results: &[StudyResult], args: &ConvergenceArgs, seconds: f64) -> St
 }
 
 /// The JSON document: run metadata and every study.
-fn serde_json_report<'a>(
+fn json_report<'a>(
     results: &'a [StudyResult],
     args: &ConvergenceArgs,
     seconds: f64,

@@ -118,10 +118,9 @@ pub fn contact_diagnostics(
         .map(|n| n.position.x);
     let sets = exact.expected_sets();
     let contact_switch = match sets.map(|s| s.contact) {
-        Some(ContactSet::Split { switch_point, .. }) => Some(SwitchPoint::new(
-            switch_point,
-            active_x.clone().reduce(f64::max),
-        )),
+        Some(ContactSet::Split { switch_point, .. }) => {
+            Some(SwitchPoint::new(switch_point, active_x.reduce(f64::max)))
+        }
         _ => None,
     };
     let slip_switch = match sets.and_then(|s| s.friction) {

@@ -234,7 +234,7 @@ pub fn quadrature_points(polygon: &[Point]) -> Result<Vec<QuadraturePoint>, Stri
     let rule = TriangleRule::degree5();
     Ok(sub_triangles(polygon)?
         .into_iter()
-        .flat_map(|[a, b, c]| rule.on_triangle(a, b, c).collect::<Vec<_>>())
+        .flat_map(|[a, b, c]| rule.on_triangle(a, b, c))
         .collect())
 }
 

@@ -29,7 +29,7 @@ use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
 
 use crate::diagnostics::{contact_diagnostics, ContactDiagnostics};
-use crate::exact::{BodyId, ContactLaw, ExactSolution};
+use crate::exact::{ContactLaw, ExactSolution};
 use crate::norms::ErrorNorms;
 use crate::problem::{DiscreteProblem, ProblemSettings};
 use crate::VerifyError;
@@ -805,7 +805,7 @@ pub fn same_family(exact: &dyn ExactSolution, family: MeshFamily) -> MeshPairing
         bodies: exact
             .bodies()
             .iter()
-            .map(|_: &BodyId| BodyMeshing { family, factor: 1 })
+            .map(|_| BodyMeshing { family, factor: 1 })
             .collect(),
     }
 }
