@@ -26,7 +26,7 @@ struct Cli {
 enum Command {
     /// Solve a scene and write its results.
     ///
-    /// Writes into DIR: one <body>.vtu per body (displacement; stress, von Mises stress and
+    /// Writes into DIR: one BODY.vtu per body (displacement; stress, von Mises stress and
     /// the A1 quality figures per element; contact pressure at interface nodes), contact.csv
     /// (one row per interface node), summary.json (what was built, DOFs, constraint rows,
     /// solver, iterations, KKT residuals, resultants, times), deformed.svg (the deformed
@@ -35,7 +35,7 @@ enum Command {
     Run {
         /// The scene file (TOML).
         scene: PathBuf,
-        /// Output directory [default: out/<scene file stem>].
+        /// Output directory [default: out/SCENE_STEM].
         #[arg(long, short, value_name = "DIR")]
         out: Option<PathBuf>,
     },

@@ -185,7 +185,7 @@ pub fn contact_diagnostics(
 }
 
 /// `int sigma_nu ds` and `int sigma_1tau ds` over `Gamma_C` (the x-range of body one's
-/// domain) by a composite 6-point Gauss rule on [`RESULTANT_INTERVALS`] pieces: for contact
+/// domain) by a composite 6-point Gauss rule on 512 pieces: for contact
 /// solutions that give no closed form.
 pub fn integrated_resultants(exact: &dyn ContactSolution) -> Resultants {
     let domain = exact.domain(crate::exact::BodyId::One);
