@@ -63,7 +63,12 @@ pub struct FixedPointSettings {
     /// Largest number of Tresca solves.
     pub max_steps: usize,
     /// Stop when the largest change of a nodal normal force, relative to the largest normal
-    /// force, falls below this.
+    /// force, falls below this, or below the force accuracy of the inner solver
+    /// ([`ContactSolver::force_accuracy`], `1e-4` for the default interior-point
+    /// [`ExactSolver`](crate::solver::ExactSolver), `0` for the penalty and active-set solvers),
+    /// whichever is larger: changes below the inner accuracy are noise of the inner solves and
+    /// the fixed point would stall there. The tolerance used is in
+    /// [`FixedPointReport::tolerance`].
     pub tolerance: f64,
 }
 
@@ -724,6 +729,7 @@ fn coulomb_fixed_point(
             friction,
         )
     };
+    let tolerance = settings.tolerance.max(solver.force_accuracy());
     let mut solution = solver.solve(&system(None)?)?;
     let mut iterations = solution.report.iterations;
     let mut history = Vec::with_capacity(settings.max_steps);
@@ -749,10 +755,11 @@ fn coulomb_fixed_point(
             / scale;
         history.push(change);
         solution = next;
-        if change <= settings.tolerance {
+        if change <= tolerance {
             let report = FixedPointReport {
                 steps: step,
                 residual: change,
+                tolerance,
                 history,
                 solver_iterations: iterations,
                 final_bounds: bounds,
@@ -763,7 +770,7 @@ fn coulomb_fixed_point(
     Err(ContactError::FixedPointNotConverged {
         steps: settings.max_steps,
         residual: *history.last().unwrap_or(&f64::INFINITY),
-        tolerance: settings.tolerance,
+        tolerance,
         report: Box::new(solution.report),
     })
 }

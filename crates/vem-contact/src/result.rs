@@ -142,6 +142,11 @@ pub struct FixedPointReport {
     pub steps: usize,
     /// The last relative change of the normal forces.
     pub residual: f64,
+    /// The stopping tolerance used: the larger of [`FixedPointSettings::tolerance`] and the
+    /// inner solver's force accuracy.
+    ///
+    /// [`FixedPointSettings::tolerance`]: crate::FixedPointSettings::tolerance
+    pub tolerance: f64,
     /// The relative change at every step.
     pub history: Vec<f64>,
     /// Solver iterations summed over all solves.

@@ -234,6 +234,14 @@ impl ContactSolver for ExactSolver {
         NAME
     }
 
+    /// `10 sqrt(max(eps_abs, eps_rel))`: the interior point stops at a barrier parameter of about
+    /// the gap tolerance, and the multiplier of a weakly active constraint (a node at the
+    /// contact or stick/slip boundary) is then only accurate to `O(sqrt(mu))` (`1e-4` with the
+    /// default settings).
+    fn force_accuracy(&self) -> f64 {
+        10.0 * self.settings.eps_abs.max(self.settings.eps_rel).sqrt()
+    }
+
     fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
         let n = system.n_dofs();

@@ -68,4 +68,11 @@ pub trait ContactSolver {
     /// [`ContactSolverError`]: no convergence, rigid sliding, unbounded energy, infeasible
     /// constraints or a backend failure; run failures carry their [`SolveReport`].
     fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError>;
+
+    /// Relative accuracy of the nodal forces this solver guarantees (`0` for solvers whose
+    /// forces are exact up to rounding). Outer fixed points (Coulomb) cannot resolve changes of
+    /// the forces below it and use it as a floor of their stopping tolerance.
+    fn force_accuracy(&self) -> f64 {
+        0.0
+    }
 }
