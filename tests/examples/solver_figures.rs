@@ -32,7 +32,7 @@ fn main() {
                 .map(|&b| MeshFamily::Quads.generate(&exact.domain(b), n, 1).unwrap())
                 .collect();
             let problem =
-                DiscreteProblem::new(Arc::clone(&exact), meshes, &ProblemSettings::default())
+                DiscreteProblem::try_new(Arc::clone(&exact), meshes, &ProblemSettings::default())
                     .unwrap()
                     .contact_problem()
                     .unwrap();

@@ -28,7 +28,7 @@ fn discrete(case: &str, upper: (MeshFamily, usize), lower: (MeshFamily, usize)) 
         .zip([upper, lower])
         .map(|(&body, (family, n))| family.generate(&exact.domain(body), n, 1).unwrap())
         .collect();
-    DiscreteProblem::new(exact, meshes, &ProblemSettings::default()).unwrap()
+    DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default()).unwrap()
 }
 
 fn solve(problem: &DiscreteProblem) -> ContactResult {

@@ -68,7 +68,7 @@ impl ExactSolution for QuadraticField {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let solution = QuadraticField {
-        lame: Lame::new(2.0, 1.0)?,
+        lame: Lame::try_new(2.0, 1.0)?,
     };
     let body = BodyId::One;
     println!("exact solution {:?}", solution.name());

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 use vem_contact::{InterfaceNode, NodeStatus};
 use vem_space::quadrature::GaussLegendre;
 
-use crate::exact::{ContactSet, ContactSolution, FrictionSet, Resultants};
+use crate::exact::{ContactSet, ExactContact, FrictionSet, Resultants};
 
 /// Subintervals of the composite Gauss rule for resultants without a closed form.
 const RESULTANT_INTERVALS: usize = 512;
@@ -91,7 +91,7 @@ pub struct ContactDiagnostics {
 
 /// The diagnostics of the interface nodes `nodes` of a discrete solution of `exact`.
 pub fn contact_diagnostics(
-    exact: &dyn ContactSolution,
+    exact: &dyn ExactContact,
     nodes: &[InterfaceNode],
 ) -> ContactDiagnostics {
     let reference = exact
@@ -187,7 +187,7 @@ pub fn contact_diagnostics(
 /// `int sigma_nu ds` and `int sigma_1tau ds` over `Gamma_C` (the x-range of body one's
 /// domain) by a composite 6-point Gauss rule on 512 pieces: for contact
 /// solutions that give no closed form.
-pub fn integrated_resultants(exact: &dyn ContactSolution) -> Resultants {
+pub fn integrated_resultants(exact: &dyn ExactContact) -> Resultants {
     let domain = exact.domain(crate::exact::BodyId::One);
     let (a, b) = (domain.min.x, domain.max.x);
     let rule = GaussLegendre::new(GaussLegendre::MAX_POINTS).expect("the largest rule exists");

@@ -10,7 +10,9 @@ use vem_space::SpaceError;
 use crate::exact::ExactError;
 
 /// What can go wrong when a discrete problem is built from an exact solution, solved, measured
-/// or reported. Variants name the case, body, size, polygon or file concerned.
+/// or reported. Variants name the case, body, size, polygon or file concerned; a variant
+/// wrapping a lower layer's error names where it happened and leaves the cause to
+/// [`source`](std::error::Error::source) (print the chain to see both).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum VerifyError {
@@ -33,7 +35,7 @@ pub enum VerifyError {
     #[error(transparent)]
     Exact(#[from] ExactError),
     /// Mesh generation failed.
-    #[error("case {case}, body {body}, mesh '{family}' of size {n}: {source}")]
+    #[error("case {case}, body {body}: cannot generate the mesh '{family}' of size {n}")]
     Mesh {
         /// The case's name.
         case: String,
@@ -48,7 +50,7 @@ pub enum VerifyError {
         source: Box<MeshError>,
     },
     /// Building, assembling or solving an elastic body failed.
-    #[error("case {case}: {source}")]
+    #[error("case {case}: the elastic problem failed")]
     Elastic {
         /// The case's name.
         case: String,
@@ -57,7 +59,7 @@ pub enum VerifyError {
         source: Box<ElasticError>,
     },
     /// Building or solving the contact problem failed.
-    #[error("case {case}: {source}")]
+    #[error("case {case}: the contact problem failed")]
     Contact {
         /// The case's name.
         case: String,
@@ -66,7 +68,7 @@ pub enum VerifyError {
         source: Box<ContactError>,
     },
     /// The element layer failed on one polygon while errors were measured.
-    #[error("body {body}, polygon {polygon}: {source}")]
+    #[error("body {body}, polygon {polygon}: the element failed while errors were measured")]
     Element {
         /// The body (1 or 2).
         body: usize,

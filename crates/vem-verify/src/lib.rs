@@ -2,7 +2,8 @@
 //! two-body problems of the specification, in the sign conventions of `contact-vem.md`.
 //!
 //! The module [`exact`] holds the [`ExactSolution`] trait (implement it for a solution of your
-//! own), its contact companion [`ContactSolution`] and the built-in cases M1–M4, E1, E2,
+//! own), its contact companion [`ExactContact`] (any law of `vem_contact`: frictionless, Tresca
+//! with a constant or variable bound, Coulomb) and the built-in cases M1–M4, E1, E2,
 //! PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3.
 //!
 //! On top of them:
@@ -12,6 +13,7 @@
 //!   and `E_a = a_h(u_I - u_h, u_I - u_h)^(1/2)` (`manufactured.md`, section 8);
 //! - [`diagnostics`]: resultants, switch points and expected sets of contact solutions;
 //! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
+//! - [`cases`]: the registry of cases by name (built-in and a user's own) the tools run;
 //! - [`report`]: Markdown tables, log-log SVG plots and JSON.
 //!
 //! ```
@@ -30,6 +32,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod cases;
 pub mod diagnostics;
 mod error;
 pub mod exact;
@@ -40,6 +43,7 @@ pub mod study;
 
 pub use error::VerifyError;
 pub use exact::{
-    all_cases, case_by_name, BodyId, ContactLaw, ContactSolution, ExactError, ExactSolution, Lame,
-    Side,
+    all_cases, case_by_name, BodyId, ExactContact, ExactError, ExactSolution, Lame, Side,
 };
+/// The linear algebra the traits speak in (`nalgebra::Matrix2` for gradients and stresses).
+pub use nalgebra;

@@ -19,7 +19,7 @@
 //! // The linear patch test PT0a is reproduced exactly by the VEM on any mesh.
 //! let case: Arc<_> = case_by_name("PT0a", Lame::default())?.into();
 //! let mesh = structured_quads(&Rectangle::unit_square(), 3, 3)?;
-//! let problem = DiscreteProblem::new(case, vec![mesh], &ProblemSettings::default())?;
+//! let problem = DiscreteProblem::try_new(case, vec![mesh], &ProblemSettings::default())?;
 //! let solution = problem.solve(&mut ExactSolver::default())?;
 //! let errors = solution.errors(&**problem.exact())?;
 //! assert!(errors[0].grad < 1e-12 && errors[0].energy < 1e-12);
@@ -29,12 +29,14 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use vem_contact::{BodyResult, ContactProblem, ContactSolver, InterfaceNode, SolveReport};
+use vem_contact::{
+    BodyResult, ContactProblem, ContactSolver, FixedPointReport, InterfaceNode, SolveReport,
+};
 use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::Mesh;
 use vem_space::{ElementSpace, LowestOrderVem};
 
-use crate::exact::{BodyId, ContactLaw, ExactSolution, CONTACT_SIDES};
+use crate::exact::{BodyId, ExactSolution, CONTACT_SIDES};
 use crate::norms::{body_errors, ErrorNorms};
 use crate::VerifyError;
 
@@ -139,7 +141,7 @@ impl DiscreteProblem {
     /// # Errors
     /// A wrong number of meshes, a contact case without two bodies, any error of
     /// [`elastic_body`].
-    pub fn new(
+    pub fn try_new(
         exact: Arc<dyn ExactSolution>,
         meshes: Vec<Mesh>,
         settings: &ProblemSettings,
@@ -187,12 +189,7 @@ impl DiscreteProblem {
     /// against body two's top, the case's law, `h0` as the user gap.
     pub fn contact_problem(&self) -> Option<ContactProblem> {
         let contact = self.exact.contact()?;
-        let law = match contact.law() {
-            ContactLaw::Frictionless => vem_contact::ContactLaw::Frictionless,
-            ContactLaw::Tresca { friction_bound } => {
-                vem_contact::ContactLaw::tresca(friction_bound)
-            }
-        };
+        let law = contact.law();
         let [(_, side_a), (_, side_b)] = CONTACT_SIDES;
         let exact = Arc::clone(&self.exact);
         let problem = ContactProblem::two_bodies(
@@ -225,6 +222,7 @@ impl DiscreteProblem {
                 interface: Some(InterfaceOutcome {
                     nodes: result.nodes,
                     report: result.report,
+                    fixed_point: result.fixed_point,
                     inserted_nodes: result.model.inserted_nodes,
                 }),
                 assembly_time: result.model.assembly_time,
@@ -266,8 +264,10 @@ impl DiscreteProblem {
 pub struct InterfaceOutcome {
     /// The interface nodes, ordered along body one's contact side.
     pub nodes: Vec<InterfaceNode>,
-    /// The contact solver's report (iterations, KKT residuals).
+    /// The contact solver's report (iterations, KKT residuals) of the last solve.
     pub report: SolveReport,
+    /// Coulomb friction: the report of the fixed point of Tresca problems.
+    pub fixed_point: Option<FixedPointReport>,
     /// Vertices inserted into the two meshes to make the interface node-to-node.
     pub inserted_nodes: usize,
 }

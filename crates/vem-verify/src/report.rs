@@ -130,6 +130,10 @@ pub fn study_markdown(study: &StudyResult) -> String {
             "Expected relative errors <= {tolerance:e} at every size: **{}**",
             passed(study.verdict.passed)
         )),
+        Expectation::Resultants { tolerance } => out.push_str(&format!(
+            "Expected relative resultant errors <= {tolerance:e} on the finest mesh: **{}**",
+            passed(study.verdict.passed)
+        )),
     }
     for shortfall in &study.verdict.shortfalls {
         out.push_str(&format!("\n- {shortfall}"));

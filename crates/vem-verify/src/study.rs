@@ -29,7 +29,7 @@ use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
 
 use crate::diagnostics::{contact_diagnostics, ContactDiagnostics};
-use crate::exact::{ContactLaw, ExactSolution};
+use crate::exact::ExactSolution;
 use crate::norms::ErrorNorms;
 use crate::problem::{DiscreteProblem, ProblemSettings};
 use crate::VerifyError;
@@ -271,7 +271,7 @@ impl Default for SolverChoice {
 }
 
 /// What a study must show (for contact cases also: on the finest mesh no interface node
-/// contradicts [`ContactSolution::expected_sets`](crate::ContactSolution::expected_sets)).
+/// contradicts [`ExactContact::expected_sets`](crate::ExactContact::expected_sets)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Expectation {
     /// Fitted rates at least these (Theorems 4.1/4.2 and the expected L2 rate).
@@ -287,6 +287,15 @@ pub enum Expectation {
     /// `E_0 / ||u||_0` are at most `tolerance`.
     Exact {
         /// The largest relative error.
+        tolerance: f64,
+    },
+    /// Contact cases: on the finest mesh the sums of the nodal contact and friction forces
+    /// match the exact resultants (the case's
+    /// [`reference_resultants`](crate::ExactContact::reference_resultants), or their
+    /// quadrature when it gives none) within `tolerance` relative to the larger of the two
+    /// exact resultants' magnitudes (a separated case with zero resultants: absolute).
+    Resultants {
+        /// The largest relative resultant error.
         tolerance: f64,
     },
 }
@@ -346,6 +355,12 @@ pub struct SizeRecord {
     pub max_penetration: Option<f64>,
     /// Contact cases: vertices inserted to make the interface node-to-node.
     pub inserted_nodes: Option<usize>,
+    /// Coulomb cases: Tresca solves of the fixed point after the initial frictionless one.
+    #[serde(default)]
+    pub fixed_point_steps: Option<usize>,
+    /// Coulomb cases: the last relative change of the normal forces of the fixed point.
+    #[serde(default)]
+    pub fixed_point_change: Option<f64>,
     /// Time of each stage.
     pub times: StageTimes,
 }
@@ -377,7 +392,7 @@ pub struct Verdict {
 pub struct StudyResult {
     /// The case's name.
     pub case: String,
-    /// "frictionless", "tresca" or "elasticity".
+    /// "frictionless", "tresca", "coulomb" or "elasticity".
     pub law: String,
     /// The meshing ([`MeshPairing`]'s `Display` form, e.g. "quads/quads*3").
     pub pairing: String,
@@ -397,8 +412,11 @@ pub struct StudyResult {
     pub records: Vec<SizeRecord>,
     /// The fitted rates.
     pub rates: Rates,
-    /// What was expected.
+    /// What was expected (the first expectation of the study).
     pub expectation: Expectation,
+    /// Further expectations judged with it ([`Study::also_expect`]).
+    #[serde(default)]
+    pub also_expected: Vec<Expectation>,
     /// Whether it was met.
     pub verdict: Verdict,
     /// Wall-clock seconds of the whole study.
@@ -469,6 +487,7 @@ pub struct Study {
     seed: u64,
     fitted: usize,
     expectation: Expectation,
+    also_expected: Vec<Expectation>,
 }
 
 impl fmt::Debug for Study {
@@ -482,6 +501,7 @@ impl fmt::Debug for Study {
             .field("seed", &self.seed)
             .field("fitted", &self.fitted)
             .field("expectation", &self.expectation)
+            .field("also_expected", &self.also_expected)
             .finish()
     }
 }
@@ -507,6 +527,7 @@ impl Study {
             seed: Self::DEFAULT_SEED,
             fitted: Self::DEFAULT_FITTED,
             expectation: Expectation::OPTIMAL_RATES,
+            also_expected: Vec::new(),
         }
     }
 
@@ -546,6 +567,13 @@ impl Study {
         self
     }
 
+    /// A further expectation judged together with the one of [`expect`](Self::expect), e.g.
+    /// [`Expectation::Resultants`] besides the rates.
+    pub fn also_expect(mut self, expectation: Expectation) -> Self {
+        self.also_expected.push(expectation);
+        self
+    }
+
     /// The exact solution.
     pub fn exact(&self) -> &Arc<dyn ExactSolution> {
         &self.exact
@@ -572,11 +600,9 @@ impl Study {
     }
 
     fn law(&self) -> &'static str {
-        match self.exact.contact().map(|c| c.law()) {
-            None => "elasticity",
-            Some(ContactLaw::Frictionless) => "frictionless",
-            Some(ContactLaw::Tresca { .. }) => "tresca",
-        }
+        self.exact
+            .contact()
+            .map_or("elasticity", |c| c.law().name())
     }
 
     /// Checks the settings: at least one size, sizes positive and increasing, at least two
@@ -631,7 +657,7 @@ impl Study {
         let start = Instant::now();
         let meshes = self.pairing.generate(exact, n, self.seed)?;
         let mesh_time = start.elapsed().as_secs_f64();
-        let problem = DiscreteProblem::new(Arc::clone(&self.exact), meshes, &self.settings)?;
+        let problem = DiscreteProblem::try_new(Arc::clone(&self.exact), meshes, &self.settings)?;
         let h = problem.mesh_size();
         let mut solver = self.solver.solver();
         let solution = problem.solve(&mut *solver)?;
@@ -669,6 +695,8 @@ impl Study {
             solver_iterations: interface.map(|i| i.report.iterations),
             max_penetration: interface.map(|i| i.report.residuals.max_penetration),
             inserted_nodes: interface.map(|i| i.inserted_nodes),
+            fixed_point_steps: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.steps)),
+            fixed_point_change: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.residual)),
             times: StageTimes {
                 mesh: mesh_time,
                 assembly: solution.assembly_time.as_secs_f64(),
@@ -703,7 +731,9 @@ impl Study {
             records.push(record);
         }
         let rates = fit_rates(&records, self.fitted);
-        let verdict = judge(&self.expectation, &records, &rates);
+        let mut expectations = vec![self.expectation];
+        expectations.extend_from_slice(&self.also_expected);
+        let verdict = judge(&expectations, &records, &rates);
         let lame = self.exact.lame();
         Ok(StudyResult {
             case: self.exact.name().to_string(),
@@ -718,14 +748,32 @@ impl Study {
             records,
             rates,
             expectation: self.expectation,
+            also_expected: self.also_expected.clone(),
             verdict,
             seconds: start.elapsed().as_secs_f64(),
         })
     }
 }
 
-/// Rates over the `fitted` finest records (all of them if fewer).
-fn fit_rates(records: &[SizeRecord], fitted: usize) -> Rates {
+/// Rates over the `fitted` finest records (all of them if fewer), by [`fitted_rate`].
+///
+/// ```
+/// use vem_verify::study::{fit_rates, SizeRecord};
+/// # fn record(h: f64, e: f64) -> SizeRecord {
+/// #     let mut errors = vem_verify::norms::ErrorNorms::default();
+/// #     (errors.grad, errors.energy, errors.l2) = (e, e, e * h);
+/// #     SizeRecord { n: vec![1], h, polygons: 0, vertices: 0, dofs: 0, errors,
+/// #         body_errors: vec![], contact: None, solver_iterations: None,
+/// #         max_penetration: None, inserted_nodes: None, fixed_point_steps: None,
+/// #         fixed_point_change: None, times: Default::default() }
+/// # }
+/// // E_grad = E_a = h, E_0 = h^2 on the three finest of four sizes.
+/// let records: Vec<SizeRecord> = [0.8, 0.4, 0.2, 0.1].iter().map(|&h| record(h, h)).collect();
+/// let rates = fit_rates(&records, 3);
+/// assert_eq!(rates.fitted, 3);
+/// assert!((rates.grad.unwrap() - 1.0).abs() < 1e-12 && (rates.l2.unwrap() - 2.0).abs() < 1e-12);
+/// ```
+pub fn fit_rates(records: &[SizeRecord], fitted: usize) -> Rates {
     let first = records.len().saturating_sub(fitted);
     let tail = &records[first..];
     let h: Vec<f64> = tail.iter().map(|r| r.h).collect();
@@ -741,10 +789,42 @@ fn fit_rates(records: &[SizeRecord], fitted: usize) -> Rates {
     }
 }
 
-/// The verdict of `records` with fitted `rates` against `expectation`, plus, for contact
-/// cases, no interface node contradicting the expected sets on the finest mesh.
-fn judge(expectation: &Expectation, records: &[SizeRecord], rates: &Rates) -> Verdict {
+/// The verdict of `records` with fitted `rates` against every expectation of `expectations`,
+/// plus, for contact cases, no interface node contradicting the expected sets on the finest
+/// mesh. [`Study::run`] calls it; call it yourself to judge records of your own runner.
+pub fn judge(expectations: &[Expectation], records: &[SizeRecord], rates: &Rates) -> Verdict {
     let mut shortfalls = Vec::new();
+    for expectation in expectations {
+        judge_one(expectation, records, rates, &mut shortfalls);
+    }
+    // The statuses away from the switch points must be right on the finest mesh (they held
+    // from n = 32 on in the prototype of manufactured.md, section 8).
+    if let Some(finest) = records.last() {
+        if let Some(violation) = finest.contact.iter().flat_map(|c| &c.set_violations).next() {
+            let count = finest
+                .contact
+                .as_ref()
+                .map_or(0, |c| c.set_violations.len());
+            shortfalls.push(format!(
+                "n = {:?}: {count} interface node(s) contradict the expected sets, first at \
+                 x = {:.4} (expected {}, found {})",
+                finest.n, violation.x, violation.expected, violation.found
+            ));
+        }
+    }
+    Verdict {
+        passed: shortfalls.is_empty(),
+        shortfalls,
+    }
+}
+
+/// The shortfalls of `records` and `rates` against one expectation.
+fn judge_one(
+    expectation: &Expectation,
+    records: &[SizeRecord],
+    rates: &Rates,
+    shortfalls: &mut Vec<String>,
+) {
     match *expectation {
         Expectation::Rates { grad, energy, l2 } => {
             for (name, rate, least) in [
@@ -776,25 +856,35 @@ fn judge(expectation: &Expectation, records: &[SizeRecord], rates: &Rates) -> Ve
                 }
             }
         }
-    }
-    // The statuses away from the switch points must be right on the finest mesh (they held
-    // from n = 32 on in the prototype of manufactured.md, section 8).
-    if let Some(finest) = records.last() {
-        if let Some(violation) = finest.contact.iter().flat_map(|c| &c.set_violations).next() {
-            let count = finest
-                .contact
-                .as_ref()
-                .map_or(0, |c| c.set_violations.len());
-            shortfalls.push(format!(
-                "n = {:?}: {count} interface node(s) contradict the expected sets, first at \
-                 x = {:.4} (expected {}, found {})",
-                finest.n, violation.x, violation.expected, violation.found
-            ));
+        Expectation::Resultants { tolerance } => {
+            let Some(finest) = records.last() else {
+                return;
+            };
+            let Some(c) = finest.contact.as_ref() else {
+                shortfalls.push(format!(
+                    "n = {:?}: resultants expected but the case has no contact interface",
+                    finest.n
+                ));
+                return;
+            };
+            let scale = c
+                .normal_resultant_exact
+                .abs()
+                .max(c.tangential_resultant_exact.abs());
+            let scale = if scale > 0.0 { scale } else { 1.0 };
+            for (name, error) in [
+                ("normal resultant", c.normal_resultant_error),
+                ("tangential resultant", c.tangential_resultant_error),
+            ] {
+                let relative = error / scale;
+                if relative.is_nan() || relative > tolerance {
+                    shortfalls.push(format!(
+                        "n = {:?}: {name} error {relative:.3e} (relative) > {tolerance:e}",
+                        finest.n
+                    ));
+                }
+            }
         }
-    }
-    Verdict {
-        passed: shortfalls.is_empty(),
-        shortfalls,
     }
 }
 

@@ -3,12 +3,13 @@
 //! VEM contact discretisation reproduces exactly on matching and non-matching meshes.
 
 use nalgebra::Matrix2;
+use vem_contact::{ContactLaw, FrictionBound};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
 use super::solution::{
-    BodyId, ContactLaw, ContactSet, ContactSolution, ExactSolution, ExpectedSets, FrictionSet,
-    Lame, Resultants, Side,
+    BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, Lame, Resultants,
+    Side,
 };
 
 /// The friction bound `g_F = 1/4` of PTC2 and PTC3.
@@ -28,7 +29,8 @@ pub struct ContactPatch {
     d: f64,
     e: f64,
     gamma: f64,
-    law: ContactLaw,
+    /// The Tresca bound `g_F` (`None`: frictionless).
+    friction_bound: Option<f64>,
     friction_status: Option<FrictionSet>,
 }
 
@@ -43,7 +45,7 @@ impl ContactPatch {
             d: 0.03,
             e: 0.02,
             gamma: 0.0,
-            law: ContactLaw::Frictionless,
+            friction_bound: None,
             friction_status: None,
         }
     }
@@ -58,7 +60,7 @@ impl ContactPatch {
             d: 0.0,
             e: 0.0,
             gamma: 0.0,
-            law: ContactLaw::Frictionless,
+            friction_bound: None,
             friction_status: None,
         }
     }
@@ -74,9 +76,7 @@ impl ContactPatch {
             d: 0.03,
             e: gamma + 0.02,
             gamma,
-            law: ContactLaw::Tresca {
-                friction_bound: PATCH_FRICTION_BOUND,
-            },
+            friction_bound: Some(PATCH_FRICTION_BOUND),
             friction_status: Some(FrictionSet::AllSlip),
         }
     }
@@ -92,9 +92,7 @@ impl ContactPatch {
             d: 0.03,
             e: gamma,
             gamma,
-            law: ContactLaw::Tresca {
-                friction_bound: PATCH_FRICTION_BOUND,
-            },
+            friction_bound: Some(PATCH_FRICTION_BOUND),
             friction_status: Some(FrictionSet::AllStick),
         }
     }
@@ -147,14 +145,19 @@ impl ExactSolution for ContactPatch {
         vec![Side::Left, Side::Right]
     }
 
-    fn contact(&self) -> Option<&dyn ContactSolution> {
+    fn contact(&self) -> Option<&dyn ExactContact> {
         Some(self)
     }
 }
 
-impl ContactSolution for ContactPatch {
+impl ExactContact for ContactPatch {
     fn law(&self) -> ContactLaw {
-        self.law
+        match self.friction_bound {
+            None => ContactLaw::Frictionless,
+            Some(g) => ContactLaw::Tresca {
+                friction_bound: FrictionBound::Constant(g),
+            },
+        }
     }
 
     fn initial_gap(&self, _x: f64) -> f64 {

@@ -12,6 +12,16 @@ pub enum ExactError {
         /// The known names, comma separated.
         known: String,
     },
+    /// A case registry already has a case of this name (or the name is empty).
+    #[error(
+        "cannot register the case {name:?}: the name is empty or taken; the cases are {known}"
+    )]
+    DuplicateCase {
+        /// The name given.
+        name: String,
+        /// The registered names, comma separated.
+        known: String,
+    },
     /// Lamé parameters that do not define a coercive plane-strain material.
     #[error("invalid Lamé parameters lambda = {lambda}, mu = {mu}: {reason}")]
     InvalidLame {

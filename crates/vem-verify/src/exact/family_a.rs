@@ -5,13 +5,14 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use nalgebra::Matrix2;
+use vem_contact::{ContactLaw, FrictionBound};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
 use super::jet::{Jet, SwitchPower, SwitchSide};
 use super::solution::{
-    BodyId, ContactLaw, ContactSet, ContactSolution, ExactSolution, ExpectedSets, FrictionSet,
-    Lame, Resultants, Side,
+    BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, Lame, Resultants,
+    Side,
 };
 
 /// The contact/separation point of M1, `x_c = (sqrt(5) - 1)/2` (irrational: never a vertex of
@@ -111,7 +112,7 @@ struct Derived {
 /// sides, contact on `Gamma_C = (0,1) x {0}`.
 ///
 /// ```
-/// use vem_verify::exact::{ContactSolution, ExactSolution, FamilyA, Lame};
+/// use vem_verify::exact::{ExactContact, ExactSolution, FamilyA, Lame};
 /// let m1 = FamilyA::m1(Lame::default());
 /// let interface = m1.contact().unwrap().interface_values(0.25);
 /// assert!(interface.sigma_nu < 0.0 && interface.gap().abs() < 1e-15);
@@ -301,16 +302,16 @@ impl ExactSolution for FamilyA {
         vec![Side::Left, Side::Right]
     }
 
-    fn contact(&self) -> Option<&dyn ContactSolution> {
+    fn contact(&self) -> Option<&dyn ExactContact> {
         Some(self)
     }
 }
 
-impl ContactSolution for FamilyA {
+impl ExactContact for FamilyA {
     fn law(&self) -> ContactLaw {
         match self.case {
             Case::M2 => ContactLaw::Tresca {
-                friction_bound: FAMILY_A_FRICTION_BOUND,
+                friction_bound: FrictionBound::Constant(FAMILY_A_FRICTION_BOUND),
             },
             Case::M1 | Case::M3 | Case::M4 => ContactLaw::Frictionless,
         }

@@ -9,7 +9,7 @@
 //! ```
 //! use vem_verify::exact::{Jet, SwitchPower, SwitchSide};
 //! // p(x) = ((x_c - x)_+ / x_c)^4 with x_c = 1/2, at x = 1/4: value and three derivatives.
-//! let p = SwitchPower::new(1.0, SwitchSide::Below, 0.5, 0.5, 4)?;
+//! let p = SwitchPower::try_new(1.0, SwitchSide::Below, 0.5, 0.5, 4)?;
 //! let jet: Jet<4> = p.jet(0.25);
 //! assert_eq!(jet.0, [1.0 / 16.0, -1.0, 12.0, -96.0]);
 //! // Its derivative as a jet of one order less.
@@ -200,7 +200,7 @@ impl SwitchPower {
     /// # Errors
     /// [`ExactError::InvalidSwitchFunction`] if a parameter is not finite, `length <= 0` or
     /// `power == 0`.
-    pub fn new(
+    pub fn try_new(
         amplitude: f64,
         side: SwitchSide,
         switch_point: f64,
@@ -234,9 +234,20 @@ impl SwitchPower {
         }
     }
 
-    /// The same as [`SwitchPower::new`] for parameters known to be valid, usable in `const`
-    /// items (where the check runs at compile time).
-    pub(crate) const fn from_valid_parts(
+    /// The same as [`SwitchPower::try_new`] for parameters known to be valid, usable in
+    /// `const` items, where the check runs at compile time (how the built-in cases define
+    /// their switch functions; do the same for a case of your own):
+    ///
+    /// ```
+    /// use vem_verify::exact::{SwitchPower, SwitchSide};
+    /// const OPENING: SwitchPower = SwitchPower::from_valid_parts(0.05, SwitchSide::Above, 0.5, 0.5, 5);
+    /// assert_eq!(OPENING.jet::<1>(1.0).value(), 0.05);
+    /// ```
+    ///
+    /// # Panics
+    /// If a parameter is not finite, `length <= 0` or `power == 0` (in a `const` item this is
+    /// a compile error). Use [`SwitchPower::try_new`] for parameters known only at run time.
+    pub const fn from_valid_parts(
         amplitude: f64,
         side: SwitchSide,
         switch_point: f64,
@@ -309,21 +320,21 @@ mod tests {
     #[test]
     fn switch_power_both_sides() {
         // PP(2, +1, 1, 2, 3) = 2 ((x-1)_+/2)^3 = (x-1)_+^3 / 4.
-        let pp = SwitchPower::new(2.0, SwitchSide::Above, 1.0, 2.0, 3).unwrap();
+        let pp = SwitchPower::try_new(2.0, SwitchSide::Above, 1.0, 2.0, 3).unwrap();
         let above: Jet<5> = pp.jet(3.0);
         assert_eq!(above.0, [2.0, 3.0, 3.0, 1.5, 0.0]);
         let below: Jet<5> = pp.jet(0.5);
         assert_eq!(below.0, [0.0; 5]);
         // d = -1: odd derivatives change sign.
-        let mirrored = SwitchPower::new(2.0, SwitchSide::Below, 1.0, 2.0, 3).unwrap();
+        let mirrored = SwitchPower::try_new(2.0, SwitchSide::Below, 1.0, 2.0, 3).unwrap();
         let jet: Jet<4> = mirrored.jet(-1.0);
         assert_eq!(jet.0, [2.0, -3.0, 3.0, -1.5]);
     }
 
     #[test]
     fn switch_power_rejects_bad_parameters() {
-        assert!(SwitchPower::new(1.0, SwitchSide::Above, 0.5, 0.0, 3).is_err());
-        assert!(SwitchPower::new(1.0, SwitchSide::Above, 0.5, 1.0, 0).is_err());
-        assert!(SwitchPower::new(f64::NAN, SwitchSide::Above, 0.5, 1.0, 2).is_err());
+        assert!(SwitchPower::try_new(1.0, SwitchSide::Above, 0.5, 0.0, 3).is_err());
+        assert!(SwitchPower::try_new(1.0, SwitchSide::Above, 0.5, 1.0, 0).is_err());
+        assert!(SwitchPower::try_new(f64::NAN, SwitchSide::Above, 0.5, 1.0, 2).is_err());
     }
 }

@@ -4,7 +4,7 @@
 //! The trait [`ExactSolution`] describes a linear-elasticity solution on one rectangle or on
 //! two stacked rectangles: material, domains, displacement, gradient, stress, body force and
 //! the Dirichlet and Neumann sides with their data. A two-body contact solution also
-//! implements [`ContactSolution`]: law, initial gap, interface values in the sign conventions
+//! implements [`ExactContact`]: law (any [`vem_contact::ContactLaw`]), initial gap, interface values in the sign conventions
 //! of `contact-vem.md`, expected active and stick/slip sets, resultants.
 //!
 //! Built-in cases (constructors take the [`Lame`] parameters; [`Lame::default`] is the
@@ -41,15 +41,15 @@ pub use error::ExactError;
 pub use family_a::{FamilyA, CONTACT_SWITCH_POINT, FAMILY_A_FRICTION_BOUND, STICK_SLIP_POINT};
 pub use jet::{Jet, SwitchPower, SwitchSide};
 pub use solution::{
-    BodyId, ContactLaw, ContactSet, ContactSolution, ExactSolution, ExpectedSets, FrictionSet,
-    InterfaceValues, Lame, Resultants, Side, CONTACT_SIDES,
+    BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, InterfaceValues,
+    Lame, Resultants, Side, CONTACT_SIDES,
 };
 
 /// A constructor of a built-in case.
-type Constructor = fn(Lame) -> Box<dyn ExactSolution>;
+pub(crate) type Constructor = fn(Lame) -> Box<dyn ExactSolution>;
 
 /// The built-in cases, in the order of the specification.
-const CASES: [(&str, Constructor); 12] = [
+pub(crate) const CASES: [(&str, Constructor); 12] = [
     ("M1", |lame| Box::new(FamilyA::m1(lame))),
     ("M2", |lame| Box::new(FamilyA::m2(lame))),
     ("M3", |lame| Box::new(FamilyA::m3(lame))),

@@ -1,6 +1,7 @@
 //! The exact-solution traits and the small types they speak in.
 
 use nalgebra::Matrix2;
+use vem_contact::ContactLaw;
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -133,7 +134,7 @@ impl Lame {
     /// # Errors
     /// [`ExactError::InvalidLame`] unless both are finite, `mu > 0` and `lambda + mu > 0`
     /// (the plane-strain energy is then coercive on fields clamped on part of the boundary).
-    pub fn new(lambda: f64, mu: f64) -> Result<Self, ExactError> {
+    pub fn try_new(lambda: f64, mu: f64) -> Result<Self, ExactError> {
         let reason = if !(lambda.is_finite() && mu.is_finite()) {
             Some("both parameters must be finite")
         } else if mu <= 0.0 {
@@ -172,19 +173,6 @@ impl Default for Lame {
     fn default() -> Self {
         Self::REFERENCE
     }
-}
-
-/// The contact law on `Gamma_C` (`contact-vem.md`, section 1).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ContactLaw {
-    /// Problem P1: `sigma_1tau = 0`, `sigma_nu <= 0`, `[u]_nu <= h0`, complementarity.
-    Frictionless,
-    /// Problem P2: P1's normal conditions and Tresca friction with a constant bound
-    /// `|sigma_1tau| <= friction_bound`.
-    Tresca {
-        /// The friction bound `g_F`.
-        friction_bound: f64,
-    },
 }
 
 /// Exact values on `Gamma_C` at one abscissa, in the conventions of `manufactured.md`,
@@ -317,7 +305,7 @@ pub struct ExpectedSets {
 }
 
 /// An exact solution of a linear-elasticity problem on one rectangle, or of two bodies on
-/// stacked rectangles (then possibly in contact: see [`ContactSolution`]).
+/// stacked rectangles (then possibly in contact: see [`ExactContact`]).
 ///
 /// The fields are smooth extensions defined on the whole plane; they are meaningful on the
 /// closed domain of each body. Data of the boundary value problem:
@@ -376,18 +364,25 @@ pub trait ExactSolution: Send + Sync {
 
     /// The contact description of a two-body contact problem; `None` (the default) for
     /// elasticity problems.
-    fn contact(&self) -> Option<&dyn ContactSolution> {
+    fn contact(&self) -> Option<&dyn ExactContact> {
         None
     }
 }
 
-/// An exact solution of a two-body contact problem (P1 or P2 of `contact-vem.md`) on the
-/// interface `Gamma_C` of [`CONTACT_SIDES`]: the bottom side of body one, `y = y_C`, `x` in
-/// the x-range of body one's domain.
+/// An exact solution of a two-body contact problem on the interface `Gamma_C` of
+/// [`CONTACT_SIDES`]: the bottom side of body one, `y = y_C`, `x` in the x-range of body
+/// one's domain.
+///
+/// The law is any [`ContactLaw`] the contact layer solves: frictionless (P1), Tresca (P2) with
+/// a constant bound or a bound `g_F(x)` that varies along `Gamma_C`
+/// ([`FrictionBound::Field`](vem_contact::FrictionBound::Field), evaluated at the interface
+/// nodes of body one), or Coulomb `g_F = F |sigma_nu|`. The discrete problem is built with
+/// exactly this law, so the exact solution must satisfy it: on the slip set
+/// `|sigma_1tau| = g_F`, on the stick set `|sigma_1tau| <= g_F` and no slip.
 ///
 /// An implementation returns `Some(self)` from [`ExactSolution::contact`].
-pub trait ContactSolution: ExactSolution {
-    /// The contact law.
+pub trait ExactContact: ExactSolution {
+    /// The contact law the exact solution satisfies (the discrete problem is solved with it).
     fn law(&self) -> ContactLaw;
 
     /// The initial gap `h0(x)` on `Gamma_C`.
