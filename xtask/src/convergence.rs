@@ -5,12 +5,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
-use vem_contact::{ExactSettings, PenaltySettings};
-use vem_verify::exact::{case_by_name, ExactSolution, Lame};
+use vem_contact::SolverRegistry;
+use vem_space::{ElementSpace, LinearTriangle, LowestOrderVem, Stabilisation, StabilisationScaling};
+use vem_verify::cases::CaseRegistry;
+use vem_verify::exact::Lame;
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
-use vem_verify::study::{MeshPairing, SolverChoice, Study, StudyResult};
+use vem_verify::study::{Expectation, MeshPairing, Study, StudyResult};
 
 /// Options of `cargo xtask convergence`.
 #[derive(Debug, Args)]
@@ -21,37 +23,50 @@ pub struct ConvergenceArgs {
     /// Where the JSON, Markdown and SVG files are written.
     #[arg(long, default_value = "target/convergence")]
     out: PathBuf,
-    /// The contact solver.
-    #[arg(long, value_enum, default_value_t = SolverArg::Exact)]
-    solver: SolverArg,
-    /// Run only the studies of these cases (M1, M2, E1); repeatable.
+    /// The contact solver: a name of the solver registry (exact, penalty, active-set).
+    #[arg(long, default_value = SolverRegistry::DEFAULT)]
+    solver: String,
+    /// The element of every body: vem1 (default), vem1-shear, vem1-drecipe, p1 (triangles
+    /// only).
+    #[arg(long, default_value = DEFAULT_ELEMENT)]
+    element: String,
+    /// Run only the studies of these cases, any name of the case registry (M1..M4, E1, E2,
+    /// PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3); repeatable. M1, M2 and E1 are the default run.
     #[arg(long = "case", value_name = "CASE")]
     cases: Vec<String>,
 }
 
-/// The contact solver of the studies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum SolverArg {
-    /// The exact QP (Clarabel interior point).
-    Exact,
-    /// The penalty method (semismooth Newton).
-    Penalty,
-}
+/// The element of the default run.
+const DEFAULT_ELEMENT: &str = "vem1";
 
-impl SolverArg {
-    fn choice(self) -> SolverChoice {
-        match self {
-            SolverArg::Exact => SolverChoice::Exact(ExactSettings::default()),
-            SolverArg::Penalty => SolverChoice::Penalty(PenaltySettings::default()),
-        }
+/// The element called `name`: "vem1" (the default lowest-order VEM), "vem1-shear" (dofi-dofi
+/// scaled by the shear modulus), "vem1-drecipe" (the D-recipe), "p1" (linear triangles).
+///
+/// INTEGRATION: this stands in for `vem_space::ElementRegistry` (same four names); replace the
+/// body by `ElementRegistry::builtin().make(name)` when it is merged.
+fn element_by_name(name: &str) -> Result<Arc<dyn ElementSpace>, String> {
+    let vem = |stabilisation| {
+        LowestOrderVem::new(stabilisation)
+            .map(|e| Arc::new(e) as Arc<dyn ElementSpace>)
+            .map_err(|e| format!("element {name}: {e}"))
+    };
+    match name {
+        "vem1" => Ok(Arc::new(LowestOrderVem::default())),
+        "vem1-shear" => vem(Stabilisation::dofi_dofi(StabilisationScaling::ShearModulus)),
+        "vem1-drecipe" => vem(Stabilisation::DRecipe),
+        "p1" => Ok(Arc::new(LinearTriangle)),
+        _ => Err(format!(
+            "unknown element {name:?}; the elements are vem1, vem1-shear, vem1-drecipe, p1"
+        )),
     }
 }
 
 /// One planned study.
 struct Planned {
-    case: &'static str,
+    case: String,
     pairing: &'static str,
     sizes: &'static [usize],
+    expectation: Expectation,
 }
 
 /// Mesh pairings (body 1 / body 2) of the contact studies: matching structured quads,
@@ -76,31 +91,47 @@ const QUICK_SIZES: &[usize] = &[8, 16, 32];
 /// Sizes of the 1:3 pairing with `--quick`.
 const QUICK_SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32];
 
-fn plan(quick: bool) -> Vec<Planned> {
+/// The cases of the default run.
+const DEFAULT_CASES: [&str; 3] = ["M1", "M2", "E1"];
+
+/// The studies of the cases `wanted` (the default cases when empty), each case of `cases` on
+/// the contact pairings (two bodies) or the elasticity families (one body).
+fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Vec<Planned>, String> {
     let sizes_for = |pairing: &str| match (quick, pairing.contains("*3")) {
         (false, false) => SIZES,
         (false, true) => SIZES_ONE_TO_THREE,
         (true, false) => QUICK_SIZES,
         (true, true) => QUICK_SIZES_ONE_TO_THREE,
     };
+    let names: Vec<String> = if wanted.is_empty() {
+        DEFAULT_CASES.iter().map(|c| c.to_string()).collect()
+    } else {
+        wanted.to_vec()
+    };
     let mut studies = Vec::new();
-    for case in ["M1", "M2"] {
-        for pairing in CONTACT_PAIRINGS {
+    for wanted in &names {
+        let case = cases
+            .make(wanted, Lame::default())
+            .map_err(|e| e.to_string())?;
+        let name = case.name().to_string();
+        let expectation = cases
+            .expectation(&name)
+            .unwrap_or(Expectation::OPTIMAL_RATES);
+        let pairings: &[&'static str] = if case.bodies().len() == 2 {
+            &CONTACT_PAIRINGS
+        } else {
+            &ELASTICITY_FAMILIES
+        };
+        for &pairing in pairings {
             studies.push(Planned {
-                case,
+                case: name.clone(),
                 pairing,
                 sizes: sizes_for(pairing),
+                expectation,
             });
         }
     }
-    for pairing in ELASTICITY_FAMILIES {
-        studies.push(Planned {
-            case: "E1",
-            pairing,
-            sizes: sizes_for(pairing),
-        });
-    }
-    studies
+    Ok(studies)
 }
 
 /// What the studies measure, for the head of the Markdown report.
@@ -148,7 +179,9 @@ themselves are reported, not asserted: the transitions are flat by design
 
 **Reproduce**: `cargo xtask convergence` (this report, about the time given below on 2 cores),
 `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default `target/convergence`),
-`--solver penalty`, `--case M1`. One study of your own: `cargo run --release -p vem-verify
+`--solver NAME` (a name of the solver registry: `exact`, `penalty`, `active-set`),
+`--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `p1`), `--case NAME` (repeatable; any
+case of the case registry, e.g. `M3` or `PTC2`). One study of your own: `cargo run --release -p vem-verify
 --example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
 `cargo run --release -p vem-verify --example custom_solution`.
 "#;
@@ -156,32 +189,34 @@ themselves are reported, not asserted: the transitions are flat by design
 /// Runs the planned studies; `Ok(true)` when every study passes.
 pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let start = Instant::now();
-    let wanted: Vec<String> = args.cases.iter().map(|c| c.to_ascii_uppercase()).collect();
-    let planned: Vec<Planned> = plan(args.quick)
-        .into_iter()
-        .filter(|p| wanted.is_empty() || wanted.iter().any(|c| c == p.case))
-        .collect();
-    if planned.is_empty() {
+    let solvers = SolverRegistry::builtin();
+    if !solvers.names().contains(&args.solver.as_str()) {
         return Err(format!(
-            "no study of the cases {:?}; the cases are M1, M2, E1",
-            args.cases
+            "unknown solver {:?}; the solvers are {}",
+            args.solver,
+            solvers.names().join(", ")
         )
         .into());
     }
+    let element = element_by_name(&args.element)?;
+    let planned = plan(args.quick, &args.cases, &CaseRegistry::builtin())?;
     let plots = args.out.join("convergence");
     std::fs::create_dir_all(&plots)
         .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;
-    let solver = args.solver.choice();
+    let cases = CaseRegistry::builtin();
     let bars = MultiProgress::new();
     let style = ProgressStyle::with_template("{prefix:<40} [{bar:30}] {elapsed:>4} {msg}")?
         .progress_chars("=> ");
     let mut results: Vec<StudyResult> = Vec::with_capacity(planned.len());
     for p in &planned {
-        let exact: Arc<dyn ExactSolution> = case_by_name(p.case, Lame::default())?.into();
+        let exact = cases.make(&p.case, Lame::default())?;
         let pairing: MeshPairing = p.pairing.parse()?;
         let study = Study::new(exact, pairing.clone())
             .sizes(p.sizes)
-            .solver(solver);
+            .registry(solvers.clone())
+            .solver(args.solver.as_str())
+            .element(Arc::clone(&element))
+            .expect(p.expectation);
         // Work grows like the number of cells: weight each size by it.
         let weight = |n: usize| -> u64 {
             pairing
@@ -240,12 +275,12 @@ fn markdown(results: &[StudyResult], args: &ConvergenceArgs, seconds: f64) -> St
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
     let mut out = String::from(INTRODUCTION);
     out.push_str(&format!(
-        "\n## Summary\n\nRun: `cargo xtask convergence{}{}`, {} studies in {seconds:.0} s on {threads} \
-         threads, contact solver: {}.\n\n",
-        if args.quick { " --quick" } else { "" },
-        if args.solver == SolverArg::Penalty { " --solver penalty" } else { "" },
+        "\n## Summary\n\nRun: `cargo xtask convergence{}`, {} studies in {seconds:.0} s on {threads} \
+         threads, contact solver: {}, element: {}.\n\n",
+        command_options(args),
         results.len(),
-        results.first().map_or("exact", |r| r.solver.as_str()),
+        args.solver,
+        results.first().map_or(args.element.as_str(), |r| r.element.as_str()),
     ));
     out.push_str(&summary_markdown(results));
     let mut case = "";
@@ -266,18 +301,34 @@ fn markdown(results: &[StudyResult], args: &ConvergenceArgs, seconds: f64) -> St
     out
 }
 
+/// The options of the run as they were given, e.g. `" --quick --solver penalty --case M1"`.
+fn command_options(args: &ConvergenceArgs) -> String {
+    let mut options = String::new();
+    if args.quick {
+        options.push_str(" --quick");
+    }
+    if args.solver != SolverRegistry::DEFAULT {
+        options.push_str(&format!(" --solver {}", args.solver));
+    }
+    if args.element != DEFAULT_ELEMENT {
+        options.push_str(&format!(" --element {}", args.element));
+    }
+    for case in &args.cases {
+        options.push_str(&format!(" --case {case}"));
+    }
+    options
+}
+
 /// The JSON document: run metadata and every study.
 fn json_report<'a>(
     results: &'a [StudyResult],
-    args: &ConvergenceArgs,
+    args: &'a ConvergenceArgs,
     seconds: f64,
 ) -> JsonReport<'a> {
     JsonReport {
         quick: args.quick,
-        solver: match args.solver {
-            SolverArg::Exact => "exact",
-            SolverArg::Penalty => "penalty",
-        },
+        solver: &args.solver,
+        element: &args.element,
         seconds,
         passed: results.iter().all(|r| r.verdict.passed),
         studies: results,
@@ -288,7 +339,8 @@ fn json_report<'a>(
 #[derive(serde::Serialize)]
 struct JsonReport<'a> {
     quick: bool,
-    solver: &'static str,
+    solver: &'a str,
+    element: &'a str,
     seconds: f64,
     passed: bool,
     studies: &'a [StudyResult],

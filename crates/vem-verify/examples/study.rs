@@ -1,23 +1,23 @@
 //! A convergence study of one built-in case on one mesh pairing, printed as a Markdown table.
 //!
 //! ```text
-//! cargo run --release -p vem-verify --example study -- [CASE] [PAIRING] [SIZES] [penalty]
+//! cargo run --release -p vem-verify --example study -- [CASE] [PAIRING] [SIZES] [SOLVER]
 //! cargo run --release -p vem-verify --example study -- M1 quads/quads*3 4,8,16,32
 //! cargo run --release -p vem-verify --example study -- E1 voronoi 8,16,32,64
 //! ```
 //!
 //! CASE is one of M1..M4, E1, E2, PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3 (default M1); PAIRING is
 //! `family[*factor]` per body separated by `/` (default: quads for every body); SIZES a
-//! comma-separated list (default 4,8,16,32); a fourth argument `penalty` switches the contact
-//! solver. For the full study of the project run `cargo xtask convergence`.
+//! comma-separated list (default 4,8,16,32); SOLVER a name of the solver registry (exact,
+//! penalty, active-set; default exact). For the full study of the project run `cargo xtask convergence`.
 
 use std::sync::Arc;
 
-use vem_contact::PenaltySettings;
+use vem_contact::SolverRegistry;
 use vem_mesh::generators::MeshFamily;
 use vem_verify::exact::{case_by_name, Lame};
 use vem_verify::report::study_markdown;
-use vem_verify::study::{same_family, MeshPairing, SolverChoice, Study};
+use vem_verify::study::{same_family, MeshPairing, Study};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -34,10 +34,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .collect::<Result<_, _>>()?,
         None => Study::DEFAULT_SIZES.to_vec(),
     };
-    let solver = match args.get(3).map(String::as_str) {
-        Some("penalty") => SolverChoice::Penalty(PenaltySettings::default()),
-        _ => SolverChoice::default(),
-    };
+    let solver = args.get(3).map_or(SolverRegistry::DEFAULT, String::as_str);
     let study = Study::new(case, pairing).sizes(sizes).solver(solver);
     eprintln!("{} ...", study.title());
     let result = study.run_with(|record| {

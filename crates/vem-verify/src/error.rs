@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use vem_contact::ContactError;
+use vem_contact::{ContactError, RegistryError};
 use vem_elastic::ElasticError;
 use vem_mesh::MeshError;
 use vem_space::SpaceError;
@@ -66,6 +66,18 @@ pub enum VerifyError {
         /// The contact error.
         #[source]
         source: Box<ContactError>,
+    },
+    /// The contact solver could not be made: a name the registry does not know, or options
+    /// it refuses.
+    #[error("case {case}: no contact solver {name:?}")]
+    Solver {
+        /// The case's name.
+        case: String,
+        /// The solver name asked for.
+        name: String,
+        /// The registry's error (it lists the known names or the refused option).
+        #[source]
+        source: Box<RegistryError>,
     },
     /// The element layer failed on one polygon while errors were measured.
     #[error("body {body}, polygon {polygon}: the element failed while errors were measured")]

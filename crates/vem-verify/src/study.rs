@@ -24,9 +24,10 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactSolver, ExactSettings, ExactSolver, PenaltySettings, PenaltySolver};
+use vem_contact::{SolverOptions, SolverRegistry};
 use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
+use vem_space::ElementSpace;
 
 use crate::diagnostics::{contact_diagnostics, ContactDiagnostics};
 use crate::exact::ExactSolution;
@@ -235,41 +236,6 @@ impl FromStr for MeshPairing {
     }
 }
 
-/// The solver of the contact problems of a study (elasticity cases always use the sparse
-/// Cholesky solver).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SolverChoice {
-    /// The exact QP solver (Clarabel) with these settings.
-    Exact(ExactSettings),
-    /// The penalty solver with these settings.
-    Penalty(PenaltySettings),
-}
-
-impl SolverChoice {
-    /// "exact" or "penalty".
-    pub fn name(&self) -> &'static str {
-        match self {
-            SolverChoice::Exact(_) => "exact",
-            SolverChoice::Penalty(_) => "penalty",
-        }
-    }
-
-    /// A fresh solver.
-    pub fn solver(&self) -> Box<dyn ContactSolver> {
-        match *self {
-            SolverChoice::Exact(settings) => Box::new(ExactSolver::new(settings)),
-            SolverChoice::Penalty(settings) => Box::new(PenaltySolver::new(settings)),
-        }
-    }
-}
-
-impl Default for SolverChoice {
-    /// The exact solver with its default settings.
-    fn default() -> Self {
-        SolverChoice::Exact(ExactSettings::default())
-    }
-}
-
 /// What a study must show (for contact cases also: on the finest mesh no interface node
 /// contradicts [`ExactContact::expected_sets`](crate::ExactContact::expected_sets)).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -400,7 +366,8 @@ pub struct StudyResult {
     pub pairing_label: String,
     /// A file-name friendly form ([`MeshPairing::slug`]).
     pub slug: String,
-    /// The contact solver ("exact", "penalty"; unused by elasticity cases).
+    /// The contact solver's name in the solver registry ("exact", "penalty", "active-set", a
+    /// user's own; unused by elasticity cases).
     pub solver: String,
     /// The element space's name.
     pub element: String,
@@ -482,7 +449,9 @@ pub struct Study {
     exact: Arc<dyn ExactSolution>,
     pairing: MeshPairing,
     sizes: Vec<usize>,
-    solver: SolverChoice,
+    solver: String,
+    registry: SolverRegistry,
+    options: SolverOptions,
     settings: ProblemSettings,
     seed: u64,
     fitted: usize,
@@ -497,6 +466,7 @@ impl fmt::Debug for Study {
             .field("pairing", &self.pairing.to_string())
             .field("sizes", &self.sizes)
             .field("solver", &self.solver)
+            .field("options", &self.options)
             .field("settings", &self.settings)
             .field("seed", &self.seed)
             .field("fitted", &self.fitted)
@@ -514,15 +484,18 @@ impl Study {
     /// Default base seed of the random mesh families.
     pub const DEFAULT_SEED: u64 = 2016;
 
-    /// A study of `exact` meshed by `pairing`, with the default sizes, the exact contact solver,
-    /// the default problem settings, rates fitted over the last three sizes and
+    /// A study of `exact` meshed by `pairing`, with the default sizes, the default contact
+    /// solver of the built-in registry ([`SolverRegistry::DEFAULT`]) with default options, the
+    /// default problem settings, rates fitted over the last three sizes and
     /// [`Expectation::OPTIMAL_RATES`].
     pub fn new(exact: Arc<dyn ExactSolution>, pairing: MeshPairing) -> Self {
         Self {
             exact,
             pairing,
             sizes: Self::DEFAULT_SIZES.to_vec(),
-            solver: SolverChoice::default(),
+            solver: SolverRegistry::DEFAULT.to_string(),
+            registry: SolverRegistry::builtin(),
+            options: SolverOptions::default(),
             settings: ProblemSettings::default(),
             seed: Self::DEFAULT_SEED,
             fitted: Self::DEFAULT_FITTED,
@@ -537,15 +510,38 @@ impl Study {
         self
     }
 
-    /// The contact solver.
-    pub fn solver(mut self, solver: SolverChoice) -> Self {
-        self.solver = solver;
+    /// The contact solver: a name of the study's solver registry (the built-in one unless
+    /// [`registry`](Self::registry) gives another): "exact", "penalty", "active-set" or a
+    /// user's own. An unknown name is refused by [`validate`](Self::validate).
+    pub fn solver(mut self, name: impl Into<String>) -> Self {
+        self.solver = name.into();
+        self
+    }
+
+    /// The registry the solver name is looked up in: a user's registry with solvers of their
+    /// own (see `SolverRegistry::register`).
+    pub fn registry(mut self, registry: SolverRegistry) -> Self {
+        self.registry = registry;
+        self
+    }
+
+    /// The options every solver of the study is made with (tolerance, iterations, penalty).
+    pub fn solver_options(mut self, options: SolverOptions) -> Self {
+        self.options = options;
         self
     }
 
     /// The element space and traction quadrature.
     pub fn settings(mut self, settings: ProblemSettings) -> Self {
         self.settings = settings;
+        self
+    }
+
+    /// The element space of every body: a built-in one (`vem_space::LowestOrderVem`,
+    /// `vem_space::LinearTriangle`) or a user's own [`ElementSpace`]. Its
+    /// [`name`](ElementSpace::name) is reported in [`StudyResult::element`].
+    pub fn element(mut self, element: Arc<dyn ElementSpace>) -> Self {
+        self.settings.element = element;
         self
     }
 
@@ -606,7 +602,8 @@ impl Study {
     }
 
     /// Checks the settings: at least one size, sizes positive and increasing, at least two
-    /// fitted sizes, as many meshings as bodies, positive size factors.
+    /// fitted sizes, as many meshings as bodies, positive size factors, a contact solver the
+    /// registry makes with the options.
     ///
     /// # Errors
     /// [`VerifyError::InvalidSetting`] or [`VerifyError::Case`] naming the first problem.
@@ -634,6 +631,13 @@ impl Study {
         if self.pairing.bodies.iter().any(|b| b.factor == 0) {
             return invalid(format!("pairing '{}' has a zero size factor", self.pairing));
         }
+        self.registry
+            .make(&self.solver, &self.options)
+            .map_err(|source| VerifyError::Solver {
+                case: self.exact.name().to_string(),
+                name: self.solver.clone(),
+                source: Box::new(source),
+            })?;
         if self.pairing.bodies.len() != self.exact.bodies().len() {
             return Err(VerifyError::Case {
                 case: self.exact.name().to_string(),
@@ -659,7 +663,14 @@ impl Study {
         let mesh_time = start.elapsed().as_secs_f64();
         let problem = DiscreteProblem::try_new(Arc::clone(&self.exact), meshes, &self.settings)?;
         let h = problem.mesh_size();
-        let mut solver = self.solver.solver();
+        let mut solver = self
+            .registry
+            .make(&self.solver, &self.options)
+            .map_err(|source| VerifyError::Solver {
+                case: exact.name().to_string(),
+                name: self.solver.clone(),
+                source: Box::new(source),
+            })?;
         let solution = problem.solve(&mut *solver)?;
         let start = Instant::now();
         let body_errors = solution.errors(exact)?;
@@ -741,7 +752,7 @@ impl Study {
             pairing: self.pairing.to_string(),
             pairing_label: self.pairing.describe(),
             slug: self.pairing.slug(),
-            solver: self.solver.name().to_string(),
+            solver: self.solver.clone(),
             element: self.settings.element.name().to_string(),
             lame: (lame.lambda(), lame.mu()),
             seed: self.seed,

@@ -3,12 +3,12 @@
 
 use std::sync::Arc;
 
-use vem_contact::ExactSettings;
+use vem_contact::{ContactSolver, ExactSettings, ExactSolver, SolverOptions, SolverRegistry};
 use vem_mesh::generators::MeshFamily;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::report::{plot_svg, study_markdown, summary_markdown, write_json};
 use vem_verify::study::{
-    fitted_rate, successive_rates, Expectation, MeshPairing, SolverChoice, Study, StudyResult,
+    fitted_rate, successive_rates, Expectation, MeshPairing, Study, StudyResult,
 };
 use vem_verify::VerifyError;
 
@@ -16,16 +16,20 @@ fn case(name: &str) -> Arc<dyn ExactSolution> {
     case_by_name(name, Lame::default()).unwrap().into()
 }
 
-/// Clarabel with tight tolerances: the patch tests are exact up to the solver's accuracy
-/// (`manufactured.md`, section 7).
-fn tight_solver() -> SolverChoice {
-    SolverChoice::Exact(
-        ExactSettings::builder()
-            .eps_abs(1e-12)
-            .eps_rel(1e-12)
-            .build()
-            .unwrap(),
-    )
+/// The built-in solvers and "exact-tight": Clarabel with tight tolerances, for the patch tests
+/// are exact up to the solver's accuracy (`manufactured.md`, section 7).
+fn tight_solver() -> SolverRegistry {
+    let mut solvers = SolverRegistry::builtin();
+    solvers
+        .register("exact-tight", "Clarabel at 1e-12", |_: &SolverOptions| {
+            let settings = ExactSettings::builder()
+                .eps_abs(1e-12)
+                .eps_rel(1e-12)
+                .build()?;
+            Ok(Box::new(ExactSolver::new(settings)) as Box<dyn ContactSolver>)
+        })
+        .unwrap();
+    solvers
 }
 
 #[test]
@@ -80,7 +84,8 @@ fn ptc1_is_exact_through_the_study_on_non_matching_meshes() {
     let pairing: MeshPairing = "quads*2/quads*3".parse().unwrap();
     let result = Study::new(case("PTC1"), pairing)
         .sizes([2, 3])
-        .solver(tight_solver())
+        .registry(tight_solver())
+        .solver("exact-tight")
         .expect(Expectation::Exact { tolerance: 1e-9 })
         .run()
         .unwrap();
@@ -109,7 +114,8 @@ fn ptc1_is_exact_through_the_study_on_non_matching_meshes() {
 fn ptc2_slips_everywhere_exactly() {
     let result = Study::new(case("PTC2"), "quads/hexagons".parse().unwrap())
         .sizes([2, 4])
-        .solver(tight_solver())
+        .registry(tight_solver())
+        .solver("exact-tight")
         .expect(Expectation::Exact { tolerance: 1e-9 })
         .run()
         .unwrap();

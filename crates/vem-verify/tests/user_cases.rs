@@ -5,23 +5,27 @@
 //! satisfies the user's law, so the exact answer is known independently:
 //! - M2 solves Tresca with any bound `g(x) >= |sigma_1tau(x)|` that equals `g_F = 1/4` on the
 //!   slip set `(x_s, 1]`: there `|sigma_1tau| = 1/4`, and on the stick set there is no slip;
-//! - PTC2 (constant pressure `(lambda + 2 mu)/100`, `sigma_1tau = -1/4`, slipping) solves
-//!   Coulomb with `F = (1/4) / ((lambda + 2 mu)/100)`, for then `F |sigma_nu| = 1/4`.
+//! - a linear patch like PTC2 with constant pressure `p = (lambda + 2 mu) beta` and shear
+//!   `sigma_1tau = -mu gamma`, slipping, solves Coulomb with `F = mu gamma / p`, for then
+//!   `F |sigma_nu| = |sigma_1tau|` (PTC2 itself needs `F = 6.25`, beyond the reach of the
+//!   fixed point of Tresca problems: it oscillates; `F = 0.1` here).
 
 use std::sync::Arc;
 
-use vem_contact::{ContactLaw, ContactSolver, ExactSettings, FixedPointSettings, FrictionBound};
+use vem_contact::{
+    ContactLaw, ContactSolver, ExactSettings, ExactSolver, FixedPointSettings, FrictionBound,
+};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Point, Vector};
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::{
-    case_by_name, BodyId, ContactPatch, ExactContact, ExactSolution, ExpectedSets, FamilyA,
-    InterfaceValues, Lame, Resultants, Side, CASE_NAMES, FAMILY_A_FRICTION_BOUND,
+    case_by_name, BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FamilyA,
+    FrictionSet, InterfaceValues, Lame, Resultants, Side, CASE_NAMES, FAMILY_A_FRICTION_BOUND,
     STICK_SLIP_POINT,
 };
 use vem_verify::nalgebra::Matrix2;
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
-use vem_verify::study::{Expectation, MeshPairing, SolverChoice, Study};
+use vem_verify::study::{Expectation, MeshPairing, Study};
 
 /// A user's case: the fields of a built-in two-body case `inner`, its own name and law.
 struct SameFields<C> {
@@ -96,11 +100,12 @@ fn m2_with_variable_bound() -> Arc<dyn ExactSolution> {
     })
 }
 
-fn tight_solver() -> SolverChoice {
-    SolverChoice::Exact(
+/// Clarabel with tolerances `eps`.
+fn exact_solver(eps: f64) -> ExactSolver {
+    ExactSolver::new(
         ExactSettings::builder()
-            .eps_abs(1e-12)
-            .eps_rel(1e-12)
+            .eps_abs(eps)
+            .eps_rel(eps)
             .build()
             .unwrap(),
     )
@@ -147,11 +152,11 @@ fn the_field_bound_is_applied_at_every_node() {
         .generate(&*exact, 16, 1)
         .unwrap();
     let problem = DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default()).unwrap();
-    let mut solver = tight_solver().solver();
+    let mut solver = exact_solver(1e-12);
     let result = problem
         .contact_problem()
         .unwrap()
-        .solve(&mut *solver as &mut dyn ContactSolver)
+        .solve(&mut solver as &mut dyn ContactSolver)
         .unwrap();
     for node in &result.nodes {
         let bound = node.tributary_length * variable_bound(node.position.x);
@@ -166,33 +171,135 @@ fn the_field_bound_is_applied_at_every_node() {
     }
 }
 
-/// Coulomb through the study: the patch test PTC2 is reproduced exactly, every node slips,
-/// and the fixed point is reported.
+/// A slipping linear contact patch under Coulomb friction (the construction of PTC2):
+/// `u_1 = (e - gamma (1 - y), -d + beta (1 - y))`, `u_2 = (-e + gamma (1 + y), d - beta (1 + y))`
+/// on the unit squares above and below `y = 0`, clamped at `y = +-1`, gap `h0 = 2 (d - beta)`,
+/// slip `[u]_1tau = 2 (e - gamma) > 0`, stress `[-lambda beta, mu gamma; mu gamma,
+/// -(lambda + 2 mu) beta]`.
+struct CoulombPatch {
+    lame: Lame,
+    beta: f64,
+    d: f64,
+    e: f64,
+    gamma: f64,
+}
+
+impl CoulombPatch {
+    const BETA: f64 = 0.05;
+    const GAMMA: f64 = 0.02;
+
+    fn new() -> Self {
+        Self {
+            lame: Lame::default(),
+            beta: Self::BETA,
+            d: 0.06,
+            e: Self::GAMMA + 0.01,
+            gamma: Self::GAMMA,
+        }
+    }
+
+    /// `F = mu gamma / ((lambda + 2 mu) beta)`.
+    fn coefficient(&self) -> f64 {
+        let (lambda, mu) = (self.lame.lambda(), self.lame.mu());
+        mu * self.gamma / ((lambda + 2.0 * mu) * self.beta)
+    }
+}
+
+impl ExactSolution for CoulombPatch {
+    fn name(&self) -> &str {
+        "coulomb-patch"
+    }
+    fn lame(&self) -> Lame {
+        self.lame
+    }
+    fn bodies(&self) -> &'static [BodyId] {
+        &BodyId::BOTH
+    }
+    fn domain(&self, body: BodyId) -> Rectangle {
+        match body {
+            BodyId::One => Rectangle::unit_square(),
+            BodyId::Two => Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0)),
+        }
+    }
+    fn displacement(&self, body: BodyId, x: Point) -> Vector {
+        let (beta, d, e, gamma) = (self.beta, self.d, self.e, self.gamma);
+        match body {
+            BodyId::One => Vector::new(e - gamma * (1.0 - x.y), -d + beta * (1.0 - x.y)),
+            BodyId::Two => Vector::new(-e + gamma * (1.0 + x.y), d - beta * (1.0 + x.y)),
+        }
+    }
+    fn gradient(&self, _body: BodyId, _x: Point) -> Matrix2<f64> {
+        Matrix2::new(0.0, self.gamma, 0.0, -self.beta)
+    }
+    fn body_force(&self, _body: BodyId, _x: Point) -> Vector {
+        Vector::zeros()
+    }
+    fn dirichlet_sides(&self, body: BodyId) -> Vec<Side> {
+        match body {
+            BodyId::One => vec![Side::Top],
+            BodyId::Two => vec![Side::Bottom],
+        }
+    }
+    fn neumann_sides(&self, _body: BodyId) -> Vec<Side> {
+        vec![Side::Left, Side::Right]
+    }
+    fn contact(&self) -> Option<&dyn ExactContact> {
+        Some(self)
+    }
+}
+
+impl ExactContact for CoulombPatch {
+    fn law(&self) -> ContactLaw {
+        ContactLaw::Coulomb {
+            coefficient: self.coefficient(),
+            fixed_point: FixedPointSettings::default(),
+        }
+    }
+    fn initial_gap(&self, _x: f64) -> f64 {
+        2.0 * (self.d - self.beta)
+    }
+    fn expected_sets(&self) -> Option<ExpectedSets> {
+        Some(ExpectedSets {
+            contact: ContactSet::AllActive,
+            friction: Some(FrictionSet::AllSlip),
+        })
+    }
+}
+
+/// Coulomb through the study: the slipping patch is reproduced exactly, every node slips at
+/// `F lambda_N`, and the fixed point is reported.
 #[test]
 fn coulomb_patch_test_is_exact_through_the_study() {
-    let lame = Lame::default();
-    let pressure = (lame.lambda() + 2.0 * lame.mu()) / 100.0;
-    let coefficient = 0.25 / pressure;
-    let exact: Arc<dyn ExactSolution> = Arc::new(SameFields {
-        name: "PTC2-coulomb",
-        inner: ContactPatch::ptc2(lame),
-        law: ContactLaw::Coulomb {
-            coefficient,
-            fixed_point: FixedPointSettings::default(),
-        },
-    });
+    let patch = CoulombPatch::new();
+    let coefficient = patch.coefficient();
+    assert!((coefficient - 0.1).abs() < 1e-15);
+    // The exact values the law is checked against: sigma_nu = -(lambda + 2 mu) beta = -0.2,
+    // sigma_1tau = -mu gamma = -0.02 = -F |sigma_nu|, slip 2 (e - gamma) = 0.02.
+    let v = patch.interface_values(0.3);
+    assert!((v.sigma_nu + 0.2).abs() < 1e-15 && (v.sigma_1tau + 0.02).abs() < 1e-15);
+    assert!((v.tangential_jump - 0.02).abs() < 1e-15 && v.gap().abs() < 1e-15);
+    let exact: Arc<dyn ExactSolution> = Arc::new(patch);
+    // The active-set solver: its forces are exact up to rounding, so the fixed point runs
+    // to its own tolerance (the interior-point solver stops it at its force accuracy, 1e-4 at
+    // 1e-10, which leaves relative errors near 1e-5).
     let result = Study::new(exact, "quads/hexagons".parse().unwrap())
         .sizes([2, 4])
-        .solver(tight_solver())
-        .expect(Expectation::Exact { tolerance: 1e-7 })
-        .also_expect(Expectation::Resultants { tolerance: 1e-7 })
+        .solver("active-set")
+        .expect(Expectation::Exact { tolerance: 1e-9 })
+        .also_expect(Expectation::Resultants { tolerance: 1e-9 })
         .run()
         .unwrap();
-    assert_eq!(result.law, "coulomb");
+    assert_eq!(
+        (result.law.as_str(), result.solver.as_str()),
+        ("coulomb", "active-set")
+    );
     assert!(result.verdict.passed, "{:?}", result.verdict);
     for record in &result.records {
         let contact = record.contact.as_ref().unwrap();
-        assert_eq!((contact.slip, contact.nodes), (contact.nodes, contact.active));
+        assert_eq!(
+            (contact.slip, contact.nodes),
+            (contact.nodes, contact.active)
+        );
         let steps = record.fixed_point_steps.expect("a Coulomb record");
         assert!((1..=10).contains(&steps), "{steps} fixed-point steps");
         assert!(record.fixed_point_change.unwrap() < 1e-6, "{record:?}");

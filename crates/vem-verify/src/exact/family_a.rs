@@ -1,8 +1,10 @@
 //! Family A: two-body solutions built from interface data (`manufactured.md`, sections 2, 4
 //! and 5): the cases M1 (frictionless, contact/separation), M2 (Tresca, stick/slip), M3 (full
-//! contact) and M4 (no contact).
+//! contact) and M4 (no contact), and [`InterfaceData`], the same construction from data of
+//! your own.
 
 use std::f64::consts::FRAC_1_SQRT_2;
+use std::sync::Arc;
 
 use nalgebra::Matrix2;
 use vem_contact::{ContactLaw, FrictionBound};
@@ -83,14 +85,21 @@ enum Case {
     M4,
 }
 
-/// The interface data of one body at one abscissa: tangential trace `alpha = u_x(x, 0)`,
-/// vertical trace `phi = u_y(x, 0)`, shear `t = sigma_xy(x, 0)`, pressure
-/// `p = -sigma_yy(x, 0)`, each with the derivatives section 2 needs.
-struct Traces {
-    alpha: Jet<4>,
-    phi: Jet<4>,
-    shear: Jet<3>,
-    pressure: Jet<3>,
+/// The interface data of one body of a Family A solution at one abscissa (`manufactured.md`,
+/// section 2): tangential trace `alpha = u_x(x, 0)`, vertical trace `phi = u_y(x, 0)`, shear
+/// `t = sigma_xy(x, 0)`, pressure `p = -sigma_yy(x, 0)`, each with the derivatives the
+/// construction needs (build them with [`Jet::polynomial`], [`SwitchPower::jet`], sums and
+/// products).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traces {
+    /// `alpha = u_x(x, 0)` and three derivatives.
+    pub alpha: Jet<4>,
+    /// `phi = u_y(x, 0)` and three derivatives.
+    pub phi: Jet<4>,
+    /// `t = sigma_xy(x, 0)` and two derivatives.
+    pub shear: Jet<3>,
+    /// `p = -sigma_yy(x, 0)` and two derivatives.
+    pub pressure: Jet<3>,
 }
 
 /// The derived one-dimensional functions of section 2 for one body at one abscissa.
@@ -198,26 +207,30 @@ impl FamilyA {
         }
     }
 
-    /// `theta`, `pi` and the orientation of section 2.
     fn derived(&self, body: BodyId, x: f64) -> Derived {
-        let Traces {
-            alpha,
-            phi,
-            shear,
-            pressure,
-        } = self.traces(body, x);
-        let (lambda, mu) = (self.lame.lambda(), self.lame.mu());
-        Derived {
-            s: match body {
-                BodyId::One => 1.0,
-                BodyId::Two => -1.0,
-            },
-            alpha,
-            phi,
-            theta: shear.scale(1.0 / mu) - phi.derivative(),
-            pi: pressure + alpha.derivative().scale(lambda),
-            kappa: 1.0 / (lambda + 2.0 * mu),
-        }
+        derived(self.traces(body, x), body, self.lame)
+    }
+}
+
+/// `theta`, `pi` and the orientation of section 2 from the traces of `body`.
+fn derived(traces: Traces, body: BodyId, lame: Lame) -> Derived {
+    let Traces {
+        alpha,
+        phi,
+        shear,
+        pressure,
+    } = traces;
+    let (lambda, mu) = (lame.lambda(), lame.mu());
+    Derived {
+        s: match body {
+            BodyId::One => 1.0,
+            BodyId::Two => -1.0,
+        },
+        alpha,
+        phi,
+        theta: shear.scale(1.0 / mu) - phi.derivative(),
+        pi: pressure + alpha.derivative().scale(lambda),
+        kappa: 1.0 / (lambda + 2.0 * mu),
     }
 }
 
@@ -245,57 +258,23 @@ impl ExactSolution for FamilyA {
     }
 
     fn domain(&self, body: BodyId) -> Rectangle {
-        match body {
-            BodyId::One => Rectangle::unit_square(),
-            BodyId::Two => Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0)),
-        }
+        family_a_domain(body)
     }
 
     fn displacement(&self, body: BodyId, x: Point) -> Vector {
-        let d = self.derived(body, x.x);
-        let (y2, ys, _) = profiles(d.s, x.y);
-        Vector::new(
-            y2 * d.alpha[0] + ys * d.theta[0],
-            y2 * d.phi[0] - d.kappa * ys * d.pi[0],
-        )
+        displacement(&self.derived(body, x.x), x)
     }
 
     fn gradient(&self, body: BodyId, x: Point) -> Matrix2<f64> {
-        let d = self.derived(body, x.x);
-        let y = x.y;
-        let (y2, ys, dys) = profiles(d.s, y);
-        Matrix2::new(
-            y2 * d.alpha[1] + ys * d.theta[1],
-            -2.0 * y * d.alpha[0] + dys * d.theta[0],
-            y2 * d.phi[1] - d.kappa * ys * d.pi[1],
-            -2.0 * y * d.phi[0] - d.kappa * dys * d.pi[0],
-        )
+        gradient(&self.derived(body, x.x), x)
     }
 
     fn body_force(&self, body: BodyId, x: Point) -> Vector {
-        let d = self.derived(body, x.x);
-        let y = x.y;
-        let (y2, ys, dys) = profiles(d.s, y);
-        let (k, s) = (d.kappa, d.s);
-        // Second derivatives (section 2).
-        let ux_xx = y2 * d.alpha[2] + ys * d.theta[2];
-        let ux_xy = -2.0 * y * d.alpha[1] + dys * d.theta[1];
-        let ux_yy = -2.0 * d.alpha[0] - 2.0 * s * d.theta[0];
-        let uy_xx = y2 * d.phi[2] - k * ys * d.pi[2];
-        let uy_xy = -2.0 * y * d.phi[1] - k * dys * d.pi[1];
-        let uy_yy = -2.0 * d.phi[0] + 2.0 * s * k * d.pi[0];
-        let (lambda, mu) = (self.lame.lambda(), self.lame.mu());
-        Vector::new(
-            -((lambda + 2.0 * mu) * ux_xx + mu * ux_yy + (lambda + mu) * uy_xy),
-            -((lambda + 2.0 * mu) * uy_yy + mu * uy_xx + (lambda + mu) * ux_xy),
-        )
+        body_force(&self.derived(body, x.x), self.lame, x)
     }
 
     fn dirichlet_sides(&self, body: BodyId) -> Vec<Side> {
-        match body {
-            BodyId::One => vec![Side::Top],
-            BodyId::Two => vec![Side::Bottom],
-        }
+        family_a_dirichlet_sides(body)
     }
 
     fn neumann_sides(&self, _body: BodyId) -> Vec<Side> {
@@ -305,6 +284,62 @@ impl ExactSolution for FamilyA {
     fn contact(&self) -> Option<&dyn ExactContact> {
         Some(self)
     }
+}
+
+/// Body one clamped at `y = 1`, body two at `y = -1`.
+fn family_a_dirichlet_sides(body: BodyId) -> Vec<Side> {
+    match body {
+        BodyId::One => vec![Side::Top],
+        BodyId::Two => vec![Side::Bottom],
+    }
+}
+
+/// Body one on `(0,1) x (0,1)`, body two on `(0,1) x (-1,0)`.
+fn family_a_domain(body: BodyId) -> Rectangle {
+    match body {
+        BodyId::One => Rectangle::unit_square(),
+        BodyId::Two => Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0)),
+    }
+}
+
+/// The displacement of section 2.
+fn displacement(d: &Derived, x: Point) -> Vector {
+    let (y2, ys, _) = profiles(d.s, x.y);
+    Vector::new(
+        y2 * d.alpha[0] + ys * d.theta[0],
+        y2 * d.phi[0] - d.kappa * ys * d.pi[0],
+    )
+}
+
+/// The displacement gradient of section 2.
+fn gradient(d: &Derived, x: Point) -> Matrix2<f64> {
+    let y = x.y;
+    let (y2, ys, dys) = profiles(d.s, y);
+    Matrix2::new(
+        y2 * d.alpha[1] + ys * d.theta[1],
+        -2.0 * y * d.alpha[0] + dys * d.theta[0],
+        y2 * d.phi[1] - d.kappa * ys * d.pi[1],
+        -2.0 * y * d.phi[0] - d.kappa * dys * d.pi[0],
+    )
+}
+
+/// The body force of section 2.
+fn body_force(d: &Derived, lame: Lame, x: Point) -> Vector {
+    let y = x.y;
+    let (y2, ys, dys) = profiles(d.s, y);
+    let (k, s) = (d.kappa, d.s);
+    // Second derivatives (section 2).
+    let ux_xx = y2 * d.alpha[2] + ys * d.theta[2];
+    let ux_xy = -2.0 * y * d.alpha[1] + dys * d.theta[1];
+    let ux_yy = -2.0 * d.alpha[0] - 2.0 * s * d.theta[0];
+    let uy_xx = y2 * d.phi[2] - k * ys * d.pi[2];
+    let uy_xy = -2.0 * y * d.phi[1] - k * dys * d.pi[1];
+    let uy_yy = -2.0 * d.phi[0] + 2.0 * s * k * d.pi[0];
+    let (lambda, mu) = (lame.lambda(), lame.mu());
+    Vector::new(
+        -((lambda + 2.0 * mu) * ux_xx + mu * ux_yy + (lambda + mu) * uy_xy),
+        -((lambda + 2.0 * mu) * uy_yy + mu * uy_xx + (lambda + mu) * ux_xy),
+    )
 }
 
 impl ExactContact for FamilyA {
@@ -365,5 +400,168 @@ impl ExactContact for FamilyA {
             Case::M4 => (0.0, 0.0),
         };
         Some(Resultants { normal, tangential })
+    }
+}
+
+/// The interface data of a Family A solution: the [`Traces`] of `body` at abscissa `x`.
+pub type TraceData = dyn Fn(BodyId, f64) -> Traces + Send + Sync;
+
+/// A Family A two-body solution built from interface data of your own (`manufactured.md`,
+/// section 2): the same domains, boundary sides and construction as [`FamilyA`] (body one on
+/// `(0,1) x (0,1)`, body two on `(0,1) x (-1,0)`, clamped at `y = 1` and `y = -1`, tractions on
+/// the lateral sides), with the traces, law and initial gap you give.
+///
+/// The data must satisfy the law on `Gamma_C` (section 3): the built-in cases show how
+/// (contact where the pressure is positive, `phi_1 = -w - h0` there; for friction
+/// `|t| <= g_F`, with equality where the tangential traces differ).
+///
+/// ```
+/// use std::sync::Arc;
+/// use vem_contact::ContactLaw;
+/// use vem_verify::exact::{
+///     BodyId, ExactContact, ExactSolution, FamilyA, InterfaceData, Jet, Lame, Traces,
+/// };
+/// use vem_mesh::Point;
+/// // M3 retyped from its data (section 5): w = (1 + x^2)/20, h0 = (2 + x + x^2)/40,
+/// // a1 = x^2/20, a2 = -x/20, no shear, pressure 1 + x/2 - x^2/2.
+/// let data = |body: BodyId, x: f64| {
+///     let w: Jet<4> = Jet::polynomial(&[0.05, 0.0, 0.05], x);
+///     let h0: Jet<4> = Jet::polynomial(&[0.05, 0.025, 0.025], x);
+///     let one = body == BodyId::One;
+///     Traces {
+///         alpha: if one { Jet::polynomial(&[0.0, 0.0, 0.05], x) }
+///                else { Jet::polynomial(&[0.0, -0.05], x) },
+///         phi: if one { -w - h0 } else { -w },
+///         shear: Jet::ZERO,
+///         pressure: Jet::polynomial(&[1.0, 0.5, -0.5], x),
+///     }
+/// };
+/// let mine = InterfaceData::new("my M3", Lame::default(), ContactLaw::Frictionless,
+///     |x| (2.0 + x + x * x) / 40.0, data);
+/// let m3 = FamilyA::m3(Lame::default());
+/// let p = Point::new(0.3, -0.6);
+/// assert!((mine.displacement(BodyId::Two, p) - m3.displacement(BodyId::Two, p)).norm() < 1e-15);
+/// assert!((mine.body_force(BodyId::Two, p) - m3.body_force(BodyId::Two, p)).norm() < 1e-13);
+/// assert_eq!(mine.contact().unwrap().interface_values(0.4), m3.interface_values(0.4));
+/// ```
+#[derive(Clone)]
+pub struct InterfaceData {
+    name: String,
+    lame: Lame,
+    law: ContactLaw,
+    initial_gap: Arc<dyn Fn(f64) -> f64 + Send + Sync>,
+    traces: Arc<TraceData>,
+    expected_sets: Option<ExpectedSets>,
+    reference_resultants: Option<Resultants>,
+}
+
+impl std::fmt::Debug for InterfaceData {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InterfaceData")
+            .field("name", &self.name)
+            .field("lame", &self.lame)
+            .field("law", &self.law)
+            .field("expected_sets", &self.expected_sets)
+            .field("reference_resultants", &self.reference_resultants)
+            .finish()
+    }
+}
+
+impl InterfaceData {
+    /// The solution `name` of material `lame` with contact law `law`, initial gap
+    /// `initial_gap(x)` and interface data `traces(body, x)`; no expected sets and resultants
+    /// by quadrature until given.
+    pub fn new(
+        name: impl Into<String>,
+        lame: Lame,
+        law: ContactLaw,
+        initial_gap: impl Fn(f64) -> f64 + Send + Sync + 'static,
+        traces: impl Fn(BodyId, f64) -> Traces + Send + Sync + 'static,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            lame,
+            law,
+            initial_gap: Arc::new(initial_gap),
+            traces: Arc::new(traces),
+            expected_sets: None,
+            reference_resultants: None,
+        }
+    }
+
+    /// The statuses a discrete solution must reproduce (see [`ExactContact::expected_sets`]).
+    pub fn expected_sets(mut self, sets: ExpectedSets) -> Self {
+        self.expected_sets = Some(sets);
+        self
+    }
+
+    /// The resultants in closed form (see [`ExactContact::reference_resultants`]).
+    pub fn reference_resultants(mut self, resultants: Resultants) -> Self {
+        self.reference_resultants = Some(resultants);
+        self
+    }
+
+    fn derived(&self, body: BodyId, x: f64) -> Derived {
+        derived((self.traces)(body, x), body, self.lame)
+    }
+}
+
+impl ExactSolution for InterfaceData {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn lame(&self) -> Lame {
+        self.lame
+    }
+
+    fn bodies(&self) -> &'static [BodyId] {
+        &BodyId::BOTH
+    }
+
+    fn domain(&self, body: BodyId) -> Rectangle {
+        family_a_domain(body)
+    }
+
+    fn displacement(&self, body: BodyId, x: Point) -> Vector {
+        displacement(&self.derived(body, x.x), x)
+    }
+
+    fn gradient(&self, body: BodyId, x: Point) -> Matrix2<f64> {
+        gradient(&self.derived(body, x.x), x)
+    }
+
+    fn body_force(&self, body: BodyId, x: Point) -> Vector {
+        body_force(&self.derived(body, x.x), self.lame, x)
+    }
+
+    fn dirichlet_sides(&self, body: BodyId) -> Vec<Side> {
+        family_a_dirichlet_sides(body)
+    }
+
+    fn neumann_sides(&self, _body: BodyId) -> Vec<Side> {
+        vec![Side::Left, Side::Right]
+    }
+
+    fn contact(&self) -> Option<&dyn ExactContact> {
+        Some(self)
+    }
+}
+
+impl ExactContact for InterfaceData {
+    fn law(&self) -> ContactLaw {
+        self.law.clone()
+    }
+
+    fn initial_gap(&self, x: f64) -> f64 {
+        (self.initial_gap)(x)
+    }
+
+    fn expected_sets(&self) -> Option<ExpectedSets> {
+        self.expected_sets
+    }
+
+    fn reference_resultants(&self) -> Option<Resultants> {
+        self.reference_resultants
     }
 }

@@ -13,6 +13,7 @@
 //! | name | type | problem |
 //! |---|---|---|
 //! | M1, M2, M3, M4 | [`FamilyA`] | two bodies: contact/separation, Tresca stick/slip, full contact, no contact |
+//! | your own | [`InterfaceData`] | two bodies, Family A from interface data you give |
 //! | E1, E2 | [`E1`], [`E2`] | one body, clamped: trigonometric; divergence free (locking) |
 //! | PT0a, PT0b | [`AffinePatch`] | one body, linear patch tests |
 //! | PTC1, PTC1h, PTC2, PTC3 | [`ContactPatch`] | two bodies, linear contact patch tests |
@@ -38,7 +39,10 @@ mod solution;
 pub use contact_patch::{ContactPatch, PATCH_FRICTION_BOUND};
 pub use elasticity::{AffinePatch, E1, E2};
 pub use error::ExactError;
-pub use family_a::{FamilyA, CONTACT_SWITCH_POINT, FAMILY_A_FRICTION_BOUND, STICK_SLIP_POINT};
+pub use family_a::{
+    FamilyA, InterfaceData, TraceData, Traces, CONTACT_SWITCH_POINT, FAMILY_A_FRICTION_BOUND,
+    STICK_SLIP_POINT,
+};
 pub use jet::{Jet, SwitchPower, SwitchSide};
 pub use solution::{
     BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, InterfaceValues,
