@@ -8,7 +8,9 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use vem_contact::SolverRegistry;
-use vem_space::{ElementSpace, LinearTriangle, LowestOrderVem, Stabilisation, StabilisationScaling};
+use vem_space::{
+    ElementSpace, LinearTriangle, LowestOrderVem, Stabilisation, StabilisationScaling,
+};
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::Lame;
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};

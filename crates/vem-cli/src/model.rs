@@ -456,26 +456,33 @@ fn build_contact(
     let a = scene.body_index(&spec.body)?;
     let body_a = &bodies[a].body;
     check_part(scene, body_a.mesh(), body_a.name(), &spec.part)?;
+    let span_of = |value: &Option<Spanned<f64>>| value.as_ref().map(|v| v.span());
     let law = match spec.law() {
         LawKind::Frictionless => ContactLaw::Frictionless,
         LawKind::Tresca => {
-            ContactLaw::tresca(spec.friction_bound.as_ref().map_or(0.0, |g| *g.get_ref()))
+            ContactLaw::try_tresca(spec.friction_bound.as_ref().map_or(0.0, |g| *g.get_ref()))
+                .map_err(|e| scene.error(span_of(&spec.friction_bound), e.to_string()))?
         }
         LawKind::Coulomb => {
-            let defaults = FixedPointSettings::default();
-            ContactLaw::Coulomb {
-                coefficient: spec.coefficient.as_ref().map_or(0.0, |f| *f.get_ref()),
-                fixed_point: FixedPointSettings {
-                    max_steps: spec
-                        .fixed_point_max_steps
-                        .as_ref()
-                        .map_or(defaults.max_steps, |s| *s.get_ref()),
-                    tolerance: spec
-                        .fixed_point_tolerance
-                        .as_ref()
-                        .map_or(defaults.tolerance, |s| *s.get_ref()),
-                },
+            let mut builder = FixedPointSettings::builder();
+            if let Some(steps) = &spec.fixed_point_max_steps {
+                builder = builder.max_iterations(*steps.get_ref());
             }
+            if let Some(tolerance) = &spec.fixed_point_tolerance {
+                builder = builder.tolerance(*tolerance.get_ref());
+            }
+            let fixed_point = builder.build().map_err(|e| {
+                let span = match e.setting {
+                    "max_iterations" => spec.fixed_point_max_steps.as_ref().map(|s| s.span()),
+                    _ => span_of(&spec.fixed_point_tolerance),
+                };
+                scene.error(span, e.to_string())
+            })?;
+            ContactLaw::try_coulomb_with(
+                spec.coefficient.as_ref().map_or(0.0, |f| *f.get_ref()),
+                fixed_point,
+            )
+            .map_err(|e| scene.error(span_of(&spec.coefficient), e.to_string()))?
         }
     };
     let (counterpart, problem) = match (&spec.other_body, &spec.other_part, &spec.obstacle) {
@@ -516,7 +523,7 @@ fn build_contact(
     };
     let mut problem = problem.with_interface_options(interface_options(scene));
     if let Some(gap) = spec.gap.as_ref().map(|g| *g.get_ref()) {
-        problem = problem.with_initial_gap(move |_| gap);
+        problem = problem.with_imposed_gap(move |_| gap);
     }
     Ok(ModelContact {
         body: a,
@@ -558,7 +565,7 @@ fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliEr
             "eps_abs" => spec.eps_abs.as_ref().map(|s| s.span()),
             "eps_rel" => spec.eps_rel.as_ref().map(|s| s.span()),
             "tolerance" => spec.tolerance.as_ref().map(|s| s.span()),
-            "max_iter" => spec.max_iterations.as_ref().map(|s| s.span()),
+            "max_iterations" => spec.max_iterations.as_ref().map(|s| s.span()),
             _ => spec.solver.as_ref().map(|s| s.span()),
         };
         scene.error(span, e.to_string())
@@ -575,7 +582,7 @@ fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliEr
                 b = b.eps_rel(*v.get_ref());
             }
             if let Some(m) = max_iterations {
-                b = b.max_iter(m);
+                b = b.max_iterations(m);
             }
             SolverChoice::Exact(b.build().map_err(located)?)
         }
@@ -588,7 +595,7 @@ fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliEr
                 b = b.tolerance(t);
             }
             if let Some(m) = max_iterations {
-                b = b.max_iter(m);
+                b = b.max_iterations(m);
             }
             SolverChoice::Penalty(b.build().map_err(located)?)
         }
@@ -601,7 +608,7 @@ fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliEr
                 b = b.tolerance(t);
             }
             if let Some(m) = max_iterations {
-                b = b.max_iter(m);
+                b = b.max_iterations(m);
             }
             SolverChoice::ActiveSet(b.build().map_err(located)?)
         }
