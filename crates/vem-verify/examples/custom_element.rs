@@ -174,7 +174,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
                 "n = {:?}: {name} {x:.3e} against vem1 {y:.3e} (ratio {ratio:.3})",
                 a.n
             );
-            if !(ratio > 0.5 && ratio < 2.0) {
+            if !(0.5..2.0).contains(&ratio) {
                 failures.push(format!("n = {:?}: {name} ratio {ratio:.3} to vem1", a.n));
             }
         }
