@@ -63,7 +63,17 @@ impl SettingsError {
 pub enum ContactSolverError {
     /// The solver stopped before meeting its tolerances (iteration limit, reduced accuracy,
     /// lack of progress).
-    #[error("{} did not converge ({:?}) after {} iterations; residuals {:?}", report.solver, report.status, report.iterations, report.residuals)]
+    #[error(
+        "{} did not converge ({}) after {} iterations: stationarity {:.1e}, max penetration \
+         {:.1e}, complementarity {:.1e}, friction bound violation {:.1e}",
+        report.solver,
+        report.status.describe(),
+        report.iterations,
+        report.residuals.stationarity,
+        report.residuals.max_penetration,
+        report.residuals.complementarity,
+        report.residuals.friction_bound_violation
+    )]
     NotConverged {
         /// The report of the run; its residuals are those of the last iterate.
         report: Box<SolveReport>,
