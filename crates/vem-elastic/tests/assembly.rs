@@ -193,8 +193,12 @@ fn natural_and_amd_orderings_agree() {
     let body = body();
     let system = body.assemble().unwrap();
     let solve = |ordering| {
-        let mut solver =
-            CholeskySolver::new(CholeskySettings::builder().ordering(ordering).build().unwrap());
+        let mut solver = CholeskySolver::new(
+            CholeskySettings::builder()
+                .ordering(ordering)
+                .build()
+                .unwrap(),
+        );
         solver.analyse(system.stiffness().symbolic()).unwrap();
         solver.factorise(system.stiffness().as_ref()).unwrap();
         solver.solve(system.rhs()).unwrap()

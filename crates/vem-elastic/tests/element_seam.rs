@@ -89,9 +89,14 @@ fn a_p1_triangle_mesh_fails_after_a_vertex_insertion() {
         .clamp("top")
         .build()
         .unwrap();
-    let interface =
-        insert_interface_nodes(&upper, "bottom", &lower, "top", &InterfaceOptions::default())
-            .unwrap();
+    let interface = insert_interface_nodes(
+        &upper,
+        "bottom",
+        &lower,
+        "top",
+        &InterfaceOptions::default(),
+    )
+    .unwrap();
     assert!(interface.inserted_a > 0);
     let err = body.with_mesh(interface.mesh_a.clone()).unwrap_err();
     let ElasticError::UnsupportedPolygon {
@@ -130,7 +135,10 @@ fn errors_name_the_place_and_leave_the_cause_to_the_source() {
         .build()
         .unwrap();
     let err = body.assemble().unwrap_err();
-    assert!(matches!(err, ElasticError::Element { polygon: 0, .. }), "{err}");
+    assert!(
+        matches!(err, ElasticError::Element { polygon: 0, .. }),
+        "{err}"
+    );
     let source = err.source().expect("the element error").to_string();
     assert!(!err.to_string().contains(&source), "{err} repeats {source}");
     assert!(err.to_string().contains("body 'plate', polygon 0"), "{err}");

@@ -3,7 +3,9 @@
 use std::fmt;
 use std::sync::Arc;
 
-use crate::{DRecipe, DofiDofi, ElementSpace, LinearTriangle, LowestOrderVem, StabilisationScaling};
+use crate::{
+    DRecipe, DofiDofi, ElementSpace, LinearTriangle, LowestOrderVem, StabilisationScaling,
+};
 
 /// What builds an element of a registered name.
 pub type ElementFactory = Arc<dyn Fn() -> Arc<dyn ElementSpace> + Send + Sync>;

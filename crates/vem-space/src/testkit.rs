@@ -77,7 +77,13 @@ pub fn standard_polygons() -> Vec<TestPolygon> {
         },
         TestPolygon {
             name: "square with hanging node",
-            vertices: vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 0.5), p(1.0, 1.0), p(0.0, 1.0)],
+            vertices: vec![
+                p(0.0, 0.0),
+                p(1.0, 0.0),
+                p(1.0, 0.5),
+                p(1.0, 1.0),
+                p(0.0, 1.0),
+            ],
         },
         TestPolygon {
             name: "square with collinear inserted vertices",
@@ -214,7 +220,9 @@ pub fn rank(
     polygon: &[Point],
     material: &ElasticityTensor,
 ) -> Result<usize, SpaceError> {
-    Ok(numerical_rank(&element.stiffness(polygon, material)?.total()))
+    Ok(numerical_rank(
+        &element.stiffness(polygon, material)?.total(),
+    ))
 }
 
 /// `max(|K - K^T|, |K_s - K_s^T|) / |K|` for `K = K_T` and its stabilisation part `K_s`.

@@ -219,13 +219,19 @@ fn polygon_geometry_matches_independent_formulas() {
         let g = PolygonGeometry::try_new(&polygon).unwrap();
         let n = polygon.len();
         let tolerance = 1e-14 * conditioning(&polygon);
-        assert!((g.area() - area(&polygon)).abs() < tolerance * g.area(), "{name}");
+        assert!(
+            (g.area() - area(&polygon)).abs() < tolerance * g.area(),
+            "{name}"
+        );
         let h = vem_mesh::geometry::diameter(&polygon);
         assert!((g.diameter() - h).abs() < tolerance * h, "{name}");
         let mut identity = nalgebra::Matrix2::zeros();
         for k in 0..n {
             let edge = polygon[(k + 1) % n] - polygon[k];
-            assert!((g.edge_lengths()[k] - edge.norm()).abs() < tolerance * h, "{name}");
+            assert!(
+                (g.edge_lengths()[k] - edge.norm()).abs() < tolerance * h,
+                "{name}"
+            );
             assert!(g.normals()[k].dot(&edge).abs() < tolerance * h, "{name}");
             assert!((g.normals()[k].norm() - 1.0).abs() < 1e-15, "{name}");
             // Outward: the normal points to the right of the counter-clockwise edge.
@@ -237,7 +243,10 @@ fn polygon_geometry_matches_independent_formulas() {
             "{name}"
         );
         let centroid = vem_mesh::geometry::centroid(&polygon);
-        assert!((g.centroid() - centroid).norm() <= 1e-15 * centroid.coords.norm(), "{name}");
+        assert!(
+            (g.centroid() - centroid).norm() <= 1e-15 * centroid.coords.norm(),
+            "{name}"
+        );
     }
 }
 
@@ -539,7 +548,10 @@ fn a_user_stabilisation_plugs_in_and_passes_the_kit() {
     let checks = check_element(&element).unwrap();
     assert_eq!(checks.len(), 14);
     for check in &checks {
-        assert!(check.failures(testkit::DEFAULT_TOLERANCE).is_empty(), "{check:?}");
+        assert!(
+            check.failures(testkit::DEFAULT_TOLERANCE).is_empty(),
+            "{check:?}"
+        );
     }
     // On the unit square |T| / h^2 = 1/2 and Pi_dof is an orthogonal projector of rank 6: K_s
     // has the eigenvalue trace(C)/2 = 4.5 twice (lambda = 2, mu = 1), zero six times.

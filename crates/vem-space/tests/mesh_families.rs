@@ -42,7 +42,10 @@ fn every_polygon_of_every_family_passes_the_element_patch_test() {
                 worst = worst.max(check.worst_error());
             }
             if polygon.len() == 3 {
-                let p1 = LinearTriangle.stiffness(&polygon, &material).unwrap().total();
+                let p1 = LinearTriangle
+                    .stiffness(&polygon, &material)
+                    .unwrap()
+                    .total();
                 let vem = elements[0].stiffness(&polygon, &material).unwrap().total();
                 assert!((&vem - &p1).norm() < 1e-13 * p1.norm(), "{name}");
             }
