@@ -335,7 +335,7 @@ impl ElementCheck {
             ("symmetry error", self.symmetry_error),
             ("patch-test error", self.patch_test_error),
         ] {
-            if !(value <= tolerance) {
+            if value.is_nan() || value > tolerance {
                 failures.push(format!(
                     "{}: {what} {value:e} > {tolerance:e}",
                     self.polygon
