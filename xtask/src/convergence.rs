@@ -8,9 +8,7 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use vem_contact::SolverRegistry;
-use vem_space::{
-    ElementSpace, LinearTriangle, LowestOrderVem, Stabilisation, StabilisationScaling,
-};
+use vem_space::ElementRegistry;
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::Lame;
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
@@ -28,8 +26,8 @@ pub struct ConvergenceArgs {
     /// The contact solver: a name of the solver registry (exact, penalty, active-set).
     #[arg(long, default_value = SolverRegistry::DEFAULT)]
     solver: String,
-    /// The element of every body: vem1 (default), vem1-shear, vem1-drecipe, p1 (triangles
-    /// only).
+    /// The element of every body: a name of the element registry (vem1, vem1-shear,
+    /// vem1-drecipe, p1 on triangles).
     #[arg(long, default_value = DEFAULT_ELEMENT)]
     element: String,
     /// Run only the studies of these cases, any name of the case registry (M1..M4, E1, E2,
@@ -39,29 +37,7 @@ pub struct ConvergenceArgs {
 }
 
 /// The element of the default run.
-const DEFAULT_ELEMENT: &str = "vem1";
-
-/// The element called `name`: "vem1" (the default lowest-order VEM), "vem1-shear" (dofi-dofi
-/// scaled by the shear modulus), "vem1-drecipe" (the D-recipe), "p1" (linear triangles).
-///
-/// INTEGRATION: this stands in for `vem_space::ElementRegistry` (same four names); replace the
-/// body by `ElementRegistry::builtin().make(name)` when it is merged.
-fn element_by_name(name: &str) -> Result<Arc<dyn ElementSpace>, String> {
-    let vem = |stabilisation| {
-        LowestOrderVem::new(stabilisation)
-            .map(|e| Arc::new(e) as Arc<dyn ElementSpace>)
-            .map_err(|e| format!("element {name}: {e}"))
-    };
-    match name {
-        "vem1" => Ok(Arc::new(LowestOrderVem::default())),
-        "vem1-shear" => vem(Stabilisation::dofi_dofi(StabilisationScaling::ShearModulus)),
-        "vem1-drecipe" => vem(Stabilisation::DRecipe),
-        "p1" => Ok(Arc::new(LinearTriangle)),
-        _ => Err(format!(
-            "unknown element {name:?}; the elements are vem1, vem1-shear, vem1-drecipe, p1"
-        )),
-    }
-}
+const DEFAULT_ELEMENT: &str = ElementRegistry::DEFAULT;
 
 /// One planned study.
 struct Planned {
@@ -200,7 +176,7 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         )
         .into());
     }
-    let element = element_by_name(&args.element)?;
+    let element = ElementRegistry::builtin().make(&args.element)?;
     let planned = plan(args.quick, &args.cases, &CaseRegistry::builtin())?;
     let plots = args.out.join("convergence");
     std::fs::create_dir_all(&plots)

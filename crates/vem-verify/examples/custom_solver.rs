@@ -93,8 +93,7 @@ impl DualGaussSeidel {
                 let mut blocks = Vec::new();
                 for block in system.stiffness_blocks() {
                     let matrix = block.matrix();
-                    let mut cholesky =
-                        CholeskySolver::new(CholeskySettings::default()).map_err(backend)?;
+                    let mut cholesky = CholeskySolver::new(CholeskySettings::default());
                     cholesky.analyse(matrix.symbolic()).map_err(backend)?;
                     cholesky.factorise(matrix).map_err(backend)?;
                     work.symbolic_analyses += 1;
