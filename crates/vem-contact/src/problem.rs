@@ -83,7 +83,7 @@ impl FixedPointSettings {
     /// [`ExactSolver`](crate::solver::ExactSolver), `0` for the penalty and active-set solvers),
     /// whichever is larger: changes below the inner accuracy are noise of the inner solves and
     /// the fixed point would stall there. The tolerance used is in
-    /// [`FixedPointReport::tolerance`].
+    /// [`FixedPointReport::tolerance`](crate::FixedPointReport::tolerance).
     pub fn tolerance(&self) -> f64 {
         self.tolerance
     }
