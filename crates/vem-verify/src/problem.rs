@@ -31,6 +31,7 @@ use std::time::{Duration, Instant};
 
 use vem_contact::{
     BodyResult, ContactProblem, ContactSolver, FixedPointReport, InterfaceNode, SolveReport,
+    StageTimes, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::Mesh;
@@ -225,6 +226,7 @@ impl DiscreteProblem {
                     fixed_point: result.fixed_point,
                     inserted_nodes: result.model.inserted_nodes,
                 }),
+                work: result.work,
                 assembly_time: result.work.times.insertion + result.work.times.assembly,
                 solve_time: result.work.times.contact_solve,
             });
@@ -250,9 +252,23 @@ impl DiscreteProblem {
                 solution,
             });
         }
+        // One assembly, symbolic analysis, factorisation and solve per body.
+        let count = self.bodies.len();
+        let work = WorkCounters {
+            assemblies: count,
+            symbolic_analyses: count,
+            numeric_factorisations: count,
+            triangular_solves: count,
+            times: StageTimes {
+                assembly: assembly_time,
+                contact_solve: solve_time,
+                ..StageTimes::default()
+            },
+        };
         Ok(DiscreteSolution {
             bodies,
             interface: None,
+            work,
             assembly_time,
             solve_time,
         })
@@ -280,6 +296,9 @@ pub struct DiscreteSolution {
     pub bodies: Vec<BodyResult>,
     /// Contact cases: the interface result.
     pub interface: Option<InterfaceOutcome>,
+    /// What the solve computed: assemblies, symbolic analyses, numeric factorisations,
+    /// triangular solves, stage times (for elasticity cases one of each per body).
+    pub work: WorkCounters,
     /// Interface insertion and assembly time.
     pub assembly_time: Duration,
     /// Linear or contact solve time.

@@ -72,8 +72,8 @@ pub fn study_markdown(study: &StudyResult) -> String {
         header.push_str(" ΔN | ΔT | switch x_h (dist.) | set viol. |");
         rule.push_str("---|---|---|---|");
     }
-    header.push_str(" time [s] |\n");
-    rule.push_str("---|\n");
+    header.push_str(" asm / sym / num / solves | time [s] |\n");
+    rule.push_str("---|---|\n");
     out.push_str(&header);
     out.push_str(&rule);
     for (k, record) in records.iter().enumerate() {
@@ -111,7 +111,15 @@ pub fn study_markdown(study: &StudyResult) -> String {
                 None => out.push_str(" — | — | — | — |"),
             }
         }
-        out.push_str(&format!(" {:.2} |\n", record.times.total()));
+        let w = &record.work;
+        out.push_str(&format!(
+            " {} / {} / {} / {} | {:.2} |\n",
+            w.assemblies,
+            w.symbolic_analyses,
+            w.numeric_factorisations,
+            w.triangular_solves,
+            record.times.total()
+        ));
     }
     let r = &study.rates;
     out.push_str(&format!(

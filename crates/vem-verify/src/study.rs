@@ -327,8 +327,37 @@ pub struct SizeRecord {
     /// Coulomb cases: the last relative change of the normal forces of the fixed point.
     #[serde(default)]
     pub fixed_point_change: Option<f64>,
+    /// What the solve computed (assemblies, symbolic analyses, numeric factorisations,
+    /// triangular solves).
+    #[serde(default)]
+    pub work: WorkCount,
     /// Time of each stage.
     pub times: StageTimes,
+}
+
+/// The counts of [`vem_contact::WorkCounters`] of one size (its times are in
+/// [`SizeRecord::times`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct WorkCount {
+    /// Global assemblies (one per body and build).
+    pub assemblies: usize,
+    /// Symbolic analyses (or set-ups of an external solver).
+    pub symbolic_analyses: usize,
+    /// Numeric factorisations.
+    pub numeric_factorisations: usize,
+    /// Forward and backward triangular solve pairs (0 where the backend does not tell).
+    pub triangular_solves: usize,
+}
+
+impl From<vem_contact::WorkCounters> for WorkCount {
+    fn from(work: vem_contact::WorkCounters) -> Self {
+        Self {
+            assemblies: work.assemblies,
+            symbolic_analyses: work.symbolic_analyses,
+            numeric_factorisations: work.numeric_factorisations,
+            triangular_solves: work.triangular_solves,
+        }
+    }
 }
 
 /// Rates fitted by least squares to `log error = rate log h + c` over the finest sizes.
@@ -707,6 +736,7 @@ impl Study {
             max_penetration: interface.map(|i| i.report.residuals.max_penetration),
             inserted_nodes: interface.map(|i| i.inserted_nodes),
             fixed_point_steps: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.steps)),
+            work: solution.work.into(),
             fixed_point_change: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.residual)),
             times: StageTimes {
                 mesh: mesh_time,
@@ -776,6 +806,7 @@ impl Study {
 /// #     SizeRecord { n: vec![1], h, polygons: 0, vertices: 0, dofs: 0, errors,
 /// #         body_errors: vec![], contact: None, solver_iterations: None,
 /// #         max_penetration: None, inserted_nodes: None, fixed_point_steps: None,
+/// #         work: Default::default(),
 /// #         fixed_point_change: None, times: Default::default() }
 /// # }
 /// // E_grad = E_a = h, E_0 = h^2 on the three finest of four sizes.

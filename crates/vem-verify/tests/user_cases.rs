@@ -303,6 +303,10 @@ fn coulomb_patch_test_is_exact_through_the_study() {
         let steps = record.fixed_point_steps.expect("a Coulomb record");
         assert!((1..=10).contains(&steps), "{steps} fixed-point steps");
         assert!(record.fixed_point_change.unwrap() < 1e-6, "{record:?}");
+        // k Tresca steps on one discretisation: one assembly per body, one symbolic analysis.
+        assert_eq!(record.work.assemblies, 2, "{:?}", record.work);
+        assert_eq!(record.work.symbolic_analyses, 1, "{:?}", record.work);
+        assert!(record.work.numeric_factorisations > steps, "{:?}", record.work);
     }
 }
 
