@@ -8,15 +8,15 @@ use std::time::{Duration, Instant};
 
 use toml::Spanned;
 use vem_contact::{
-    ActiveSetSettings, ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings,
+    ActiveSetSettings, ContactError, ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings,
     ExactSolver, FixedPointSettings, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver,
     SettingsError,
 };
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
 use vem_mesh::{Mesh, Point, Vector};
-use vem_space::{LowestOrderVem, Stabilisation, StabilisationScaling};
+use vem_space::{LowestOrderVem, SpaceError, Stabilisation, StabilisationScaling};
 
 use crate::scene::{
     list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
@@ -244,6 +244,67 @@ impl Model {
     }
 }
 
+/// `error` and its causes on one line ("a: b: c"), each cause once: a cause whose text the
+/// error before it already spells out is not repeated.
+pub(crate) fn one_line(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        let cause_text = cause.to_string();
+        if !text.contains(&cause_text) {
+            text.push_str(": ");
+            text.push_str(&cause_text);
+        }
+        source = cause.source();
+    }
+    text
+}
+
+/// The elastic layer's `error`, located at the scene entry it comes from when it names one
+/// (a traction or Dirichlet entry by body and part, a body force by body); otherwise as it
+/// is. The library checks the values (finite data, consistent conditions); the scene only
+/// says where they were written.
+pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> CliError {
+    let body = |name: &str| scene.file().bodies.iter().find(|b| b.name.get_ref() == name);
+    let span = match &error {
+        ElasticError::Traction { body: b, part, .. } => body(b).and_then(|spec| {
+            spec.traction
+                .iter()
+                .find(|t| t.get_ref().part.get_ref() == part)
+                .map(|t| t.span())
+        }),
+        ElasticError::NonFiniteDirichlet { body: b, part, .. }
+        | ElasticError::ConflictingDirichlet {
+            body: b,
+            second: part,
+            ..
+        } => body(b).and_then(|spec| {
+            spec.dirichlet
+                .iter()
+                .find(|d| d.get_ref().part.get_ref() == part)
+                .map(|d| d.span())
+        }),
+        ElasticError::Element {
+            body: b,
+            source: SpaceError::NonFiniteLoad { .. },
+            ..
+        } => body(b).and_then(|spec| spec.body_force.as_ref().map(|f| f.span())),
+        _ => None,
+    };
+    match span {
+        Some(span) => scene.error(Some(span), one_line(&error)),
+        None => CliError::Elastic(Box::new(error)),
+    }
+}
+
+/// The contact layer's `error`, located like [`locate_elastic`] when it comes from a body.
+pub(crate) fn locate_contact(scene: &Scene, error: ContactError) -> CliError {
+    match error {
+        ContactError::Elastic(e) => locate_elastic(scene, e),
+        other => other.into(),
+    }
+}
+
 /// "line", "circle" or "polyline".
 pub(crate) fn obstacle_name(obstacle: &Obstacle) -> &'static str {
     match obstacle {
@@ -384,8 +445,9 @@ fn build_body(
         builder = match (t.value, t.pressure) {
             (Some([gx, gy]), _) => builder.traction(part, move |_| Vector::new(gx, gy)),
             (None, Some(p)) => {
-                let field = PressureField::new(&mesh, &part, p);
-                builder.traction(part, move |x| field.traction(x))
+                let pressure = Traction::try_normal_pressure(&mesh, part.as_str(), p)
+                    .map_err(|e| scene.error(Some(t.part.span()), e.to_string()))?;
+                builder.traction(part, move |x| pressure.value_at(x))
             }
             (None, None) => builder,
         };
@@ -394,58 +456,15 @@ fn build_body(
         let [fx, fy] = *f.get_ref();
         builder = builder.body_force(move |_| Vector::new(fx, fy));
     }
-    let body = builder
-        .build()
-        .map_err(|e| scene.error(Some(spec.name.span()), e.to_string()))?;
+    let body = builder.build().map_err(|e| match locate_elastic(scene, e) {
+        CliError::Elastic(e) => scene.error(Some(spec.name.span()), one_line(&e)),
+        located => located,
+    })?;
     Ok(ModelBody {
         body,
         mesh_source,
         stabilisation,
     })
-}
-
-/// A normal pressure `p` on a boundary part as a traction field: at a point of the part, `-p`
-/// times the outward unit normal of the part's edge nearest to it. The elastic layer evaluates
-/// tractions at Gauss points inside an edge, where that edge is the nearest; edges split later
-/// by interface node insertion are collinear with the original ones, so the normal is the same.
-struct PressureField {
-    pressure: f64,
-    /// (start point, edge vector, outward unit normal) of each edge of the part.
-    edges: Vec<(Point, Vector, Vector)>,
-}
-
-impl PressureField {
-    fn new(mesh: &Mesh, part: &str, pressure: f64) -> Self {
-        let edges = mesh
-            .part(part)
-            .map(|p| {
-                p.edges
-                    .iter()
-                    .map(|&e| {
-                        // The polygon lies to the left of a -> b: the outward normal is on the right.
-                        let [a, b] = mesh.edge(e).vertices;
-                        let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
-                        let t = pb - pa;
-                        (pa, t, Vector::new(t.y, -t.x) / t.norm())
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
-        Self { pressure, edges }
-    }
-
-    fn traction(&self, x: Point) -> Vector {
-        let nearest = self.edges.iter().min_by(|(a1, t1, _), (a2, t2, _)| {
-            distance_squared(x, *a1, *t1).total_cmp(&distance_squared(x, *a2, *t2))
-        });
-        nearest.map_or_else(Vector::zeros, |(_, _, n)| -self.pressure * n)
-    }
-}
-
-/// Squared distance from `x` to the segment `a, a + t`.
-fn distance_squared(x: Point, a: Point, t: Vector) -> f64 {
-    let s = ((x - a).dot(&t) / t.norm_squared()).clamp(0.0, 1.0);
-    (x - (a + s * t)).norm_squared()
 }
 
 fn build_contact(
@@ -514,7 +533,18 @@ fn build_contact(
         }
         _ => return Err(scene.error(Some(spec.body.span()), "incomplete contact pair")),
     };
-    let mut problem = problem.with_interface_options(interface_options(scene));
+    let options = interface_options(scene);
+    options.validate().map_err(|e| {
+        let span = match &e {
+            vem_mesh::MeshError::InvalidOption {
+                setting: "max_distance",
+                ..
+            } => spec.max_distance.as_ref().map(|d| d.span()),
+            _ => None,
+        };
+        scene.error(span, e.to_string())
+    })?;
+    let mut problem = problem.with_interface_options(options);
     if let Some(gap) = spec.gap.as_ref().map(|g| *g.get_ref()) {
         problem = problem.with_initial_gap(move |_| gap);
     }
@@ -825,26 +855,5 @@ mod tests {
         assert_eq!(short(-1.5e-7), "-1.5e-7");
         assert_eq!(short(0.0), "0");
         assert_eq!(short(123456.7), "123457");
-    }
-
-    #[test]
-    fn pressure_acts_along_the_inward_normal_of_each_edge() {
-        // The half-disc of radius 1 centred at (0, 1): on the arc the inward normal points to
-        // the centre, on the flat top it is (0, -1).
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/hertz_disc.msh");
-        let mesh = vem_mesh::io::read_gmsh(path).unwrap();
-        let centre = Point::new(0.0, 1.0);
-        let arc = PressureField::new(&mesh, "arc", 2.0);
-        for &e in &mesh.part("arc").unwrap().edges {
-            let [a, b] = mesh.edge(e).vertices;
-            let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
-            let midpoint = pa + 0.5 * (pb - pa);
-            let g = arc.traction(midpoint);
-            // The edge's normal is the radial direction at its midpoint (a chord of the circle).
-            let inward = (centre - midpoint).normalize();
-            assert!((g - 2.0 * inward).norm() < 1e-12, "{g} vs {inward}");
-        }
-        let top = PressureField::new(&mesh, "top", -0.5);
-        assert!((top.traction(Point::new(0.3, 1.0)) - Vector::new(0.0, 0.5)).norm() < 1e-15);
     }
 }

@@ -64,7 +64,10 @@ impl Model {
         let mut contact_bodies = None;
         if let Some(c) = self.contact() {
             let mut solver = c.solver.make();
-            let mut result = c.problem.solve(solver.as_mut())?;
+            let mut result = c
+                .problem
+                .solve(solver.as_mut())
+                .map_err(|e| crate::model::locate_contact(self.scene(), e))?;
             times.assembly_s += result.model.assembly_time.as_secs_f64();
             times.solve_s += result.model.solve_time.as_secs_f64();
             let mut solved = std::mem::take(&mut result.bodies).into_iter();
@@ -91,12 +94,12 @@ impl Model {
                 let start = Instant::now();
                 let system = body
                     .assemble()
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 times.assembly_s += start.elapsed().as_secs_f64();
                 let start = Instant::now();
                 let solution = body
                     .solve_system(&system, &mut CholeskySolver::default())
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 times.solve_s += start.elapsed().as_secs_f64();
                 *slot = Some((body.clone(), solution));
             }
@@ -108,7 +111,7 @@ impl Model {
             .map(|(body, solution)| {
                 let fields = body
                     .element_fields(solution.displacement())
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 let qualities = vem_mesh::quality::element_qualities(body.mesh());
                 Ok(SolvedBody {
                     body,
