@@ -39,8 +39,8 @@
 //!     part = "bottom"
 //!     obstacle = { line = { point = [0, 0], normal = [0, 1] } }
 //!     solver = "exact"
-//!     eps_abs = 1e-13  # tighter than the defaults (1e-10): the nodal forces are
-//!     eps_rel = 1e-13  # checked to 1e-6 below
+//!     tolerance = 1e-13  # tighter than the default (1e-10): the nodal forces are
+//!                        # checked to 1e-6 below
 //! "#)?;
 //! let outcome = Model::build(&scene)?.solve()?;
 //! let contact = outcome.contact.as_ref().unwrap();
