@@ -8,9 +8,9 @@ use std::time::{Duration, Instant};
 
 use toml::Spanned;
 use vem_contact::{
-    ActiveSetSettings, ContactError, ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings,
-    ExactSolver, FixedPointSettings, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver,
-    SettingsError,
+    ActiveSetSettings, ActiveSetSolver, ContactError, ContactLaw, ContactProblem, ContactSolver,
+    ExactSettings, ExactSolver, FixedPointSettings, Obstacle, PenaltyParameter, PenaltySettings,
+    PenaltySolver, SettingsError,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
@@ -265,7 +265,13 @@ pub(crate) fn one_line(error: &dyn std::error::Error) -> String {
 /// is. The library checks the values (finite data, consistent conditions); the scene only
 /// says where they were written.
 pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> CliError {
-    let body = |name: &str| scene.file().bodies.iter().find(|b| b.name.get_ref() == name);
+    let body = |name: &str| {
+        scene
+            .file()
+            .bodies
+            .iter()
+            .find(|b| b.name.get_ref() == name)
+    };
     let span = match &error {
         ElasticError::Traction { body: b, part, .. } => body(b).and_then(|spec| {
             spec.traction
@@ -456,10 +462,12 @@ fn build_body(
         let [fx, fy] = *f.get_ref();
         builder = builder.body_force(move |_| Vector::new(fx, fy));
     }
-    let body = builder.build().map_err(|e| match locate_elastic(scene, e) {
-        CliError::Elastic(e) => scene.error(Some(spec.name.span()), one_line(&e)),
-        located => located,
-    })?;
+    let body = builder
+        .build()
+        .map_err(|e| match locate_elastic(scene, e) {
+            CliError::Elastic(e) => scene.error(Some(spec.name.span()), one_line(&e)),
+            located => located,
+        })?;
     Ok(ModelBody {
         body,
         mesh_source,

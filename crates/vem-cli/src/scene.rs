@@ -589,12 +589,12 @@ impl Scene {
             let spec = t.get_ref();
             if spec.value.is_some() == spec.pressure.is_some() {
                 return Err(self.error(
-                        Some(t.span()),
-                        format!(
-                            "body '{name}': the traction on part '{}' needs either `value = [gx, \
+                    Some(t.span()),
+                    format!(
+                        "body '{name}': the traction on part '{}' needs either `value = [gx, \
                              gy]` or `pressure = p`, not both",
-                            spec.part.get_ref()
-                        ),
+                        spec.part.get_ref()
+                    ),
                 ));
             }
         }

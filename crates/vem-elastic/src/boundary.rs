@@ -257,7 +257,10 @@ mod tests {
         let mesh = half_disc(r, 24);
         let arc = Traction::try_normal_pressure(&mesh, "arc", p).unwrap();
         let total = resultant(&mesh, &arc);
-        assert!((total - Vector::new(0.0, 2.0 * p * r)).norm() < 1e-12, "{total}");
+        assert!(
+            (total - Vector::new(0.0, 2.0 * p * r)).norm() < 1e-12,
+            "{total}"
+        );
         // Pointwise: at each chord's midpoint the traction is p times the direction to the
         // centre (the chord's inward normal).
         let centre = Point::new(0.0, r);
@@ -278,7 +281,10 @@ mod tests {
         let top = Traction::try_normal_pressure(&mesh, "top", p).unwrap();
         let total = resultant(&mesh, &top);
         // (The end points come from sin(pi) and sin(2 pi): the top is level to rounding.)
-        assert!((total - Vector::new(0.0, -p * 2.0 * r)).norm() < 1e-14, "{total}");
+        assert!(
+            (total - Vector::new(0.0, -p * 2.0 * r)).norm() < 1e-14,
+            "{total}"
+        );
         let g = top.value_at(Point::new(0.3, r));
         assert!((g - Vector::new(0.0, 0.5)).norm() < 1e-14, "{g}");
     }
