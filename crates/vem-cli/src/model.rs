@@ -8,9 +8,8 @@ use std::time::{Duration, Instant};
 
 use toml::Spanned;
 use vem_contact::{
-    ActiveSetSettings, ActiveSetSolver, ContactError, ContactLaw, ContactProblem, ContactSolver,
-    ExactSettings, ExactSolver, FixedPointSettings, Obstacle, PenaltyParameter, PenaltySettings,
-    PenaltySolver, SettingsError,
+    ContactError, ContactLaw, ContactProblem, ContactSolver, FixedPointSettings, Obstacle,
+    PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
@@ -20,7 +19,7 @@ use vem_space::{LowestOrderVem, SpaceError, Stabilisation, StabilisationScaling}
 
 use crate::scene::{
     list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
-    SolverKind, StabilisationKind,
+    StabilisationKind,
 };
 use crate::{CliError, Scene};
 
@@ -61,41 +60,12 @@ pub struct ModelContact {
     pub counterpart: ModelCounterpart,
     /// The problem handed to the contact library.
     pub problem: ContactProblem,
-    /// The solver and its settings.
-    pub solver: SolverChoice,
+    /// The solver's name in the registry.
+    pub solver: String,
+    /// The solver's options, as the scene gives them (validated by the solver's factory).
+    pub options: SolverOptions,
     /// Radius of the Hertz comparison, if asked for.
     pub hertz_radius: Option<f64>,
-}
-
-/// A contact solver with validated settings; [`SolverChoice::make`] creates it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SolverChoice {
-    /// Interior-point QP (Clarabel).
-    Exact(ExactSettings),
-    /// Penalty, semismooth Newton.
-    Penalty(PenaltySettings),
-    /// Primal-dual active set.
-    ActiveSet(ActiveSetSettings),
-}
-
-impl SolverChoice {
-    /// A new solver with these settings.
-    pub fn make(&self) -> Box<dyn ContactSolver> {
-        match *self {
-            SolverChoice::Exact(s) => Box::new(ExactSolver::new(s)),
-            SolverChoice::Penalty(s) => Box::new(PenaltySolver::new(s)),
-            SolverChoice::ActiveSet(s) => Box::new(ActiveSetSolver::new(s)),
-        }
-    }
-
-    /// The name used in the scene file ("exact", "penalty", "active-set").
-    pub fn name(&self) -> &'static str {
-        match self {
-            SolverChoice::Exact(_) => SolverKind::Exact.name(),
-            SolverChoice::Penalty(_) => SolverKind::Penalty.name(),
-            SolverChoice::ActiveSet(_) => SolverKind::ActiveSet.name(),
-        }
-    }
 }
 
 /// A scene turned into library objects, ready to solve.
@@ -104,13 +74,21 @@ pub struct Model {
     scene: Scene,
     bodies: Vec<ModelBody>,
     contact: Option<ModelContact>,
+    registry: SolverRegistry,
     mesh_time: Duration,
 }
 
 impl Model {
     /// Generates or reads every mesh, checks every part name against its mesh and builds the
-    /// bodies, the contact problem and the solver settings.
+    /// bodies, the contact problem and the solver settings, with the built-in solvers
+    /// ([`SolverRegistry::builtin`]).
     pub fn build(scene: &Scene) -> Result<Self, CliError> {
+        Self::build_with(scene, &SolverRegistry::builtin())
+    }
+
+    /// As [`Model::build`], with the solvers of `registry`: the scene's `solver` may name any
+    /// of them (a solver of one's own, registered with [`SolverRegistry::register`]).
+    pub fn build_with(scene: &Scene, registry: &SolverRegistry) -> Result<Self, CliError> {
         let start = Instant::now();
         let meshes = scene
             .file()
@@ -124,15 +102,26 @@ impl Model {
             bodies.push(build_body(scene, spec, mesh, mesh_source)?);
         }
         let contact = match scene.file().contacts.first() {
-            Some(spec) => Some(build_contact(scene, spec.get_ref(), &bodies)?),
+            Some(spec) => Some(build_contact(scene, spec.get_ref(), &bodies, registry)?),
             None => None,
         };
         Ok(Self {
             scene: scene.clone(),
             bodies,
             contact,
+            registry: registry.clone(),
             mesh_time,
         })
+    }
+
+    /// A new solver for the contact pair, made by the registry the model was built with.
+    pub(crate) fn make_solver(
+        &self,
+        contact: &ModelContact,
+    ) -> Result<Box<dyn ContactSolver>, CliError> {
+        self.registry
+            .make(&contact.solver, &contact.options)
+            .map_err(|e| locate_solver_error(&self.scene, e))
     }
 
     /// The scene this model was built from.
@@ -218,7 +207,7 @@ impl Model {
                     law: c.problem.law().name(),
                     friction: c.problem.law().has_friction(),
                     interface_nodes,
-                    solver: c.solver.name(),
+                    solver: c.solver.clone(),
                 })
             }
         };
@@ -479,32 +468,12 @@ fn build_contact(
     scene: &Scene,
     spec: &ContactSpec,
     bodies: &[ModelBody],
+    registry: &SolverRegistry,
 ) -> Result<ModelContact, CliError> {
     let a = scene.body_index(&spec.body)?;
     let body_a = &bodies[a].body;
     check_part(scene, body_a.mesh(), body_a.name(), &spec.part)?;
-    let law = match spec.law() {
-        LawKind::Frictionless => ContactLaw::Frictionless,
-        LawKind::Tresca => {
-            ContactLaw::tresca(spec.friction_bound.as_ref().map_or(0.0, |g| *g.get_ref()))
-        }
-        LawKind::Coulomb => {
-            let defaults = FixedPointSettings::default();
-            ContactLaw::Coulomb {
-                coefficient: spec.coefficient.as_ref().map_or(0.0, |f| *f.get_ref()),
-                fixed_point: FixedPointSettings {
-                    max_steps: spec
-                        .fixed_point_max_steps
-                        .as_ref()
-                        .map_or(defaults.max_steps, |s| *s.get_ref()),
-                    tolerance: spec
-                        .fixed_point_tolerance
-                        .as_ref()
-                        .map_or(defaults.tolerance, |s| *s.get_ref()),
-                },
-            }
-        }
-    };
+    let law = build_law(scene, spec)?;
     let (counterpart, problem) = match (&spec.other_body, &spec.other_part, &spec.obstacle) {
         (Some(other), Some(other_part), _) => {
             let b = scene.body_index(other)?;
@@ -553,15 +522,17 @@ fn build_contact(
         scene.error(span, e.to_string())
     })?;
     let mut problem = problem.with_interface_options(options);
-    if let Some(gap) = spec.gap.as_ref().map(|g| *g.get_ref()) {
-        problem = problem.with_initial_gap(move |_| gap);
+    if let Some(gap) = spec.imposed_gap.as_ref().map(|g| *g.get_ref()) {
+        problem = problem.with_imposed_gap(move |_| gap);
     }
+    let (solver, options) = build_solver(scene, spec, registry)?;
     Ok(ModelContact {
         body: a,
         part: spec.part.get_ref().clone(),
         counterpart,
         problem,
-        solver: build_solver(scene, spec)?,
+        solver,
+        options,
         hertz_radius: spec.hertz.as_ref().map(|h| h.get_ref().radius),
     })
 }
@@ -590,60 +561,93 @@ fn penalty_parameter(spec: &PenaltySpec) -> PenaltyParameter {
     }
 }
 
-fn build_solver(scene: &Scene, spec: &ContactSpec) -> Result<SolverChoice, CliError> {
-    let located = |e: SettingsError| {
-        let span = match e.setting {
-            "eps_abs" => spec.eps_abs.as_ref().map(|s| s.span()),
-            "eps_rel" => spec.eps_rel.as_ref().map(|s| s.span()),
-            "tolerance" => spec.tolerance.as_ref().map(|s| s.span()),
-            "max_iter" => spec.max_iterations.as_ref().map(|s| s.span()),
-            _ => spec.solver.as_ref().map(|s| s.span()),
-        };
-        scene.error(span, e.to_string())
-    };
-    let max_iterations = spec.max_iterations.as_ref().map(|m| *m.get_ref());
-    let tolerance = spec.tolerance.as_ref().map(|t| *t.get_ref());
-    Ok(match spec.solver() {
-        SolverKind::Exact => {
-            let mut b = ExactSettings::builder();
-            if let Some(v) = &spec.eps_abs {
-                b = b.eps_abs(*v.get_ref());
+/// The contact law; the library checks the values, the scene locates them.
+fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<ContactLaw, CliError> {
+    let span_of = |value: &Option<Spanned<f64>>| value.as_ref().map(|v| v.span());
+    let value_of = |value: &Option<Spanned<f64>>| value.as_ref().map_or(0.0, |v| *v.get_ref());
+    let located = |span, e: SettingsError| scene.error(span, e.to_string());
+    Ok(match spec.law() {
+        LawKind::Frictionless => ContactLaw::Frictionless,
+        LawKind::Tresca => ContactLaw::try_tresca(value_of(&spec.friction_bound))
+            .map_err(|e| located(span_of(&spec.friction_bound), e))?,
+        LawKind::Coulomb => {
+            let mut builder = FixedPointSettings::builder();
+            if let Some(n) = &spec.fixed_point_max_iterations {
+                builder = builder.max_iterations(*n.get_ref());
             }
-            if let Some(v) = &spec.eps_rel {
-                b = b.eps_rel(*v.get_ref());
+            if let Some(t) = &spec.fixed_point_tolerance {
+                builder = builder.tolerance(*t.get_ref());
             }
-            if let Some(m) = max_iterations {
-                b = b.max_iter(m);
-            }
-            SolverChoice::Exact(b.build().map_err(located)?)
-        }
-        SolverKind::Penalty => {
-            let mut b = PenaltySettings::builder();
-            if let Some(p) = &spec.penalty {
-                b = b.penalty(penalty_parameter(p.get_ref()));
-            }
-            if let Some(t) = tolerance {
-                b = b.tolerance(t);
-            }
-            if let Some(m) = max_iterations {
-                b = b.max_iter(m);
-            }
-            SolverChoice::Penalty(b.build().map_err(located)?)
-        }
-        SolverKind::ActiveSet => {
-            let mut b = ActiveSetSettings::builder();
-            if let Some(p) = &spec.augmentation {
-                b = b.augmentation(penalty_parameter(p.get_ref()));
-            }
-            if let Some(t) = tolerance {
-                b = b.tolerance(t);
-            }
-            if let Some(m) = max_iterations {
-                b = b.max_iter(m);
-            }
-            SolverChoice::ActiveSet(b.build().map_err(located)?)
+            let fixed_point = builder.build().map_err(|e| {
+                let span = match e.setting {
+                    "max_iterations" => spec.fixed_point_max_iterations.as_ref().map(|n| n.span()),
+                    _ => span_of(&spec.fixed_point_tolerance),
+                };
+                located(span, e)
+            })?;
+            ContactLaw::try_coulomb_with(value_of(&spec.coefficient), fixed_point)
+                .map_err(|e| located(span_of(&spec.coefficient), e))?
         }
     })
+}
+
+/// The solver's name and options; the registry's factory is run once here so that an unknown
+/// name or a refused option is reported, at its key, before anything is solved.
+fn build_solver(
+    scene: &Scene,
+    spec: &ContactSpec,
+    registry: &SolverRegistry,
+) -> Result<(String, SolverOptions), CliError> {
+    let mut options = SolverOptions::default();
+    if let Some(t) = &spec.tolerance {
+        options = options.tolerance(*t.get_ref());
+    }
+    if let Some(m) = &spec.max_iterations {
+        options = options.max_iterations(*m.get_ref());
+    }
+    if let Some(p) = &spec.penalty {
+        options = options.penalty(penalty_parameter(p.get_ref()));
+    }
+    if let Some(a) = &spec.augmentation {
+        options = options.augmentation(penalty_parameter(a.get_ref()));
+    }
+    let name = spec.solver().to_string();
+    registry
+        .make(&name, &options)
+        .map_err(|e| locate_solver_error(scene, e))?;
+    Ok((name, options))
+}
+
+/// A registry error located at the scene key of the refused option, or at `solver` for an
+/// unknown name.
+fn locate_solver_error(scene: &Scene, error: RegistryError) -> CliError {
+    let Some(spec) = scene.file().contacts.first().map(|c| c.get_ref()) else {
+        return scene.error(None, one_line(&error));
+    };
+    let solver_span = spec.solver.as_ref().map(|s| s.span());
+    match &error {
+        RegistryError::Settings { name, source } => {
+            let span = match source.setting {
+                "tolerance" | "eps_abs" | "eps_rel" => spec.tolerance.as_ref().map(|s| s.span()),
+                "max_iterations" => spec.max_iterations.as_ref().map(|s| s.span()),
+                "penalty" => spec.penalty.as_ref().map(|s| s.span()),
+                "augmentation" => spec.augmentation.as_ref().map(|s| s.span()),
+                _ => None,
+            };
+            // An option the scene gave that the solver has no use for.
+            let refused = span.is_some() && source.requirement.starts_with("unset");
+            let message = if refused {
+                format!(
+                    "`{}` does not apply to solver = \"{name}\" (the solver does not use it)",
+                    source.setting
+                )
+            } else {
+                one_line(&error)
+            };
+            scene.error(span.or(solver_span), message)
+        }
+        _ => scene.error(solver_span, one_line(&error)),
+    }
 }
 
 /// "E = 1, nu = 0.3, plane strain" (isotropic) for reports.
@@ -781,7 +785,7 @@ pub struct CheckedContact {
     /// Interface nodes (node pairs, or body nodes facing the obstacle): one normal row each.
     pub interface_nodes: usize,
     /// The solver's name.
-    pub solver: &'static str,
+    pub solver: String,
 }
 
 /// What `vem check` prints: the meshes, their quality and what will be modelled.

@@ -63,13 +63,14 @@ impl Model {
         let mut obstacle = None;
         let mut contact_bodies = None;
         if let Some(c) = self.contact() {
-            let mut solver = c.solver.make();
+            let mut solver = self.make_solver(c)?;
             let mut result = c
                 .problem
                 .solve(solver.as_mut())
                 .map_err(|e| crate::model::locate_contact(self.scene(), e))?;
-            times.assembly_s += result.model.assembly_time.as_secs_f64();
-            times.solve_s += result.model.solve_time.as_secs_f64();
+            let stages = result.work.times;
+            times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
+            times.solve_s += stages.contact_solve.as_secs_f64();
             let mut solved = std::mem::take(&mut result.bodies).into_iter();
             let owners = std::iter::once(c.body).chain(match &c.counterpart {
                 ModelCounterpart::Body { index, .. } => Some(*index),
@@ -217,7 +218,7 @@ impl Model {
                     solver: report.solver,
                     status: format!("{:?}", report.status),
                     iterations: report.iterations,
-                    factorisations: report.factorisations,
+                    factorisations: report.work.numeric_factorisations,
                     residuals: Residuals {
                         max_penetration: r.max_penetration,
                         negative_normal_force: r.negative_normal_force,
@@ -496,7 +497,7 @@ impl HertzComparison {
         let effective_modulus = 1.0 / (compliance(a) + b.map_or(0.0, compliance));
         let load = nodes
             .iter()
-            .map(|n| -n.normal_force * n.normal + n.tangential_force * n.tangent)
+            .map(|n| -n.normal_force * n.normal + n.friction_force * n.tangent)
             .sum::<vem_mesh::Vector>()
             .norm();
         let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();

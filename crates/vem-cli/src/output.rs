@@ -15,7 +15,7 @@ use crate::{CliError, Outcome};
 
 /// The columns of `contact.csv`, in order.
 pub const CONTACT_COLUMNS: &str =
-    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,tangential_force,slip,status";
+    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,friction_force,slip,status";
 
 /// Default width of pictures and plots, in pixels.
 pub const DEFAULT_WIDTH: f64 = 900.0;
@@ -278,7 +278,7 @@ fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Res
             tidy(n.normal_jump),
             tidy(n.normal_force),
             tidy(n.pressure),
-            tidy(n.tangential_force),
+            tidy(n.friction_force),
             tidy(n.slip),
             n.status.name()
         )?;

@@ -87,7 +87,7 @@ fn svg_file(
 
 /// `pressure.svg`: nodal contact pressure along the interface; with `hertz`, Hertz's
 /// elliptical distribution for the same load; with `friction_bound` (per node, per unit
-/// length), the friction traction `tangential_force / l_x` and the bound `±g`.
+/// length), the friction traction `friction_force / l_x` and the bound `±g`.
 pub(crate) fn pressure(
     path: &Path,
     title: &str,
@@ -118,7 +118,7 @@ pub(crate) fn pressure(
     let friction: Option<(Curve, Curve)> = friction_bound.map(|bound| {
         let traction = nodes
             .iter()
-            .map(|n| (position(n), n.tangential_force / n.tributary_length))
+            .map(|n| (position(n), n.friction_force / n.tributary_length))
             .collect();
         let bounds = nodes
             .iter()

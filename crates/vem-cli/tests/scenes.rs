@@ -34,7 +34,7 @@ fn read_contact_csv(dir: &Path) -> Vec<(Vec<f64>, String)> {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,tangential_force,slip,status"
+        "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,friction_force,slip,status"
     );
     lines
         .map(|line| {
@@ -188,18 +188,18 @@ fn tresca_stick_and_slip_zones_and_equilibrium() {
         match n.status {
             NodeStatus::Slip => {
                 assert!(
-                    (n.tangential_force.abs() - bound).abs() < 1e-6 * bound,
+                    (n.friction_force.abs() - bound).abs() < 1e-6 * bound,
                     "{n:?}"
                 )
             }
             NodeStatus::Stick => {
-                assert!(n.tangential_force.abs() < bound * (1.0 + 1e-9), "{n:?}");
+                assert!(n.friction_force.abs() < bound * (1.0 + 1e-9), "{n:?}");
                 assert!(n.slip.abs() < 1e-8, "{n:?}");
             }
             NodeStatus::Open => assert!(n.normal_force.abs() < 1e-7),
         }
         // Friction opposes the slip.
-        assert!(n.tangential_force * n.slip <= 1e-14, "{n:?}");
+        assert!(n.friction_force * n.slip <= 1e-14, "{n:?}");
     }
     // Equilibrium of the block: contact force + reaction of the top + applied pressure = 0.
     let force = contact.force_on_body_a();
@@ -272,12 +272,12 @@ fn coulomb_fixed_point_with_slip_at_the_edges() {
     let slack = 2.0 * fixed_point.residual * largest + 1e-10 * largest;
     for n in nodes {
         assert!(
-            n.tangential_force.abs() <= f * n.normal_force + slack,
+            n.friction_force.abs() <= f * n.normal_force + slack,
             "{n:?}"
         );
         if n.status == NodeStatus::Slip {
             assert!(
-                (n.tangential_force.abs() - f * n.normal_force).abs()
+                (n.friction_force.abs() - f * n.normal_force).abs()
                     <= slack + 1e-6 * f * n.normal_force,
                 "{n:?}"
             );

@@ -35,7 +35,7 @@ fn build(
     side: usize,
     friction_bound: f64,
     curvature: f64,
-) -> Result<ContactSystem, Box<dyn Error>> {
+) -> Result<ContactSystem<'static>, Box<dyn Error>> {
     let n = 2 * 2 * side * (side - 1);
     let mut triplets = Vec::new();
     let mut load = vec![0.0; n];
@@ -150,7 +150,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             "{:<28} {:>9} {:>9} {:>9.4}",
             r.solver,
             r.iterations,
-            r.factorisations,
+            r.work.numeric_factorisations,
             r.wall_time.as_secs_f64()
         );
         for v in [

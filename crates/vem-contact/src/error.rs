@@ -3,14 +3,14 @@
 use vem_elastic::ElasticError;
 use vem_mesh::MeshError;
 
-use crate::{ContactSolverError, ContactSystemError, SolveReport};
+use crate::{ContactSolverError, ContactSystemError, SettingsError, SolveReport};
 
 /// What can go wrong when a contact problem is built or solved.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ContactError {
     /// A mesh-level failure (unknown part, interface insertion), with the body it concerns.
-    #[error("{context}: {source}")]
+    #[error("{context}")]
     Mesh {
         /// Where it happened (body, part, interface).
         context: String,
@@ -22,11 +22,14 @@ pub enum ContactError {
     #[error(transparent)]
     Elastic(#[from] ElasticError),
     /// The algebraic contact system was inconsistent (a bug or non-finite data).
-    #[error("contact system: {0}")]
+    #[error(transparent)]
     System(#[from] ContactSystemError),
     /// The contact solver failed (no convergence, rigid sliding, ...); carries its report.
     #[error(transparent)]
     Solver(#[from] ContactSolverError),
+    /// A setting of the law or of a solver is invalid (named by the error).
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
     /// A rigid obstacle's data are invalid.
     #[error("invalid obstacle: {reason}")]
     InvalidObstacle {

@@ -31,18 +31,22 @@
 //! ```
 #![deny(missing_docs)]
 
+mod discretisation;
 mod error;
 mod obstacle;
 mod problem;
+pub mod registry;
 mod result;
 pub mod solver;
 
+pub use discretisation::{ContactDiscretisation, ContactNode};
 pub use error::ContactError;
 pub use obstacle::{Obstacle, ObstacleGap};
 pub use problem::{
-    tangent, ContactLaw, ContactProblem, Counterpart, FixedPointSettings, FrictionBound,
-    ScalarField,
+    tangent, ContactLaw, ContactProblem, Counterpart, FixedPointSettings,
+    FixedPointSettingsBuilder, FrictionBound, ScalarField,
 };
+pub use registry::{RegistryError, SolverFactory, SolverOptions, SolverRegistry};
 pub use result::{
     BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
     NodeStatus,
@@ -51,6 +55,6 @@ pub use result::{
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
     ContactSolverError, ContactSystem, ContactSystemError, ExactSettings, ExactSolver, Friction,
-    KktResiduals, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport,
-    SolveStatus,
+    KktResiduals, PatternId, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
+    SolveReport, SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
 };

@@ -1,12 +1,13 @@
 //! What a contact solve returns: per-body solutions, per-node interface results, resultants,
 //! the solver's report and a summary of what was modelled.
 
+use std::sync::Arc;
 use std::time::Duration;
 
 use vem_elastic::{AssembledSystem, ElasticBody, Solution};
 use vem_mesh::{Point, Vector};
 
-use crate::SolveReport;
+use crate::{SolveReport, WorkCounters};
 
 /// The contact state of an interface node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -62,7 +63,7 @@ pub struct InterfaceNode {
     pub tangent: Vector,
     /// Tributary length `l_x` of the node.
     pub tributary_length: f64,
-    /// Total initial gap `h0` (geometric gap plus the user gap).
+    /// Total initial gap `h0` (geometric gap plus the imposed gap).
     pub initial_gap: f64,
     /// The normal jump `[u]_nu = (u_A - u_B) . nu` (`u_A . nu` against an obstacle);
     /// `[u]_nu <= h0`.
@@ -72,7 +73,7 @@ pub struct InterfaceNode {
     /// Contact pressure `lambda_N / l_x`, approximating `-sigma_nu`.
     pub pressure: f64,
     /// Nodal friction force on body A along `tau`, `= sigma_1tau l_x`; it opposes the slip.
-    pub tangential_force: f64,
+    pub friction_force: f64,
     /// The slip `[u]_1tau = (u_A - u_B) . tau` (zero for frictionless laws: not modelled).
     pub slip: f64,
     /// Open, stick or slip.
@@ -89,8 +90,8 @@ pub struct InterfaceNode {
 pub struct BodyResult {
     /// The body, on the mesh with the inserted interface nodes.
     pub body: ElasticBody,
-    /// Its assembled (reduced) system.
-    pub system: AssembledSystem,
+    /// Its assembled (reduced) system, shared with the discretisation it was solved on.
+    pub system: Arc<AssembledSystem>,
     /// Its solution.
     pub solution: Solution,
 }
@@ -127,11 +128,7 @@ pub struct ModelSummary {
     pub tangential_rows: usize,
     /// Vertices inserted by the interface node insertion (both sides).
     pub inserted_nodes: usize,
-    /// Interface insertion and assembly time.
-    pub assembly_time: Duration,
-    /// Contact solve time (all steps of a Coulomb fixed point).
-    pub solve_time: Duration,
-    /// Total time.
+    /// Wall-clock time of the whole call (the stages are in [`ContactResult::work`]).
     pub total_time: Duration,
 }
 
@@ -166,8 +163,11 @@ pub struct ContactResult {
     pub report: SolveReport,
     /// Coulomb only: the fixed-point report.
     pub fixed_point: Option<FixedPointReport>,
-    /// What was modelled, and the times.
+    /// What was modelled.
     pub model: ModelSummary,
+    /// What the call computed: assemblies (when it built the discretisation), symbolic
+    /// analyses, numeric factorisations, triangular solves, and the time of each stage.
+    pub work: WorkCounters,
 }
 
 impl ContactResult {
@@ -184,6 +184,7 @@ impl ContactResult {
             report,
             fixed_point,
             model,
+            work: WorkCounters::default(),
         }
     }
 
@@ -194,14 +195,14 @@ impl ContactResult {
 
     /// Sum of the nodal friction forces on body A along `tau` (= `int sigma_1tau ds`).
     pub fn tangential_resultant(&self) -> f64 {
-        self.nodes.iter().map(|n| n.tangential_force).sum()
+        self.nodes.iter().map(|n| n.friction_force).sum()
     }
 
     /// The total contact force exerted on body A, `sum (-lambda_N nu + t tau)`.
     pub fn force_on_body_a(&self) -> Vector {
         self.nodes
             .iter()
-            .map(|n| -n.normal_force * n.normal + n.tangential_force * n.tangent)
+            .map(|n| -n.normal_force * n.normal + n.friction_force * n.tangent)
             .sum()
     }
 

@@ -121,7 +121,7 @@ impl Patch {
     fn problem(&self, upper: Mesh, lower: Mesh) -> ContactProblem {
         let law = match self.law {
             Law::Frictionless => ContactLaw::Frictionless,
-            Law::Tresca => ContactLaw::tresca(FRICTION_BOUND),
+            Law::Tresca => ContactLaw::try_tresca(FRICTION_BOUND).unwrap(),
         };
         let h0 = self.initial_gap();
         ContactProblem::two_bodies(
@@ -131,7 +131,7 @@ impl Patch {
             "top",
             law,
         )
-        .with_initial_gap(move |_| h0)
+        .with_imposed_gap(move |_| h0)
     }
 }
 
@@ -186,9 +186,9 @@ fn check_exact(patch: &Patch, result: &ContactResult, tolerance: f64, label: &st
         );
         let expected_friction = patch.sigma_1tau() * node.tributary_length;
         assert!(
-            (node.tangential_force - expected_friction).abs() <= tolerance * 10.0,
+            (node.friction_force - expected_friction).abs() <= tolerance * 10.0,
             "{label}: friction force {} vs {expected_friction} at {}",
-            node.tangential_force,
+            node.friction_force,
             node.position
         );
         assert!(
@@ -300,9 +300,9 @@ fn swapping_the_bodies_gives_the_same_physical_answer() {
         "top",
         patch.body("upper", quads(&upper_rect(), 3), true),
         "bottom",
-        ContactLaw::tresca(FRICTION_BOUND),
+        ContactLaw::try_tresca(FRICTION_BOUND).unwrap(),
     )
-    .with_initial_gap(move |_| h0)
+    .with_imposed_gap(move |_| h0)
     .solve(&mut tight_exact())
     .unwrap();
     for node in &swapped.nodes {
@@ -310,7 +310,7 @@ fn swapping_the_bodies_gives_the_same_physical_answer() {
         // Same compression, friction on the lower body = -(friction on the upper body) along
         // e_x; with tau = (-1, 0) here its component along tau is the same number.
         assert!((node.pressure + patch.sigma_nu()).abs() < 1e-7);
-        assert!((node.tangential_force - patch.sigma_1tau() * node.tributary_length).abs() < 1e-9);
+        assert!((node.friction_force - patch.sigma_1tau() * node.tributary_length).abs() < 1e-9);
         // [u]_1tau = (u_lower - u_upper) . (-e_x) = the same slip as before.
         assert!((node.slip - 2.0 * (patch.e - patch.gamma)).abs() < 1e-9);
     }
@@ -410,9 +410,9 @@ fn coulomb_fixed_point_reproduces_the_sticking_patch() {
         "bottom",
         patch.body("lower", quads(&lower_rect(), 5), false),
         "top",
-        ContactLaw::coulomb(6.25),
+        ContactLaw::try_coulomb(6.25).unwrap(),
     )
-    .with_initial_gap(move |_| h0)
+    .with_imposed_gap(move |_| h0)
     .solve(&mut tight_exact())
     .unwrap();
     check_exact(&patch, &result, 1e-8, "Coulomb PTC3");
@@ -445,9 +445,15 @@ fn tresca_rigid_sliding_is_an_error_not_a_number() {
         .clamp("bottom")
         .build()
         .unwrap();
-    let error = ContactProblem::two_bodies(upper, "bottom", lower, "top", ContactLaw::tresca(0.25))
-        .solve(&mut tight_exact())
-        .unwrap_err();
+    let error = ContactProblem::two_bodies(
+        upper,
+        "bottom",
+        lower,
+        "top",
+        ContactLaw::try_tresca(0.25).unwrap(),
+    )
+    .solve(&mut tight_exact())
+    .unwrap_err();
     match &error {
         vem_contact::ContactError::Solver(vem_contact::ContactSolverError::RigidSliding {
             load_along_mode,
@@ -478,10 +484,15 @@ fn tresca_rigid_sliding_is_an_error_not_a_number() {
     .clamp("bottom")
     .build()
     .unwrap();
-    let result =
-        ContactProblem::two_bodies(upper, "bottom", lower, "top", ContactLaw::tresca(0.25))
-            .solve(&mut tight_exact())
-            .unwrap();
+    let result = ContactProblem::two_bodies(
+        upper,
+        "bottom",
+        lower,
+        "top",
+        ContactLaw::try_tresca(0.25).unwrap(),
+    )
+    .solve(&mut tight_exact())
+    .unwrap();
     // Horizontal equilibrium of the upper body: the friction balances the applied 0.1.
     assert!(
         (result.tangential_resultant() + 0.1).abs() < 1e-8,

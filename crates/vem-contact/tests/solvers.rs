@@ -60,7 +60,7 @@ fn assert_close(a: f64, b: f64, tol: f64, what: &str) {
 }
 
 /// One spring `k` against a wall at `gap`, load `f`.
-fn spring(k: f64, f: f64, gap: f64) -> ContactSystem {
+fn spring(k: f64, f: f64, gap: f64) -> ContactSystem<'static> {
     ContactSystem::try_new(
         matrix(1, &[(0, 0, k)]),
         vec![f],
@@ -129,7 +129,7 @@ fn negative_gap_pushes_the_spring_back() {
 }
 
 /// Wall - k1 - node 0 - k2 - node 1 - wall at `gap`; load `f` on node 1.
-fn two_springs(k1: f64, k2: f64, f: f64, gap: f64) -> ContactSystem {
+fn two_springs(k1: f64, k2: f64, f: f64, gap: f64) -> ContactSystem<'static> {
     ContactSystem::try_new(
         matrix(2, &[(0, 0, k1 + k2), (0, 1, -k2), (1, 0, -k2), (1, 1, k2)]),
         vec![0.0, f],
@@ -173,7 +173,7 @@ fn two_springs_in_series_against_a_wall() {
 /// Two bodies, each a chain wall - k - a - k - b, whose free ends face each other across a gap:
 /// body 1 (unknowns 0, 1) on the left pushed right by `f` at its end 1, body 2 (unknowns 2, 3)
 /// on the right pushed left by `f` at its end 2. `[u]_nu = (u_1 - u_2) . nu_1 = u[1] - u[2]`.
-fn two_chains(k: f64, f: f64, gap: f64) -> ContactSystem {
+fn two_chains(k: f64, f: f64, gap: f64) -> ContactSystem<'static> {
     let stiffness = matrix(
         4,
         &[
@@ -246,7 +246,7 @@ fn two_chains_pressed_together() {
 
 /// A block with tangential spring `kx` (unknown 0) and normal spring `ky` (unknown 1) on a
 /// rigid foundation: `B_N u = u[1] <= 0`, `B_T u = u[0]`, friction bound `b`.
-fn block(kx: f64, ky: f64, load: [f64; 2], b: f64) -> ContactSystem {
+fn block(kx: f64, ky: f64, load: [f64; 2], b: f64) -> ContactSystem<'static> {
     let mut entries = vec![(1, 1, ky)];
     if kx != 0.0 {
         entries.push((0, 0, kx));
@@ -440,7 +440,7 @@ fn penalty_error_falls_like_one_over_penalty() {
 
 /// A deterministic random problem: SPD banded `K` (n = 60), 20 normal rows with 2-4 entries,
 /// optional friction rows and bounds, loads that activate part of the constraints.
-fn random_system(seed: u64, with_friction: bool) -> ContactSystem {
+fn random_system(seed: u64, with_friction: bool) -> ContactSystem<'static> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let n = 60;
     let m = 20;
@@ -543,13 +543,16 @@ fn exact_penalty_and_active_set_agree_on_a_random_system() {
 #[test]
 fn forced_non_convergence_carries_the_report() {
     let system = random_system(3, true);
-    let exact_1 = ExactSettings::builder().max_iter(1).build().expect("valid");
+    let exact_1 = ExactSettings::builder()
+        .max_iterations(1)
+        .build()
+        .expect("valid");
     let penalty_1 = PenaltySettings::builder()
-        .max_iter(1)
+        .max_iterations(1)
         .build()
         .expect("valid");
     let active_1 = ActiveSetSettings::builder()
-        .max_iter(1)
+        .max_iterations(1)
         .build()
         .expect("valid");
     for solver in [
@@ -572,8 +575,11 @@ fn forced_non_convergence_carries_the_report() {
 fn invalid_settings_are_rejected_when_built() {
     let e = ExactSettings::builder().eps_abs(-1.0).build().unwrap_err();
     assert_eq!(e.setting, "eps_abs");
-    let e = ExactSettings::builder().max_iter(0).build().unwrap_err();
-    assert_eq!(e.setting, "max_iter");
+    let e = ExactSettings::builder()
+        .max_iterations(0)
+        .build()
+        .unwrap_err();
+    assert_eq!(e.setting, "max_iterations");
     let e = PenaltySettings::builder()
         .normal_penalty(PenaltyParameter::Absolute(f64::NAN))
         .build()

@@ -186,8 +186,24 @@ impl AssembledSystem {
 
     /// The full displacement vector (global numbering) from the free values `u_free`.
     pub fn expand(&self, u_free: &[f64]) -> Result<Vec<f64>, ElasticError> {
+        self.expand_scaled(u_free, 1.0)
+    }
+
+    /// The full displacement vector from the free values `u_free` with the prescribed values
+    /// scaled by `load_factor` (a load step: Dirichlet data scaled with the loads).
+    pub fn expand_scaled(
+        &self,
+        u_free: &[f64],
+        load_factor: f64,
+    ) -> Result<Vec<f64>, ElasticError> {
         self.check_length("u_free", u_free, self.dofs.n_free())?;
-        Ok(self.dofs.expand_unchecked(u_free))
+        let mut full = self.dofs.expand_unchecked(u_free);
+        if load_factor != 1.0 {
+            for &g in self.dofs.prescribed_dofs() {
+                full[g] *= load_factor;
+            }
+        }
+        Ok(full)
     }
 
     /// The free values of a full displacement vector.
@@ -205,6 +221,16 @@ impl AssembledSystem {
     /// freedom (prescribed numbering) for the full displacement `displacement`: the force the
     /// support exerts on the body.
     pub fn reactions(&self, displacement: &[f64]) -> Result<Vec<f64>, ElasticError> {
+        self.reactions_scaled(displacement, 1.0)
+    }
+
+    /// The reactions `r_p = K_pf u_f + K_pp u_p - s f_p` for the loads scaled by
+    /// `load_factor = s` (a load step).
+    pub fn reactions_scaled(
+        &self,
+        displacement: &[f64],
+        load_factor: f64,
+    ) -> Result<Vec<f64>, ElasticError> {
         self.check_length("displacement", displacement, self.dofs.n_dofs())?;
         let u_f = self.restrict(displacement)?;
         let u_p: Vec<f64> = self
@@ -217,7 +243,7 @@ impl AssembledSystem {
             .dofs
             .prescribed_dofs()
             .iter()
-            .map(|&g| -self.load[g])
+            .map(|&g| -load_factor * self.load[g])
             .collect();
         transpose_matvec_add(&self.coupling, &u_f, &mut reactions);
         matvec_add(&self.prescribed_block, &u_p, 1.0, &mut reactions);

@@ -351,12 +351,24 @@ impl ElasticBody {
         system: &AssembledSystem,
         displacement: Vec<f64>,
     ) -> Result<Solution, ElasticError> {
+        self.solution_scaled(system, displacement, 1.0)
+    }
+
+    /// [`ElasticBody::solution`] for the loads of `system` scaled by `load_factor` (a load
+    /// step: the reactions balance the scaled loads).
+    pub fn solution_scaled(
+        &self,
+        system: &AssembledSystem,
+        displacement: Vec<f64>,
+        load_factor: f64,
+    ) -> Result<Solution, ElasticError> {
         if !system.matches(&self.mesh, &self.dofs) {
             return Err(ElasticError::ForeignSystem {
                 body: self.name.clone(),
             });
         }
-        let reactions = self.part_reactions(system, &displacement)?;
+        let nodal = system.reactions_scaled(&displacement, load_factor)?;
+        let reactions = self.gather_reactions(system, nodal);
         let strain_energy = system.strain_energy(&displacement)?;
         Ok(Solution::new(displacement, reactions, strain_energy))
     }
@@ -371,6 +383,10 @@ impl ElasticBody {
         displacement: &[f64],
     ) -> Result<Vec<PartReaction>, ElasticError> {
         let nodal = system.reactions(displacement)?;
+        Ok(self.gather_reactions(system, nodal))
+    }
+
+    fn gather_reactions(&self, system: &AssembledSystem, nodal: Vec<f64>) -> Vec<PartReaction> {
         let mut forces = vec![Vector::zeros(); self.dirichlet.len()];
         let dofs = system.dofs();
         for ((&g, &owner), r) in dofs
@@ -381,8 +397,7 @@ impl ElasticBody {
         {
             forces[owner][g % 2] += r;
         }
-        Ok(self
-            .dirichlet
+        self.dirichlet
             .iter()
             .zip(forces)
             .map(|(condition, force)| PartReaction {
@@ -390,7 +405,7 @@ impl ElasticBody {
                 component: condition.component(),
                 force,
             })
-            .collect())
+            .collect()
     }
 
     /// Strain, stress and von Mises stress of every element from the energy projection of

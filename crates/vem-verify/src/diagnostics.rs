@@ -98,7 +98,7 @@ pub fn contact_diagnostics(
         .reference_resultants()
         .unwrap_or_else(|| integrated_resultants(exact));
     let normal_resultant: f64 = nodes.iter().map(|n| n.normal_force).sum();
-    let tangential_resultant: f64 = nodes.iter().map(|n| n.tangential_force).sum();
+    let tangential_resultant: f64 = nodes.iter().map(|n| n.friction_force).sum();
     let pressure_error = nodes
         .iter()
         .map(|n| {

@@ -6,7 +6,7 @@
 //! [`neumann_sides`](ExactSolution::neumann_sides) and the exact body force. A contact case
 //! (`ExactSolution::contact` is `Some`) becomes a [`ContactProblem`] between the bottom side
 //! of body one and the top side of body two ([`CONTACT_SIDES`]) with the case's law and its
-//! initial gap `h0(x)` as the user gap: the two sides coincide, so the geometric gap is zero
+//! initial gap `h0(x)` as the imposed gap: the two sides coincide, so the geometric gap is zero
 //! and the total gap is `h0` (spec section 1). Bodies without an interface are solved one by
 //! one.
 //!
@@ -184,14 +184,14 @@ impl DiscreteProblem {
     }
 
     /// The contact problem of a contact case (`None` for elasticity cases): body one's bottom
-    /// against body two's top, the case's law, `h0` as the user gap.
+    /// against body two's top, the case's law, `h0` as the imposed gap.
     pub fn contact_problem(&self) -> Option<ContactProblem> {
         let contact = self.exact.contact()?;
         let law = match contact.law() {
             ContactLaw::Frictionless => vem_contact::ContactLaw::Frictionless,
-            ContactLaw::Tresca { friction_bound } => {
-                vem_contact::ContactLaw::tresca(friction_bound)
-            }
+            ContactLaw::Tresca { friction_bound } => vem_contact::ContactLaw::Tresca {
+                friction_bound: vem_contact::FrictionBound::Constant(friction_bound),
+            },
         };
         let [(_, side_a), (_, side_b)] = CONTACT_SIDES;
         let exact = Arc::clone(&self.exact);
@@ -202,7 +202,7 @@ impl DiscreteProblem {
             side_b.name(),
             law,
         )
-        .with_initial_gap(move |x| exact.contact().map_or(0.0, |c| c.initial_gap(x.x)));
+        .with_imposed_gap(move |x| exact.contact().map_or(0.0, |c| c.initial_gap(x.x)));
         Some(problem)
     }
 
@@ -227,8 +227,8 @@ impl DiscreteProblem {
                     report: result.report,
                     inserted_nodes: result.model.inserted_nodes,
                 }),
-                assembly_time: result.model.assembly_time,
-                solve_time: result.model.solve_time,
+                assembly_time: result.work.times.insertion + result.work.times.assembly,
+                solve_time: result.work.times.contact_solve,
             });
         }
         let elastic = |source| VerifyError::Elastic {
@@ -248,7 +248,7 @@ impl DiscreteProblem {
             solve_time += start.elapsed();
             bodies.push(BodyResult {
                 body: body.clone(),
-                system,
+                system: Arc::new(system),
                 solution,
             });
         }

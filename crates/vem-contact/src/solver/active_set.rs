@@ -39,8 +39,8 @@ const NAME: &str = "active set (primal-dual)";
 pub struct ActiveSetSettings {
     augmentation: PenaltyParameter,
     tolerance: f64,
-    max_iter: usize,
-    max_inner_iter: usize,
+    max_iterations: usize,
+    max_inner_iterations: usize,
     parallelism: Par,
 }
 
@@ -52,8 +52,8 @@ impl Default for ActiveSetSettings {
         Self {
             augmentation: PenaltyParameter::RelativeToStiffness(1e3),
             tolerance: 1e-12,
-            max_iter: 50,
-            max_inner_iter: 50,
+            max_iterations: 50,
+            max_inner_iterations: 50,
             parallelism: Par::Seq,
         }
     }
@@ -80,13 +80,13 @@ impl ActiveSetSettings {
     }
 
     /// Limit on the number of splits (outer iterations).
-    pub fn max_iter(&self) -> usize {
-        self.max_iter
+    pub fn max_iterations(&self) -> usize {
+        self.max_iterations
     }
 
     /// Limit on the Uzawa steps per split.
-    pub fn max_inner_iter(&self) -> usize {
-        self.max_inner_iter
+    pub fn max_inner_iterations(&self) -> usize {
+        self.max_inner_iterations
     }
 
     /// Parallelism of the factorisation and solves.
@@ -116,14 +116,14 @@ impl ActiveSetSettingsBuilder {
     }
 
     /// Limit on the number of splits, `>= 1`.
-    pub fn max_iter(mut self, value: usize) -> Self {
-        self.settings.max_iter = value;
+    pub fn max_iterations(mut self, value: usize) -> Self {
+        self.settings.max_iterations = value;
         self
     }
 
     /// Limit on the Uzawa steps per split, `>= 1`.
-    pub fn max_inner_iter(mut self, value: usize) -> Self {
-        self.settings.max_inner_iter = value;
+    pub fn max_inner_iterations(mut self, value: usize) -> Self {
+        self.settings.max_inner_iterations = value;
         self
     }
 
@@ -143,8 +143,8 @@ impl ActiveSetSettingsBuilder {
             s.augmentation;
         SettingsError::positive("augmentation", rho)?;
         SettingsError::positive("tolerance", s.tolerance)?;
-        SettingsError::at_least_one("max_iter", s.max_iter)?;
-        SettingsError::at_least_one("max_inner_iter", s.max_inner_iter)?;
+        SettingsError::at_least_one("max_iterations", s.max_iterations)?;
+        SettingsError::at_least_one("max_inner_iterations", s.max_inner_iterations)?;
         Ok(s)
     }
 }
@@ -183,7 +183,7 @@ struct Split {
 }
 
 impl Split {
-    fn of(system: &ContactSystem, c: f64, u: &[f64], ln: &[f64], lt: &[f64]) -> Self {
+    fn of(system: &ContactSystem<'_>, c: f64, u: &[f64], ln: &[f64], lt: &[f64]) -> Self {
         let bn = system.normal_rows().apply(u);
         let active = bn
             .iter()
@@ -218,21 +218,16 @@ impl ContactSolver for ActiveSetSolver {
         NAME
     }
 
-    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
         let s = self.settings;
         let (n, m) = (system.n_dofs(), system.n_constraints());
         let rho = s.augmentation.value(system);
-        let matrix = match self.matrix.take() {
-            Some(matrix) if matrix.fits(system, s.parallelism) => matrix,
-            _ => NewtonMatrix::try_new(system, s.parallelism).map_err(|detail| {
-                ContactSolverError::Backend {
-                    solver: NAME,
-                    detail,
-                }
-            })?,
-        };
-        let matrix = self.matrix.insert(matrix);
+        let matrix = NewtonMatrix::reuse_or_analyse(&mut self.matrix, system, s.parallelism)
+            .map_err(|detail| ContactSolverError::Backend {
+                solver: NAME,
+                detail,
+            })?;
         let guard = SingularGuard::new(system, rho, rho);
         let bounds = system.friction().map_or(&[][..], |f| f.bounds());
         let gap_inf = system.gap().iter().fold(0.0f64, |a, g| a.max(g.abs()));
@@ -242,13 +237,13 @@ impl ContactSolver for ActiveSetSolver {
         let mut lt = vec![0.0; m];
         let mut previous: Option<Split> = None;
         let mut inner_converged = false;
-        let (mut iterations, mut factorisations) = (0, 0);
+        let mut iterations = 0;
         let outcome: Result<(), (SolveStatus, Option<Vec<f64>>)> = 'outer: loop {
             let split = Split::of(system, rho, &u, &ln, &lt);
             if inner_converged && previous.as_ref() == Some(&split) {
                 break Ok(());
             }
-            if iterations == s.max_iter {
+            if iterations == s.max_iterations {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
@@ -262,10 +257,9 @@ impl ContactSolver for ActiveSetSolver {
                 .iter()
                 .map(|&t| if t == 0 { rho } else { 0.0 })
                 .collect();
-            let Some((count, shifted)) = guard.factorise(matrix, system, &wn, &wt) else {
+            let Some((_, shifted)) = guard.factorise(matrix, system, &wn, &wt) else {
                 break Err((SolveStatus::NumericalFailure, None));
             };
-            factorisations += count;
             // Known multipliers of the split.
             for (i, &a) in split.active.iter().enumerate() {
                 if !a {
@@ -278,7 +272,7 @@ impl ContactSolver for ActiveSetSolver {
                 }
             }
             inner_converged = false;
-            for inner in 0..s.max_inner_iter {
+            for inner in 0..s.max_inner_iterations {
                 // (K + rho B_A'B_A + rho B_S'B_S) u = f - B_N'lambda_N - B_T'lambda_T
                 //                                     + rho B_A' g_A
                 let mut rhs = system.load().to_vec();
@@ -340,7 +334,11 @@ impl ContactSolver for ActiveSetSolver {
                 .as_ref()
                 .map_or_else(|(status, _)| *status, |_| SolveStatus::Converged),
             iterations,
-            factorisations,
+            work: {
+                let mut work = matrix.take_work();
+                work.times.contact_solve = start.elapsed();
+                work
+            },
             wall_time: start.elapsed(),
             residuals,
         };

@@ -28,6 +28,19 @@ impl SettingsError {
         }
     }
 
+    /// Checks `value` is finite and `>= 0`.
+    pub(crate) fn non_negative(setting: &'static str, value: f64) -> Result<f64, Self> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(Self {
+                setting,
+                value,
+                requirement: "finite and >= 0",
+            })
+        }
+    }
+
     /// Checks a count is at least 1.
     pub(crate) fn at_least_one(setting: &'static str, value: usize) -> Result<usize, Self> {
         if value >= 1 {

@@ -16,8 +16,8 @@ use clarabel::solver::{
 };
 
 use super::error::{ContactSolverError, SettingsError};
-use super::report::{KktResiduals, SolveReport, SolveStatus};
-use super::system::ContactSystem;
+use super::report::{KktResiduals, SolveReport, SolveStatus, StageTimes, WorkCounters};
+use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
 
 const NAME: &str = "exact (clarabel)";
@@ -27,17 +27,17 @@ const NAME: &str = "exact (clarabel)";
 pub struct ExactSettings {
     eps_abs: f64,
     eps_rel: f64,
-    max_iter: usize,
+    max_iterations: usize,
     accept_reduced_accuracy: bool,
 }
 
 impl Default for ExactSettings {
-    /// `eps_abs = eps_rel = 1e-10`, `max_iter = 100`, reduced accuracy rejected.
+    /// `eps_abs = eps_rel = 1e-10`, `max_iterations = 100`, reduced accuracy rejected.
     fn default() -> Self {
         Self {
             eps_abs: 1e-10,
             eps_rel: 1e-10,
-            max_iter: 100,
+            max_iterations: 100,
             accept_reduced_accuracy: false,
         }
     }
@@ -62,8 +62,8 @@ impl ExactSettings {
     }
 
     /// Interior-point iteration limit.
-    pub fn max_iter(&self) -> usize {
-        self.max_iter
+    pub fn max_iterations(&self) -> usize {
+        self.max_iterations
     }
 
     /// Whether Clarabel's `AlmostSolved` (reduced accuracy) is returned as an answer.
@@ -92,8 +92,8 @@ impl ExactSettingsBuilder {
     }
 
     /// Iteration limit, `>= 1`.
-    pub fn max_iter(mut self, value: usize) -> Self {
-        self.settings.max_iter = value;
+    pub fn max_iterations(mut self, value: usize) -> Self {
+        self.settings.max_iterations = value;
         self
     }
 
@@ -112,11 +112,11 @@ impl ExactSettingsBuilder {
         let s = self.settings;
         SettingsError::positive("eps_abs", s.eps_abs)?;
         SettingsError::positive("eps_rel", s.eps_rel)?;
-        SettingsError::at_least_one("max_iter", s.max_iter)?;
-        if u32::try_from(s.max_iter).is_err() {
+        SettingsError::at_least_one("max_iterations", s.max_iterations)?;
+        if u32::try_from(s.max_iterations).is_err() {
             return Err(SettingsError {
-                setting: "max_iter",
-                value: s.max_iter as f64,
+                setting: "max_iterations",
+                value: s.max_iterations as f64,
                 requirement: "<= u32::MAX",
             });
         }
@@ -131,15 +131,44 @@ impl ExactSettingsBuilder {
 /// it as [`ContactSolverError::RigidSliding`] (when friction acts along `d`) or
 /// [`ContactSolverError::Unbounded`]. A free mode with no load along it is not an error here:
 /// one of the minimisers is returned.
-#[derive(Debug, Clone, Default)]
+#[derive(Default)]
 pub struct ExactSolver {
     settings: ExactSettings,
+    kept: Option<Kept>,
+}
+
+/// Clarabel's solver kept for the next solve of the same structure: its data are updated in
+/// place (`update_P`, `update_q`, `update_b`) and its symbolic factorisation reused.
+struct Kept {
+    pattern: PatternId,
+    has_friction: bool,
+    stiffness_version: u64,
+    solver: DefaultSolver<f64>,
+}
+
+impl std::fmt::Debug for ExactSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ExactSolver")
+            .field("settings", &self.settings)
+            .field("kept", &self.kept.as_ref().map(|k| k.pattern))
+            .finish()
+    }
+}
+
+impl Clone for ExactSolver {
+    /// The settings only (the kept Clarabel workspace is not cloned).
+    fn clone(&self) -> Self {
+        Self::new(self.settings)
+    }
 }
 
 impl ExactSolver {
     /// A solver with the given settings.
     pub fn new(settings: ExactSettings) -> Self {
-        Self { settings }
+        Self {
+            settings,
+            kept: None,
+        }
     }
 
     /// The settings.
@@ -156,43 +185,37 @@ struct QpData {
     b: Vec<f64>,
 }
 
-fn build_qp(system: &ContactSystem) -> QpData {
+fn build_qp(system: &ContactSystem<'_>) -> QpData {
     let n = system.n_dofs();
     let m = system.n_constraints();
     let friction = system.friction();
     let n_t = if friction.is_some() { m } else { 0 };
     let n_var = n + n_t;
 
-    // P: upper triangle of K, columns sorted; the t block is zero.
-    let k = system.stiffness().as_ref();
-    let mut colptr = Vec::with_capacity(n_var + 1);
-    let mut rowval = Vec::new();
-    let mut nzval = Vec::new();
-    colptr.push(0);
-    for j in 0..n {
-        let range = k.col_range(j);
-        let mut col: Vec<(usize, f64)> = k.row_idx()[range.clone()]
-            .iter()
-            .zip(&k.val()[range])
-            .filter(|(&i, _)| i <= j)
-            .map(|(&i, &v)| (i, v))
-            .collect();
-        col.sort_by_key(|&(i, _)| i);
-        for (i, v) in col {
-            // Sum duplicates of unsorted storage.
-            if rowval.len() > colptr[j] && rowval.last() == Some(&i) {
-                if let Some(last) = nzval.last_mut() {
-                    *last += v;
-                }
-            } else {
-                rowval.push(i);
-                nzval.push(v);
+    // P: upper triangle of K, columns sorted, duplicates summed; the t block is zero.
+    let mut upper: Vec<(usize, usize, f64)> = system
+        .stiffness_entries()
+        .filter(|&(i, j, _)| i <= j)
+        .collect();
+    upper.sort_by_key(|&(i, j, _)| (j, i));
+    let mut colptr = vec![0usize; n_var + 1];
+    let mut rowval: Vec<usize> = Vec::with_capacity(upper.len());
+    let mut nzval: Vec<f64> = Vec::with_capacity(upper.len());
+    let mut last: Option<(usize, usize)> = None;
+    for (i, j, v) in upper {
+        if last == Some((i, j)) {
+            if let Some(value) = nzval.last_mut() {
+                *value += v;
             }
+        } else {
+            rowval.push(i);
+            nzval.push(v);
+            colptr[j + 1] += 1;
+            last = Some((i, j));
         }
-        colptr.push(rowval.len());
     }
-    for _ in 0..n_t {
-        colptr.push(rowval.len());
+    for j in 0..n_var {
+        colptr[j + 1] += colptr[j];
     }
     let p = CscMatrix::new(n_var, n_var, colptr, rowval, nzval);
 
@@ -242,7 +265,7 @@ impl ContactSolver for ExactSolver {
         10.0 * self.settings.eps_abs.max(self.settings.eps_rel).sqrt()
     }
 
-    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
         let n = system.n_dofs();
         let m = system.n_constraints();
@@ -252,21 +275,52 @@ impl ContactSolver for ExactSolver {
             solver: NAME,
             detail,
         };
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .max_iter(s.max_iter as u32)
-            .tol_gap_abs(s.eps_abs)
-            .tol_gap_rel(s.eps_rel)
-            .tol_feas(s.eps_rel)
-            .build()
-            .map_err(|e| backend(e.to_string()))?;
-        let cones = if qp.b.is_empty() {
-            vec![]
+        let mut work = WorkCounters::default();
+        let reusable = self.kept.as_ref().is_some_and(|k| {
+            k.pattern == system.pattern() && k.has_friction == system.friction().is_some()
+        });
+        if reusable {
+            let kept = self.kept.as_mut().expect("checked above");
+            let updated = (if kept.stiffness_version != system.stiffness_version() {
+                kept.solver.update_P(&qp.p.nzval)
+            } else {
+                Ok(())
+            })
+            .and_then(|()| kept.solver.update_q(&qp.q))
+            .and_then(|()| kept.solver.update_b(&qp.b));
+            if let Err(e) = updated {
+                return Err(backend(format!("data update: {e}")));
+            }
+            kept.stiffness_version = system.stiffness_version();
         } else {
-            vec![NonnegativeConeT(qp.b.len())]
-        };
-        let mut solver = DefaultSolver::new(&qp.p, &qp.q, &qp.a, &qp.b, &cones, settings)
-            .map_err(|e| backend(e.to_string()))?;
+            let settings = DefaultSettingsBuilder::default()
+                .verbose(false)
+                .max_iter(s.max_iterations as u32)
+                .tol_gap_abs(s.eps_abs)
+                .tol_gap_rel(s.eps_rel)
+                .tol_feas(s.eps_rel)
+                .presolve_enable(false)
+                .input_sparse_dropzeros(false)
+                .build()
+                .map_err(|e| backend(e.to_string()))?;
+            let cones = if qp.b.is_empty() {
+                vec![]
+            } else {
+                vec![NonnegativeConeT(qp.b.len())]
+            };
+            let symbolic_start = Instant::now();
+            let solver = DefaultSolver::new(&qp.p, &qp.q, &qp.a, &qp.b, &cones, settings)
+                .map_err(|e| backend(e.to_string()))?;
+            work.symbolic_analyses = 1;
+            work.times.symbolic = symbolic_start.elapsed();
+            self.kept = Some(Kept {
+                pattern: system.pattern(),
+                has_friction: system.friction().is_some(),
+                stiffness_version: system.stiffness_version(),
+                solver,
+            });
+        }
+        let solver = &mut self.kept.as_mut().expect("set above").solver;
         solver.solve();
         let sol = &solver.solution;
 
@@ -295,7 +349,14 @@ impl ContactSolver for ExactSolver {
             solver: NAME,
             status,
             iterations: sol.iterations as usize,
-            factorisations: 0,
+            work: WorkCounters {
+                numeric_factorisations: sol.iterations as usize + 1,
+                times: StageTimes {
+                    contact_solve: start.elapsed(),
+                    ..work.times
+                },
+                ..work
+            },
             wall_time: start.elapsed(),
             residuals,
         });
@@ -319,7 +380,7 @@ impl ContactSolver for ExactSolver {
 /// [`ContactSolverError::RigidSliding`] (friction acts along `d`) or
 /// [`ContactSolverError::Unbounded`], with the figures of the error's documentation.
 pub(crate) fn classify_free_mode(
-    system: &ContactSystem,
+    system: &ContactSystem<'_>,
     direction: &[f64],
     report: Box<SolveReport>,
 ) -> ContactSolverError {

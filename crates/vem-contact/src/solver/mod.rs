@@ -35,8 +35,11 @@ pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolve
 pub use error::{ContactSolverError, SettingsError};
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
 pub use penalty::{PenaltyParameter, PenaltySettings, PenaltySettingsBuilder, PenaltySolver};
-pub use report::{KktResiduals, SolveReport, SolveStatus};
-pub use system::{ConstraintRows, ContactSystem, ContactSystemError, Friction};
+pub use report::{KktResiduals, SolveReport, SolveStatus, StageTimes, WorkCounters};
+pub(crate) use system::borrowed_block;
+pub use system::{
+    ConstraintRows, ContactSystem, ContactSystemError, Friction, PatternId, StiffnessBlock,
+};
 
 /// The answer of a contact solve.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,9 +58,9 @@ pub struct ContactSolution {
 /// A contact solver. Object safe: assembly code holds a `Box<dyn ContactSolver>` and new
 /// solvers are added without touching it.
 ///
-/// `solve` takes `&mut self` so that a solver may keep work from one solve to the next (the
-/// symbolic factorisation of a pattern that did not change, e.g. along a Coulomb fixed-point
-/// iteration of Tresca problems).
+/// `solve` takes `&mut self` so that a solver may keep work from one solve to the next: the
+/// symbolic work of a structure with the same [`PatternId`] (e.g. along a Coulomb fixed-point
+/// iteration of Tresca problems, or load steps on one discretisation).
 pub trait ContactSolver {
     /// Short name used in reports.
     fn name(&self) -> &'static str;
@@ -67,7 +70,7 @@ pub trait ContactSolver {
     /// # Errors
     /// [`ContactSolverError`]: no convergence, rigid sliding, unbounded energy, infeasible
     /// constraints or a backend failure; run failures carry their [`SolveReport`].
-    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError>;
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError>;
 
     /// Relative accuracy of the nodal forces this solver guarantees (`0` for solvers whose
     /// forces are exact up to rounding). Outer fixed points (Coulomb) cannot resolve changes of

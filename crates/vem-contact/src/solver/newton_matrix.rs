@@ -11,7 +11,10 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
-use super::system::{ConstraintRows, ContactSystem};
+use std::time::Instant;
+
+use super::report::WorkCounters;
+use super::system::{ConstraintRows, ContactSystem, PatternId};
 
 /// Entries `(slot, coefficient)` of `b_r b_r'` (upper triangle) for each constraint row `r`.
 #[derive(Debug, Clone)]
@@ -49,38 +52,17 @@ impl RowProducts {
     }
 }
 
-/// Copy of the patterns the analysis was made for, to decide whether it can be reused.
-#[derive(Debug, Clone, PartialEq)]
-struct PatternKey {
-    n: usize,
-    k_pattern: Vec<(usize, usize)>,
-    normal: Vec<Vec<usize>>,
-    tangential: Option<Vec<Vec<usize>>>,
-}
-
-impl PatternKey {
-    fn of(system: &ContactSystem) -> Self {
-        let k = system.stiffness().as_ref();
-        let k_pattern = (0..k.ncols())
-            .flat_map(|j| k.row_idx()[k.col_range(j)].iter().map(move |&i| (i, j)))
-            .collect();
-        let rows = |b: &ConstraintRows| (0..b.nrows()).map(|r| b.row(r).0.to_vec()).collect();
-        Self {
-            n: system.n_dofs(),
-            k_pattern,
-            normal: rows(system.normal_rows()),
-            tangential: system.friction().map(|f| rows(f.tangential_rows())),
-        }
-    }
-}
-
-/// Symmetric positive definite Newton matrix with a reusable symbolic Cholesky analysis.
+/// Symmetric positive definite Newton matrix with a reusable symbolic Cholesky analysis, made
+/// for one structure ([`PatternId`] and the presence of tangential rows).
 pub(crate) struct NewtonMatrix {
-    key: PatternKey,
+    pattern_id: PatternId,
+    has_friction: bool,
+    n: usize,
     pattern: SymbolicSparseColMat<usize>,
     symbolic: SymbolicCholesky<usize>,
-    /// `(slot, index into K's values)` for the upper-triangle entries of `K`.
-    k_slots: Vec<(usize, usize)>,
+    /// For every stored entry of `K` (in the order of [`ContactSystem::stiffness_entries`]) its
+    /// slot in the upper triangle, `None` for the lower triangle.
+    k_slots: Vec<Option<usize>>,
     normal: RowProducts,
     tangential: Option<RowProducts>,
     diag_slots: Vec<usize>,
@@ -88,12 +70,13 @@ pub(crate) struct NewtonMatrix {
     factor: Vec<f64>,
     buffer: MemBuffer,
     par: Par,
+    work: WorkCounters,
 }
 
 impl std::fmt::Debug for NewtonMatrix {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("NewtonMatrix")
-            .field("n", &self.key.n)
+            .field("n", &self.n)
             .field("pattern_nnz", &self.values.len())
             .field("factor_nnz", &self.factor.len())
             .field("par", &self.par)
@@ -103,18 +86,16 @@ impl std::fmt::Debug for NewtonMatrix {
 
 impl NewtonMatrix {
     /// Analyses the pattern of `K + B_N'B_N + B_T'B_T + I` (upper triangle).
-    pub(crate) fn try_new(system: &ContactSystem, par: Par) -> Result<Self, String> {
+    pub(crate) fn try_new(system: &ContactSystem<'_>, par: Par) -> Result<Self, String> {
+        let start = Instant::now();
         let n = system.n_dofs();
-        let k = system.stiffness().as_ref();
         let mut pairs: Vec<(usize, usize)> = (0..n).map(|j| (j, j)).collect();
-        for j in 0..n {
-            pairs.extend(
-                k.row_idx()[k.col_range(j)]
-                    .iter()
-                    .filter(|&&i| i <= j)
-                    .map(|&i| (i, j)),
-            );
-        }
+        pairs.extend(
+            system
+                .stiffness_entries()
+                .filter(|&(i, j, _)| i <= j)
+                .map(|(i, j, _)| (i, j)),
+        );
         let mut add_rows = |rows: &ConstraintRows| {
             for r in 0..rows.nrows() {
                 let cols = rows.row(r).0;
@@ -142,15 +123,10 @@ impl NewtonMatrix {
             // The pair was inserted above, so the search cannot fail.
             start + row_idx[start..col_ptr[j + 1]].partition_point(|&r| r < i)
         };
-        let mut k_slots = Vec::new();
-        for j in 0..n {
-            let range = k.col_range(j);
-            for (e, &i) in range.clone().zip(&k.row_idx()[range]) {
-                if i <= j {
-                    k_slots.push((slot(i, j), e));
-                }
-            }
-        }
+        let k_slots = system
+            .stiffness_entries()
+            .map(|(i, j, _)| (i <= j).then(|| slot(i, j)))
+            .collect();
         let normal = RowProducts::new(system.normal_rows(), &slot);
         let tangential = system
             .friction()
@@ -170,8 +146,15 @@ impl NewtonMatrix {
             .or(symbolic.solve_in_place_scratch::<f64>(1, par));
         let buffer = MemBuffer::try_new(scratch).map_err(|e| format!("workspace: {e:?}"))?;
         let factor = vec![0.0; symbolic.len_val()];
+        let mut work = WorkCounters {
+            symbolic_analyses: 1,
+            ..WorkCounters::default()
+        };
+        work.times.symbolic = start.elapsed();
         Ok(Self {
-            key: PatternKey::of(system),
+            pattern_id: system.pattern(),
+            has_friction: system.friction().is_some(),
+            n,
             pattern,
             symbolic,
             k_slots,
@@ -182,27 +165,48 @@ impl NewtonMatrix {
             factor,
             buffer,
             par,
+            work,
         })
     }
 
-    /// Whether the analysis was made for the patterns of `system` (and parallelism `par`).
-    pub(crate) fn fits(&self, system: &ContactSystem, par: Par) -> bool {
-        self.par == par && self.key == PatternKey::of(system)
+    /// The matrix kept in `slot` if it was made for the structure of `system` (and
+    /// parallelism `par`), else a new analysis.
+    pub(crate) fn reuse_or_analyse<'m>(
+        slot: &'m mut Option<NewtonMatrix>,
+        system: &ContactSystem<'_>,
+        par: Par,
+    ) -> Result<&'m mut NewtonMatrix, String> {
+        let fits = slot.as_ref().is_some_and(|m| {
+            m.par == par
+                && m.pattern_id == system.pattern()
+                && m.has_friction == system.friction().is_some()
+        });
+        if !fits {
+            *slot = Some(Self::try_new(system, par)?);
+        }
+        Ok(slot.as_mut().expect("filled above"))
+    }
+
+    /// The work counted since the last call (symbolic analysis, factorisations, solves).
+    pub(crate) fn take_work(&mut self) -> WorkCounters {
+        std::mem::take(&mut self.work)
     }
 
     /// Sets the values to `K + sum_r wn_r bn_r bn_r' + sum_r wt_r bt_r bt_r' + diag(shift)`
     /// and factorises. Returns `false` if the matrix is not numerically positive definite.
     pub(crate) fn refill_and_factorise(
         &mut self,
-        system: &ContactSystem,
+        system: &ContactSystem<'_>,
         normal_weights: &[f64],
         tangential_weights: &[f64],
         shift: &[f64],
     ) -> bool {
+        let start = Instant::now();
         self.values.iter_mut().for_each(|v| *v = 0.0);
-        let kval = system.stiffness().as_ref().val();
-        for &(slot, e) in &self.k_slots {
-            self.values[slot] += kval[e];
+        for ((_, _, v), slot) in system.stiffness_entries().zip(&self.k_slots) {
+            if let Some(slot) = *slot {
+                self.values[slot] += v;
+            }
         }
         self.normal.add_weighted(normal_weights, &mut self.values);
         if let Some(t) = &self.tangential {
@@ -212,7 +216,8 @@ impl NewtonMatrix {
             self.values[slot] += s;
         }
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        self.symbolic
+        let ok = self
+            .symbolic
             .factorize_numeric_llt(
                 &mut self.factor,
                 matrix,
@@ -222,11 +227,15 @@ impl NewtonMatrix {
                 MemStack::new(&mut self.buffer),
                 Default::default(),
             )
-            .is_ok()
+            .is_ok();
+        self.work.numeric_factorisations += 1;
+        self.work.times.numeric += start.elapsed();
+        ok
     }
 
     /// Solves with the last factorisation, in place.
     pub(crate) fn solve_in_place(&mut self, rhs: &mut [f64]) {
+        let start = Instant::now();
         let n = rhs.len();
         LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
             Conj::No,
@@ -234,6 +243,8 @@ impl NewtonMatrix {
             self.par,
             MemStack::new(&mut self.buffer),
         );
+        self.work.triangular_solves += 1;
+        self.work.times.solves += start.elapsed();
     }
 }
 
@@ -255,7 +266,7 @@ pub(crate) struct SingularGuard {
 }
 
 impl SingularGuard {
-    pub(crate) fn new(system: &ContactSystem, eps_n: f64, eps_t: f64) -> Self {
+    pub(crate) fn new(system: &ContactSystem<'_>, eps_n: f64, eps_t: f64) -> Self {
         let mut d = system.stiffness_diagonal();
         let mut add = |rows: &ConstraintRows, eps: f64| {
             for r in 0..rows.nrows() {
@@ -292,7 +303,7 @@ impl SingularGuard {
     pub(crate) fn factorise(
         &self,
         matrix: &mut NewtonMatrix,
-        system: &ContactSystem,
+        system: &ContactSystem<'_>,
         normal_weights: &[f64],
         tangential_weights: &[f64],
     ) -> Option<(usize, bool)> {
@@ -317,7 +328,7 @@ impl SingularGuard {
     pub(crate) fn free_mode(
         &self,
         matrix: &mut NewtonMatrix,
-        system: &ContactSystem,
+        system: &ContactSystem<'_>,
         d: &[f64],
     ) -> Option<Vec<f64>> {
         let mut mode: Vec<f64> = d.iter().zip(&self.metric).map(|(x, w)| w * x).collect();

@@ -59,8 +59,14 @@ impl PenaltyParameter {
         SettingsError::positive(setting, v).map(|_| ())
     }
 
+    /// The number given (a factor or a value).
+    pub fn number(self) -> f64 {
+        let (Self::RelativeToStiffness(v) | Self::Absolute(v)) = self;
+        v
+    }
+
     /// The value for a given system.
-    pub fn value(&self, system: &ContactSystem) -> f64 {
+    pub fn value(&self, system: &ContactSystem<'_>) -> f64 {
         match *self {
             Self::Absolute(v) => v,
             Self::RelativeToStiffness(factor) => {
@@ -80,7 +86,7 @@ pub struct PenaltySettings {
     normal_penalty: PenaltyParameter,
     tangential_penalty: PenaltyParameter,
     tolerance: f64,
-    max_iter: usize,
+    max_iterations: usize,
     parallelism: Par,
 }
 
@@ -92,7 +98,7 @@ impl Default for PenaltySettings {
             normal_penalty: PenaltyParameter::RelativeToStiffness(1e3),
             tangential_penalty: PenaltyParameter::RelativeToStiffness(1e3),
             tolerance: 1e-10,
-            max_iter: 50,
+            max_iterations: 50,
             parallelism: Par::Seq,
         }
     }
@@ -123,8 +129,8 @@ impl PenaltySettings {
     }
 
     /// Newton iteration limit.
-    pub fn max_iter(&self) -> usize {
-        self.max_iter
+    pub fn max_iterations(&self) -> usize {
+        self.max_iterations
     }
 
     /// Parallelism of the factorisation and solves.
@@ -164,8 +170,8 @@ impl PenaltySettingsBuilder {
     }
 
     /// Newton iteration limit, `>= 1`.
-    pub fn max_iter(mut self, value: usize) -> Self {
-        self.settings.max_iter = value;
+    pub fn max_iterations(mut self, value: usize) -> Self {
+        self.settings.max_iterations = value;
         self
     }
 
@@ -184,7 +190,7 @@ impl PenaltySettingsBuilder {
         s.normal_penalty.validate("normal_penalty")?;
         s.tangential_penalty.validate("tangential_penalty")?;
         SettingsError::positive("tolerance", s.tolerance)?;
-        SettingsError::at_least_one("max_iter", s.max_iter)?;
+        SettingsError::at_least_one("max_iterations", s.max_iterations)?;
         Ok(s)
     }
 }
@@ -234,7 +240,7 @@ struct State {
 }
 
 struct Penalised<'a> {
-    system: &'a ContactSystem,
+    system: &'a ContactSystem<'a>,
     eps_n: f64,
     eps_t: f64,
 }
@@ -309,13 +315,9 @@ impl Penalised<'_> {
     fn magnitudes(&self, u: &[f64]) -> Vec<f64> {
         let sys = self.system;
         let abs_u: Vec<f64> = u.iter().map(|x| x.abs()).collect();
-        let k = sys.stiffness().as_ref();
         let mut out: Vec<f64> = sys.load().iter().map(|f| f.abs()).collect();
-        for (j, &uj) in abs_u.iter().enumerate() {
-            let range = k.col_range(j);
-            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
-                out[i] += v.abs() * uj;
-            }
+        for (i, j, v) in sys.stiffness_entries() {
+            out[i] += v.abs() * abs_u[j];
         }
         let mut add = |rows: &super::ConstraintRows, eps: f64, offset: &[f64]| {
             for r in 0..rows.nrows() {
@@ -478,7 +480,7 @@ impl ContactSolver for PenaltySolver {
         NAME
     }
 
-    fn solve(&mut self, system: &ContactSystem) -> Result<ContactSolution, ContactSolverError> {
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
         let s = self.settings;
         let n = system.n_dofs();
@@ -488,30 +490,24 @@ impl ContactSolver for PenaltySolver {
             eps_n: s.normal_penalty.value(system),
             eps_t: s.tangential_penalty.value(system),
         };
-        let matrix = match self.matrix.take() {
-            Some(matrix) if matrix.fits(system, s.parallelism) => matrix,
-            _ => NewtonMatrix::try_new(system, s.parallelism).map_err(|detail| {
-                ContactSolverError::Backend {
-                    solver: NAME,
-                    detail,
-                }
-            })?,
-        };
-        let matrix = self.matrix.insert(matrix);
+        let matrix = NewtonMatrix::reuse_or_analyse(&mut self.matrix, system, s.parallelism)
+            .map_err(|detail| ContactSolverError::Backend {
+                solver: NAME,
+                detail,
+            })?;
         let guard = SingularGuard::new(system, p.eps_n, p.eps_t);
 
         let mut u = vec![0.0; n];
         let mut state = p.state(&u);
         let mut previous_sets: Option<Vec<bool>> = None;
         let mut iterations = 0;
-        let mut factorisations = 0;
         let outcome: Result<(), (SolveStatus, Option<Vec<f64>>)> = loop {
             if state.relative_gradient <= s.tolerance.max(state.relative_noise)
                 && previous_sets.as_ref() == Some(&state.sets)
             {
                 break Ok(());
             }
-            if iterations == s.max_iter {
+            if iterations == s.max_iterations {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
@@ -526,10 +522,7 @@ impl ContactSolver for PenaltySolver {
                     .iter()
                     .map(|&b| if b > 0.0 { p.eps_t } else { 0.0 })
                     .collect();
-                if let Some((count, false)) =
-                    guard.factorise(matrix, system, &all_normal, &all_stick)
-                {
-                    factorisations += count;
+                if let Some((_, false)) = guard.factorise(matrix, system, &all_normal, &all_stick) {
                     // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v|^2.
                     let mut v = system.load().to_vec();
                     let weighted_gap: Vec<f64> = system.gap().iter().map(|g| p.eps_n * g).collect();
@@ -546,8 +539,6 @@ impl ContactSolver for PenaltySolver {
                         state = p.state(&u);
                         continue;
                     }
-                } else {
-                    factorisations += 2;
                 }
             }
             let normal_weights: Vec<f64> = state.sets[..m]
@@ -558,13 +549,12 @@ impl ContactSolver for PenaltySolver {
                 .iter()
                 .map(|&a| if a { p.eps_t } else { 0.0 })
                 .collect();
-            let Some((count, shifted)) =
+            let Some((_, shifted)) =
                 guard.factorise(matrix, system, &normal_weights, &tangential_weights)
             else {
                 // Not definite even with the shift: K has a negative eigenvalue.
                 break Err((SolveStatus::NumericalFailure, None));
             };
-            factorisations += count;
             let mut d: Vec<f64> = state.gradient.iter().map(|g| -g).collect();
             matrix.solve_in_place(&mut d);
             if d.iter().any(|x| !x.is_finite()) {
@@ -600,7 +590,11 @@ impl ContactSolver for PenaltySolver {
                 .as_ref()
                 .map_or_else(|(status, _)| *status, |_| SolveStatus::Converged),
             iterations,
-            factorisations,
+            work: {
+                let mut work = matrix.take_work();
+                work.times.contact_solve = start.elapsed();
+                work
+            },
             wall_time: start.elapsed(),
             residuals,
         };

@@ -1,5 +1,6 @@
 //! What a solve measured: status, iterations, time and KKT residuals recomputed from the answer.
 
+use std::ops::AddAssign;
 use std::time::Duration;
 
 use super::system::ContactSystem;
@@ -127,10 +128,70 @@ pub struct SolveReport {
     /// Iterations of the solver: interior-point iterations (exact), Newton steps (penalty) or
     /// active-set splits solved (active set).
     pub iterations: usize,
-    /// Numeric factorisations performed (0 when the backend does not tell).
-    pub factorisations: usize,
+    /// What the run computed: symbolic analyses, numeric factorisations, triangular solves and
+    /// their times.
+    pub work: WorkCounters,
     /// Wall-clock time of the whole solve, set-up included.
     pub wall_time: Duration,
     /// KKT residuals of the returned answer.
     pub residuals: KktResiduals,
+}
+
+/// Seconds spent in each stage of a model build or a solve. A backend that does not expose a
+/// stage leaves it at zero (its whole time is in [`StageTimes::contact_solve`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StageTimes {
+    /// Interface node insertion (and the node geometry).
+    pub insertion: Duration,
+    /// Element matrices, scatter, loads, constraint rows.
+    pub assembly: Duration,
+    /// Symbolic analyses (orderings, symbolic factorisations, solver set-up).
+    pub symbolic: Duration,
+    /// Numeric factorisations.
+    pub numeric: Duration,
+    /// Triangular solves.
+    pub solves: Duration,
+    /// Whole contact solves (including the three stages above).
+    pub contact_solve: Duration,
+    /// Post-processing (full displacements, reactions, energies, interface results).
+    pub post: Duration,
+}
+
+impl AddAssign for StageTimes {
+    fn add_assign(&mut self, other: Self) {
+        self.insertion += other.insertion;
+        self.assembly += other.assembly;
+        self.symbolic += other.symbolic;
+        self.numeric += other.numeric;
+        self.solves += other.solves;
+        self.contact_solve += other.contact_solve;
+        self.post += other.post;
+    }
+}
+
+/// What a build or a solve computed, counted where it happens and carried with every result
+/// (the CLI's `summary.json` and the xtask reports print these figures).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WorkCounters {
+    /// Global assemblies of the stiffness and load (one per body and build or refill).
+    pub assemblies: usize,
+    /// Symbolic analyses of a sparse matrix (or set-ups of an external solver).
+    pub symbolic_analyses: usize,
+    /// Numeric factorisations (for the interior-point solver: one KKT factorisation per
+    /// iteration plus the initial one).
+    pub numeric_factorisations: usize,
+    /// Forward and backward triangular solve pairs (0 where the backend does not tell).
+    pub triangular_solves: usize,
+    /// The time of each stage.
+    pub times: StageTimes,
+}
+
+impl AddAssign for WorkCounters {
+    fn add_assign(&mut self, other: Self) {
+        self.assemblies += other.assemblies;
+        self.symbolic_analyses += other.symbolic_analyses;
+        self.numeric_factorisations += other.numeric_factorisations;
+        self.triangular_solves += other.triangular_solves;
+        self.times += other.times;
+    }
 }

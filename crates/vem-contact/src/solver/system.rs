@@ -6,7 +6,10 @@
 //! interpolated initial gap `g = h0_I` and the nodal friction bounds `b_i = l_i g_F(x_i)`
 //! (spec section 2, nodal quadrature `j_h`).
 
-use faer::sparse::SparseColMat;
+use std::borrow::Cow;
+use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
+
+use faer::sparse::{SparseColMat, SparseColMatRef};
 
 /// Why a [`ConstraintRows`] or a [`ContactSystem`] was rejected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -305,14 +308,15 @@ impl ConstraintRows {
 }
 
 /// Tresca friction data: tangential rows `B_T` and nodal friction bounds
-/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; spec section 2, `j_h`).
+/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`).
+/// Owns its data or borrows it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Friction {
-    tangential_rows: ConstraintRows,
-    bounds: Vec<f64>,
+pub struct Friction<'a> {
+    tangential_rows: Cow<'a, ConstraintRows>,
+    bounds: Cow<'a, [f64]>,
 }
 
-impl Friction {
+impl<'a> Friction<'a> {
     /// Tangential rows (one per interface node, the same nodes and order as the normal rows)
     /// and their bounds.
     ///
@@ -320,28 +324,12 @@ impl Friction {
     /// [`ContactSystemError::DimensionMismatch`] if `bounds.len() != tangential_rows.nrows()`,
     /// [`ContactSystemError::NonFinite`] or [`ContactSystemError::NegativeFrictionBound`].
     pub fn try_new(
-        tangential_rows: ConstraintRows,
-        bounds: Vec<f64>,
+        tangential_rows: impl Into<Cow<'a, ConstraintRows>>,
+        bounds: impl Into<Cow<'a, [f64]>>,
     ) -> Result<Self, ContactSystemError> {
-        if bounds.len() != tangential_rows.nrows() {
-            return Err(ContactSystemError::DimensionMismatch {
-                what: "friction bounds vs tangential rows",
-                expected: tangential_rows.nrows(),
-                actual: bounds.len(),
-            });
-        }
-        for (row, &value) in bounds.iter().enumerate() {
-            if !value.is_finite() {
-                return Err(ContactSystemError::NonFinite {
-                    what: "friction bounds",
-                    index: row,
-                    value,
-                });
-            }
-            if value < 0.0 {
-                return Err(ContactSystemError::NegativeFrictionBound { row, value });
-            }
-        }
+        let tangential_rows = tangential_rows.into();
+        let bounds = bounds.into();
+        check_bounds(tangential_rows.nrows(), &bounds)?;
         Ok(Self {
             tangential_rows,
             bounds,
@@ -359,6 +347,79 @@ impl Friction {
     }
 }
 
+fn check_bounds(nrows: usize, bounds: &[f64]) -> Result<(), ContactSystemError> {
+    if bounds.len() != nrows {
+        return Err(ContactSystemError::DimensionMismatch {
+            what: "friction bounds vs tangential rows",
+            expected: nrows,
+            actual: bounds.len(),
+        });
+    }
+    for (row, &value) in bounds.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(ContactSystemError::NonFinite {
+                what: "friction bounds",
+                index: row,
+                value,
+            });
+        }
+        if value < 0.0 {
+            return Err(ContactSystemError::NegativeFrictionBound { row, value });
+        }
+    }
+    Ok(())
+}
+
+impl<'a> From<&'a ConstraintRows> for Cow<'a, ConstraintRows> {
+    fn from(rows: &'a ConstraintRows) -> Self {
+        Cow::Borrowed(rows)
+    }
+}
+
+impl From<ConstraintRows> for Cow<'_, ConstraintRows> {
+    fn from(rows: ConstraintRows) -> Self {
+        Cow::Owned(rows)
+    }
+}
+
+/// The identity of a contact system's structure: the sparsity patterns of `K` and of the
+/// constraint rows and the values of the rows (geometry). Two systems with the same identity
+/// differ at most in the values of `K`, the load, the gaps and the friction bounds, so a solver
+/// may keep its symbolic work (orderings, symbolic factorisations, workspaces) from one to the
+/// other. Every [`ContactSystem::try_new`] and every
+/// [`ContactDiscretisation`](crate::ContactDiscretisation) draws a fresh one; systems derived
+/// from a system ([`ContactSystem::with_load`], ...) or from one discretisation share it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PatternId(u64);
+
+impl PatternId {
+    /// A new identity, distinct from every other drawn in this process.
+    pub fn fresh() -> Self {
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        Self(NEXT.fetch_add(1, AtomicOrdering::Relaxed))
+    }
+}
+
+/// One diagonal block of the stiffness: a body's reduced stiffness and the first unknown of the
+/// body in the combined numbering.
+#[derive(Debug, Clone)]
+pub struct StiffnessBlock<'a> {
+    offset: usize,
+    matrix: Cow<'a, SparseColMat<usize, f64>>,
+}
+
+impl StiffnessBlock<'_> {
+    /// First unknown of the block.
+    pub fn offset(&self) -> usize {
+        self.offset
+    }
+
+    /// The block (full symmetric storage).
+    pub fn matrix(&self) -> SparseColMatRef<'_, usize, f64> {
+        self.matrix.as_ref().as_ref()
+    }
+}
+
 /// The discrete contact problem (P1^h, or P2^h with nodal friction quadrature):
 ///
 /// ```text
@@ -366,19 +427,27 @@ impl Friction {
 /// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i|   s.t.  B_N u <= g
 /// ```
 ///
-/// `K` is symmetric positive semi-definite in full (both triangles) storage; a singular `K`
-/// is allowed when the constraints (or friction) hold the rigid modes.
+/// `K` is symmetric positive semi-definite, block diagonal (one block per body, full symmetric
+/// storage); a singular `K` is allowed when the constraints (or friction) hold the rigid modes.
+/// A system owns its data ([`ContactSystem::try_new`]) or borrows what does not change from a
+/// [`ContactDiscretisation`](crate::ContactDiscretisation) (stiffness blocks, rows), so a
+/// Coulomb fixed point or a load step copies no matrix. Its [`PatternId`] tells solvers what
+/// symbolic work they may keep.
 #[derive(Debug, Clone)]
-pub struct ContactSystem {
-    stiffness: SparseColMat<usize, f64>,
-    load: Vec<f64>,
-    normal_rows: ConstraintRows,
-    gap: Vec<f64>,
-    friction: Option<Friction>,
+pub struct ContactSystem<'a> {
+    pattern: PatternId,
+    stiffness_version: u64,
+    n: usize,
+    blocks: Vec<StiffnessBlock<'a>>,
+    load: Cow<'a, [f64]>,
+    normal_rows: Cow<'a, ConstraintRows>,
+    gap: Cow<'a, [f64]>,
+    friction: Option<Friction<'a>>,
 }
 
-impl ContactSystem {
-    /// Validates and assembles the problem.
+impl ContactSystem<'static> {
+    /// Validates and assembles the problem from owned data (one stiffness block); the system
+    /// gets a fresh [`PatternId`].
     ///
     /// # Errors
     /// A [`ContactSystemError`] naming the inconsistent quantity: non-square, non-symmetric
@@ -391,14 +460,54 @@ impl ContactSystem {
         load: Vec<f64>,
         normal_rows: ConstraintRows,
         gap: Vec<f64>,
-        friction: Option<Friction>,
+        friction: Option<Friction<'static>>,
     ) -> Result<Self, ContactSystemError> {
         let (nrows, ncols) = (stiffness.nrows(), stiffness.ncols());
         if nrows != ncols {
             return Err(ContactSystemError::StiffnessNotSquare { nrows, ncols });
         }
-        let n = ncols;
-        check_stiffness(&stiffness)?;
+        check_stiffness(stiffness.as_ref())?;
+        Self::try_from_parts(
+            PatternId::fresh(),
+            0,
+            vec![StiffnessBlock {
+                offset: 0,
+                matrix: Cow::Owned(stiffness),
+            }],
+            Cow::Owned(load),
+            Cow::Owned(normal_rows),
+            Cow::Owned(gap),
+            friction,
+        )
+    }
+}
+
+impl<'a> ContactSystem<'a> {
+    /// A system from borrowed stiffness blocks `(offset, block)` whose symmetry the caller
+    /// guarantees (assembled stiffnesses); sizes and finiteness are checked.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn try_from_parts(
+        pattern: PatternId,
+        stiffness_version: u64,
+        blocks: Vec<StiffnessBlock<'a>>,
+        load: Cow<'a, [f64]>,
+        normal_rows: Cow<'a, ConstraintRows>,
+        gap: Cow<'a, [f64]>,
+        friction: Option<Friction<'a>>,
+    ) -> Result<Self, ContactSystemError> {
+        let mut n = 0;
+        for block in &blocks {
+            let m = block.matrix();
+            if m.nrows() != m.ncols() {
+                return Err(ContactSystemError::StiffnessNotSquare {
+                    nrows: m.nrows(),
+                    ncols: m.ncols(),
+                });
+            }
+            check_len("stiffness block offset", n, block.offset)?;
+            check_finite("stiffness values", m.val())?;
+            n += m.ncols();
+        }
         check_len("load", n, load.len())?;
         check_finite("load", &load)?;
         check_len("normal rows: columns", n, normal_rows.ncols())?;
@@ -413,7 +522,10 @@ impl ContactSystem {
             )?;
         }
         Ok(Self {
-            stiffness,
+            pattern,
+            stiffness_version,
+            n,
+            blocks,
             load,
             normal_rows,
             gap,
@@ -421,9 +533,59 @@ impl ContactSystem {
         })
     }
 
+    /// The same structure with another load `f` (same [`PatternId`]).
+    ///
+    /// # Errors
+    /// A load of the wrong length or with a non-finite entry.
+    pub fn with_load(mut self, load: Vec<f64>) -> Result<Self, ContactSystemError> {
+        check_len("load", self.n, load.len())?;
+        check_finite("load", &load)?;
+        self.load = Cow::Owned(load);
+        Ok(self)
+    }
+
+    /// The same structure with other gaps `g` (same [`PatternId`]).
+    ///
+    /// # Errors
+    /// Gaps of the wrong length or with a non-finite entry.
+    pub fn with_gap(mut self, gap: Vec<f64>) -> Result<Self, ContactSystemError> {
+        check_len("gap vs normal rows", self.normal_rows.nrows(), gap.len())?;
+        check_finite("gap", &gap)?;
+        self.gap = Cow::Owned(gap);
+        Ok(self)
+    }
+
+    /// The same structure with other friction bounds `b` (same [`PatternId`]).
+    ///
+    /// # Errors
+    /// A frictionless system, bounds of the wrong length, negative or not finite.
+    pub fn with_friction_bounds(mut self, bounds: Vec<f64>) -> Result<Self, ContactSystemError> {
+        let Some(friction) = &mut self.friction else {
+            return Err(ContactSystemError::DimensionMismatch {
+                what: "friction bounds of a frictionless system",
+                expected: 0,
+                actual: bounds.len(),
+            });
+        };
+        check_bounds(friction.tangential_rows.nrows(), &bounds)?;
+        friction.bounds = Cow::Owned(bounds);
+        Ok(self)
+    }
+
+    /// The identity of the structure (see [`PatternId`]).
+    pub fn pattern(&self) -> PatternId {
+        self.pattern
+    }
+
+    /// A number that changes whenever the values of `K` change under the same [`PatternId`]
+    /// (a refilled discretisation).
+    pub fn stiffness_version(&self) -> u64 {
+        self.stiffness_version
+    }
+
     /// Number of unknowns `n`.
     pub fn n_dofs(&self) -> usize {
-        self.load.len()
+        self.n
     }
 
     /// Number of contact constraints `m` (interface nodes).
@@ -431,9 +593,25 @@ impl ContactSystem {
         self.gap.len()
     }
 
-    /// The stiffness `K` (full symmetric storage).
-    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
-        &self.stiffness
+    /// The diagonal blocks of `K` (one per body, full symmetric storage).
+    pub fn stiffness_blocks(&self) -> &[StiffnessBlock<'a>] {
+        &self.blocks
+    }
+
+    /// Every stored entry `(row, column, value)` of `K` in the combined numbering, column by
+    /// column.
+    pub fn stiffness_entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        self.blocks.iter().flat_map(|block| {
+            let k = block.matrix();
+            let offset = block.offset;
+            (0..k.ncols()).flat_map(move |j| {
+                let range = k.col_range(j);
+                k.row_idx()[range.clone()]
+                    .iter()
+                    .zip(&k.val()[range])
+                    .map(move |(&i, &v)| (i + offset, j + offset, v))
+            })
+        })
     }
 
     /// The load `f`.
@@ -452,7 +630,7 @@ impl ContactSystem {
     }
 
     /// Tresca friction data, `None` for frictionless contact.
-    pub fn friction(&self) -> Option<&Friction> {
+    pub fn friction(&self) -> Option<&Friction<'a>> {
         self.friction.as_ref()
     }
 
@@ -461,36 +639,27 @@ impl ContactSystem {
     /// # Panics
     /// If `x.len() != self.n_dofs()`.
     pub fn stiffness_apply(&self, x: &[f64]) -> Vec<f64> {
-        let n = self.n_dofs();
-        assert_eq!(x.len(), n, "ContactSystem::stiffness_apply: wrong length");
-        let k = self.stiffness.as_ref();
-        let mut y = vec![0.0; n];
-        for (j, &xj) in x.iter().enumerate() {
-            if xj == 0.0 {
-                continue;
-            }
-            let range = k.col_range(j);
-            for (&i, &v) in k.row_idx()[range.clone()].iter().zip(&k.val()[range]) {
-                y[i] += v * xj;
-            }
+        assert_eq!(
+            x.len(),
+            self.n,
+            "ContactSystem::stiffness_apply: wrong length"
+        );
+        let mut y = vec![0.0; self.n];
+        for (i, j, v) in self.stiffness_entries() {
+            y[i] += v * x[j];
         }
         y
     }
 
     /// The diagonal of `K` (duplicates of unsorted storage summed).
     pub fn stiffness_diagonal(&self) -> Vec<f64> {
-        let k = self.stiffness.as_ref();
-        (0..k.ncols())
-            .map(|j| {
-                let range = k.col_range(j);
-                k.row_idx()[range.clone()]
-                    .iter()
-                    .zip(&k.val()[range])
-                    .filter(|(&i, _)| i == j)
-                    .map(|(_, &v)| v)
-                    .sum()
-            })
-            .collect()
+        let mut d = vec![0.0; self.n];
+        for (i, j, v) in self.stiffness_entries() {
+            if i == j {
+                d[i] += v;
+            }
+        }
+        d
     }
 
     /// Largest diagonal entry of `K` over the unknowns that appear in a normal or tangential
@@ -513,6 +682,17 @@ impl ContactSystem {
             .zip(&constrained)
             .filter(|(_, &c)| c)
             .fold(0.0f64, |max, (&d, _)| max.max(d))
+    }
+}
+
+/// A stiffness block borrowed from an assembled system.
+pub(crate) fn borrowed_block(
+    offset: usize,
+    matrix: &SparseColMat<usize, f64>,
+) -> StiffnessBlock<'_> {
+    StiffnessBlock {
+        offset,
+        matrix: Cow::Borrowed(matrix),
     }
 }
 
@@ -540,8 +720,7 @@ fn check_finite(what: &'static str, v: &[f64]) -> Result<(), ContactSystemError>
 }
 
 /// Finite entries, non-negative diagonal, symmetric pattern and values.
-fn check_stiffness(k: &SparseColMat<usize, f64>) -> Result<(), ContactSystemError> {
-    let k = k.as_ref();
+fn check_stiffness(k: SparseColMatRef<'_, usize, f64>) -> Result<(), ContactSystemError> {
     check_finite("stiffness values", k.val())?;
     let scale = k.val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let tol = 1e-12 * scale;

@@ -1,0 +1,198 @@
+//! One discretisation, many solves: reused solvers agree with fresh ones, load steps scale the
+//! answer, refilled values agree with a fresh build, and the counters show what was reused.
+
+use std::sync::Arc;
+
+use vem_contact::{
+    ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings, ExactSolver,
+    PenaltySolver,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_mesh::generators::{structured_quads, Rectangle};
+use vem_mesh::{Point, Vector};
+use vem_space::LowestOrderVem;
+
+/// Two blocks on non-matching meshes, the upper pushed down by `push` on its top.
+fn blocks(law: ContactLaw, push: f64) -> ContactProblem {
+    let material = Material::from_lame(2.0, 1.0, Plane::Strain).unwrap();
+    let element = Arc::new(LowestOrderVem::default());
+    let square = |y0: f64, n: usize| {
+        structured_quads(
+            &Rectangle::new(Point::new(0.0, y0), Point::new(1.0, y0 + 1.0)),
+            n,
+            n,
+        )
+        .unwrap()
+    };
+    let upper = ElasticBody::builder("upper", square(0.0, 3), material, element.clone())
+        .dirichlet(Dirichlet::prescribed("top", Component::Y, move |_| {
+            Vector::new(0.0, -push)
+        }))
+        .dirichlet(Dirichlet::prescribed("left", Component::X, |_| {
+            Vector::zeros()
+        }))
+        .traction("right", |x| Vector::new(0.0, 0.02 * x.y))
+        .build()
+        .unwrap();
+    let lower = ElasticBody::builder("lower", square(-1.0, 4), material, element)
+        .dirichlet(Dirichlet::prescribed("bottom", Component::Y, |_| {
+            Vector::zeros()
+        }))
+        .dirichlet(Dirichlet::prescribed("left", Component::X, |_| {
+            Vector::zeros()
+        }))
+        .build()
+        .unwrap();
+    ContactProblem::two_bodies(upper, "bottom", lower, "top", law)
+}
+
+fn tight_exact() -> ExactSolver {
+    ExactSolver::new(
+        ExactSettings::builder()
+            .eps_abs(1e-12)
+            .eps_rel(1e-12)
+            .build()
+            .unwrap(),
+    )
+}
+
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
+}
+
+#[test]
+fn a_reused_solver_agrees_with_a_fresh_one() {
+    let discretisation = blocks(ContactLaw::try_tresca(0.004).unwrap(), 0.03)
+        .discretise()
+        .unwrap();
+    let solvers: Vec<(Box<dyn ContactSolver>, Box<dyn ContactSolver>)> = vec![
+        (Box::new(tight_exact()), Box::new(tight_exact())),
+        (
+            Box::new(PenaltySolver::default()),
+            Box::new(PenaltySolver::default()),
+        ),
+        (
+            Box::new(ActiveSetSolver::default()),
+            Box::new(ActiveSetSolver::default()),
+        ),
+    ];
+    for (mut reused, mut fresh) in solvers {
+        // A first solve at another load leaves work in the reused solver.
+        reused
+            .solve(&discretisation_scaled(&discretisation, 0.5))
+            .unwrap();
+        let a = reused.solve(&discretisation.system()).unwrap();
+        let b = fresh.solve(&discretisation.system()).unwrap();
+        let scale = b.normal_force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+        assert!(
+            max_difference(&a.normal_force, &b.normal_force) < 1e-7 * scale,
+            "{}: reused {:?} fresh {:?}",
+            a.report.solver,
+            a.normal_force,
+            b.normal_force
+        );
+        // The reused Newton solvers analysed the pattern once.
+        assert!(a.report.work.symbolic_analyses == 0, "{:?}", a.report.work);
+    }
+}
+
+fn discretisation_scaled(
+    d: &vem_contact::ContactDiscretisation,
+    factor: f64,
+) -> vem_contact::ContactSystem<'_> {
+    let system = d.system();
+    let load: Vec<f64> = system.load().iter().map(|f| factor * f).collect();
+    system.with_load(load).unwrap()
+}
+
+#[test]
+fn a_load_step_scales_a_fully_closed_contact() {
+    // The blocks touch along the whole interface at every load factor: the problem is linear
+    // there, so every force scales with the load factor.
+    let d = blocks(ContactLaw::Frictionless, 0.03).discretise().unwrap();
+    let mut solver = ActiveSetSolver::default();
+    let full = d.solve(&mut solver).unwrap();
+    let half = d.solve_scaled(&mut solver, 0.5).unwrap();
+    let scale = full.normal_resultant();
+    for (a, b) in full.nodes.iter().zip(&half.nodes) {
+        assert!((0.5 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
+        assert!((0.5 * a.normal_jump - b.normal_jump).abs() < 1e-14);
+    }
+    // Equilibrium of the upper block at half load: support reaction + contact force + applied
+    // traction = 0 (vertical), the traction 0.02 y on x = 1 having resultant 0.01 at full load.
+    let upper = &half.bodies[0].solution;
+    let support: f64 = upper.reactions().iter().map(|r| r.force.y).sum();
+    let contact = half.force_on_body_a().y;
+    assert!(
+        (support + contact + 0.5 * 0.01).abs() < 1e-12,
+        "{support} {contact}"
+    );
+    // No assembly and no symbolic analysis for the second solve.
+    assert_eq!(half.work.assemblies, 0);
+    assert_eq!(half.work.symbolic_analyses, 0);
+    assert!(half.work.numeric_factorisations >= 1);
+}
+
+#[test]
+fn coulomb_costs_one_assembly_and_one_symbolic_analysis() {
+    let law = ContactLaw::try_coulomb(0.3).unwrap();
+    for mut solver in [
+        Box::new(PenaltySolver::default()) as Box<dyn ContactSolver>,
+        Box::new(ActiveSetSolver::default()),
+        Box::new(tight_exact()),
+    ] {
+        let result = blocks(law.clone(), 0.03).solve(&mut *solver).unwrap();
+        let steps = result.fixed_point.as_ref().unwrap().steps;
+        assert!(steps >= 1);
+        assert_eq!(result.work.assemblies, 2, "one per body"); // built once
+        assert_eq!(result.work.symbolic_analyses, 1, "{}", result.report.solver);
+        assert!(result.work.numeric_factorisations > steps);
+        // Coulomb's law node by node.
+        for node in &result.nodes {
+            assert!(node.friction_force.abs() <= 0.3 * node.normal_force * (1.0 + 1e-6) + 1e-12);
+        }
+    }
+}
+
+#[test]
+fn a_refilled_material_agrees_with_a_fresh_build() {
+    let problem = blocks(ContactLaw::try_tresca(0.004).unwrap(), 0.03);
+    let mut d = problem.discretise().unwrap();
+    let softer = Material::from_lame(1.0, 0.5, Plane::Strain).unwrap();
+    let mut solver = ActiveSetSolver::default();
+    d.solve(&mut solver).unwrap();
+    d.set_material(0, softer).unwrap();
+    let refilled = d.solve(&mut solver).unwrap();
+    assert_eq!(refilled.work.symbolic_analyses, 0);
+    // A fresh build with the softer material on body A.
+    let material = Material::from_lame(2.0, 1.0, Plane::Strain).unwrap();
+    let element = Arc::new(LowestOrderVem::default());
+    let upper = problem.body().with_material(softer).unwrap();
+    let lower = ElasticBody::builder(
+        "lower",
+        structured_quads(
+            &Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0)),
+            4,
+            4,
+        )
+        .unwrap(),
+        material,
+        element,
+    )
+    .dirichlet(Dirichlet::prescribed("bottom", Component::Y, |_| {
+        Vector::zeros()
+    }))
+    .dirichlet(Dirichlet::prescribed("left", Component::X, |_| {
+        Vector::zeros()
+    }))
+    .build()
+    .unwrap();
+    let fresh = ContactProblem::two_bodies(upper, "bottom", lower, "top", problem.law().clone())
+        .solve(&mut ActiveSetSolver::default())
+        .unwrap();
+    let scale = fresh.normal_resultant();
+    for (a, b) in refilled.nodes.iter().zip(&fresh.nodes) {
+        assert!((a.normal_force - b.normal_force).abs() < 1e-10 * scale);
+        assert!((a.friction_force - b.friction_force).abs() < 1e-10 * scale);
+    }
+}
