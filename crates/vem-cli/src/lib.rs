@@ -40,8 +40,7 @@
 //!     part = "bottom"
 //!     obstacle = { line = { point = [0, 0], normal = [0, 1] } }
 //!     solver = "exact"
-//!     tolerance = 1e-13  # tighter than the default (1e-10): the nodal forces are
-//!                        # checked to 1e-6 below
+//!     tolerance = 1e-13  # tighter than the default 1e-10: forces are checked to 1e-6
 //! "#)?;
 //! let outcome = Model::build(&scene)?.solve()?;
 //! let contact = outcome.contact.as_ref().unwrap();
