@@ -15,7 +15,9 @@ use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Pla
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
 use vem_mesh::{Mesh, Point, Vector};
-use vem_space::{LowestOrderVem, SpaceError, Stabilisation, StabilisationScaling};
+use vem_space::{
+    DRecipe, DofiDofi, LowestOrderVem, SpaceError, Stabilisation, StabilisationScaling,
+};
 
 use crate::scene::{
     list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
@@ -32,7 +34,7 @@ pub struct ModelBody {
     /// Where the mesh came from ("voronoi, n = 16, seed 1, on [0, 1] x [0, 1]" or a file).
     pub mesh_source: String,
     /// The stabilisation used.
-    pub stabilisation: Stabilisation,
+    pub stabilisation: Arc<dyn Stabilisation>,
 }
 
 /// What body A is in contact with, as built.
@@ -164,7 +166,7 @@ impl Model {
                         .collect(),
                     quality: mesh.quality(),
                     material: describe_material(b.body.material()),
-                    stabilisation: describe_stabilisation(&b.stabilisation),
+                    stabilisation: b.stabilisation.description(),
                     conditions: describe_conditions(&self.scene, b.body.name()),
                 }
             })
@@ -397,25 +399,30 @@ fn build_body(
         _ => return Err(scene.error(Some(spec.material.span()), "incomplete material")),
     }
     .map_err(|e| scene.error(Some(spec.material.span()), format!("body '{name}': {e}")))?;
-    let stabilisation = match &spec.stabilisation {
-        None => Stabilisation::dofi_dofi(StabilisationScaling::TraceOfC),
-        Some(s) => match s.get_ref().kind {
-            StabilisationKind::DRecipe => Stabilisation::DRecipe,
-            StabilisationKind::DofiDofi => Stabilisation::DofiDofi {
-                scaling: match s.get_ref().scaling {
-                    None | Some(ScalingSpec::Trace) => StabilisationScaling::TraceOfC,
-                    Some(ScalingSpec::Shear) => StabilisationScaling::ShearModulus,
-                },
-                scale: s.get_ref().scale.unwrap_or(Stabilisation::DEFAULT_SCALE),
-            },
-        },
-    };
-    let element = LowestOrderVem::new(stabilisation).map_err(|e| {
+    let stabilisation_error = |e: vem_space::SpaceError| {
         scene.error(
             spec.stabilisation.as_ref().map(|s| s.span()),
             format!("body '{name}': {e}"),
         )
-    })?;
+    };
+    let stabilisation: Arc<dyn Stabilisation> = match &spec.stabilisation {
+        None => Arc::new(DofiDofi::default()),
+        Some(s) => match s.get_ref().kind {
+            StabilisationKind::DRecipe => Arc::new(DRecipe),
+            StabilisationKind::DofiDofi => Arc::new(
+                DofiDofi::try_new(
+                    match s.get_ref().scaling {
+                        None | Some(ScalingSpec::Trace) => StabilisationScaling::TraceOfC,
+                        Some(ScalingSpec::Shear) => StabilisationScaling::ShearModulus,
+                    },
+                    s.get_ref().scale.unwrap_or(DofiDofi::DEFAULT_SCALE),
+                )
+                .map_err(stabilisation_error)?,
+            ),
+        },
+    };
+    let element =
+        LowestOrderVem::try_new(Arc::clone(&stabilisation)).map_err(stabilisation_error)?;
     let mut builder = ElasticBody::builder(name.clone(), mesh.clone(), material, Arc::new(element));
     for d in &spec.dirichlet {
         let d = d.get_ref();
@@ -694,19 +701,6 @@ pub(crate) fn young_poisson(material: &Material) -> Option<(f64, f64)> {
             lambda / (2.0 * (lambda + mu)),
         )
     })
-}
-
-fn describe_stabilisation(s: &Stabilisation) -> String {
-    match s {
-        Stabilisation::DofiDofi { scaling, scale } => {
-            let constant = match scaling {
-                StabilisationScaling::TraceOfC => "trace(C)",
-                StabilisationScaling::ShearModulus => "5 mu",
-            };
-            format!("dofi-dofi, alpha = {scale} {constant}")
-        }
-        Stabilisation::DRecipe => "D-recipe".to_string(),
-    }
 }
 
 /// The boundary conditions of body `name` as written in the scene.

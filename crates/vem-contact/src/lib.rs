@@ -54,7 +54,9 @@ pub use result::{
 
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
-    ContactSolverError, ContactSystem, ContactSystemError, ExactSettings, ExactSolver, Friction,
-    KktResiduals, PatternId, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
-    SolveReport, SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
+    ContactSolverError, ContactSystem, ContactSystemError, Friction, KktResiduals, PatternId,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
+    StageTimes, StiffnessBlock, WorkCounters,
 };
+#[cfg(feature = "clarabel")]
+pub use solver::{ExactSettings, ExactSolver};

@@ -22,9 +22,11 @@ use std::fmt;
 use std::sync::Arc;
 
 use crate::solver::{
-    ActiveSetSettings, ActiveSetSolver, ContactSolver, ExactSettings, ExactSolver,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
+    ActiveSetSettings, ActiveSetSolver, ContactSolver, PenaltyParameter, PenaltySettings,
+    PenaltySolver, SettingsError,
 };
+#[cfg(feature = "clarabel")]
+use crate::solver::{ExactSettings, ExactSolver};
 
 /// Settings a solver may take from a scene or a command line; every one is optional (the
 /// solver's default applies) and each solver's builder validates the values it uses. A solver
@@ -172,7 +174,11 @@ impl Default for SolverRegistry {
 
 impl SolverRegistry {
     /// The name of the default solver.
+    #[cfg(feature = "clarabel")]
     pub const DEFAULT: &'static str = "exact";
+    /// The name of the default solver (without the `clarabel` feature).
+    #[cfg(not(feature = "clarabel"))]
+    pub const DEFAULT: &'static str = "active-set";
 
     /// A registry without any solver.
     pub fn empty() -> Self {
@@ -181,26 +187,12 @@ impl SolverRegistry {
         }
     }
 
-    /// The solvers of this crate: `"exact"` ([`ExactSolver`]), `"penalty"` ([`PenaltySolver`])
-    /// and `"active-set"` ([`ActiveSetSolver`]).
+    /// The solvers of this crate: `"exact"` (`ExactSolver`, with the `clarabel` feature),
+    /// `"penalty"` ([`PenaltySolver`]) and `"active-set"` ([`ActiveSetSolver`]).
     pub fn builtin() -> Self {
         let mut registry = Self::empty();
-        let builtin: [(&str, &str, SolverFactory); 3] = [
-            (
-                "exact",
-                "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
-                Arc::new(|o: &SolverOptions| {
-                    o.refuse(&["penalty", "augmentation"])?;
-                    let mut b = ExactSettings::builder();
-                    if let Some(t) = o.tolerance {
-                        b = b.eps_abs(t).eps_rel(t);
-                    }
-                    if let Some(m) = o.max_iterations {
-                        b = b.max_iterations(m);
-                    }
-                    Ok(Box::new(ExactSolver::new(b.build()?)) as Box<dyn ContactSolver>)
-                }),
-            ),
+        #[allow(unused_mut)]
+        let mut builtin: Vec<(&str, &str, SolverFactory)> = vec![
             (
                 "penalty",
                 "penalty method, semismooth Newton with exact line search",
@@ -238,6 +230,25 @@ impl SolverRegistry {
                 }),
             ),
         ];
+        #[cfg(feature = "clarabel")]
+        builtin.insert(
+            0,
+            (
+                "exact",
+                "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
+                Arc::new(|o: &SolverOptions| {
+                    o.refuse(&["penalty", "augmentation"])?;
+                    let mut b = ExactSettings::builder();
+                    if let Some(t) = o.tolerance {
+                        b = b.eps_abs(t).eps_rel(t);
+                    }
+                    if let Some(m) = o.max_iterations {
+                        b = b.max_iterations(m);
+                    }
+                    Ok(Box::new(ExactSolver::new(b.build()?)) as Box<dyn ContactSolver>)
+                }),
+            ),
+        );
         for (name, summary, factory) in builtin {
             registry.entries.push(Arc::new(Entry {
                 name: name.to_string(),
@@ -313,7 +324,7 @@ impl SolverRegistry {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "clarabel"))]
 mod tests {
     use super::*;
 

@@ -85,11 +85,26 @@ impl ElasticBodyBuilder {
         self
     }
 
-    /// Checks the material, the quadrature setting, that every named part exists and that the
-    /// Dirichlet data are finite and consistent, and builds the body.
+    /// Checks the material, that the element supports every polygon of the mesh
+    /// ([`ElementSpace::supports`]), the quadrature setting, that every named part exists and
+    /// that the Dirichlet data are finite and consistent, and builds the body.
     pub fn build(self) -> Result<ElasticBody, ElasticError> {
         let tensor = self.material.tensor()?;
-        GaussLegendre::new(self.traction_points).map_err(|e| ElasticError::InvalidSetting {
+        if let Some((polygon, vertices)) = self
+            .mesh
+            .polygons()
+            .map(<[usize]>::len)
+            .enumerate()
+            .find(|&(_, n)| !self.element.supports(n))
+        {
+            return Err(ElasticError::UnsupportedPolygon {
+                body: self.name,
+                element: self.element.name().to_string(),
+                polygon,
+                vertices,
+            });
+        }
+        GaussLegendre::try_new(self.traction_points).map_err(|e| ElasticError::InvalidSetting {
             reason: format!("traction_points = {}: {e}", self.traction_points),
         })?;
         for traction in &self.tractions {
@@ -138,7 +153,9 @@ impl ElasticBody {
 
     /// The same body (material, element, conditions) on another mesh that has the same
     /// boundary-part names, e.g. the mesh enlarged by interface node insertion. The degrees of
-    /// freedom are rebuilt and every condition is checked again on the new mesh.
+    /// freedom are rebuilt and everything is checked again on the new mesh (as by
+    /// [`ElasticBodyBuilder::build`]: an element that does not support a polygon that gained
+    /// vertices is [`ElasticError::UnsupportedPolygon`]).
     pub fn with_mesh(&self, mesh: impl Into<Arc<Mesh>>) -> Result<Self, ElasticError> {
         ElasticBodyBuilder {
             name: self.name.clone(),

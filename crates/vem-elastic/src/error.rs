@@ -59,7 +59,7 @@ pub enum ElasticError {
         reason: String,
     },
     /// A mesh-level problem, typically a boundary part that does not exist.
-    #[error("body '{body}': {source}")]
+    #[error("body '{body}': mesh error")]
     Mesh {
         /// The body's name.
         body: String,
@@ -68,7 +68,7 @@ pub enum ElasticError {
         source: MeshError,
     },
     /// The element layer failed on one polygon.
-    #[error("body '{body}', polygon {polygon}: {source}")]
+    #[error("body '{body}', polygon {polygon}: the element failed")]
     Element {
         /// The body's name.
         body: String,
@@ -77,6 +77,20 @@ pub enum ElasticError {
         /// The element error.
         #[source]
         source: SpaceError,
+    },
+    /// The element type cannot be built on a polygon of the mesh (e.g. the linear triangle on a
+    /// quadrilateral, or on a triangle that gained a vertex by interface node insertion).
+    /// Checked for every polygon before any assembly.
+    #[error("body '{body}': element '{element}' does not support polygon {polygon} with {vertices} vertices")]
+    UnsupportedPolygon {
+        /// The body's name.
+        body: String,
+        /// The element's name.
+        element: String,
+        /// The first polygon the element does not support.
+        polygon: usize,
+        /// Its number of vertices.
+        vertices: usize,
     },
     /// An element returned a local matrix or load vector of the wrong size.
     #[error("body '{body}', polygon {polygon}: the element returned {what} of size {found} for {vertices} vertices (expected {expected})")]
@@ -95,7 +109,7 @@ pub enum ElasticError {
         expected: usize,
     },
     /// A traction failed on one boundary edge.
-    #[error("body '{body}', traction on part '{part}', edge ({a}, {b}): {source}")]
+    #[error("body '{body}', traction on part '{part}', edge ({a}, {b}): the edge load failed")]
     Traction {
         /// The body's name.
         body: String,
@@ -149,7 +163,7 @@ pub enum ElasticError {
         body: String,
     },
     /// The linear solver failed for another reason.
-    #[error("body '{body}': {source}")]
+    #[error("body '{body}': the linear solver failed")]
     Solver {
         /// The body's name.
         body: String,

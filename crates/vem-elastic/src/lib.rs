@@ -87,4 +87,8 @@ pub use dofs::{dof, DofMap, DofStatus};
 pub use error::{ElasticError, SolveError};
 pub use material::{von_mises, Material, Plane};
 pub use post::{ElementField, PartReaction, Solution};
-pub use solver::{CholeskySettings, CholeskySolver, LinearSolver, Ordering};
+pub use solver::{
+    CholeskySettings, CholeskySettingsBuilder, CholeskySolver, LinearSolver, Ordering,
+};
+#[cfg(feature = "testkit")]
+pub mod testkit;

@@ -88,7 +88,7 @@ impl Material {
     /// Such a material is a purely two-dimensional law: it carries no out-of-plane stress
     /// (`sigma_zz = 0` in [`Material::out_of_plane_stress`]).
     pub fn general(voigt: Matrix3<f64>) -> Result<Self, ElasticError> {
-        ElasticityTensor::from_voigt(voigt).map_err(|e| invalid(e.to_string()))?;
+        ElasticityTensor::try_from_voigt(voigt).map_err(|e| invalid(e.to_string()))?;
         Ok(Self {
             kind: Kind::General { voigt },
         })
@@ -125,9 +125,9 @@ impl Material {
         let tensor = match self.kind {
             Kind::Isotropic { lambda, mu, plane } => {
                 let (lambda, mu) = in_plane(lambda, mu, plane);
-                ElasticityTensor::isotropic(lambda, mu)
+                ElasticityTensor::try_isotropic(lambda, mu)
             }
-            Kind::General { voigt } => ElasticityTensor::from_voigt(voigt),
+            Kind::General { voigt } => ElasticityTensor::try_from_voigt(voigt),
         };
         tensor.map_err(|e| invalid(e.to_string()))
     }

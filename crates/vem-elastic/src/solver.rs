@@ -53,16 +53,101 @@ pub enum Ordering {
     Natural,
 }
 
-/// Settings of [`CholeskySolver`], checked by [`CholeskySolver::new`].
+/// Settings of [`CholeskySolver`], built and checked by [`CholeskySettings::builder`]
+/// (or [`Default`]).
+///
+/// ```
+/// use vem_elastic::{CholeskySettings, CholeskySolver, Ordering};
+/// let settings = CholeskySettings::builder()
+///     .ordering(Ordering::Natural)
+///     .singular_pivot_tolerance(1e-10)
+///     .build()?;
+/// assert_eq!(settings.ordering(), Ordering::Natural);
+/// let solver = CholeskySolver::new(settings);
+/// assert_eq!(solver.settings().singular_pivot_tolerance(), 1e-10);
+/// // A pivot tolerance outside [0, 1) is an error when the settings are built.
+/// assert!(CholeskySettings::builder().singular_pivot_tolerance(1.5).build().is_err());
+/// # Ok::<(), vem_elastic::SolveError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CholeskySettings {
+    ordering: Ordering,
+    factorisation_parallelism: Par,
+    solve_parallelism: Par,
+    singular_pivot_tolerance: f64,
+}
+
+impl CholeskySettings {
+    /// The default singular-pivot tolerance, `1e-9` (see
+    /// [`CholeskySettingsBuilder::singular_pivot_tolerance`]).
+    pub const DEFAULT_SINGULAR_PIVOT_TOLERANCE: f64 = 1e-9;
+
+    /// A builder starting from the defaults.
+    pub fn builder() -> CholeskySettingsBuilder {
+        CholeskySettingsBuilder {
+            settings: Self::default(),
+        }
+    }
+
+    /// The fill-reducing ordering.
+    pub fn ordering(&self) -> Ordering {
+        self.ordering
+    }
+
+    /// Parallelism of the numeric factorisation.
+    pub fn factorisation_parallelism(&self) -> Par {
+        self.factorisation_parallelism
+    }
+
+    /// Parallelism of the triangular solves.
+    pub fn solve_parallelism(&self) -> Par {
+        self.solve_parallelism
+    }
+
+    /// The relative pivot under which the matrix counts as not positive definite.
+    pub fn singular_pivot_tolerance(&self) -> f64 {
+        self.singular_pivot_tolerance
+    }
+}
+
+impl Default for CholeskySettings {
+    /// AMD, factorisation on all rayon threads, sequential solves, pivot tolerance `1e-9`.
+    fn default() -> Self {
+        Self {
+            ordering: Ordering::Amd,
+            factorisation_parallelism: Par::rayon(0),
+            solve_parallelism: Par::Seq,
+            singular_pivot_tolerance: Self::DEFAULT_SINGULAR_PIVOT_TOLERANCE,
+        }
+    }
+}
+
+/// Builder of [`CholeskySettings`]; [`CholeskySettingsBuilder::build`] checks the values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CholeskySettingsBuilder {
+    settings: CholeskySettings,
+}
+
+impl CholeskySettingsBuilder {
     /// The fill-reducing ordering (default AMD).
-    pub ordering: Ordering,
+    pub fn ordering(mut self, ordering: Ordering) -> Self {
+        self.settings.ordering = ordering;
+        self
+    }
+
     /// Parallelism of the numeric factorisation (default: all rayon threads).
-    pub factorisation_parallelism: Par,
-    /// Parallelism of the triangular solves (default sequential: a parallel supernodal solve was
-    /// measured 20x slower, see `dependencies.md`).
-    pub solve_parallelism: Par,
+    pub fn factorisation_parallelism(mut self, parallelism: Par) -> Self {
+        self.settings.factorisation_parallelism = parallelism;
+        self
+    }
+
+    /// Parallelism of the triangular solves (default sequential: a parallel supernodal solve
+    /// was measured 20x slower, see `dependencies.md`).
+    pub fn solve_parallelism(mut self, parallelism: Par) -> Self {
+        self.settings.solve_parallelism = parallelism;
+        self
+    }
+
     /// A pivot `d_k` (the square of the diagonal of `L`) with `d_k <= tolerance * A_kk` (the
     /// matching diagonal entry of the permuted matrix) counts as zero: the matrix is reported
     /// as not positive definite. In exact arithmetic a floating body gives `d_k = 0`; in
@@ -70,17 +155,20 @@ pub struct CholeskySettings {
     /// the lowest-order VEM (up to 6.4e5 unknowns): floating or sliding bodies reach at most
     /// `d_k / A_kk = 4e-12`, held bodies at least `1e-6` even for `lambda / mu = 1e6`.
     /// Default `1e-9`, in `[0, 1)`.
-    pub singular_pivot_tolerance: f64,
-}
+    pub fn singular_pivot_tolerance(mut self, tolerance: f64) -> Self {
+        self.settings.singular_pivot_tolerance = tolerance;
+        self
+    }
 
-impl Default for CholeskySettings {
-    fn default() -> Self {
-        Self {
-            ordering: Ordering::Amd,
-            factorisation_parallelism: Par::rayon(0),
-            solve_parallelism: Par::Seq,
-            singular_pivot_tolerance: 1e-9,
+    /// The settings, checked: the pivot tolerance must lie in `[0, 1)`.
+    pub fn build(self) -> Result<CholeskySettings, SolveError> {
+        let tol = self.settings.singular_pivot_tolerance;
+        if !(0.0..1.0).contains(&tol) {
+            return Err(SolveError::InvalidSetting {
+                reason: format!("singular_pivot_tolerance = {tol} is outside [0, 1)"),
+            });
         }
+        Ok(self.settings)
     }
 }
 
@@ -125,19 +213,13 @@ struct Analysis {
 }
 
 impl CholeskySolver {
-    /// A solver with `settings`; the pivot tolerance must lie in `[0, 1)`.
-    pub fn new(settings: CholeskySettings) -> Result<Self, SolveError> {
-        let tol = settings.singular_pivot_tolerance;
-        if !(0.0..1.0).contains(&tol) {
-            return Err(SolveError::InvalidSetting {
-                reason: format!("singular_pivot_tolerance = {tol} is outside [0, 1)"),
-            });
-        }
-        Ok(Self {
+    /// A solver with `settings` (checked when they were built).
+    pub fn new(settings: CholeskySettings) -> Self {
+        Self {
             settings,
             analysis: None,
             factor: None,
-        })
+        }
     }
 
     /// The settings in force.

@@ -178,11 +178,14 @@ fn solver_phases_are_checked() {
         solver.factorise(system.stiffness().as_ref()),
         Err(SolveError::Mismatch { .. })
     ));
-    assert!(CholeskySolver::new(CholeskySettings {
-        singular_pivot_tolerance: 1.5,
-        ..Default::default()
-    })
-    .is_err());
+    for tolerance in [1.5, 1.0, -1e-3, f64::NAN] {
+        assert!(matches!(
+            CholeskySettings::builder()
+                .singular_pivot_tolerance(tolerance)
+                .build(),
+            Err(SolveError::InvalidSetting { .. })
+        ));
+    }
 }
 
 #[test]
@@ -190,11 +193,12 @@ fn natural_and_amd_orderings_agree() {
     let body = body();
     let system = body.assemble().unwrap();
     let solve = |ordering| {
-        let mut solver = CholeskySolver::new(CholeskySettings {
-            ordering,
-            ..Default::default()
-        })
-        .unwrap();
+        let mut solver = CholeskySolver::new(
+            CholeskySettings::builder()
+                .ordering(ordering)
+                .build()
+                .unwrap(),
+        );
         solver.analyse(system.stiffness().symbolic()).unwrap();
         solver.factorise(system.stiffness().as_ref()).unwrap();
         solver.solve(system.rhs()).unwrap()

@@ -27,10 +27,10 @@ pub enum SpaceError {
         y: f64,
     },
     /// The element type cannot handle this polygon (e.g. a P1 triangle given a quadrilateral).
-    #[error("element {element} does not support a polygon with {vertices} vertices")]
+    #[error("element '{element}' does not support a polygon with {vertices} vertices")]
     UnsupportedPolygon {
         /// Name of the element type.
-        element: &'static str,
+        element: String,
         /// Number of vertices of the polygon.
         vertices: usize,
     },
@@ -56,9 +56,12 @@ pub enum SpaceError {
         /// Largest tabulated number of points.
         max: usize,
     },
-    /// The stabilisation settings are not admissible (non-positive or non-finite scale).
-    #[error("invalid stabilisation: {reason}")]
+    /// The stabilisation's settings or values are not admissible (a non-positive or non-finite
+    /// scale, a diagonal of the wrong length or with a non-positive entry).
+    #[error("invalid stabilisation '{stabilisation}': {reason}")]
     InvalidStabilisation {
+        /// The stabilisation's name.
+        stabilisation: String,
         /// What is wrong.
         reason: String,
     },

@@ -10,10 +10,14 @@
 //! - strains and stresses in Voigt notation `[xx, yy, xy]` with engineering shear strain
 //!   `gamma_xy = 2 eps_xy`, so that `sigma = C eps` with a symmetric 3x3 `C`.
 //!
-//! Element types: [`LowestOrderVem`] ("vem1", any polygon, stabilisation chosen by
-//! [`Stabilisation`]) and [`LinearTriangle`] ("p1", the classical linear triangle, an
-//! independent check: on a triangle the two agree to round-off). Loads: [`ElementSpace::body_load`]
-//! and [`edge_traction_load`]; quadrature rules for others to reuse in [`quadrature`].
+//! Element types: [`LowestOrderVem`] ("vem1", any polygon, with a [`Stabilisation`]: the
+//! built-in [`DofiDofi`] and [`DRecipe`] or a user's own) and [`LinearTriangle`] ("p1", the
+//! classical linear triangle, an independent check: on a triangle the two agree to round-off),
+//! by name from the [`ElementRegistry`]. The validated geometry of one polygon is
+//! [`PolygonGeometry`]. Loads: [`ElementSpace::body_load`] and [`edge_traction_load`]; quadrature
+//! rules for others to reuse in [`quadrature`]. With the cargo feature `testkit`, the module
+//! `testkit` checks any [`ElementSpace`] on a standard set of polygons (rigid motions,
+//! consistency, rank, symmetry, patch test); `docs/elements.md` shows how to add an element.
 //!
 //! ```
 //! use nalgebra::DVector;
@@ -23,7 +27,7 @@
 //!     Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 0.5),
 //!     Point::new(1.0, 1.0), Point::new(0.0, 1.0),
 //! ];
-//! let material = ElasticityTensor::isotropic(2.0, 1.0)?;
+//! let material = ElasticityTensor::try_isotropic(2.0, 1.0)?;
 //! let element = LowestOrderVem::default();
 //! let local = element.stiffness(&polygon, &material)?;
 //! // The linear field u = (x, 0) has strain (1, 0, 0) and energy |T| C_11 = 4.
@@ -43,13 +47,20 @@ mod material;
 mod p1;
 mod polygon;
 pub mod quadrature;
+mod registry;
+mod stabilisation;
+#[cfg(feature = "testkit")]
+pub mod testkit;
 mod vem;
 
 pub use error::SpaceError;
 pub use load::edge_traction_load;
 pub use material::ElasticityTensor;
 pub use p1::LinearTriangle;
-pub use vem::{LowestOrderVem, Stabilisation, StabilisationScaling};
+pub use polygon::PolygonGeometry;
+pub use registry::{ElementFactory, ElementRegistry, RegistryError};
+pub use stabilisation::{DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
+pub use vem::LowestOrderVem;
 
 use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};
 pub use vem_mesh::{Point, Vector};
@@ -110,8 +121,17 @@ impl EnergyProjection {
 ///
 /// Implementations must be thread-safe: assembly calls them from many threads at once.
 pub trait ElementSpace: Send + Sync {
-    /// A short name for reports ("vem1", "p1", ...).
+    /// A short name for reports ("vem1", "p1", ...); for a registered element, its name in the
+    /// [`ElementRegistry`].
     fn name(&self) -> &str;
+
+    /// Whether the element can be built on a polygon with `n_vertices` vertices (default: any).
+    /// The global assembly checks every polygon before assembling, so that an element that
+    /// cannot take, e.g., a vertex inserted on an edge fails early with the polygon named.
+    fn supports(&self, n_vertices: usize) -> bool {
+        let _ = n_vertices;
+        true
+    }
 
     /// The local stiffness of the polygon with vertices `polygon` (counter-clockwise) and
     /// material `material`, split into consistency and stabilisation.

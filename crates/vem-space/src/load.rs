@@ -36,7 +36,7 @@ pub fn edge_traction_load(
             y1: b.y,
         });
     }
-    let rule = GaussLegendre::new(points)?;
+    let rule = GaussLegendre::try_new(points)?;
     let mut load = [0.0; 4];
     for (t, q) in rule.on_segment(a, b) {
         let g = traction(q.point);

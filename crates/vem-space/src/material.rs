@@ -9,7 +9,7 @@ use crate::SpaceError;
 ///
 /// ```
 /// use vem_space::ElasticityTensor;
-/// let c = ElasticityTensor::isotropic(2.0, 1.0)?; // lambda = 2, mu = 1 (plane strain)
+/// let c = ElasticityTensor::try_isotropic(2.0, 1.0)?; // lambda = 2, mu = 1 (plane strain)
 /// assert_eq!(c.voigt()[(0, 0)], 4.0);           // lambda + 2 mu
 /// assert_eq!(c.shear_modulus(), 1.0);
 /// # Ok::<(), vem_space::SpaceError>(())
@@ -21,8 +21,8 @@ pub struct ElasticityTensor {
 
 impl ElasticityTensor {
     /// The isotropic plane-strain tensor `lambda tr(eps) I + 2 mu eps` (Lame parameters).
-    pub fn isotropic(lambda: f64, mu: f64) -> Result<Self, SpaceError> {
-        Self::from_voigt(Matrix3::new(
+    pub fn try_isotropic(lambda: f64, mu: f64) -> Result<Self, SpaceError> {
+        Self::try_from_voigt(Matrix3::new(
             lambda + 2.0 * mu,
             lambda,
             0.0,
@@ -37,7 +37,7 @@ impl ElasticityTensor {
 
     /// A general tensor from its Voigt matrix; it must be finite, symmetric and positive
     /// definite (spec (2.8)).
-    pub fn from_voigt(voigt: Matrix3<f64>) -> Result<Self, SpaceError> {
+    pub fn try_from_voigt(voigt: Matrix3<f64>) -> Result<Self, SpaceError> {
         if voigt.iter().any(|c| !c.is_finite()) {
             return Err(SpaceError::InvalidMaterial {
                 reason: format!("non-finite entry in the elasticity tensor {voigt}"),
@@ -93,7 +93,7 @@ mod tests {
 
     #[test]
     fn isotropic_entries_and_scalings() {
-        let c = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+        let c = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
         assert_eq!(c.voigt()[(0, 1)], 2.0);
         assert_eq!(c.trace(), 2.0 * 2.0 + 5.0 * 1.0);
     }
@@ -101,7 +101,7 @@ mod tests {
     #[test]
     fn stress_of_the_pt0a_strain() {
         // PT0a (manufactured.md): eps = (1/5, 2/5, shear 1/10) -> sigma = (1.6, 2.0, 0.2).
-        let c = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+        let c = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
         let sigma = c.stress(&Vector3::new(0.2, 0.4, 0.2));
         assert!((sigma - Vector3::new(1.6, 2.0, 0.2)).norm() < 1e-15);
     }
@@ -109,9 +109,9 @@ mod tests {
     #[test]
     fn indefinite_tensor_is_rejected() {
         // lambda = -2 mu: bulk modulus zero in plane strain, not positive definite.
-        let err = ElasticityTensor::isotropic(-1.0, 1.0).unwrap_err();
+        let err = ElasticityTensor::try_isotropic(-1.0, 1.0).unwrap_err();
         assert!(err.to_string().contains("positive definite"), "{err}");
-        let err = ElasticityTensor::isotropic(f64::NAN, 1.0).unwrap_err();
+        let err = ElasticityTensor::try_isotropic(f64::NAN, 1.0).unwrap_err();
         assert!(err.to_string().contains("non-finite"), "{err}");
     }
 }

@@ -16,7 +16,7 @@ use crate::{
 /// ```
 /// use vem_space::{ElasticityTensor, ElementSpace, LinearTriangle, Point};
 /// let triangle = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0)];
-/// let k = LinearTriangle.stiffness(&triangle, &ElasticityTensor::isotropic(2.0, 1.0)?)?;
+/// let k = LinearTriangle.stiffness(&triangle, &ElasticityTensor::try_isotropic(2.0, 1.0)?)?;
 /// assert_eq!(k.stabilisation.norm(), 0.0);
 /// # Ok::<(), vem_space::SpaceError>(())
 /// ```
@@ -37,7 +37,7 @@ impl Triangle {
             polygon
                 .try_into()
                 .map_err(|_| SpaceError::UnsupportedPolygon {
-                    element: "p1",
+                    element: "p1".into(),
                     vertices: polygon.len(),
                 })?;
         let [p1, p2, p3] = vertices;
@@ -75,6 +75,11 @@ impl Triangle {
 impl ElementSpace for LinearTriangle {
     fn name(&self) -> &str {
         "p1"
+    }
+
+    /// Triangles only.
+    fn supports(&self, n_vertices: usize) -> bool {
+        n_vertices == 3
     }
 
     fn stiffness(

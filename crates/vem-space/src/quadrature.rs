@@ -102,7 +102,7 @@ impl GaussLegendre {
     pub const MAX_POINTS: usize = GAUSS_LEGENDRE_NODES.len();
 
     /// The rule with `points` points, `1 <= points <= MAX_POINTS`.
-    pub fn new(points: usize) -> Result<Self, SpaceError> {
+    pub fn try_new(points: usize) -> Result<Self, SpaceError> {
         if points == 0 || points > Self::MAX_POINTS {
             return Err(SpaceError::UnsupportedQuadrature {
                 rule: "Gauss-Legendre",
@@ -260,7 +260,7 @@ mod tests {
     #[test]
     fn gauss_legendre_is_exact_to_its_degree_and_not_beyond() {
         for p in 1..=GaussLegendre::MAX_POINTS {
-            let rule = GaussLegendre::new(p).unwrap();
+            let rule = GaussLegendre::try_new(p).unwrap();
             assert_eq!(rule.points(), p);
             for i in 0..=rule.degree() as u32 + 1 {
                 let approx: f64 = rule
@@ -284,7 +284,7 @@ mod tests {
     fn gauss_legendre_on_a_segment_integrates_a_cubic() {
         // int_0^1 of (1 + 2 t)^3 along a segment of length 5: 5 * (3^4 - 1) / 8 = 50.
         let (a, b) = (Point::new(1.0, -1.0), Point::new(4.0, 3.0));
-        let rule = GaussLegendre::new(2).unwrap();
+        let rule = GaussLegendre::try_new(2).unwrap();
         let integral: f64 = rule
             .on_segment(a, b)
             .map(|(t, q)| {
@@ -298,7 +298,7 @@ mod tests {
     #[test]
     fn unsupported_gauss_legendre_sizes_are_errors() {
         for p in [0, GaussLegendre::MAX_POINTS + 1] {
-            let err = GaussLegendre::new(p).unwrap_err();
+            let err = GaussLegendre::try_new(p).unwrap_err();
             assert!(matches!(err, SpaceError::UnsupportedQuadrature { points, .. } if points == p));
         }
     }

@@ -23,101 +23,15 @@
 //!   polygons). The plain vertex mean `v_bar` in place of `(Pi v)(x_c)` is also O(h) in (A3) but
 //!   loses the O(h^2) L2 rate on systematically skewed cells (measured: E1 on chevrons).
 
+use std::sync::Arc;
+
 use nalgebra::{DMatrix, DVector};
 
-use crate::polygon::PolygonGeometry;
 use crate::quadrature::{polygon_rule, TriangleRule};
 use crate::{
-    ElasticityTensor, ElementSpace, EnergyProjection, LocalStiffness, Point, SpaceError, Vector,
+    DofiDofi, ElasticityTensor, ElementSpace, EnergyProjection, LocalStiffness, Point,
+    PolygonGeometry, SpaceError, Stabilisation, Vector,
 };
-
-/// Which material constant scales the "dofi-dofi" stabilisation `S = alpha I`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum StabilisationScaling {
-    /// `alpha = scale * trace(C)` (Voigt trace, `2 lambda + 5 mu` for an isotropic material).
-    /// Contains lambda: stiffens the non-polynomial modes like lambda (spec section 9).
-    #[default]
-    TraceOfC,
-    /// `alpha = scale * 5 C_33` (`5 mu`): the value `trace(C)` takes for an isotropic material
-    /// with lambda = 0, so the two scalings agree there and differ only through lambda.
-    ShearModulus,
-}
-
-/// The stabilisation `S_T((I - Pi) u, (I - Pi) v) = (I - Pi_dof)^T S (I - Pi_dof)` of
-/// [`LowestOrderVem`].
-///
-/// Dimensions: in 2D `a_T(phi_i, phi_i) ~ C |T| / h^2 ~ C`, so `S` is a material constant times a
-/// dimensionless matrix and needs no mesh-size factor.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Stabilisation {
-    /// `S = alpha I` ("dofi-dofi", Euclidean product of the DOF vectors), `alpha` from `scaling`
-    /// times `scale`. With [`Stabilisation::DEFAULT_SCALE`] = 1/8 and [`StabilisationScaling::TraceOfC`],
-    /// `alpha = trace(C)/8` is close to the mean diagonal entry of `K_c` on a square,
-    /// `(C_11 + C_22 + 2 C_33)/8`.
-    DofiDofi {
-        /// The material constant.
-        scaling: StabilisationScaling,
-        /// The dimensionless factor (finite, positive).
-        scale: f64,
-    },
-    /// The "D-recipe" of Beirão da Veiga, Dassi and Russo (2017): `S` diagonal with
-    /// `S_ii = max(K_c,ii, floor)`, `floor = DRECIPE_FLOOR * trace(C)`. Adapts to the element
-    /// shape and to the number of vertices; no parameter.
-    DRecipe,
-}
-
-impl Stabilisation {
-    /// The default `scale` of [`Stabilisation::DofiDofi`].
-    pub const DEFAULT_SCALE: f64 = 0.125;
-    /// The floor of the D-recipe diagonal, relative to `trace(C)` (only guards against a
-    /// vanishing diagonal entry; `K_c,ii > 0` on every valid polygon).
-    pub const DRECIPE_FLOOR: f64 = 1e-6;
-
-    /// `DofiDofi` with `scaling` and the default scale 1/8.
-    pub fn dofi_dofi(scaling: StabilisationScaling) -> Self {
-        Self::DofiDofi {
-            scaling,
-            scale: Self::DEFAULT_SCALE,
-        }
-    }
-
-    /// Checks the settings (a `DofiDofi` scale must be finite and positive).
-    pub fn validate(&self) -> Result<(), SpaceError> {
-        match *self {
-            Self::DofiDofi { scale, .. } if !(scale.is_finite() && scale > 0.0) => {
-                Err(SpaceError::InvalidStabilisation {
-                    reason: format!("the dofi-dofi scale must be finite and positive, got {scale}"),
-                })
-            }
-            _ => Ok(()),
-        }
-    }
-
-    /// The diagonal of `S` for a polygon with consistency matrix `consistency`.
-    fn diagonal(&self, material: &ElasticityTensor, consistency: &DMatrix<f64>) -> DVector<f64> {
-        let dofs = consistency.nrows();
-        match *self {
-            Self::DofiDofi { scaling, scale } => {
-                let constant = match scaling {
-                    StabilisationScaling::TraceOfC => material.trace(),
-                    StabilisationScaling::ShearModulus => 5.0 * material.shear_modulus(),
-                };
-                DVector::from_element(dofs, scale * constant)
-            }
-            Self::DRecipe => {
-                let floor = Self::DRECIPE_FLOOR * material.trace();
-                consistency.diagonal().map(|k| k.max(floor))
-            }
-        }
-    }
-}
-
-impl Default for Stabilisation {
-    /// `DofiDofi` with `TraceOfC` and scale 1/8.
-    fn default() -> Self {
-        Self::dofi_dofi(StabilisationScaling::TraceOfC)
-    }
-}
 
 /// The lowest-order virtual element for linear elasticity ("vem1"): vertex DOFs, energy
 /// projection from boundary integrals, a choice of stabilisation (see the module docs).
@@ -131,23 +45,56 @@ impl Default for Stabilisation {
 ///         Point::new(t.cos(), t.sin())
 ///     })
 ///     .collect();
-/// let k = element.stiffness(&hexagon, &ElasticityTensor::isotropic(2.0, 1.0)?)?.total();
+/// let k = element.stiffness(&hexagon, &ElasticityTensor::try_isotropic(2.0, 1.0)?)?.total();
 /// // A translation in x is a rigid motion: no force.
 /// let translation = nalgebra::DVector::from_fn(12, |i, _| if i % 2 == 0 { 1.0 } else { 0.0 });
 /// assert!((&k * translation).norm() < 1e-13 * k.norm());
 /// # Ok::<(), vem_space::SpaceError>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone)]
 pub struct LowestOrderVem {
-    /// The stabilisation `S_T`.
-    pub stabilisation: Stabilisation,
+    stabilisation: Arc<dyn Stabilisation>,
+    name: String,
+}
+
+impl Default for LowestOrderVem {
+    /// "vem1": dofi-dofi scaled by `trace(C)`, scale 1/8 ([`DofiDofi::default`]).
+    fn default() -> Self {
+        Self::from_valid(Arc::new(DofiDofi::default()))
+    }
 }
 
 impl LowestOrderVem {
-    /// The element with stabilisation `stabilisation`, validated.
-    pub fn new(stabilisation: Stabilisation) -> Result<Self, SpaceError> {
+    /// The element with the stabilisation `stabilisation`, whose settings are checked
+    /// ([`Stabilisation::validate`]). Its name is `"vem1"` for the default dofi-dofi
+    /// stabilisation (name `"trace"`) and `"vem1-<stabilisation name>"` otherwise
+    /// (`"vem1-shear"`, `"vem1-drecipe"`, ...).
+    pub fn try_new(stabilisation: Arc<dyn Stabilisation>) -> Result<Self, SpaceError> {
         stabilisation.validate()?;
-        Ok(Self { stabilisation })
+        Ok(Self::from_valid(stabilisation))
+    }
+
+    pub(crate) fn from_valid(stabilisation: Arc<dyn Stabilisation>) -> Self {
+        let suffix = stabilisation.name();
+        let name = if suffix == DofiDofi::default().name() {
+            "vem1".to_string()
+        } else {
+            format!("vem1-{suffix}")
+        };
+        Self {
+            stabilisation,
+            name,
+        }
+    }
+
+    /// The stabilisation `S_T`.
+    pub fn stabilisation(&self) -> &dyn Stabilisation {
+        &*self.stabilisation
+    }
+
+    /// The shared stabilisation `S_T`.
+    pub fn stabilisation_arc(&self) -> &Arc<dyn Stabilisation> {
+        &self.stabilisation
     }
 
     /// The 6 x 2n coefficient matrix of `Pi` (see [`EnergyProjection::coefficients`]).
@@ -155,7 +102,7 @@ impl LowestOrderVem {
         let n = geometry.n_vertices();
         let mut c = DMatrix::zeros(6, 2 * n);
         let mean = 1.0 / n as f64;
-        for (k, w) in geometry.gradient_weights.iter().enumerate() {
+        for (k, w) in geometry.gradient_weights().iter().enumerate() {
             let (x, y) = (2 * k, 2 * k + 1);
             c[(0, x)] = mean;
             c[(1, y)] = mean;
@@ -171,7 +118,7 @@ impl LowestOrderVem {
     fn strain_matrix(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
         let mut b = DMatrix::zeros(3, 2 * n);
-        for (k, w) in geometry.gradient_weights.iter().enumerate() {
+        for (k, w) in geometry.gradient_weights().iter().enumerate() {
             let (x, y) = (2 * k, 2 * k + 1);
             b[(0, x)] = w.x;
             b[(2, x)] = w.y;
@@ -185,7 +132,7 @@ impl LowestOrderVem {
     fn basis_at_vertices(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
         let mut d = DMatrix::zeros(2 * n, 6);
-        for (k, x) in geometry.local.iter().enumerate() {
+        for (k, x) in geometry.relative_vertices().iter().enumerate() {
             let (rx, ry) = (2 * k, 2 * k + 1);
             d[(rx, 0)] = 1.0;
             d[(rx, 2)] = x.x;
@@ -205,7 +152,12 @@ fn symmetrised(m: DMatrix<f64>) -> DMatrix<f64> {
 
 impl ElementSpace for LowestOrderVem {
     fn name(&self) -> &str {
-        "vem1"
+        &self.name
+    }
+
+    /// Every polygon with at least three vertices.
+    fn supports(&self, n_vertices: usize) -> bool {
+        n_vertices >= 3
     }
 
     fn stiffness(
@@ -213,17 +165,28 @@ impl ElementSpace for LowestOrderVem {
         polygon: &[Point],
         material: &ElasticityTensor,
     ) -> Result<LocalStiffness, SpaceError> {
-        self.stabilisation.validate()?;
-        let geometry = PolygonGeometry::new(polygon)?;
+        let geometry = PolygonGeometry::try_new(polygon)?;
         // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v).
         let b = Self::strain_matrix(&geometry);
         let c = DMatrix::from_column_slice(3, 3, material.voigt().as_slice());
-        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.area);
+        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.area());
         // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi.
         let dofs = 2 * geometry.n_vertices();
         let projector = Self::basis_at_vertices(&geometry) * Self::coefficients(&geometry);
         let complement = DMatrix::identity(dofs, dofs) - projector;
-        let s = self.stabilisation.diagonal(material, &consistency);
+        let s = self
+            .stabilisation
+            .diagonal(&geometry, material, &consistency)?;
+        if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
+            return Err(SpaceError::InvalidStabilisation {
+                stabilisation: self.stabilisation.name(),
+                reason: format!(
+                    "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
+                    s.len(),
+                    s.as_slice()
+                ),
+            });
+        }
         let mut scaled = complement.clone();
         for (mut row, s_i) in scaled.row_iter_mut().zip(s.iter()) {
             row *= *s_i;
@@ -236,9 +199,9 @@ impl ElementSpace for LowestOrderVem {
     }
 
     fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError> {
-        let geometry = PolygonGeometry::new(polygon)?;
+        let geometry = PolygonGeometry::try_new(polygon)?;
         Ok(EnergyProjection {
-            reference: geometry.reference,
+            reference: geometry.vertex_mean(),
             coefficients: Self::coefficients(&geometry),
         })
     }
@@ -248,7 +211,7 @@ impl ElementSpace for LowestOrderVem {
         polygon: &[Point],
         body_force: &(dyn Fn(Point) -> Vector + Sync),
     ) -> Result<DVector<f64>, SpaceError> {
-        let geometry = PolygonGeometry::new(polygon)?;
+        let geometry = PolygonGeometry::try_new(polygon)?;
         // |T| f_bar = int_T f, by the degree-5 rule on the centroid fan (A3).
         let mut integral = Vector::zeros();
         for q in polygon_rule(polygon, &TriangleRule::degree5()) {
@@ -267,9 +230,9 @@ impl ElementSpace for LowestOrderVem {
         // centroid and vertex mean differ, an O(h) load error that does not cancel on
         // systematically skewed cells (chevrons) and costs the O(h^2) L2 rate.
         let n = geometry.n_vertices();
-        let offset = vem_mesh::geometry::centroid(polygon) - geometry.reference;
+        let offset = geometry.centroid() - geometry.vertex_mean();
         let weights: Vec<f64> = geometry
-            .gradient_weights
+            .gradient_weights()
             .iter()
             .map(|w| 1.0 / n as f64 + w.dot(&offset))
             .collect();

@@ -3,11 +3,17 @@
 //! stabilisation on P1, symmetry, exact projection of linear fields, energy of linear fields,
 //! equality with the independent P1 triangle, and the load terms.
 
-use nalgebra::{DVector, Matrix2, Matrix3, Vector3};
+use std::sync::Arc;
+
+use nalgebra::{DMatrix, DVector};
 use vem_mesh::generators::{structured_quads, structured_triangles, Rectangle};
+use vem_space::testkit::{
+    self, check_element, linear_fields, standard_materials, voigt_strain, ElementCheck,
+};
 use vem_space::{
-    edge_traction_load, ElasticityTensor, ElementSpace, LinearTriangle, LowestOrderVem, Point,
-    SpaceError, Stabilisation, StabilisationScaling, Vector,
+    edge_traction_load, DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle,
+    LowestOrderVem, Point, PolygonGeometry, SpaceError, Stabilisation, StabilisationScaling,
+    Vector,
 };
 
 fn p(x: f64, y: f64) -> Point {
@@ -106,74 +112,25 @@ fn polygons() -> Vec<(String, Vec<Point>)> {
 }
 
 fn materials() -> Vec<ElasticityTensor> {
-    vec![
-        ElasticityTensor::isotropic(2.0, 1.0).unwrap(),
-        ElasticityTensor::from_voigt(Matrix3::new(5.0, 1.5, 0.5, 1.5, 3.0, 0.3, 0.5, 0.3, 1.2))
-            .unwrap(),
-    ]
+    standard_materials()
 }
 
 fn elements() -> Vec<LowestOrderVem> {
-    [
-        Stabilisation::default(),
-        Stabilisation::dofi_dofi(StabilisationScaling::ShearModulus),
-        Stabilisation::DofiDofi {
-            scaling: StabilisationScaling::TraceOfC,
-            scale: 2.0,
-        },
-        Stabilisation::DRecipe,
-    ]
-    .into_iter()
-    .map(|s| LowestOrderVem::new(s).unwrap())
-    .collect()
-}
-
-/// Linear fields p(x) = a + M x (the last one a pure rotation plus a translation).
-fn linear_fields() -> Vec<(Vector, Matrix2<f64>)> {
-    vec![
-        (Vector::new(0.1, 0.2), Matrix2::new(0.2, 0.3, -0.1, 0.4)),
-        (Vector::new(-1.0, 0.5), Matrix2::new(1.0, 0.0, 0.0, 0.0)),
-        (Vector::new(0.0, 0.0), Matrix2::new(0.0, 1.0, 1.0, 0.0)),
-        (Vector::new(2.0, -3.0), Matrix2::new(0.0, -1.0, 1.0, 0.0)),
-    ]
+    let stabilisations: [Arc<dyn Stabilisation>; 4] = [
+        Arc::new(DofiDofi::default()),
+        Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)),
+        Arc::new(DofiDofi::try_new(StabilisationScaling::TraceOfC, 2.0).unwrap()),
+        Arc::new(DRecipe),
+    ];
+    stabilisations
+        .into_iter()
+        .map(|s| LowestOrderVem::try_new(s).unwrap())
+        .collect()
 }
 
 /// Nodal interpolant of x -> f(x), DOFs interleaved by component.
 fn interpolant(polygon: &[Point], f: impl Fn(Point) -> Vector) -> DVector<f64> {
-    DVector::from_fn(2 * polygon.len(), |i, _| f(polygon[i / 2])[i % 2])
-}
-
-/// Rigid motions (1,0), (0,1), (-y, x) at the vertices.
-fn rigid_motions(polygon: &[Point]) -> [DVector<f64>; 3] {
-    [
-        interpolant(polygon, |_| Vector::new(1.0, 0.0)),
-        interpolant(polygon, |_| Vector::new(0.0, 1.0)),
-        interpolant(polygon, |x| Vector::new(-x.y, x.x)),
-    ]
-}
-
-/// Voigt strain [xx, yy, 2 xy] of the gradient M.
-fn voigt_strain(m: &Matrix2<f64>) -> Vector3<f64> {
-    Vector3::new(m[(0, 0)], m[(1, 1)], m[(0, 1)] + m[(1, 0)])
-}
-
-/// The boundary load of the constant traction sigma nu: each edge gives half its length times
-/// sigma nu to each end point (independent of the element code: edge normals by hand).
-fn boundary_load_of_constant_stress(polygon: &[Point], sigma: &Vector3<f64>) -> DVector<f64> {
-    let s = Matrix2::new(sigma[0], sigma[2], sigma[2], sigma[1]);
-    let n = polygon.len();
-    let mut load = DVector::zeros(2 * n);
-    for k in 0..n {
-        let (a, b) = (polygon[k], polygon[(k + 1) % n]);
-        // Counter-clockwise: the outward normal times the length is (dy, -dx).
-        let scaled_normal = Vector::new(b.y - a.y, a.x - b.x);
-        let half = s * scaled_normal * 0.5;
-        for v in [k, (k + 1) % n] {
-            load[2 * v] += half.x;
-            load[2 * v + 1] += half.y;
-        }
-    }
-    load
+    testkit::interpolant(polygon, f)
 }
 
 /// Area by the shoelace formula relative to the first vertex (no cancellation far away).
@@ -193,66 +150,56 @@ fn conditioning(polygon: &[Point]) -> f64 {
 }
 
 #[test]
-fn rigid_motions_are_in_the_kernel_and_the_rank_is_2n_minus_3() {
-    let mut worst_kernel: f64 = 0.0;
-    let mut worst_gap = f64::INFINITY;
-    for (name, polygon) in polygons() {
-        let n = polygon.len();
-        for material in materials() {
-            for element in elements() {
-                let local = element.stiffness(&polygon, &material).unwrap();
-                let k = local.total();
-                let scale = k.norm();
-                for r in rigid_motions(&polygon) {
-                    let residual = (&k * &r).norm() / (scale * r.norm());
-                    worst_kernel = worst_kernel.max(residual);
-                    assert!(
-                        residual < 1e-12,
-                        "{name}, {element:?}: |K r| = {residual:e}"
-                    );
-                }
-                let sv = k.singular_values();
-                let mut sorted: Vec<f64> = sv.iter().copied().collect();
-                sorted.sort_by(|a, b| b.total_cmp(a));
-                let rank = sorted.iter().filter(|&&s| s > 1e-10 * sorted[0]).count();
-                assert_eq!(
-                    rank,
-                    2 * n - 3,
-                    "{name}, {element:?}: singular values {sorted:?}"
-                );
-                worst_gap = worst_gap.min(sorted[2 * n - 4] / sorted[0]);
+fn the_element_test_kit_passes_on_its_polygons_and_on_these() {
+    // The kit's checks (rigid motions in the kernel, consistency (3.1) against a boundary
+    // integration by hand, rank 2n - 3, symmetry, element patch test) on the kit's standard
+    // polygons and on this file's (slivers, L-shape, far-away cells, mesh cells), for every
+    // stabilisation and the P1 triangle.
+    let mut worst: f64 = 0.0;
+    let p1: Arc<dyn ElementSpace> = Arc::new(LinearTriangle);
+    let all: Vec<Arc<dyn ElementSpace>> = elements()
+        .into_iter()
+        .map(|e| Arc::new(e) as Arc<dyn ElementSpace>)
+        .chain([p1])
+        .collect();
+    for element in &all {
+        for check in check_element(&**element).unwrap() {
+            assert!(
+                check.failures(testkit::DEFAULT_TOLERANCE).is_empty(),
+                "{}: {check:?}",
+                element.name()
+            );
+            worst = worst.max(check.worst_error());
+        }
+        for (name, polygon) in polygons() {
+            if !element.supports(polygon.len()) {
+                continue;
+            }
+            // Vertex data carry an absolute error eps |x|, relative to h_T: eps |x| / h_T.
+            let tolerance = testkit::DEFAULT_TOLERANCE * conditioning(&polygon);
+            for material in materials() {
+                let check = ElementCheck::run(&**element, &name, &polygon, &material).unwrap();
+                let failures = check.failures(tolerance);
+                assert!(failures.is_empty(), "{}: {failures:?}", element.name());
+                worst = worst.max(check.worst_error() / conditioning(&polygon));
             }
         }
     }
-    println!(
-        "worst |K r|/(|K||r|) = {worst_kernel:e}; smallest sigma_(2n-3)/sigma_1 = {worst_gap:e}"
-    );
+    println!("worst relative error of the kit's checks (per unit conditioning) = {worst:e}");
 }
 
 #[test]
-fn consistency_energy_and_vanishing_stabilisation_on_linear_fields() {
-    let mut worst: f64 = 0.0;
+fn energy_of_linear_fields_is_exact() {
+    // p_I^T K p_I = |T| eps(p) : C eps(p), with |T| by the shoelace formula.
     for (name, polygon) in polygons() {
         for material in materials() {
             for element in elements() {
-                let local = element.stiffness(&polygon, &material).unwrap();
-                let k = local.total();
-                assert_eq!(k, k.transpose(), "{name}: K_T is not symmetric");
-                assert_eq!(local.stabilisation, local.stabilisation.transpose());
+                let k = element.stiffness(&polygon, &material).unwrap().total();
                 for (a, m) in linear_fields() {
                     let p_i = interpolant(&polygon, |x| a + m * x.coords);
-                    let sigma = material.stress(&voigt_strain(&m));
-                    // Consistency (3.1): K p_I = int_dT sigma(p) nu . phi_i.
-                    let expected = boundary_load_of_constant_stress(&polygon, &sigma);
-                    let error = (&k * &p_i - &expected).norm() / (k.norm() * p_i.norm());
-                    worst = worst.max(error);
-                    assert!(error < 1e-12, "{name}, {element:?}: (3.1) error {error:e}");
-                    // S_T vanishes on P1.
-                    let stab = (&local.stabilisation * &p_i).norm() / (k.norm() * p_i.norm());
-                    assert!(stab < 1e-12, "{name}, {element:?}: |S p| = {stab:e}");
-                    // Energy: p_I^T K p_I = |T| eps(p) : C eps(p).
+                    let strain = voigt_strain(&m);
                     let energy = p_i.dot(&(&k * &p_i));
-                    let exact = area(&polygon) * voigt_strain(&m).dot(&sigma);
+                    let exact = area(&polygon) * strain.dot(&material.stress(&strain));
                     let scale = k.norm() * p_i.norm_squared();
                     assert!(
                         (energy - exact).abs() < 1e-12 * scale,
@@ -262,7 +209,45 @@ fn consistency_energy_and_vanishing_stabilisation_on_linear_fields() {
             }
         }
     }
-    println!("worst relative consistency error = {worst:e}");
+}
+
+#[test]
+fn polygon_geometry_matches_independent_formulas() {
+    // Area by the shoelace formula about the first vertex, diameter by vem-mesh, edges and
+    // normals from the coordinates, sum_k w_k (x) x_k = I (mean gradient of x).
+    for (name, polygon) in polygons() {
+        let g = PolygonGeometry::try_new(&polygon).unwrap();
+        let n = polygon.len();
+        let tolerance = 1e-14 * conditioning(&polygon);
+        assert!(
+            (g.area() - area(&polygon)).abs() < tolerance * g.area(),
+            "{name}"
+        );
+        let h = vem_mesh::geometry::diameter(&polygon);
+        assert!((g.diameter() - h).abs() < tolerance * h, "{name}");
+        let mut identity = nalgebra::Matrix2::zeros();
+        for k in 0..n {
+            let edge = polygon[(k + 1) % n] - polygon[k];
+            assert!(
+                (g.edge_lengths()[k] - edge.norm()).abs() < tolerance * h,
+                "{name}"
+            );
+            assert!(g.normals()[k].dot(&edge).abs() < tolerance * h, "{name}");
+            assert!((g.normals()[k].norm() - 1.0).abs() < 1e-15, "{name}");
+            // Outward: the normal points to the right of the counter-clockwise edge.
+            assert!(g.normals()[k].perp(&edge) > 0.0, "{name}");
+            identity += g.relative_vertices()[k] * g.gradient_weights()[k].transpose();
+        }
+        assert!(
+            (identity - nalgebra::Matrix2::identity()).norm() < tolerance,
+            "{name}"
+        );
+        let centroid = vem_mesh::geometry::centroid(&polygon);
+        assert!(
+            (g.centroid() - centroid).norm() <= 1e-15 * centroid.coords.norm(),
+            "{name}"
+        );
+    }
 }
 
 #[test]
@@ -376,7 +361,7 @@ fn p1_load_integrates_f_against_the_shape_functions() {
 #[test]
 fn stiffness_is_invariant_under_scaling_and_translation() {
     // In 2D a_T is dimensionless in the length: K_T of h T + c equals K_T of T.
-    let material = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
     for (name, polygon) in polygons() {
         for element in elements() {
             let k = element.stiffness(&polygon, &material).unwrap().total();
@@ -400,13 +385,13 @@ fn dofi_dofi_constant_is_trace_of_c_over_8_on_regular_polygons() {
     // On a regular polygon the mean-gradient weights are proportional to x_k - x_bar, so Pi_dof
     // is the orthogonal projector onto P1 at the vertices and K_s = alpha (I - Pi_dof) has the
     // eigenvalues 0 (six times) and alpha (2n - 6 times).
-    let material = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
     let polygon = regular_polygon(7, p(0.5, 0.5), 2.0);
     for (scaling, alpha) in [
         (StabilisationScaling::TraceOfC, 9.0 / 8.0),
         (StabilisationScaling::ShearModulus, 5.0 / 8.0),
     ] {
-        let element = LowestOrderVem::new(Stabilisation::dofi_dofi(scaling)).unwrap();
+        let element = LowestOrderVem::try_new(Arc::new(DofiDofi::new(scaling))).unwrap();
         let s = element
             .stiffness(&polygon, &material)
             .unwrap()
@@ -424,8 +409,8 @@ fn dofi_dofi_constant_is_trace_of_c_over_8_on_regular_polygons() {
 fn d_recipe_weights_the_complement_by_the_consistency_diagonal() {
     // K_s = (I - Pi)^T diag(K_c) (I - Pi): on a P1-free vector e_i - Pi e_i the energy is
     // sum_j K_c,jj (e_i - Pi e_i)_j^2; compare with the projector built from the projection.
-    let material = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
-    let element = LowestOrderVem::new(Stabilisation::DRecipe).unwrap();
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
+    let element = LowestOrderVem::try_new(Arc::new(DRecipe)).unwrap();
     let polygon = polygons().swap_remove(3).1; // the L-shape
     let local = element.stiffness(&polygon, &material).unwrap();
     let projection = element.projection(&polygon).unwrap();
@@ -449,7 +434,7 @@ fn d_recipe_weights_the_complement_by_the_consistency_diagonal() {
 
 #[test]
 fn invalid_input_is_an_error_not_garbage() {
-    let material = ElasticityTensor::isotropic(2.0, 1.0).unwrap();
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
     let element = LowestOrderVem::default();
     let clockwise = [p(0.0, 0.0), p(0.0, 1.0), p(1.0, 1.0), p(1.0, 0.0)];
     for polygon in [&clockwise[..], &clockwise[..2]] {
@@ -467,22 +452,117 @@ fn invalid_input_is_an_error_not_garbage() {
     assert!(matches!(err, SpaceError::NonFiniteLoad { .. }), "{err}");
     assert!(matches!(
         LinearTriangle.stiffness(&square, &material),
-        Err(SpaceError::UnsupportedPolygon {
-            element: "p1",
-            vertices: 4
-        })
+        Err(SpaceError::UnsupportedPolygon { ref element, vertices: 4 }) if element == "p1"
     ));
     for scale in [0.0, -1.0, f64::NAN] {
-        let bad = Stabilisation::DofiDofi {
-            scaling: StabilisationScaling::TraceOfC,
-            scale,
-        };
-        assert!(LowestOrderVem::new(bad).is_err());
-        let literal = LowestOrderVem { stabilisation: bad };
         assert!(matches!(
-            literal.stiffness(&square, &material),
+            DofiDofi::try_new(StabilisationScaling::TraceOfC, scale),
             Err(SpaceError::InvalidStabilisation { .. })
         ));
+    }
+}
+
+/// A stabilisation with public settings and a bug that a check must catch: it returns a
+/// diagonal with a zero entry or of the wrong length.
+#[derive(Debug)]
+struct Faulty {
+    alpha: f64,
+    short: bool,
+}
+
+impl Stabilisation for Faulty {
+    fn name(&self) -> String {
+        "faulty".into()
+    }
+
+    fn validate(&self) -> Result<(), SpaceError> {
+        if self.alpha.is_nan() {
+            return Err(SpaceError::InvalidStabilisation {
+                stabilisation: self.name(),
+                reason: "alpha is NaN".into(),
+            });
+        }
+        Ok(())
+    }
+
+    fn diagonal(
+        &self,
+        _geometry: &PolygonGeometry,
+        _material: &ElasticityTensor,
+        consistency: &DMatrix<f64>,
+    ) -> Result<DVector<f64>, SpaceError> {
+        let n = consistency.nrows() - usize::from(self.short);
+        Ok(DVector::from_element(n, self.alpha))
+    }
+}
+
+#[test]
+fn a_stabilisation_is_validated_and_its_diagonal_checked() {
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
+    let square = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+    let nan = Faulty {
+        alpha: f64::NAN,
+        short: false,
+    };
+    assert!(LowestOrderVem::try_new(Arc::new(nan)).is_err());
+    for (alpha, short) in [(0.0, false), (1.0, true), (f64::INFINITY, false)] {
+        let element = LowestOrderVem::try_new(Arc::new(Faulty { alpha, short })).unwrap();
+        assert_eq!(element.name(), "vem1-faulty");
+        let err = element.stiffness(&square, &material).unwrap_err();
+        assert!(
+            matches!(&err, SpaceError::InvalidStabilisation { stabilisation, .. } if stabilisation == "faulty"),
+            "{err}"
+        );
+    }
+}
+
+/// `S = (|T| / h_T^2) trace(C) I`: a stabilisation scaled by the shape of the polygon, written
+/// outside the crate; the element built on it passes the test kit without any change to
+/// `vem-space`.
+#[derive(Debug)]
+struct AreaWeighted;
+
+impl Stabilisation for AreaWeighted {
+    fn name(&self) -> String {
+        "area-weighted".into()
+    }
+
+    fn diagonal(
+        &self,
+        geometry: &PolygonGeometry,
+        material: &ElasticityTensor,
+        consistency: &DMatrix<f64>,
+    ) -> Result<DVector<f64>, SpaceError> {
+        let shape = geometry.area() / geometry.diameter().powi(2);
+        Ok(DVector::from_element(
+            consistency.nrows(),
+            shape * material.trace(),
+        ))
+    }
+}
+
+#[test]
+fn a_user_stabilisation_plugs_in_and_passes_the_kit() {
+    let element = LowestOrderVem::try_new(Arc::new(AreaWeighted)).unwrap();
+    assert_eq!(element.name(), "vem1-area-weighted");
+    let checks = check_element(&element).unwrap();
+    assert_eq!(checks.len(), 14);
+    for check in &checks {
+        assert!(
+            check.failures(testkit::DEFAULT_TOLERANCE).is_empty(),
+            "{check:?}"
+        );
+    }
+    // On the unit square |T| / h^2 = 1/2 and Pi_dof is an orthogonal projector of rank 6: K_s
+    // has the eigenvalue trace(C)/2 = 4.5 twice (lambda = 2, mu = 1), zero six times.
+    let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
+    let square = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+    let s = element.stiffness(&square, &material).unwrap().stabilisation;
+    let mut eigenvalues: Vec<f64> = s.symmetric_eigenvalues().iter().copied().collect();
+    eigenvalues.sort_by(f64::total_cmp);
+    for (i, e) in eigenvalues.iter().enumerate() {
+        let expected = if i < 6 { 0.0 } else { 4.5 };
+        assert!((e - expected).abs() < 1e-13, "{eigenvalues:?}");
     }
 }
 

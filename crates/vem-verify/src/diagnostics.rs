@@ -190,7 +190,7 @@ pub fn contact_diagnostics(
 pub fn integrated_resultants(exact: &dyn ContactSolution) -> Resultants {
     let domain = exact.domain(crate::exact::BodyId::One);
     let (a, b) = (domain.min.x, domain.max.x);
-    let rule = GaussLegendre::new(GaussLegendre::MAX_POINTS).expect("the largest rule exists");
+    let rule = GaussLegendre::try_new(GaussLegendre::MAX_POINTS).expect("the largest rule exists");
     let width = (b - a) / RESULTANT_INTERVALS as f64;
     let mut resultants = Resultants {
         normal: 0.0,

@@ -26,7 +26,6 @@ use std::time::Instant;
 use faer::Par;
 
 use super::error::{ContactSolverError, SettingsError};
-use super::exact::classify_free_mode;
 use super::newton_matrix::{NewtonMatrix, SingularGuard};
 use super::report::{KktResiduals, SolveReport, SolveStatus};
 use super::system::ContactSystem;
@@ -349,9 +348,11 @@ impl ContactSolver for ActiveSetSolver {
                 tangential_force: lt,
                 report,
             }),
-            Err((_, Some(direction))) => {
-                Err(classify_free_mode(system, &direction, Box::new(report)))
-            }
+            Err((_, Some(direction))) => Err(ContactSolverError::from_free_mode(
+                system,
+                &direction,
+                Box::new(report),
+            )),
             Err(_) => Err(ContactSolverError::NotConverged {
                 report: Box::new(report),
             }),

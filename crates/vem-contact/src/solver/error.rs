@@ -1,6 +1,7 @@
 //! Errors of the contact solvers and of their settings.
 
 use super::report::SolveReport;
+use super::system::ContactSystem;
 
 /// A setting was rejected when its builder was built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -62,7 +63,17 @@ impl SettingsError {
 pub enum ContactSolverError {
     /// The solver stopped before meeting its tolerances (iteration limit, reduced accuracy,
     /// lack of progress).
-    #[error("{} did not converge ({:?}) after {} iterations; residuals {:?}", report.solver, report.status, report.iterations, report.residuals)]
+    #[error(
+        "{} did not converge ({}) after {} iterations: stationarity {:.1e}, max penetration \
+         {:.1e}, complementarity {:.1e}, friction bound violation {:.1e}",
+        report.solver,
+        report.status.describe(),
+        report.iterations,
+        report.residuals.stationarity,
+        report.residuals.max_penetration,
+        report.residuals.complementarity,
+        report.residuals.friction_bound_violation
+    )]
     NotConverged {
         /// The report of the run; its residuals are those of the last iterate.
         report: Box<SolveReport>,
@@ -119,6 +130,52 @@ impl ContactSolverError {
             | Self::Unbounded { report, .. }
             | Self::Infeasible { report } => Some(report),
             Self::Backend { .. } => None,
+        }
+    }
+
+    /// Turns a direction `d` along which the energy decreases without bound into
+    /// [`Self::RigidSliding`] (friction acts along `d`) or
+    /// [`Self::Unbounded`], with the figures of the error's documentation.
+    pub(crate) fn from_free_mode(
+        system: &ContactSystem<'_>,
+        direction: &[f64],
+        report: Box<SolveReport>,
+    ) -> Self {
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let load_along = |d: &[f64], scale: f64| {
+            system
+                .load()
+                .iter()
+                .zip(d)
+                .map(|(f, x)| f * x / scale)
+                .sum::<f64>()
+        };
+        if let Some(fr) = system.friction() {
+            let slip = fr.tangential_rows().apply(direction);
+            let scale = inf(&slip);
+            // A mode with slips below 1e-8 of its size is not resisted by friction.
+            if scale > 1e-8 * inf(direction) {
+                let friction_capacity = fr
+                    .bounds()
+                    .iter()
+                    .zip(&slip)
+                    .map(|(b, s)| b * s.abs() / scale)
+                    .sum::<f64>();
+                return Self::RigidSliding {
+                    load_along_mode: load_along(direction, scale),
+                    friction_capacity,
+                    report,
+                };
+            }
+        }
+        let scale = inf(direction);
+        Self::Unbounded {
+            load_along_mode: if scale > 0.0 {
+                load_along(direction, scale)
+            } else {
+                0.0
+            },
+            report,
         }
     }
 }

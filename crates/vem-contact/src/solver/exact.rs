@@ -364,7 +364,13 @@ impl ContactSolver for ExactSolver {
             SolveStatus::Converged => {}
             SolveStatus::ReducedAccuracy if s.accept_reduced_accuracy => {}
             SolveStatus::Infeasible => return Err(ContactSolverError::Infeasible { report }),
-            SolveStatus::Unbounded => return Err(classify_free_mode(system, &sol.x[..n], report)),
+            SolveStatus::Unbounded => {
+                return Err(ContactSolverError::from_free_mode(
+                    system,
+                    &sol.x[..n],
+                    report,
+                ))
+            }
             _ => return Err(ContactSolverError::NotConverged { report }),
         }
         Ok(ContactSolution {
@@ -373,51 +379,5 @@ impl ContactSolver for ExactSolver {
             tangential_force,
             report: *report,
         })
-    }
-}
-
-/// Turns a direction `d` along which the energy decreases without bound into
-/// [`ContactSolverError::RigidSliding`] (friction acts along `d`) or
-/// [`ContactSolverError::Unbounded`], with the figures of the error's documentation.
-pub(crate) fn classify_free_mode(
-    system: &ContactSystem<'_>,
-    direction: &[f64],
-    report: Box<SolveReport>,
-) -> ContactSolverError {
-    let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let load_along = |d: &[f64], scale: f64| {
-        system
-            .load()
-            .iter()
-            .zip(d)
-            .map(|(f, x)| f * x / scale)
-            .sum::<f64>()
-    };
-    if let Some(fr) = system.friction() {
-        let slip = fr.tangential_rows().apply(direction);
-        let scale = inf(&slip);
-        // A mode with slips below 1e-8 of its size is not resisted by friction.
-        if scale > 1e-8 * inf(direction) {
-            let friction_capacity = fr
-                .bounds()
-                .iter()
-                .zip(&slip)
-                .map(|(b, s)| b * s.abs() / scale)
-                .sum::<f64>();
-            return ContactSolverError::RigidSliding {
-                load_along_mode: load_along(direction, scale),
-                friction_capacity,
-                report,
-            };
-        }
-    }
-    let scale = inf(direction);
-    ContactSolverError::Unbounded {
-        load_along_mode: if scale > 0.0 {
-            load_along(direction, scale)
-        } else {
-            0.0
-        },
-        report,
     }
 }

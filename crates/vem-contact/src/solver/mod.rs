@@ -25,6 +25,7 @@
 
 mod active_set;
 mod error;
+#[cfg(feature = "clarabel")]
 mod exact;
 mod newton_matrix;
 mod penalty;
@@ -33,6 +34,7 @@ mod system;
 
 pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};
 pub use error::{ContactSolverError, SettingsError};
+#[cfg(feature = "clarabel")]
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
 pub use penalty::{PenaltyParameter, PenaltySettings, PenaltySettingsBuilder, PenaltySolver};
 pub use report::{KktResiduals, SolveReport, SolveStatus, StageTimes, WorkCounters};

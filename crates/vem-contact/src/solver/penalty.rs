@@ -34,7 +34,6 @@ use std::time::Instant;
 use faer::Par;
 
 use super::error::{ContactSolverError, SettingsError};
-use super::exact::classify_free_mode;
 use super::newton_matrix::{NewtonMatrix, SingularGuard, FREE_MODE_CURVATURE};
 use super::report::{KktResiduals, SolveReport, SolveStatus};
 use super::system::ContactSystem;
@@ -605,9 +604,11 @@ impl ContactSolver for PenaltySolver {
                 tangential_force: state.tangential_force,
                 report,
             }),
-            Err((_, Some(direction))) => {
-                Err(classify_free_mode(system, &direction, Box::new(report)))
-            }
+            Err((_, Some(direction))) => Err(ContactSolverError::from_free_mode(
+                system,
+                &direction,
+                Box::new(report),
+            )),
             Err(_) => Err(ContactSolverError::NotConverged {
                 report: Box::new(report),
             }),

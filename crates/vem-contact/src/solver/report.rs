@@ -23,6 +23,20 @@ pub enum SolveStatus {
     NumericalFailure,
 }
 
+impl SolveStatus {
+    /// A few words for messages ("iteration limit reached", ...).
+    pub fn describe(self) -> &'static str {
+        match self {
+            SolveStatus::Converged => "converged",
+            SolveStatus::ReducedAccuracy => "reduced accuracy",
+            SolveStatus::MaxIterations => "iteration limit reached",
+            SolveStatus::Infeasible => "infeasible constraints",
+            SolveStatus::Unbounded => "unbounded energy",
+            SolveStatus::NumericalFailure => "numerical failure",
+        }
+    }
+}
+
 /// KKT residuals of a returned `(u, lambda_N, lambda_T)`, computed independently of the solver
 /// that produced it (see [`KktResiduals::evaluate`]).
 ///
