@@ -55,9 +55,12 @@ fn floor_char_boundary(text: &str, mut index: usize) -> usize {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum CliError {
-    /// A file could not be read or a directory not created.
-    #[error("{}: {source}", path.display())]
+    /// A file could not be read, a directory not created or a report not serialised (the
+    /// cause is the source).
+    #[error("cannot {action} {}", path.display())]
     Io {
+        /// What was being done: "read", "create the directory", "serialise".
+        action: &'static str,
         /// The file or directory.
         path: PathBuf,
         /// The failure.
@@ -76,8 +79,8 @@ pub enum CliError {
         /// What is wrong.
         message: String,
     },
-    /// A mesh could not be generated, read or written.
-    #[error("{context}: {source}")]
+    /// A mesh could not be generated, read or written (what is wrong is the source).
+    #[error("{context}")]
     Mesh {
         /// Which body or file.
         context: String,
@@ -89,8 +92,8 @@ pub enum CliError {
     /// body).
     #[error(transparent)]
     Elastic(Box<ElasticError>),
-    /// The contact problem failed (interface, solver, fixed point).
-    #[error("contact: {0}")]
+    /// The contact problem failed (interface, solver, fixed point); the error names the stage.
+    #[error(transparent)]
     Contact(#[from] ContactError),
     /// A picture or plot could not be drawn.
     #[error("cannot draw {}: {reason}", path.display())]
@@ -106,6 +109,19 @@ pub enum CliError {
 }
 
 impl CliError {
+    /// The error and its causes, one per line: the error itself, then `caused by: ...` for
+    /// each source in turn (each cause printed once).
+    pub fn chain(&self) -> String {
+        let mut text = self.to_string();
+        let mut source = std::error::Error::source(self);
+        while let Some(cause) = source {
+            text.push_str("\n  caused by: ");
+            text.push_str(&cause.to_string());
+            source = cause.source();
+        }
+        text
+    }
+
     /// A scene error at byte range `span` of `source` (the text of the scene file `path`).
     pub fn at(
         path: &Path,

@@ -14,7 +14,8 @@
 //! 4. [`Outcome::write`]: `<body>.vtu`, `contact.csv`, `deformed.svg`, `pressure.svg`,
 //!    `slip.svg` (with friction) and `summary.json`, each written whole or not at all.
 //!
-//! [`run`] does all four. The scene format is documented key by key in `docs/scenes.md`.
+//! [`run`] does all four with the built-in solvers, [`run_with`] with the solvers of a
+//! [`SolverRegistry`] of one's own. The scene format is documented key by key in `docs/scenes.md`.
 //!
 //! # Example: a block pressed on a rigid line
 //!
@@ -39,8 +40,7 @@
 //!     part = "bottom"
 //!     obstacle = { line = { point = [0, 0], normal = [0, 1] } }
 //!     solver = "exact"
-//!     eps_abs = 1e-13  # tighter than the defaults (1e-10): the nodal forces are
-//!     eps_rel = 1e-13  # checked to 1e-6 below
+//!     tolerance = 1e-13  # tighter than the default 1e-10: forces are checked to 1e-6
 //! "#)?;
 //! let outcome = Model::build(&scene)?.solve()?;
 //! let contact = outcome.contact.as_ref().unwrap();
@@ -65,11 +65,12 @@ pub mod scene;
 
 use std::path::{Path, PathBuf};
 
+use vem_contact::SolverRegistry;
+
 pub use error::{CliError, Location};
 pub use mesh_command::{convert_mesh, generate_mesh, MeshReport};
 pub use model::{
     CheckReport, CheckedBody, CheckedContact, Model, ModelBody, ModelContact, ModelCounterpart,
-    SolverChoice,
 };
 pub use outcome::{
     BodySummary, ContactSummary, FixedPointSummary, HertzComparison, NodeCounts, Outcome,
@@ -85,10 +86,21 @@ pub fn default_output_dir(scene: &Scene) -> PathBuf {
 }
 
 /// Loads, builds, solves and writes the scene at `scene` into `out` (default
-/// [`default_output_dir`]); returns the outcome and the files written.
+/// [`default_output_dir`]) with the built-in solvers; returns the outcome and the files
+/// written.
 pub fn run(scene: &Path, out: Option<&Path>) -> Result<(Outcome, Vec<PathBuf>), CliError> {
+    run_with(scene, out, &SolverRegistry::builtin())
+}
+
+/// As [`run`], with the solvers of `registry`: a scene's `solver` may then name a solver of
+/// one's own, registered with [`SolverRegistry::register`].
+pub fn run_with(
+    scene: &Path,
+    out: Option<&Path>,
+    registry: &SolverRegistry,
+) -> Result<(Outcome, Vec<PathBuf>), CliError> {
     let scene = Scene::load(scene)?;
-    let mut outcome = Model::build(&scene)?.solve()?;
+    let mut outcome = Model::build_with(&scene, registry)?.solve()?;
     let dir = out.map_or_else(|| default_output_dir(&scene), Path::to_path_buf);
     let files = outcome.write(&dir)?;
     Ok((outcome, files))

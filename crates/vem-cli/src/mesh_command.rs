@@ -92,6 +92,7 @@ pub fn convert_mesh(file: &Path, out: &Path) -> Result<MeshReport, CliError> {
 
 fn write_mesh(mesh: Mesh, source: String, out: &Path, stem: &str) -> Result<MeshReport, CliError> {
     std::fs::create_dir_all(out).map_err(|source| CliError::Io {
+        action: "create the directory",
         path: out.to_path_buf(),
         source,
     })?;

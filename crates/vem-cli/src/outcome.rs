@@ -63,8 +63,11 @@ impl Model {
         let mut obstacle = None;
         let mut contact_bodies = None;
         if let Some(c) = self.contact() {
-            let mut solver = c.solver.make();
-            let mut result = c.problem.solve(solver.as_mut())?;
+            let mut solver = self.make_solver(c)?;
+            let mut result = c
+                .problem
+                .solve(solver.as_mut())
+                .map_err(|e| crate::model::locate_contact(self.scene(), e))?;
             let stages = result.work.times;
             times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
             times.solve_s += stages.contact_solve.as_secs_f64();
@@ -92,12 +95,12 @@ impl Model {
                 let start = Instant::now();
                 let system = body
                     .assemble()
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 times.assembly_s += start.elapsed().as_secs_f64();
                 let start = Instant::now();
                 let solution = body
                     .solve_system(&system, &mut CholeskySolver::default())
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 times.solve_s += start.elapsed().as_secs_f64();
                 *slot = Some((body.clone(), solution));
             }
@@ -109,7 +112,7 @@ impl Model {
             .map(|(body, solution)| {
                 let fields = body
                     .element_fields(solution.displacement())
-                    .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                    .map_err(|e| crate::model::locate_elastic(self.scene(), e))?;
                 let qualities = vem_mesh::quality::element_qualities(body.mesh());
                 Ok(SolvedBody {
                     body,

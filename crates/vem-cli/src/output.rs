@@ -32,6 +32,7 @@ impl Outcome {
     pub fn write(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let start = Instant::now();
         std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
+            action: "create the directory",
             path: dir.to_path_buf(),
             source,
         })?;
@@ -77,6 +78,7 @@ impl Outcome {
         let path = dir.join("summary.json");
         self.set_output_time(start.elapsed());
         let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
+            action: "serialise",
             path: path.clone(),
             source: e.into(),
         })?;

@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use vem_contact::SolverRegistry;
+
 use crate::CliError;
 
 /// The whole scene file.
@@ -184,30 +186,6 @@ pub enum LawKind {
     Coulomb,
 }
 
-/// The contact solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SolverKind {
-    /// Interior-point QP (Clarabel).
-    #[default]
-    Exact,
-    /// Penalty, semismooth Newton.
-    Penalty,
-    /// Primal-dual active set.
-    ActiveSet,
-}
-
-impl SolverKind {
-    /// The name used in the scene file.
-    pub fn name(self) -> &'static str {
-        match self {
-            SolverKind::Exact => "exact",
-            SolverKind::Penalty => "penalty",
-            SolverKind::ActiveSet => "active-set",
-        }
-    }
-}
-
 /// A penalty or augmentation parameter: `factor` (times the largest constrained diagonal
 /// entry of the stiffness) or an absolute `value`.
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -249,26 +227,21 @@ pub struct ContactSpec {
     pub coefficient: Option<Spanned<f64>>,
     /// Coulomb: largest number of Tresca solves (default 50).
     #[serde(default)]
-    pub fixed_point_max_steps: Option<Spanned<usize>>,
+    pub fixed_point_max_iterations: Option<Spanned<usize>>,
     /// Coulomb: relative change of the normal forces at which to stop (default 1e-8).
     #[serde(default)]
     pub fixed_point_tolerance: Option<Spanned<f64>>,
-    /// Extra constant initial gap added to the geometric one.
+    /// A constant gap imposed on top of the geometric one (the initial gap is their sum).
     #[serde(default)]
-    pub gap: Option<Spanned<f64>>,
+    pub imposed_gap: Option<Spanned<f64>>,
     /// Only points of the two sides closer than this (along the normal) are paired.
     #[serde(default)]
     pub max_distance: Option<Spanned<f64>>,
-    /// "exact" (default), "penalty" or "active-set".
+    /// A name of the solver registry: "exact" (default), "penalty", "active-set", or a
+    /// solver registered by the program that runs the scene.
     #[serde(default)]
-    pub solver: Option<Spanned<SolverKind>>,
-    /// Exact: absolute gap tolerance.
-    #[serde(default)]
-    pub eps_abs: Option<Spanned<f64>>,
-    /// Exact: relative gap and feasibility tolerance.
-    #[serde(default)]
-    pub eps_rel: Option<Spanned<f64>>,
-    /// Penalty and active set: relative tolerance.
+    pub solver: Option<Spanned<String>>,
+    /// The solver's stopping tolerance (the exact solver's gap and feasibility tolerances).
     #[serde(default)]
     pub tolerance: Option<Spanned<f64>>,
     /// Iteration limit of the solver.
@@ -294,11 +267,11 @@ impl ContactSpec {
             .map_or_else(LawKind::default, |l| *l.get_ref())
     }
 
-    /// The contact solver (exact when not given).
-    pub fn solver(&self) -> SolverKind {
+    /// The contact solver's name ([`SolverRegistry::DEFAULT`] when not given).
+    pub fn solver(&self) -> &str {
         self.solver
             .as_ref()
-            .map_or_else(SolverKind::default, |s| *s.get_ref())
+            .map_or(SolverRegistry::DEFAULT, |s| s.get_ref().as_str())
     }
 }
 
@@ -371,6 +344,7 @@ impl Scene {
     pub fn load(path: impl AsRef<Path>) -> Result<Self, CliError> {
         let path = path.as_ref();
         let source = std::fs::read_to_string(path).map_err(|source| CliError::Io {
+            action: "read",
             path: path.to_path_buf(),
             source,
         })?;
@@ -583,34 +557,18 @@ impl Scene {
                     ),
                 ));
             }
-            for value in [spec.x, spec.y].into_iter().flatten() {
-                self.finite(value, d.span(), "a prescribed displacement")?;
-            }
         }
         for t in &body.traction {
             let spec = t.get_ref();
-            match (spec.value, spec.pressure) {
-                (Some(v), None) => {
-                    for c in v {
-                        self.finite(c, t.span(), "a traction")?;
-                    }
-                }
-                (None, Some(p)) => self.finite(p, t.span(), "a pressure")?,
-                _ => {
-                    return Err(self.error(
-                        Some(t.span()),
-                        format!(
-                            "body '{name}': the traction on part '{}' needs either `value = [gx, \
+            if spec.value.is_some() == spec.pressure.is_some() {
+                return Err(self.error(
+                    Some(t.span()),
+                    format!(
+                        "body '{name}': the traction on part '{}' needs either `value = [gx, \
                              gy]` or `pressure = p`, not both",
-                            spec.part.get_ref()
-                        ),
-                    ))
-                }
-            }
-        }
-        if let Some(f) = &body.body_force {
-            for c in f.get_ref() {
-                self.finite(*c, f.span(), "a body force")?;
+                        spec.part.get_ref()
+                    ),
+                ));
             }
         }
         Ok(())
@@ -652,25 +610,19 @@ impl Scene {
             }
         };
         match law {
-            LawKind::Frictionless => {}
-            LawKind::Tresca => match &contact.friction_bound {
-                Some(g) => self.non_negative(g, "friction_bound")?,
-                None => {
-                    return Err(self.error(
-                        law_span.clone(),
-                        "law = \"tresca\" needs `friction_bound` (force per length)",
-                    ))
-                }
-            },
-            LawKind::Coulomb => match &contact.coefficient {
-                Some(f) => self.non_negative(f, "coefficient")?,
-                None => {
-                    return Err(self.error(
-                        law_span.clone(),
-                        "law = \"coulomb\" needs the friction `coefficient`",
-                    ))
-                }
-            },
+            LawKind::Tresca if contact.friction_bound.is_none() => {
+                return Err(self.error(
+                    law_span,
+                    "law = \"tresca\" needs `friction_bound` (force per length)",
+                ))
+            }
+            LawKind::Coulomb if contact.coefficient.is_none() => {
+                return Err(self.error(
+                    law_span,
+                    "law = \"coulomb\" needs the friction `coefficient`",
+                ))
+            }
+            _ => {}
         }
         let spans = |s: &Option<Spanned<f64>>| s.as_ref().map(|s| s.span());
         misplaced(
@@ -689,90 +641,22 @@ impl Scene {
             "fixed_point_tolerance",
         )?;
         misplaced(
-            law != LawKind::Coulomb && contact.fixed_point_max_steps.is_some(),
-            contact.fixed_point_max_steps.as_ref().map(|s| s.span()),
-            "fixed_point_max_steps",
+            law != LawKind::Coulomb && contact.fixed_point_max_iterations.is_some(),
+            contact
+                .fixed_point_max_iterations
+                .as_ref()
+                .map(|s| s.span()),
+            "fixed_point_max_iterations",
         )?;
-        if let Some(t) = &contact.fixed_point_tolerance {
-            self.positive(t, "fixed_point_tolerance")?;
-        }
-        if let Some(steps) = contact
-            .fixed_point_max_steps
-            .as_ref()
-            .filter(|s| *s.get_ref() == 0)
-        {
-            return Err(self.error(
-                Some(steps.span()),
-                "`fixed_point_max_steps` must be at least 1",
-            ));
-        }
-        if let Some(d) = &contact.max_distance {
-            self.positive(d, "max_distance")?;
-        }
-        if let Some(g) = &contact.gap {
-            self.finite(*g.get_ref(), g.span(), "the gap")?;
-        }
-        // Solver keys must belong to the chosen solver.
-        let solver = contact.solver();
-        let solver_keys: [SolverKey; 6] = [
-            ("eps_abs", spans(&contact.eps_abs), &[SolverKind::Exact]),
-            ("eps_rel", spans(&contact.eps_rel), &[SolverKind::Exact]),
-            (
-                "tolerance",
-                spans(&contact.tolerance),
-                &[SolverKind::Penalty, SolverKind::ActiveSet],
-            ),
-            (
-                "max_iterations",
-                contact.max_iterations.as_ref().map(|s| s.span()),
-                &[
-                    SolverKind::Exact,
-                    SolverKind::Penalty,
-                    SolverKind::ActiveSet,
-                ],
-            ),
-            (
-                "penalty",
-                contact.penalty.as_ref().map(|s| s.span()),
-                &[SolverKind::Penalty],
-            ),
-            (
-                "augmentation",
-                contact.augmentation.as_ref().map(|s| s.span()),
-                &[SolverKind::ActiveSet],
-            ),
-        ];
-        for (key, span, owners) in solver_keys {
-            if span.is_some() && !owners.contains(&solver) {
-                let owners: Vec<String> =
-                    owners.iter().map(|s| format!("\"{}\"", s.name())).collect();
-                return Err(self.error(
-                    span,
-                    format!(
-                        "`{key}` does not apply to solver = \"{}\" (it is a setting of solver = {})",
-                        solver.name(),
-                        owners.join(" or ")
-                    ),
-                ));
-            }
-        }
         for p in [&contact.penalty, &contact.augmentation]
             .into_iter()
             .flatten()
         {
             let spec = p.get_ref();
-            let value =
-                match (spec.factor, spec.value) {
-                    (Some(v), None) | (None, Some(v)) => v,
-                    _ => return Err(self.error(
-                        Some(p.span()),
-                        "give either `factor` (relative to the stiffness) or `value` (absolute)",
-                    )),
-                };
-            if !(value.is_finite() && value > 0.0) {
+            if spec.factor.is_some() == spec.value.is_some() {
                 return Err(self.error(
                     Some(p.span()),
-                    format!("the penalty {value} must be finite and positive"),
+                    "give either `factor` (relative to the stiffness) or `value` (absolute)",
                 ));
             }
         }
@@ -806,14 +690,6 @@ impl Scene {
         Ok(())
     }
 
-    fn finite(&self, value: f64, span: std::ops::Range<usize>, what: &str) -> Result<(), CliError> {
-        if value.is_finite() {
-            Ok(())
-        } else {
-            Err(self.error(Some(span), format!("{what} must be finite, got {value}")))
-        }
-    }
-
     fn positive(&self, value: &Spanned<f64>, key: &str) -> Result<(), CliError> {
         let v = *value.get_ref();
         if v.is_finite() && v > 0.0 {
@@ -825,22 +701,7 @@ impl Scene {
             ))
         }
     }
-
-    fn non_negative(&self, value: &Spanned<f64>, key: &str) -> Result<(), CliError> {
-        let v = *value.get_ref();
-        if v.is_finite() && v >= 0.0 {
-            Ok(())
-        } else {
-            Err(self.error(
-                Some(value.span()),
-                format!("`{key}` = {v} must be finite and >= 0"),
-            ))
-        }
-    }
 }
-
-/// A solver setting: its key, where it is (if given) and the solvers it belongs to.
-type SolverKey<'a> = (&'a str, Option<std::ops::Range<usize>>, &'a [SolverKind]);
 
 /// The law's name in the scene file.
 pub(crate) fn law_name(law: LawKind) -> &'static str {

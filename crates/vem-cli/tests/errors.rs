@@ -284,3 +284,30 @@ fn a_gmsh_file_converts_with_its_parts() {
     assert!((area - std::f64::consts::FRAC_PI_2).abs() < 2e-3, "{area}");
     assert_eq!(report.polygons, mesh.n_polygons());
 }
+
+#[test]
+fn values_the_library_rejects_are_located_at_their_key() {
+    // Checked by the library (interface options, Dirichlet data when the body is built, load
+    // values when it is assembled), located by the scene.
+    let contact = "[[contact]]\nbody = \"a\"\npart = \"bottom\"\nobstacle = { line = { point = [0, 0], normal = [0, 1] } }\n";
+    let text = format!("{BLOCK}\n{contact}max_distance = -1.0\n");
+    assert_located(
+        &error_of(&text),
+        &text,
+        "-1.0\n",
+        &["max_distance = -1", "positive and finite"],
+    );
+    let text = format!("{BLOCK}dirichlet = [{{ part = \"left\", x = nan }}]\n");
+    assert_located(
+        &error_of(&text),
+        &text,
+        "{ part = \"left\"",
+        &["body 'a'", "'left'", "non-finite"],
+    );
+    let text = format!(
+        "{BLOCK}dirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0 }}]\ntraction = [{{ part = \"top\", pressure = inf }}]\n"
+    );
+    let scene = Scene::parse("bad.toml", text.as_str()).unwrap();
+    let e = Model::build(&scene).unwrap().solve().unwrap_err();
+    assert_located(&e, &text, "{ part = \"top\"", &["'top'", "non-finite load"]);
+}

@@ -4,7 +4,7 @@
 use std::fmt;
 use std::sync::Arc;
 
-use vem_mesh::{Point, Vector};
+use vem_mesh::{Mesh, MeshError, Point, Vector};
 
 /// A vector field of position: body force, traction or prescribed displacement.
 pub type VectorField = Arc<dyn Fn(Point) -> Vector + Send + Sync>;
@@ -126,6 +126,61 @@ impl Traction {
         }
     }
 
+    /// A normal pressure `pressure` on the boundary part `part` of `mesh`: the traction
+    /// `g = -p nu` with `nu` the outward unit normal of the part, so that `p > 0` pushes into
+    /// the body and `p < 0` pulls on it.
+    ///
+    /// The part is a polygonal chain, so `nu` is constant on each of its edges: at a point `x`
+    /// the traction uses the normal of the part's edge nearest to `x`. Tractions are evaluated
+    /// at Gauss points inside the edges, where that edge is the nearest one. An edge split later
+    /// (interface node insertion puts vertices on existing edges) keeps its normal, so the
+    /// traction is unchanged on the enlarged mesh.
+    ///
+    /// ```
+    /// use vem_elastic::Traction;
+    /// use vem_mesh::{Mesh, PartSpec, Point, Vector};
+    /// let square = Mesh::from_polygons(
+    ///     vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)],
+    ///     &[vec![0, 1, 2, 3]],
+    ///     vec![PartSpec::new("top", vec![[2, 3]])],
+    /// )?;
+    /// let pressure = Traction::try_normal_pressure(&square, "top", 2.0)?;
+    /// // The outward normal of the top is (0, 1): a positive pressure pushes down.
+    /// assert_eq!(pressure.value_at(Point::new(0.5, 1.0)), Vector::new(0.0, -2.0));
+    /// # Ok::<(), vem_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`MeshError::UnknownPart`] when `mesh` has no part named `part` (it lists the parts).
+    /// A non-finite `pressure` is reported, like any non-finite traction, when the body's load
+    /// is assembled.
+    pub fn try_normal_pressure(
+        mesh: &Mesh,
+        part: impl Into<String>,
+        pressure: f64,
+    ) -> Result<Self, MeshError> {
+        let part = part.into();
+        let edges: Vec<(Point, Vector, Vector)> = mesh
+            .part(&part)?
+            .edges
+            .iter()
+            .map(|&e| {
+                // The polygon lies to the left of a -> b: the outward normal is on the right.
+                let [a, b] = mesh.edge(e).vertices;
+                let (start, end) = (mesh.vertex(a), mesh.vertex(b));
+                let tangent = end - start;
+                let outward = Vector::new(tangent.y, -tangent.x) / tangent.norm();
+                (start, tangent, outward)
+            })
+            .collect();
+        Ok(Self::new(part, move |x| {
+            let nearest = edges.iter().min_by(|(a1, t1, _), (a2, t2, _)| {
+                distance_squared(x, *a1, *t1).total_cmp(&distance_squared(x, *a2, *t2))
+            });
+            nearest.map_or_else(Vector::zeros, |&(_, _, outward)| -pressure * outward)
+        }))
+    }
+
     /// The boundary part's name.
     pub fn part(&self) -> &str {
         &self.part
@@ -137,10 +192,112 @@ impl Traction {
     }
 }
 
+/// Squared distance from `x` to the segment from `start` to `start + tangent`.
+fn distance_squared(x: Point, start: Point, tangent: Vector) -> f64 {
+    let s = ((x - start).dot(&tangent) / tangent.norm_squared()).clamp(0.0, 1.0);
+    (x - (start + s * tangent)).norm_squared()
+}
+
 impl fmt::Debug for Traction {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Traction")
             .field("part", &self.part)
             .finish_non_exhaustive()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use vem_mesh::PartSpec;
+
+    use super::*;
+
+    /// The resultant `sum over edges of |e| g(midpoint)` of a traction on a part (exact for a
+    /// traction constant on each edge).
+    fn resultant(mesh: &Mesh, traction: &Traction) -> Vector {
+        mesh.part(traction.part())
+            .unwrap()
+            .edges
+            .iter()
+            .map(|&e| {
+                let [a, b] = mesh.edge(e).vertices;
+                let (pa, pb) = (mesh.vertex(a), mesh.vertex(b));
+                (pb - pa).norm() * traction.value_at(pa + 0.5 * (pb - pa))
+            })
+            .sum()
+    }
+
+    /// The half-disc of radius `r` centred at (0, r) below its flat top (the line y = r), as
+    /// `segments` triangles fanned from the centre; parts "arc" and "top".
+    fn half_disc(r: f64, segments: usize) -> Mesh {
+        let mut vertices = vec![Point::new(0.0, r)];
+        for k in 0..=segments {
+            let theta = PI + PI * k as f64 / segments as f64;
+            vertices.push(Point::new(r * theta.cos(), r + r * theta.sin()));
+        }
+        let polygons: Vec<Vec<usize>> = (1..=segments).map(|k| vec![0, k, k + 1]).collect();
+        let arc = (1..=segments).map(|k| [k, k + 1]).collect();
+        let top = vec![[segments + 1, 0], [0, 1]];
+        Mesh::from_polygons(
+            vertices,
+            &polygons,
+            vec![PartSpec::new("arc", arc), PartSpec::new("top", top)],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn pressure_on_a_half_circle_has_the_closed_form_resultant() {
+        // On the lower half circle of radius r the inward normals add up to (0, 2 r): a
+        // pressure p pushes up with 2 p r. The chords end on the circle, so the polygonal arc
+        // has the same resultant exactly.
+        let (r, p) = (0.75, 3.0);
+        let mesh = half_disc(r, 24);
+        let arc = Traction::try_normal_pressure(&mesh, "arc", p).unwrap();
+        let total = resultant(&mesh, &arc);
+        assert!(
+            (total - Vector::new(0.0, 2.0 * p * r)).norm() < 1e-12,
+            "{total}"
+        );
+        // Pointwise: at each chord's midpoint the traction is p times the direction to the
+        // centre (the chord's inward normal).
+        let centre = Point::new(0.0, r);
+        for &e in &mesh.part("arc").unwrap().edges {
+            let [a, b] = mesh.edge(e).vertices;
+            let midpoint = mesh.vertex(a) + 0.5 * (mesh.vertex(b) - mesh.vertex(a));
+            let inward = (centre - midpoint).normalize();
+            assert!((arc.value_at(midpoint) - p * inward).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn pressure_on_a_flat_side_is_the_pressure_times_its_length() {
+        // The flat top (length 2 r, outward normal (0, 1)), split at the centre: a suction
+        // p < 0 pulls it up with |p| 2 r.
+        let (r, p) = (0.75, -0.5);
+        let mesh = half_disc(r, 8);
+        let top = Traction::try_normal_pressure(&mesh, "top", p).unwrap();
+        let total = resultant(&mesh, &top);
+        // (The end points come from sin(pi) and sin(2 pi): the top is level to rounding.)
+        assert!(
+            (total - Vector::new(0.0, -p * 2.0 * r)).norm() < 1e-14,
+            "{total}"
+        );
+        let g = top.value_at(Point::new(0.3, r));
+        assert!((g - Vector::new(0.0, 0.5)).norm() < 1e-14, "{g}");
+    }
+
+    #[test]
+    fn pressure_on_an_unknown_part_lists_the_parts() {
+        let err = Traction::try_normal_pressure(&half_disc(1.0, 4), "rim", 1.0).unwrap_err();
+        assert_eq!(
+            err,
+            MeshError::UnknownPart {
+                part: "rim".into(),
+                available: vec!["arc".into(), "top".into()],
+            }
+        );
     }
 }

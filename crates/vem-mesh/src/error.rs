@@ -185,6 +185,16 @@ pub enum MeshError {
         /// What is wrong.
         reason: String,
     },
+    /// A setting (of [`crate::InterfaceOptions`]) is outside its range.
+    #[error("{setting} = {value} must be {requirement}")]
+    InvalidOption {
+        /// The setting's name, as its field is spelt.
+        setting: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What it must satisfy.
+        requirement: &'static str,
+    },
     /// Interface node insertion failed.
     #[error("interface between '{part_a}' and '{part_b}': {reason}")]
     Interface {

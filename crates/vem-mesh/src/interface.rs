@@ -99,25 +99,41 @@ impl InterfaceOptions {
         self.snap_tolerance.max(self.min_edge_fraction)
     }
 
-    /// Describes the first invalid setting, if any.
-    fn problem(&self) -> Option<String> {
+    /// Checks every setting: `snap_tolerance` in (0, 0.5), `min_edge_fraction` in [0, 0.5),
+    /// `max_distance` positive and finite when given. [`insert_interface_nodes`] checks them
+    /// too; call this to report a bad setting before any mesh is read.
+    ///
+    /// ```
+    /// use vem_mesh::{interface::InterfaceOptions, MeshError};
+    /// let options = InterfaceOptions { max_distance: Some(-1.0), ..Default::default() };
+    /// match options.validate() {
+    ///     Err(MeshError::InvalidOption { setting, .. }) => assert_eq!(setting, "max_distance"),
+    ///     other => panic!("{other:?}"),
+    /// }
+    /// # Ok::<(), MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] naming the first invalid setting.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        let invalid = |setting, value, requirement| {
+            Err(MeshError::InvalidOption {
+                setting,
+                value,
+                requirement,
+            })
+        };
         if !(self.snap_tolerance > 0.0 && self.snap_tolerance < 0.5) {
-            return Some(format!(
-                "snap_tolerance = {} must lie in (0, 0.5)",
-                self.snap_tolerance
-            ));
+            return invalid("snap_tolerance", self.snap_tolerance, "in (0, 0.5)");
         }
         if !(self.min_edge_fraction >= 0.0 && self.min_edge_fraction < 0.5) {
-            return Some(format!(
-                "min_edge_fraction = {} must lie in [0, 0.5)",
-                self.min_edge_fraction
-            ));
+            return invalid("min_edge_fraction", self.min_edge_fraction, "in [0, 0.5)");
         }
         match self.max_distance {
-            Some(d) if !(d > 0.0 && d.is_finite()) => Some(format!(
-                "max_distance = {d} must be positive and finite (or None)"
-            )),
-            _ => None,
+            Some(d) if !(d > 0.0 && d.is_finite()) => {
+                invalid("max_distance", d, "positive and finite (or not given)")
+            }
+            _ => Ok(()),
         }
     }
 }
@@ -548,9 +564,7 @@ pub fn insert_interface_nodes(
         part_b: part_b.to_string(),
         reason,
     };
-    if let Some(problem) = options.problem() {
-        return Err(fail(problem));
-    }
+    options.validate()?;
     let chain_a = Chain::new(mesh_a, part_a, &fail)?;
     let chain_b = Chain::new(mesh_b, part_b, &fail)?;
     let snap = options.snap_fraction();

@@ -14,9 +14,24 @@
 //! assert_eq!(mesh.area(0), 1.0);
 //! # Ok::<(), vem_mesh::MeshError>(())
 //! ```
+//!
+//! # Cargo features
+//!
+//! The core (meshes, validation, geometry, quality, interface insertion, atomic file writes)
+//! needs only `nalgebra`. The rest is behind features, all on by default; the library layers of
+//! this workspace turn the defaults off and enable only what they use (the element layer uses
+//! none of them):
+//!
+//! | feature | what it adds | extra dependencies |
+//! | --- | --- | --- |
+//! | `generators` | [`generators`]: structured, hexagonal, Voronoi, perturbed, ... meshes | `rand`, `rand_chacha` |
+//! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`: Gmsh `.msh` 4.1 input | `mshio` |
+//! | `vtu` | `io::write_vtu`: VTK `.vtu` output | none |
+//! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes | none |
 #![deny(missing_docs)]
 
 mod error;
+#[cfg(feature = "generators")]
 pub mod generators;
 pub mod geometry;
 pub mod interface;

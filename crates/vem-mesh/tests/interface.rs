@@ -580,9 +580,18 @@ fn bad_input_is_reported_with_names() {
             max_distance: Some(f64::NAN),
             ..options
         },
-    ] {
-        let err = insert_interface_nodes(&a, "bottom", &b, "top", &bad).unwrap_err();
+    ]
+    .into_iter()
+    .zip(["snap_tolerance", "min_edge_fraction", "max_distance"])
+    {
+        let err = insert_interface_nodes(&a, "bottom", &b, "top", &bad.0).unwrap_err();
         assert!(err.to_string().contains("must"), "{err}");
+        assert!(
+            matches!(err, MeshError::InvalidOption { setting, .. } if setting == bad.1),
+            "{err:?}"
+        );
+        // (Compared as text: the NaN distance is not equal to itself.)
+        assert_eq!(bad.0.validate().unwrap_err().to_string(), err.to_string());
     }
 }
 

@@ -30,6 +30,12 @@
 //!     assert!((div_x + f.x).abs() < 1e-5 * (1.0 + f.x.abs()), "{}", case.name());
 //! }
 //! ```
+//!
+//! # Cargo features
+//!
+//! `plots` (on by default) adds the log-log SVG plots of [`report`] (`report::plot_svg`,
+//! `report::write_plot`) and with them the `plotters` dependency; everything else needs no
+//! feature.
 #![deny(missing_docs)]
 
 pub mod cases;

@@ -5,31 +5,39 @@
 //! use std::sync::Arc;
 //! use vem_mesh::generators::MeshFamily;
 //! use vem_verify::exact::{case_by_name, Lame};
-//! use vem_verify::report::{plot_svg, study_markdown};
+//! # #[cfg(feature = "plots")]
+//! use vem_verify::report::plot_svg;
+//! use vem_verify::report::study_markdown;
 //! use vem_verify::study::{MeshPairing, Study};
 //! let e1: Arc<_> = case_by_name("E1", Lame::default())?.into();
 //! let result = Study::new(e1, MeshPairing::single(MeshFamily::Quads)).sizes([2, 4]).run()?;
 //! assert!(study_markdown(&result).contains("| n | h |"));
+//! # #[cfg(feature = "plots")]
 //! assert!(plot_svg(&result)?.starts_with("<svg"));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use std::path::Path;
 
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use serde::Serialize;
 
 use crate::study::{successive_rates, Expectation, SizeRecord, StudyResult};
 use crate::VerifyError;
 
+#[cfg(feature = "plots")]
 /// A plotted series: name, colour, points `(h, error)`.
 type Series = (&'static str, RGBColor, Vec<(f64, f64)>);
 
+#[cfg(feature = "plots")]
 /// The reference slopes are drawn this factor below the finest error they start from.
 const REFERENCE_OFFSET: f64 = 0.5;
+#[cfg(feature = "plots")]
 /// Dashes of a reference slope.
 const REFERENCE_DASHES: usize = 24;
 
+#[cfg(feature = "plots")]
 /// Width and height of the plots, in pixels.
 const PLOT_SIZE: (u32, u32) = (720, 540);
 
@@ -226,6 +234,7 @@ pub fn summary_markdown(studies: &[StudyResult]) -> String {
     out
 }
 
+#[cfg(feature = "plots")]
 /// The log-log plot of `E_grad`, `E_a` and `E_0` against `h` with reference slopes 1 and 2
 /// (dashed, starting half a step below the finest `E_grad` and `E_0`), as an SVG document.
 ///
@@ -335,6 +344,7 @@ pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
     Ok(svg)
 }
 
+#[cfg(feature = "plots")]
 /// The distinct mesh sizes of the plotted points: the ticks of the h axis.
 fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
     let mut h: Vec<f64> = points.iter().map(|p| p.0).collect();
@@ -343,6 +353,7 @@ fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
     h
 }
 
+#[cfg(feature = "plots")]
 /// Ticks of the error axis: the powers of ten in `range`, and 2 and 5 times them when the
 /// range spans fewer than three decades.
 fn error_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
@@ -361,12 +372,14 @@ fn error_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
         .collect()
 }
 
+#[cfg(feature = "plots")]
 /// `v` with three significant digits in fixed notation (0.354, 0.0221).
 fn three_digits(v: f64) -> String {
     let precision = (2 - v.abs().log10().floor() as i32).max(0) as usize;
     format!("{v:.precision$}")
 }
 
+#[cfg(feature = "plots")]
 /// The positive points `(h, error)` of a study.
 fn points(study: &StudyResult, error: fn(&SizeRecord) -> f64) -> Vec<(f64, f64)> {
     study
@@ -377,6 +390,7 @@ fn points(study: &StudyResult, error: fn(&SizeRecord) -> f64) -> Vec<(f64, f64)>
         .collect()
 }
 
+#[cfg(feature = "plots")]
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
@@ -406,6 +420,7 @@ pub fn write_json(path: impl AsRef<Path>, value: &impl Serialize) -> Result<(), 
     write_text(path, &(text + "\n"))
 }
 
+#[cfg(feature = "plots")]
 /// Writes the plot of [`plot_svg`] to `path` atomically.
 ///
 /// # Errors

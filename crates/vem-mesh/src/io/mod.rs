@@ -1,9 +1,11 @@
-//! File input and output: Gmsh `.msh` 4.1 input, VTK `.vtu` and SVG output, atomic writes.
+//! File input and output: atomic writes, and with the features of the same names Gmsh `.msh`
+//! 4.1 input (`gmsh`), VTK `.vtu` output (`vtu`) and SVG output (`svg`).
 //!
 //! Every writer goes through [`write_atomically`]: a file is written whole or not at all, so
 //! an interrupted run never leaves a truncated `.vtu` that a viewer half-reads.
 //!
 //! ```
+//! # #[cfg(all(feature = "generators", feature = "vtu", feature = "svg"))] {
 //! use vem_mesh::generators::{structured_quads, Rectangle};
 //! use vem_mesh::io::{write_svg, write_vtu, SvgOptions, VtuData};
 //!
@@ -14,15 +16,22 @@
 //! write_vtu(dir.join("square.vtu"), &mesh, &VtuData::new().with_point_scalars("x", x))?;
 //! write_svg(dir.join("square.svg"), &mesh, &SvgOptions::default())?;
 //! # std::fs::remove_dir_all(&dir).unwrap();
+//! # }
 //! # Ok::<(), vem_mesh::MeshError>(())
 //! ```
 
+#[cfg(feature = "gmsh")]
 mod gmsh;
+#[cfg(feature = "svg")]
 mod svg;
+#[cfg(feature = "vtu")]
 mod vtu;
 
+#[cfg(feature = "gmsh")]
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
+#[cfg(feature = "svg")]
 pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
+#[cfg(feature = "vtu")]
 pub use vtu::{write_vtu, DataArray, VtuData};
 
 use std::fs::{self, File, OpenOptions};
@@ -113,6 +122,7 @@ fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
 }
 
 /// Escapes the five XML special characters of `text` (attribute values and text content).
+#[cfg(any(feature = "vtu", feature = "svg"))]
 pub(crate) fn xml_escape(text: &str) -> String {
     let mut escaped = String::with_capacity(text.len());
     for c in text.chars() {
@@ -175,6 +185,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(any(feature = "vtu", feature = "svg"))]
     fn escapes_markup() {
         assert_eq!(
             xml_escape("a<b & \"c\">'"),
