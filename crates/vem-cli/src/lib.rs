@@ -14,8 +14,8 @@
 //! 4. [`Outcome::write`]: `<body>.vtu`, `contact.csv`, `deformed.svg`, `pressure.svg`,
 //!    `slip.svg` (with friction) and `summary.json`, each written whole or not at all.
 //!
-//! [`run`] does all four with the built-in solvers, [`run_with`] with the solvers of a
-//! [`SolverRegistry`] of one's own. The scene format is documented key by key in `docs/scenes.md`.
+//! [`run`] does all four with the built-in solvers and elements, [`run_with`] with the
+//! [`Registries`] of one's own (`vem_contact::SolverRegistry`, `vem_space::ElementRegistry`). The scene format is documented key by key in `docs/scenes.md`.
 //!
 //! # Example: a block pressed on a rigid line
 //!
@@ -65,16 +65,15 @@ pub mod scene;
 
 use std::path::{Path, PathBuf};
 
-use vem_contact::SolverRegistry;
-
 pub use error::{CliError, Location};
 pub use mesh_command::{convert_mesh, generate_mesh, MeshReport};
 pub use model::{
     CheckReport, CheckedBody, CheckedContact, Model, ModelBody, ModelContact, ModelCounterpart,
+    Registries,
 };
 pub use outcome::{
     BodySummary, ContactSummary, FixedPointSummary, HertzComparison, NodeCounts, Outcome,
-    ReactionSummary, Residuals, Resultants, RunSummary, SolvedBody, Times,
+    ReactionSummary, Residuals, Resultants, RunSummary, SolvedBody, Times, Work,
 };
 pub use output::{CONTACT_COLUMNS, DEFAULT_WIDTH};
 pub use scene::Scene;
@@ -89,18 +88,18 @@ pub fn default_output_dir(scene: &Scene) -> PathBuf {
 /// [`default_output_dir`]) with the built-in solvers; returns the outcome and the files
 /// written.
 pub fn run(scene: &Path, out: Option<&Path>) -> Result<(Outcome, Vec<PathBuf>), CliError> {
-    run_with(scene, out, &SolverRegistry::builtin())
+    run_with(scene, out, &Registries::default())
 }
 
-/// As [`run`], with the solvers of `registry`: a scene's `solver` may then name a solver of
-/// one's own, registered with [`SolverRegistry::register`].
+/// As [`run`], with the solvers and elements of `registries`: a scene's `solver` and `element`
+/// keys may then name a solver or an element of one's own.
 pub fn run_with(
     scene: &Path,
     out: Option<&Path>,
-    registry: &SolverRegistry,
+    registries: &Registries,
 ) -> Result<(Outcome, Vec<PathBuf>), CliError> {
     let scene = Scene::load(scene)?;
-    let mut outcome = Model::build_with(&scene, registry)?.solve()?;
+    let mut outcome = Model::build_with(&scene, registries)?.solve()?;
     let dir = out.map_or_else(|| default_output_dir(&scene), Path::to_path_buf);
     let files = outcome.write(&dir)?;
     Ok((outcome, files))

@@ -16,7 +16,8 @@ use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
 use vem_mesh::{Mesh, Point, Vector};
 use vem_space::{
-    DRecipe, DofiDofi, LowestOrderVem, SpaceError, Stabilisation, StabilisationScaling,
+    DRecipe, DofiDofi, ElementRegistry, ElementSpace, LowestOrderVem, SpaceError, Stabilisation,
+    StabilisationScaling,
 };
 
 use crate::scene::{
@@ -33,8 +34,28 @@ pub struct ModelBody {
     pub body: ElasticBody,
     /// Where the mesh came from ("voronoi, n = 16, seed 1, on [0, 1] x [0, 1]" or a file).
     pub mesh_source: String,
-    /// The stabilisation used.
-    pub stabilisation: Arc<dyn Stabilisation>,
+    /// The element, in words ("vem1: dofi-dofi, trace(C), scale 1/8", "p1").
+    pub element: String,
+}
+
+/// The names a scene may use for its solvers and elements: the built-in ones by default, or a
+/// user's own, registered in [`SolverRegistry`] and [`ElementRegistry`].
+#[derive(Debug, Clone)]
+pub struct Registries {
+    /// Contact solvers (scene key `solver`).
+    pub solvers: SolverRegistry,
+    /// Element spaces (scene key `element` of a body).
+    pub elements: ElementRegistry,
+}
+
+impl Default for Registries {
+    /// The built-in solvers and elements.
+    fn default() -> Self {
+        Self {
+            solvers: SolverRegistry::builtin(),
+            elements: ElementRegistry::builtin(),
+        }
+    }
 }
 
 /// What body A is in contact with, as built.
@@ -82,15 +103,17 @@ pub struct Model {
 
 impl Model {
     /// Generates or reads every mesh, checks every part name against its mesh and builds the
-    /// bodies, the contact problem and the solver settings, with the built-in solvers
-    /// ([`SolverRegistry::builtin`]).
+    /// bodies, the contact problem and the solver settings, with the built-in solvers and
+    /// elements.
     pub fn build(scene: &Scene) -> Result<Self, CliError> {
-        Self::build_with(scene, &SolverRegistry::builtin())
+        Self::build_with(scene, &Registries::default())
     }
 
-    /// As [`Model::build`], with the solvers of `registry`: the scene's `solver` may name any
-    /// of them (a solver of one's own, registered with [`SolverRegistry::register`]).
-    pub fn build_with(scene: &Scene, registry: &SolverRegistry) -> Result<Self, CliError> {
+    /// As [`Model::build`], with the solvers and elements of `registries`: the scene's `solver`
+    /// and `element` keys may name any of them (a solver or an element of one's own,
+    /// registered with [`SolverRegistry::register`] or [`ElementRegistry::register`]).
+    pub fn build_with(scene: &Scene, registries: &Registries) -> Result<Self, CliError> {
+        let registry = &registries.solvers;
         let start = Instant::now();
         let meshes = scene
             .file()
@@ -101,7 +124,13 @@ impl Model {
         let mesh_time = start.elapsed();
         let mut bodies = Vec::with_capacity(meshes.len());
         for (spec, (mesh, mesh_source)) in scene.file().bodies.iter().zip(meshes) {
-            bodies.push(build_body(scene, spec, mesh, mesh_source)?);
+            bodies.push(build_body(
+                scene,
+                spec,
+                mesh,
+                mesh_source,
+                &registries.elements,
+            )?);
         }
         let contact = match scene.file().contacts.first() {
             Some(spec) => Some(build_contact(scene, spec.get_ref(), &bodies, registry)?),
@@ -166,7 +195,7 @@ impl Model {
                         .collect(),
                     quality: mesh.quality(),
                     material: describe_material(b.body.material()),
-                    stabilisation: b.stabilisation.description(),
+                    element: b.element.clone(),
                     conditions: describe_conditions(&self.scene, b.body.name()),
                 }
             })
@@ -386,6 +415,7 @@ fn build_body(
     spec: &BodySpec,
     mesh: Mesh,
     mesh_source: String,
+    elements: &ElementRegistry,
 ) -> Result<ModelBody, CliError> {
     let name = spec.name.get_ref().clone();
     let m = spec.material.get_ref();
@@ -405,25 +435,41 @@ fn build_body(
             format!("body '{name}': {e}"),
         )
     };
-    let stabilisation: Arc<dyn Stabilisation> = match &spec.stabilisation {
-        None => Arc::new(DofiDofi::default()),
-        Some(s) => match s.get_ref().kind {
-            StabilisationKind::DRecipe => Arc::new(DRecipe),
-            StabilisationKind::DofiDofi => Arc::new(
-                DofiDofi::try_new(
-                    match s.get_ref().scaling {
-                        None | Some(ScalingSpec::Trace) => StabilisationScaling::TraceOfC,
-                        Some(ScalingSpec::Shear) => StabilisationScaling::ShearModulus,
-                    },
-                    s.get_ref().scale.unwrap_or(DofiDofi::DEFAULT_SCALE),
-                )
-                .map_err(stabilisation_error)?,
-            ),
-        },
+    let (element, description): (Arc<dyn ElementSpace>, String) = match &spec.element {
+        Some(element) => {
+            let made = elements
+                .make(element.get_ref())
+                .map_err(|e| scene.error(Some(element.span()), format!("body '{name}': {e}")))?;
+            let description = elements.summary(element.get_ref()).map_or_else(
+                || made.name().to_string(),
+                |s| format!("{}: {s}", made.name()),
+            );
+            (made, description)
+        }
+        None => {
+            let stabilisation: Arc<dyn Stabilisation> = match &spec.stabilisation {
+                None => Arc::new(DofiDofi::default()),
+                Some(s) => match s.get_ref().kind {
+                    StabilisationKind::DRecipe => Arc::new(DRecipe),
+                    StabilisationKind::DofiDofi => Arc::new(
+                        DofiDofi::try_new(
+                            match s.get_ref().scaling {
+                                None | Some(ScalingSpec::Trace) => StabilisationScaling::TraceOfC,
+                                Some(ScalingSpec::Shear) => StabilisationScaling::ShearModulus,
+                            },
+                            s.get_ref().scale.unwrap_or(DofiDofi::DEFAULT_SCALE),
+                        )
+                        .map_err(stabilisation_error)?,
+                    ),
+                },
+            };
+            let element =
+                LowestOrderVem::try_new(Arc::clone(&stabilisation)).map_err(stabilisation_error)?;
+            let description = format!("{}: {}", element.name(), stabilisation.description());
+            (Arc::new(element), description)
+        }
     };
-    let element =
-        LowestOrderVem::try_new(Arc::clone(&stabilisation)).map_err(stabilisation_error)?;
-    let mut builder = ElasticBody::builder(name.clone(), mesh.clone(), material, Arc::new(element));
+    let mut builder = ElasticBody::builder(name.clone(), mesh.clone(), material, element);
     for d in &spec.dirichlet {
         let d = d.get_ref();
         check_part(scene, &mesh, &name, &d.part)?;
@@ -467,7 +513,7 @@ fn build_body(
     Ok(ModelBody {
         body,
         mesh_source,
-        stabilisation,
+        element: description,
     })
 }
 
@@ -761,8 +807,8 @@ pub struct CheckedBody {
     pub quality: vem_mesh::quality::QualitySummary,
     /// The material.
     pub material: String,
-    /// The stabilisation.
-    pub stabilisation: String,
+    /// The element (and its stabilisation).
+    pub element: String,
     /// Boundary conditions and body force.
     pub conditions: Vec<String>,
 }
@@ -812,11 +858,7 @@ impl fmt::Display for CheckReport {
                 b.polygons,
                 parts.join(", ")
             )?;
-            writeln!(
-                f,
-                "  material: {}; stabilisation: {}",
-                b.material, b.stabilisation
-            )?;
+            writeln!(f, "  material: {}; element: {}", b.material, b.element)?;
             for c in &b.conditions {
                 writeln!(f, "  {c}")?;
             }

@@ -218,7 +218,7 @@ impl Model {
                     solver: report.solver,
                     status: format!("{:?}", report.status),
                     iterations: report.iterations,
-                    factorisations: report.work.numeric_factorisations,
+                    work: result.work.into(),
                     residuals: Residuals {
                         max_penetration: r.max_penetration,
                         negative_normal_force: r.negative_normal_force,
@@ -376,8 +376,9 @@ pub struct ContactSummary {
     pub status: String,
     /// Its iterations (of the last solve; see `fixed_point` for Coulomb's total).
     pub iterations: usize,
-    /// Numeric factorisations.
-    pub factorisations: usize,
+    /// What the contact problem cost, build and every solve together (one assembly per body
+    /// and one symbolic analysis for a Coulomb fixed point of any number of steps).
+    pub work: Work,
     /// KKT residuals of the answer.
     pub residuals: Residuals,
     /// Coulomb: the fixed point.
@@ -388,6 +389,54 @@ pub struct ContactSummary {
     pub nodes: NodeCounts,
     /// The Hertz comparison, if asked for.
     pub hertz: Option<HertzComparison>,
+}
+
+/// The work counters of the contact problem (see `vem_contact::WorkCounters`); times in
+/// seconds.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Work {
+    /// Global assemblies (one per body and build).
+    pub assemblies: usize,
+    /// Symbolic analyses (or set-ups of an external solver).
+    pub symbolic_analyses: usize,
+    /// Numeric factorisations (for the interior point: one KKT factorisation per iteration
+    /// and the initial one).
+    pub numeric_factorisations: usize,
+    /// Forward and backward triangular solve pairs (0 where the backend does not tell).
+    pub triangular_solves: usize,
+    /// Interface node insertion.
+    pub insertion_s: f64,
+    /// Assembly of stiffness, load and constraint rows.
+    pub assembly_s: f64,
+    /// Symbolic analyses.
+    pub symbolic_s: f64,
+    /// Numeric factorisations.
+    pub numeric_s: f64,
+    /// Triangular solves.
+    pub solves_s: f64,
+    /// Whole contact solves (including the three stages before).
+    pub contact_solve_s: f64,
+    /// Post-processing of the contact result.
+    pub post_s: f64,
+}
+
+impl From<vem_contact::WorkCounters> for Work {
+    fn from(w: vem_contact::WorkCounters) -> Self {
+        let t = w.times;
+        Self {
+            assemblies: w.assemblies,
+            symbolic_analyses: w.symbolic_analyses,
+            numeric_factorisations: w.numeric_factorisations,
+            triangular_solves: w.triangular_solves,
+            insertion_s: t.insertion.as_secs_f64(),
+            assembly_s: t.assembly.as_secs_f64(),
+            symbolic_s: t.symbolic.as_secs_f64(),
+            numeric_s: t.numeric.as_secs_f64(),
+            solves_s: t.solves.as_secs_f64(),
+            contact_solve_s: t.contact_solve.as_secs_f64(),
+            post_s: t.post.as_secs_f64(),
+        }
+    }
 }
 
 /// KKT residuals (see `vem_contact::KktResiduals`).
@@ -605,16 +654,20 @@ impl fmt::Display for RunSummary {
                     "    {} normal rows, {tangential}, {} vertices inserted",
                     c.normal_rows, c.inserted_nodes
                 )?;
-                // Factorisations are counted by the Cholesky-based solvers only.
-                let factorisations = if c.factorisations > 0 {
-                    format!(", {} factorisations", c.factorisations)
-                } else {
-                    String::new()
-                };
                 writeln!(
                     f,
-                    "    solver {}: {}, {} iterations{factorisations}",
+                    "    solver {}: {}, {} iterations",
                     c.solver, c.status, c.iterations
+                )?;
+                let w = &c.work;
+                writeln!(
+                    f,
+                    "    work: {} assemblies, {} symbolic analyses, {} numeric factorisations, \
+                     {} triangular solves",
+                    w.assemblies,
+                    w.symbolic_analyses,
+                    w.numeric_factorisations,
+                    w.triangular_solves
                 )?;
                 if let Some(fp) = &c.fixed_point {
                     writeln!(

@@ -45,7 +45,12 @@ pub struct BodySpec {
     pub mesh: Spanned<MeshSpec>,
     /// Its material.
     pub material: Spanned<MaterialSpec>,
-    /// The VEM stabilisation (default: dofi-dofi, trace of C, scale 1/8).
+    /// The element by its registry name (`"vem1"`, `"vem1-shear"`, `"vem1-drecipe"`, `"p1"`, or
+    /// a user's own); exclusive with `stabilisation`.
+    #[serde(default)]
+    pub element: Option<Spanned<String>>,
+    /// The VEM stabilisation of the lowest-order VEM (default: dofi-dofi, trace of C, scale
+    /// 1/8); exclusive with `element`.
     #[serde(default)]
     pub stabilisation: Option<Spanned<StabilisationSpec>>,
     /// Prescribed displacements by part (`[[body.dirichlet]]`).
@@ -529,6 +534,15 @@ impl Scene {
                 Some(body.material.span()),
                 format!(
                     "body '{name}': give the material as `E` and `nu`, or as `lambda` and `mu`"
+                ),
+            ));
+        }
+        if let (Some(element), Some(_)) = (&body.element, &body.stabilisation) {
+            return Err(self.error(
+                Some(element.span()),
+                format!(
+                    "body '{name}': give `element` (a registered element) or `stabilisation` \
+                     (of the lowest-order VEM), not both"
                 ),
             ));
         }

@@ -1,7 +1,7 @@
 //! A solver of one's own, registered in a `SolverRegistry`, runs scenes like the built-in ones;
 //! an unknown solver name is a located error that lists the names.
 
-use vem_cli::{Model, Scene};
+use vem_cli::{Model, Registries, Scene};
 use vem_contact::{ContactSolver, PenaltySettings, PenaltySolver, SolverOptions, SolverRegistry};
 
 /// A Voronoi block pressed by a uniform pressure p = 0.01 on the rigid line y = 0: the contact
@@ -47,10 +47,16 @@ fn a_registered_solver_runs_a_scene() {
         )
         .unwrap();
     let scene = Scene::parse("block.toml", block("stiff-penalty")).unwrap();
-    let outcome = Model::build_with(&scene, &registry)
-        .unwrap()
-        .solve()
-        .unwrap();
+    let outcome = Model::build_with(
+        &scene,
+        &Registries {
+            solvers: registry,
+            ..Registries::default()
+        },
+    )
+    .unwrap()
+    .solve()
+    .unwrap();
     let contact = outcome.contact.as_ref().unwrap();
     for node in &contact.nodes {
         // The penalty solution penetrates by p / (penalty): relative error about 1e-6.

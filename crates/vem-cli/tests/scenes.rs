@@ -265,6 +265,12 @@ fn coulomb_fixed_point_with_slip_at_the_edges() {
     let contact = outcome.contact.as_ref().unwrap();
     let fixed_point = contact.fixed_point.as_ref().unwrap();
     assert!(fixed_point.residual <= 1e-8, "{fixed_point:?}");
+    // The fixed point of k Tresca solves runs on one discretisation: one assembly per body and
+    // one symbolic analysis, whatever k; the counters are in summary.json.
+    let work = &outcome.summary().contact.as_ref().unwrap().work;
+    assert_eq!(work.assemblies, 2, "{work:?}");
+    assert_eq!(work.symbolic_analyses, 1, "{work:?}");
+    assert!(work.numeric_factorisations > fixed_point.steps, "{work:?}");
     let nodes = nodes(&outcome);
     let largest = nodes.iter().map(|n| n.normal_force).fold(0.0, f64::max);
     // The bounds are F times the normal forces of the previous step, which differ from the
@@ -312,4 +318,45 @@ fn coulomb_fixed_point_with_slip_at_the_edges() {
     assert!(force.x.abs() < f * force.y);
     let top = body(&outcome, "disc").solution.reaction("top").unwrap();
     assert!((force + top).norm() < 1e-8 * force.norm());
+}
+
+/// The element key: the patch scene is solved exactly by every element of the registry that
+/// takes its polygons (the D-recipe and shear-scaled VEM), and a P1 element on polygons it
+/// cannot take is refused before assembly, naming the body and the element.
+#[test]
+fn element_key_selects_a_registered_element() {
+    let path = scene("patch");
+    let source = std::fs::read_to_string(&path).unwrap();
+    for element in ["vem1-drecipe", "vem1-shear"] {
+        let text = source.replacen(
+            "[[body]]\nname = \"upper\"",
+            &format!("[[body]]\nname = \"upper\"\nelement = \"{element}\""),
+            1,
+        );
+        assert_ne!(text, source, "the patch scene names its upper body 'upper'");
+        let parsed = vem_cli::Scene::parse(&path, text).unwrap();
+        let outcome = vem_cli::Model::build(&parsed).unwrap().solve().unwrap();
+        for node in nodes(&outcome) {
+            assert!((node.pressure - 2.0).abs() < 1e-9, "{element}: {node:?}");
+        }
+    }
+    let text = source.replacen(
+        "[[body]]\nname = \"upper\"",
+        "[[body]]\nname = \"upper\"\nelement = \"p1\"",
+        1,
+    );
+    let parsed = vem_cli::Scene::parse(&path, text).unwrap();
+    let error = vem_cli::Model::build(&parsed).unwrap_err().chain();
+    assert!(error.contains("p1") && error.contains("upper"), "{error}");
+    let text = source.replacen(
+        "[[body]]\nname = \"upper\"",
+        "[[body]]\nname = \"upper\"\nelement = \"vem2\"",
+        1,
+    );
+    let parsed = vem_cli::Scene::parse(&path, text).unwrap();
+    let error = vem_cli::Model::build(&parsed).unwrap_err().to_string();
+    assert!(
+        error.contains("vem1-drecipe") && error.contains(":"),
+        "{error}"
+    );
 }

@@ -72,9 +72,16 @@ struct Entry {
 /// );
 /// # Ok::<(), RegistryError>(())
 /// ```
-#[derive(Clone, Default)]
+#[derive(Clone)]
 pub struct ElementRegistry {
     entries: Vec<Entry>,
+}
+
+impl Default for ElementRegistry {
+    /// The built-in elements, as [`ElementRegistry::builtin`] (like the solver registry).
+    fn default() -> Self {
+        Self::builtin()
+    }
 }
 
 impl ElementRegistry {

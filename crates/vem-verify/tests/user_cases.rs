@@ -306,7 +306,11 @@ fn coulomb_patch_test_is_exact_through_the_study() {
         // k Tresca steps on one discretisation: one assembly per body, one symbolic analysis.
         assert_eq!(record.work.assemblies, 2, "{:?}", record.work);
         assert_eq!(record.work.symbolic_analyses, 1, "{:?}", record.work);
-        assert!(record.work.numeric_factorisations > steps, "{:?}", record.work);
+        assert!(
+            record.work.numeric_factorisations > steps,
+            "{:?}",
+            record.work
+        );
     }
 }
 
