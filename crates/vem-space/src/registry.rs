@@ -90,7 +90,9 @@ impl ElementRegistry {
 
     /// A registry without any element.
     pub fn empty() -> Self {
-        Self::default()
+        Self {
+            entries: Vec::new(),
+        }
     }
 
     /// The elements of this crate: `"vem1"` (default; dofi-dofi, `trace(C)`), `"vem1-shear"`
