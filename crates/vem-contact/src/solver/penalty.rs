@@ -36,7 +36,7 @@ use faer::Par;
 use super::error::{ContactSolverError, SettingsError};
 use super::newton_matrix::{NewtonMatrix, SingularGuard, FREE_MODE_CURVATURE};
 use super::report::{KktResiduals, SolveReport, SolveStatus};
-use super::system::ContactSystem;
+use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
 
 const NAME: &str = "penalty (semismooth Newton)";
@@ -201,6 +201,9 @@ impl PenaltySettingsBuilder {
 pub struct PenaltySolver {
     settings: PenaltySettings,
     matrix: Option<NewtonMatrix>,
+    /// The last answer and the structure it solved: the start of the next solve of the same
+    /// structure (a Coulomb step, a load step).
+    warm: Option<(PatternId, Vec<f64>)>,
 }
 
 impl PenaltySolver {
@@ -209,6 +212,7 @@ impl PenaltySolver {
         Self {
             settings,
             matrix: None,
+            warm: None,
         }
     }
 
@@ -496,7 +500,13 @@ impl ContactSolver for PenaltySolver {
             })?;
         let guard = SingularGuard::new(system, p.eps_n, p.eps_t);
 
-        let mut u = vec![0.0; n];
+        let warm = self
+            .warm
+            .take()
+            .filter(|(id, u)| *id == system.pattern() && u.len() == n)
+            .map(|(_, u)| u);
+        let warm_started = warm.is_some();
+        let mut u = warm.unwrap_or_else(|| vec![0.0; n]);
         let mut state = p.state(&u);
         let mut previous_sets: Option<Vec<bool>> = None;
         let mut iterations = 0;
@@ -510,7 +520,7 @@ impl ContactSolver for PenaltySolver {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
-            if iterations == 1 {
+            if iterations == 1 && !warm_started {
                 // First try the model with every node in contact and sticking (where friction
                 // acts): its minimiser usually lies near the final sets, where Newton steps
                 // from u = 0 would cross them one layer of nodes per step. Kept only if it
@@ -599,7 +609,10 @@ impl ContactSolver for PenaltySolver {
         };
         match outcome {
             Ok(()) => Ok(ContactSolution {
-                displacement: u,
+                displacement: {
+                    self.warm = Some((system.pattern(), u.clone()));
+                    u
+                },
                 normal_force: state.normal_force,
                 tangential_force: state.tangential_force,
                 report,
