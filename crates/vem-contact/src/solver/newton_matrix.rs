@@ -203,9 +203,16 @@ impl NewtonMatrix {
     ) -> bool {
         let start = Instant::now();
         self.values.iter_mut().for_each(|v| *v = 0.0);
-        for ((_, _, v), slot) in system.stiffness_entries().zip(&self.k_slots) {
-            if let Some(slot) = *slot {
-                self.values[slot] += v;
+        // The entries in the order of `stiffness_entries`, read from plain slices.
+        let mut slots = self.k_slots.iter();
+        for block in system.stiffness_blocks() {
+            let k = block.matrix();
+            for j in 0..k.ncols() {
+                for (&v, slot) in k.val()[k.col_range(j)].iter().zip(&mut slots) {
+                    if let Some(slot) = *slot {
+                        self.values[slot] += v;
+                    }
+                }
             }
         }
         self.normal.add_weighted(normal_weights, &mut self.values);

@@ -319,9 +319,7 @@ impl Penalised<'_> {
         let sys = self.system;
         let abs_u: Vec<f64> = u.iter().map(|x| x.abs()).collect();
         let mut out: Vec<f64> = sys.load().iter().map(|f| f.abs()).collect();
-        for (i, j, v) in sys.stiffness_entries() {
-            out[i] += v.abs() * abs_u[j];
-        }
+        sys.stiffness_apply_with(&abs_u, &mut out, f64::abs);
         let mut add = |rows: &super::ConstraintRows, eps: f64, offset: &[f64]| {
             for r in 0..rows.nrows() {
                 let (cols, vals) = rows.row(r);

@@ -645,10 +645,26 @@ impl<'a> ContactSystem<'a> {
             "ContactSystem::stiffness_apply: wrong length"
         );
         let mut y = vec![0.0; self.n];
-        for (i, j, v) in self.stiffness_entries() {
-            y[i] += v * x[j];
-        }
+        self.stiffness_apply_with(x, &mut y, |v| v);
         y
+    }
+
+    /// `y += g(K) x` entry by entry (`g(v) = |v|` gives `|K| x`): the hot loop of the Newton
+    /// solvers, over plain slices block by block.
+    pub(crate) fn stiffness_apply_with(&self, x: &[f64], y: &mut [f64], g: impl Fn(f64) -> f64) {
+        for block in &self.blocks {
+            let k = block.matrix();
+            let (rows, values) = (k.row_idx(), k.val());
+            let (x, y) = (&x[block.offset..], &mut y[block.offset..]);
+            for (j, &xj) in x.iter().take(k.ncols()).enumerate() {
+                if xj == 0.0 {
+                    continue;
+                }
+                for p in k.col_range(j) {
+                    y[rows[p]] += g(values[p]) * xj;
+                }
+            }
+        }
     }
 
     /// The diagonal of `K` (duplicates of unsorted storage summed).
