@@ -212,7 +212,7 @@ impl Model {
                             &c.part,
                             b.mesh(),
                             part,
-                            &interface_options(&self.scene),
+                            &interface_options(&self.scene)?,
                         )
                         .map_err(|source| CliError::Mesh {
                             context: format!(
@@ -340,16 +340,17 @@ pub(crate) fn obstacle_name(obstacle: &Obstacle) -> &'static str {
     }
 }
 
-/// The interface options of the scene's contact pair.
-fn interface_options(scene: &Scene) -> InterfaceOptions {
-    InterfaceOptions {
-        max_distance: scene
-            .file()
-            .contacts
-            .first()
-            .and_then(|c| c.get_ref().max_distance.as_ref().map(|d| *d.get_ref())),
-        ..InterfaceOptions::default()
-    }
+/// The interface options of the scene's contact pair, checked by the library and located at the
+/// `max_distance` key.
+fn interface_options(scene: &Scene) -> Result<InterfaceOptions, CliError> {
+    let spec = scene.file().contacts.first().map(|c| c.get_ref());
+    let Some(distance) = spec.and_then(|c| c.max_distance.as_ref()) else {
+        return Ok(InterfaceOptions::default());
+    };
+    InterfaceOptions::builder()
+        .max_distance(*distance.get_ref())
+        .build()
+        .map_err(|e| scene.error(Some(distance.span()), e.to_string()))
 }
 
 /// The mesh of one body and a description of where it came from.
@@ -563,17 +564,7 @@ fn build_contact(
         }
         _ => return Err(scene.error(Some(spec.body.span()), "incomplete contact pair")),
     };
-    let options = interface_options(scene);
-    options.validate().map_err(|e| {
-        let span = match &e {
-            vem_mesh::MeshError::InvalidOption {
-                setting: "max_distance",
-                ..
-            } => spec.max_distance.as_ref().map(|d| d.span()),
-            _ => None,
-        };
-        scene.error(span, e.to_string())
-    })?;
+    let options = interface_options(scene)?;
     let mut problem = problem.with_interface_options(options);
     if let Some(gap) = spec.imposed_gap.as_ref().map(|g| *g.get_ref()) {
         problem = problem.with_imposed_gap(move |_| gap);

@@ -69,21 +69,17 @@ use crate::{geometry, Mesh, MeshError, PartSpec, Point, Vector};
 /// interior vertex, where rounding may put the crossing just outside both edges.
 const VERTEX_CROSSING: f64 = 1e-12;
 
-/// Settings of [`insert_interface_nodes`].
+/// Settings of [`insert_interface_nodes`]; build them with [`InterfaceOptions::builder`]
+/// (every value is checked there) or take the [`Default`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InterfaceOptions {
-    /// Relative distance (fraction of the length of the edge a projected point falls on) under
-    /// which the point is the existing node. Must be in (0, 0.5). Default 1e-6.
-    pub snap_tolerance: f64,
-    /// Smallest piece, as a fraction of the edge being cut, that an insertion may leave; a
-    /// projected point closer than this to a node snaps to that node. In [0, 0.5). Default 1e-3.
-    pub min_edge_fraction: f64,
-    /// Projections farther than this (distance along the normal) do not count: only parts
-    /// closer than this face each other. `None` accepts any distance. Default `None`.
-    pub max_distance: Option<f64>,
+    snap_tolerance: f64,
+    min_edge_fraction: f64,
+    max_distance: Option<f64>,
 }
 
 impl Default for InterfaceOptions {
+    /// `snap_tolerance = 1e-6`, `min_edge_fraction = 1e-3`, no `max_distance`.
     fn default() -> Self {
         Self {
             snap_tolerance: 1e-6,
@@ -94,28 +90,50 @@ impl Default for InterfaceOptions {
 }
 
 impl InterfaceOptions {
+    /// A builder starting from the defaults.
+    ///
+    /// ```
+    /// use vem_mesh::{interface::InterfaceOptions, MeshError};
+    /// let near = InterfaceOptions::builder().max_distance(0.05).build()?;
+    /// assert_eq!(near.max_distance(), Some(0.05));
+    /// match InterfaceOptions::builder().max_distance(-1.0).build() {
+    ///     Err(MeshError::InvalidOption { setting, .. }) => assert_eq!(setting, "max_distance"),
+    ///     other => panic!("{other:?}"),
+    /// }
+    /// # Ok::<(), MeshError>(())
+    /// ```
+    pub fn builder() -> InterfaceOptionsBuilder {
+        InterfaceOptionsBuilder {
+            options: Self::default(),
+        }
+    }
+
+    /// Relative distance (fraction of the length of the edge a projected point falls on) under
+    /// which the point is the existing node; in (0, 0.5).
+    pub fn snap_tolerance(&self) -> f64 {
+        self.snap_tolerance
+    }
+
+    /// Smallest piece, as a fraction of the edge being cut, that an insertion may leave (a
+    /// projected point closer than this to a node snaps to that node); in [0, 0.5).
+    pub fn min_edge_fraction(&self) -> f64 {
+        self.min_edge_fraction
+    }
+
+    /// Projections farther than this (distance along the normal) do not count: only parts
+    /// closer than this face each other. `None`: any distance.
+    pub fn max_distance(&self) -> Option<f64> {
+        self.max_distance
+    }
+
     /// The fraction of an edge within which a projected point snaps to the edge's end node.
     fn snap_fraction(&self) -> f64 {
         self.snap_tolerance.max(self.min_edge_fraction)
     }
 
     /// Checks every setting: `snap_tolerance` in (0, 0.5), `min_edge_fraction` in [0, 0.5),
-    /// `max_distance` positive and finite when given. [`insert_interface_nodes`] checks them
-    /// too; call this to report a bad setting before any mesh is read.
-    ///
-    /// ```
-    /// use vem_mesh::{interface::InterfaceOptions, MeshError};
-    /// let options = InterfaceOptions { max_distance: Some(-1.0), ..Default::default() };
-    /// match options.validate() {
-    ///     Err(MeshError::InvalidOption { setting, .. }) => assert_eq!(setting, "max_distance"),
-    ///     other => panic!("{other:?}"),
-    /// }
-    /// # Ok::<(), MeshError>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`MeshError::InvalidOption`] naming the first invalid setting.
-    pub fn validate(&self) -> Result<(), MeshError> {
+    /// `max_distance` positive and finite when given.
+    fn validate(&self) -> Result<(), MeshError> {
         let invalid = |setting, value, requirement| {
             Err(MeshError::InvalidOption {
                 setting,
@@ -135,6 +153,41 @@ impl InterfaceOptions {
             }
             _ => Ok(()),
         }
+    }
+}
+
+/// Builder of [`InterfaceOptions`]; values are checked by [`InterfaceOptionsBuilder::build`].
+#[derive(Debug, Clone, Copy)]
+pub struct InterfaceOptionsBuilder {
+    options: InterfaceOptions,
+}
+
+impl InterfaceOptionsBuilder {
+    /// See [`InterfaceOptions::snap_tolerance`].
+    pub fn snap_tolerance(mut self, value: f64) -> Self {
+        self.options.snap_tolerance = value;
+        self
+    }
+
+    /// See [`InterfaceOptions::min_edge_fraction`].
+    pub fn min_edge_fraction(mut self, value: f64) -> Self {
+        self.options.min_edge_fraction = value;
+        self
+    }
+
+    /// See [`InterfaceOptions::max_distance`].
+    pub fn max_distance(mut self, value: f64) -> Self {
+        self.options.max_distance = Some(value);
+        self
+    }
+
+    /// Validates the settings.
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] naming the first invalid setting.
+    pub fn build(self) -> Result<InterfaceOptions, MeshError> {
+        self.options.validate()?;
+        Ok(self.options)
     }
 }
 
