@@ -91,10 +91,9 @@ fn row(label: &str, result: &StudyResult) {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let vertex_mean = ProblemSettings {
-        element: Arc::new(VertexMeanLoad(LowestOrderVem::default())),
-        ..ProblemSettings::default()
-    };
+    let vertex_mean = ProblemSettings::builder()
+        .element(Arc::new(VertexMeanLoad(LowestOrderVem::default())))
+        .build()?;
     println!(
         "| case | load | E_0 (successive rate), n = 8, 16, 32, 64 | E_grad rate | ΔN at n = 64 |"
     );

@@ -41,14 +41,12 @@ use crate::exact::{BodyId, ExactSolution, CONTACT_SIDES};
 use crate::norms::{body_errors, ErrorNorms};
 use crate::VerifyError;
 
-/// How a discrete problem is built from an exact solution.
+/// How a discrete problem is built from an exact solution; build it with
+/// [`ProblemSettings::builder`] or take the [`Default`].
 #[derive(Clone)]
 pub struct ProblemSettings {
-    /// The element space of every body (default: [`LowestOrderVem::default`]).
-    pub element: Arc<dyn ElementSpace>,
-    /// Gauss–Legendre points per boundary edge for the tractions (default
-    /// [`ProblemSettings::DEFAULT_TRACTION_POINTS`]).
-    pub traction_points: usize,
+    element: Arc<dyn ElementSpace>,
+    traction_points: usize,
 }
 
 impl ProblemSettings {
@@ -56,6 +54,30 @@ impl ProblemSettings {
     /// tractions are of degree <= 2 along the lateral sides; a user's solution may be
     /// trigonometric), and a negligible cost on the boundary.
     pub const DEFAULT_TRACTION_POINTS: usize = 4;
+
+    /// A builder starting from the defaults.
+    pub fn builder() -> ProblemSettingsBuilder {
+        ProblemSettingsBuilder {
+            settings: Self::default(),
+        }
+    }
+
+    /// The element space of every body (default: [`LowestOrderVem::default`]).
+    pub fn element(&self) -> &Arc<dyn ElementSpace> {
+        &self.element
+    }
+
+    /// Gauss–Legendre points per boundary edge for the tractions (default
+    /// [`ProblemSettings::DEFAULT_TRACTION_POINTS`]).
+    pub fn traction_points(&self) -> usize {
+        self.traction_points
+    }
+
+    /// The same settings with another element space.
+    pub(crate) fn with_element(mut self, element: Arc<dyn ElementSpace>) -> Self {
+        self.element = element;
+        self
+    }
 }
 
 impl Default for ProblemSettings {
@@ -64,6 +86,45 @@ impl Default for ProblemSettings {
             element: Arc::new(LowestOrderVem::default()),
             traction_points: Self::DEFAULT_TRACTION_POINTS,
         }
+    }
+}
+
+/// Builder of [`ProblemSettings`]; values are checked by [`ProblemSettingsBuilder::build`].
+#[derive(Clone)]
+pub struct ProblemSettingsBuilder {
+    settings: ProblemSettings,
+}
+
+impl ProblemSettingsBuilder {
+    /// The element space of every body.
+    pub fn element(mut self, element: Arc<dyn ElementSpace>) -> Self {
+        self.settings.element = element;
+        self
+    }
+
+    /// Gauss–Legendre points per boundary edge for the tractions.
+    pub fn traction_points(mut self, points: usize) -> Self {
+        self.settings.traction_points = points;
+        self
+    }
+
+    /// Validates the settings (the number of traction points must give a Gauss–Legendre rule).
+    ///
+    /// # Errors
+    /// [`VerifyError::InvalidSetting`] naming the setting.
+    pub fn build(self) -> Result<ProblemSettings, VerifyError> {
+        vem_space::quadrature::GaussLegendre::try_new(self.settings.traction_points).map_err(
+            |e| VerifyError::InvalidSetting {
+                reason: format!("traction_points = {}: {e}", self.settings.traction_points),
+            },
+        )?;
+        Ok(self.settings)
+    }
+}
+
+impl std::fmt::Debug for ProblemSettingsBuilder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.settings.fmt(f)
     }
 }
 

@@ -570,7 +570,7 @@ impl Study {
     /// `vem_space::LinearTriangle`) or a user's own [`ElementSpace`]. Its
     /// [`name`](ElementSpace::name) is reported in [`StudyResult::element`].
     pub fn element(mut self, element: Arc<dyn ElementSpace>) -> Self {
-        self.settings.element = element;
+        self.settings = self.settings.clone().with_element(element);
         self
     }
 
@@ -783,7 +783,7 @@ impl Study {
             pairing_label: self.pairing.describe(),
             slug: self.pairing.slug(),
             solver: self.solver.clone(),
-            element: self.settings.element.name().to_string(),
+            element: self.settings.element().name().to_string(),
             lame: (lame.lambda(), lame.mu()),
             seed: self.seed,
             records,
