@@ -14,6 +14,15 @@ use vem_space::LowestOrderVem;
 
 /// Two blocks on non-matching meshes, the upper pushed down by `push` on its top.
 fn blocks(law: ContactLaw, push: f64) -> ContactProblem {
+    blocks_of(
+        law,
+        push,
+        Material::from_lame(2.0, 1.0, Plane::Strain).unwrap(),
+    )
+}
+
+/// [`blocks`] with the upper block of `upper_material`.
+fn blocks_of(law: ContactLaw, push: f64, upper_material: Material) -> ContactProblem {
     let material = Material::from_lame(2.0, 1.0, Plane::Strain).unwrap();
     let element = Arc::new(LowestOrderVem::default());
     let square = |y0: f64, n: usize| {
@@ -24,7 +33,7 @@ fn blocks(law: ContactLaw, push: f64) -> ContactProblem {
         )
         .unwrap()
     };
-    let upper = ElasticBody::builder("upper", square(0.0, 3), material, element.clone())
+    let upper = ElasticBody::builder("upper", square(0.0, 3), upper_material, element.clone())
         .dirichlet(Dirichlet::prescribed("top", Component::Y, move |_| {
             Vector::new(0.0, -push)
         }))
@@ -165,29 +174,7 @@ fn a_refilled_material_agrees_with_a_fresh_build() {
     let refilled = d.solve(&mut solver).unwrap();
     assert_eq!(refilled.work.symbolic_analyses, 0);
     // A fresh build with the softer material on body A.
-    let material = Material::from_lame(2.0, 1.0, Plane::Strain).unwrap();
-    let element = Arc::new(LowestOrderVem::default());
-    let upper = problem.body().with_material(softer).unwrap();
-    let lower = ElasticBody::builder(
-        "lower",
-        structured_quads(
-            &Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0)),
-            4,
-            4,
-        )
-        .unwrap(),
-        material,
-        element,
-    )
-    .dirichlet(Dirichlet::prescribed("bottom", Component::Y, |_| {
-        Vector::zeros()
-    }))
-    .dirichlet(Dirichlet::prescribed("left", Component::X, |_| {
-        Vector::zeros()
-    }))
-    .build()
-    .unwrap();
-    let fresh = ContactProblem::two_bodies(upper, "bottom", lower, "top", problem.law().clone())
+    let fresh = blocks_of(problem.law().clone(), 0.03, softer)
         .solve(&mut ActiveSetSolver::default())
         .unwrap();
     let scale = fresh.normal_resultant();
