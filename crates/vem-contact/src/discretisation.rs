@@ -536,11 +536,9 @@ impl ContactDiscretisation {
             .or(self.friction_bounds.as_deref());
         // A node is open when its force is negligible against the largest of the contact forces
         // and the nodal loads (an interior-point solver leaves ~1e-10 relative on open nodes).
-        let force_scale = solution
-            .normal_force
-            .iter()
-            .chain(&self.load)
-            .fold(0.0_f64, |m, &f| m.max(f.abs()) * load_factor.abs().max(1.0));
+        let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+        let force_scale =
+            largest(&solution.normal_force).max(load_factor.abs() * largest(&self.load));
         let force_tolerance = 1e-6 * force_scale.max(f64::MIN_POSITIVE);
         let nodes: Vec<InterfaceNode> = self
             .nodes

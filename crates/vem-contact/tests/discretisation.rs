@@ -136,6 +136,12 @@ fn a_load_step_scales_a_fully_closed_contact() {
         (support + contact + 0.5 * 0.01).abs() < 1e-12,
         "{support} {contact}"
     );
+    // Twice the load: still closed everywhere, every node in contact, forces doubled.
+    let double = d.solve_scaled(&mut solver, 2.0).unwrap();
+    for (a, b) in full.nodes.iter().zip(&double.nodes) {
+        assert_ne!(b.status, vem_contact::NodeStatus::Open, "{b:?}");
+        assert!((2.0 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
+    }
     // No assembly and no symbolic analysis for the second solve.
     assert_eq!(half.work.assemblies, 0);
     assert_eq!(half.work.symbolic_analyses, 0);

@@ -256,7 +256,7 @@ impl ContactSolver for ActiveSetSolver {
                 .iter()
                 .map(|&t| if t == 0 { rho } else { 0.0 })
                 .collect();
-            let Some((_, shifted)) = guard.factorise(matrix, system, &wn, &wt) else {
+            let Some(shifted) = guard.factorise(matrix, system, &wn, &wt) else {
                 break Err((SolveStatus::NumericalFailure, None));
             };
             // Known multipliers of the split.

@@ -305,24 +305,25 @@ impl SingularGuard {
     }
 
     /// Factorises `K + sum wn bn bn' + sum wt bt bt'`, or, if that is not definite, the same
-    /// plus `delta D`. Returns the number of factorisations done and whether the shift was
-    /// needed, or `None` if even the shifted matrix is not definite (`K` indefinite).
+    /// plus `delta D`. Returns whether the shift was needed (the factorisations are counted in
+    /// the matrix's work), or `None` if even the shifted matrix is not definite (`K`
+    /// indefinite).
     pub(crate) fn factorise(
         &self,
         matrix: &mut NewtonMatrix,
         system: &ContactSystem<'_>,
         normal_weights: &[f64],
         tangential_weights: &[f64],
-    ) -> Option<(usize, bool)> {
+    ) -> Option<bool> {
         if matrix.refill_and_factorise(system, normal_weights, tangential_weights, &self.no_shift) {
-            Some((1, false))
+            Some(false)
         } else if matrix.refill_and_factorise(
             system,
             normal_weights,
             tangential_weights,
             &self.shift,
         ) {
-            Some((2, true))
+            Some(true)
         } else {
             None
         }

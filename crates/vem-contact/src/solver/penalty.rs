@@ -529,7 +529,7 @@ impl ContactSolver for PenaltySolver {
                     .iter()
                     .map(|&b| if b > 0.0 { p.eps_t } else { 0.0 })
                     .collect();
-                if let Some((_, false)) = guard.factorise(matrix, system, &all_normal, &all_stick) {
+                if let Some(false) = guard.factorise(matrix, system, &all_normal, &all_stick) {
                     // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v|^2.
                     let mut v = system.load().to_vec();
                     let weighted_gap: Vec<f64> = system.gap().iter().map(|g| p.eps_n * g).collect();
@@ -556,7 +556,7 @@ impl ContactSolver for PenaltySolver {
                 .iter()
                 .map(|&a| if a { p.eps_t } else { 0.0 })
                 .collect();
-            let Some((_, shifted)) =
+            let Some(shifted) =
                 guard.factorise(matrix, system, &normal_weights, &tangential_weights)
             else {
                 // Not definite even with the shift: K has a negative eigenvalue.
