@@ -53,10 +53,10 @@ pub use result::{
 };
 
 pub use solver::{
-    ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
-    ContactSolverError, ContactSystem, ContactSystemError, Friction, KktResiduals, PatternId,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
-    StageTimes, StiffnessBlock, WorkCounters,
+    ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
+    ContactSolution, ContactSolver, ContactSolverError, ContactSystem, ContactSystemError,
+    Friction, KktResiduals, PatternId, PenaltyParameter, PenaltySettings, PenaltySolver,
+    SettingsError, SolveReport, SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
 };
 #[cfg(feature = "clarabel")]
 pub use solver::{ExactSettings, ExactSolver};

@@ -22,8 +22,8 @@ use std::fmt;
 use std::sync::Arc;
 
 use crate::solver::{
-    ActiveSetSettings, ActiveSetSolver, ContactSolver, PenaltyParameter, PenaltySettings,
-    PenaltySolver, SettingsError,
+    ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ContactSolver,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
 };
 #[cfg(feature = "clarabel")]
 use crate::solver::{ExactSettings, ExactSolver};
@@ -173,12 +173,9 @@ impl Default for SolverRegistry {
 }
 
 impl SolverRegistry {
-    /// The name of the default solver.
-    #[cfg(feature = "clarabel")]
-    pub const DEFAULT: &'static str = "exact";
-    /// The name of the default solver (without the `clarabel` feature).
-    #[cfg(not(feature = "clarabel"))]
-    pub const DEFAULT: &'static str = "active-set";
+    /// The name of the default solver: [`CondensedSolver`], exact and at the cost of about one
+    /// factorisation of the stiffness.
+    pub const DEFAULT: &'static str = "condensed";
 
     /// A registry without any solver.
     pub fn empty() -> Self {
@@ -193,6 +190,21 @@ impl SolverRegistry {
         let mut registry = Self::empty();
         #[allow(unused_mut)]
         let mut builtin: Vec<(&str, &str, SolverFactory)> = vec![
+            (
+                "condensed",
+                "condensation onto the interface: one factorisation, exact dense interface problem",
+                Arc::new(|o: &SolverOptions| {
+                    o.refuse(&["penalty", "augmentation"])?;
+                    let mut b = CondensedSettings::builder();
+                    if let Some(t) = o.tolerance {
+                        b = b.tolerance(t);
+                    }
+                    if let Some(m) = o.max_iterations {
+                        b = b.max_iterations(m);
+                    }
+                    Ok(Box::new(CondensedSolver::new(b.build()?)) as Box<dyn ContactSolver>)
+                }),
+            ),
             (
                 "penalty",
                 "penalty method, semismooth Newton with exact line search",
@@ -232,7 +244,7 @@ impl SolverRegistry {
         ];
         #[cfg(feature = "clarabel")]
         builtin.insert(
-            0,
+            1,
             (
                 "exact",
                 "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
@@ -331,8 +343,12 @@ mod tests {
     #[test]
     fn builtin_names_make_their_solvers() {
         let registry = SolverRegistry::builtin();
-        assert_eq!(registry.names(), ["exact", "penalty", "active-set"]);
+        assert_eq!(
+            registry.names(),
+            ["condensed", "exact", "penalty", "active-set"]
+        );
         for (name, solver) in [
+            ("condensed", "condensed (interface Schur complement)"),
             ("exact", "exact (clarabel)"),
             ("penalty", "penalty (semismooth Newton)"),
             ("active-set", "active set (primal-dual)"),

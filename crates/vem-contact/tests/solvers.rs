@@ -4,9 +4,9 @@ use faer::sparse::{SparseColMat, Triplet};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vem_contact::{
-    ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
-    ContactSolverError, ContactSystem, ContactSystemError, ExactSettings, ExactSolver, Friction,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SolveStatus,
+    ActiveSetSettings, ActiveSetSolver, CondensedSolver, ConstraintRows, ContactSolution,
+    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, ExactSettings,
+    ExactSolver, Friction, PenaltyParameter, PenaltySettings, PenaltySolver, SolveStatus,
 };
 
 fn matrix(n: usize, entries: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
@@ -27,6 +27,10 @@ fn exact() -> ExactSolver {
 
 fn active() -> ActiveSetSolver {
     ActiveSetSolver::default()
+}
+
+fn condensed() -> CondensedSolver {
+    CondensedSolver::default()
 }
 
 /// Penalty solver with `eps_N = eps_T = factor x` the largest constrained diagonal of `K`.
@@ -106,6 +110,7 @@ fn one_dof_spring_short_of_the_wall() {
     for solver in [
         &mut exact() as &mut dyn ContactSolver,
         &mut active() as &mut dyn ContactSolver,
+        &mut condensed() as &mut dyn ContactSolver,
         &mut penalty(1e3) as &mut dyn ContactSolver,
     ] {
         let s = solve(solver, &spring(k, f, g));
@@ -121,6 +126,7 @@ fn negative_gap_pushes_the_spring_back() {
     for solver in [
         &mut exact() as &mut dyn ContactSolver,
         &mut active() as &mut dyn ContactSolver,
+        &mut condensed() as &mut dyn ContactSolver,
     ] {
         let s = solve(solver, &spring(k, 0.0, g));
         assert_close(s.displacement[0], g, 1e-9, "u");
@@ -149,6 +155,7 @@ fn two_springs_in_series_against_a_wall() {
     for (solver, tol) in [
         (&mut exact() as &mut dyn ContactSolver, 1e-9),
         (&mut active() as &mut dyn ContactSolver, 1e-12),
+        (&mut condensed() as &mut dyn ContactSolver, 1e-12),
         (&mut relative_penalty(1e8) as &mut dyn ContactSolver, 1e-7),
     ] {
         let inactive = solve(solver, &two_springs(k1, k2, f, 3.0));
@@ -205,6 +212,7 @@ fn two_chains_pressed_together() {
     for (solver, tol) in [
         (&mut exact() as &mut dyn ContactSolver, 1e-9),
         (&mut active() as &mut dyn ContactSolver, 1e-12),
+        (&mut condensed() as &mut dyn ContactSolver, 1e-12),
         (&mut relative_penalty(1e8) as &mut dyn ContactSolver, 1e-7),
     ] {
         let s = solve(solver, &two_chains(k, f, g));
@@ -269,6 +277,7 @@ fn tresca_block_sticks_below_the_bound() {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
             &mut active() as &mut dyn ContactSolver,
+            &mut condensed() as &mut dyn ContactSolver,
         ] {
             let s = solve(solver, &block(kx, ky, [fx, 3.0], b));
             assert_close(s.displacement[0], 0.0, 1e-9, "no slip");
@@ -299,6 +308,7 @@ fn tresca_block_slips_above_the_bound() {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
             &mut active() as &mut dyn ContactSolver,
+            &mut condensed() as &mut dyn ContactSolver,
             &mut penalty(1e6) as &mut dyn ContactSolver,
         ] {
             let s = solve(solver, &block(kx, ky, [fx, 3.0], b));
@@ -323,6 +333,7 @@ fn tresca_block_free_tangentially_holds_below_capacity() {
     for solver in [
         &mut exact() as &mut dyn ContactSolver,
         &mut active() as &mut dyn ContactSolver,
+        &mut condensed() as &mut dyn ContactSolver,
     ] {
         let s = solve(solver, &block(0.0, 9.0, [1.0, 3.0], 2.0));
         assert_close(s.displacement[0], 0.0, 1e-8, "no slip");
@@ -342,6 +353,7 @@ fn rigid_sliding_is_detected() {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
             &mut active() as &mut dyn ContactSolver,
+            &mut condensed() as &mut dyn ContactSolver,
             &mut penalty(1e3) as &mut dyn ContactSolver,
         ] {
             match solver.solve(&block(0.0, 9.0, [fxs, 3.0], b)) {
@@ -381,6 +393,7 @@ fn floating_body_is_unbounded() {
         for solver in [
             &mut exact() as &mut dyn ContactSolver,
             &mut active() as &mut dyn ContactSolver,
+            &mut condensed() as &mut dyn ContactSolver,
             &mut penalty(1e3) as &mut dyn ContactSolver,
         ] {
             match solver.solve(system) {
@@ -650,11 +663,111 @@ fn no_constraints_is_a_linear_solve() {
     for solver in [
         &mut exact() as &mut dyn ContactSolver,
         &mut active() as &mut dyn ContactSolver,
+        &mut condensed() as &mut dyn ContactSolver,
         &mut penalty(1e3) as &mut dyn ContactSolver,
     ] {
         let s = solve(solver, &system);
         assert_close(s.displacement[0], 2.0 / 3.0, 1e-9, "u0");
         assert_close(s.displacement[1], 1.0 / 3.0, 1e-9, "u1");
         assert!(s.normal_force.is_empty());
+    }
+}
+
+/// A system built around a chosen KKT point: 8 node pairs (normal row `u_4i - u_4i+2`,
+/// tangential row `u_4i+1 - u_4i+3`), each strongly active, weakly active (closed gap, zero
+/// force) or open, and with friction sticking, slipping or weakly sticking (no slip, force at
+/// the bound). The load is `f = K u* + B' lambda*`, so `(u*, lambda*)` is the unique answer.
+fn manufactured_system(
+    seed: u64,
+    with_friction: bool,
+) -> (ContactSystem<'static>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (n, m) = (40, 8);
+    let mut entries = Vec::new();
+    let mut diag = vec![0.0; n];
+    for i in 0..n {
+        for j in (i + 1)..(i + 5).min(n) {
+            let v: f64 = rng.gen_range(-1.0..0.0);
+            entries.push((i, j, v));
+            entries.push((j, i, v));
+            diag[i] += v.abs();
+            diag[j] += v.abs();
+        }
+    }
+    for (i, d) in diag.iter().enumerate() {
+        entries.push((i, i, d + rng.gen_range(0.01..1.0)));
+    }
+    let k = matrix(n, &entries);
+    let mut u: Vec<f64> = (0..n).map(|_| rng.gen_range(-1.0..1.0)).collect();
+    let (mut ln, mut lt, mut gap, mut bounds) =
+        (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+    let (mut normal, mut tangential) = (Vec::new(), Vec::new());
+    for i in 0..m {
+        normal.extend([(i, 4 * i, 1.0), (i, 4 * i + 2, -1.0)]);
+        tangential.extend([(i, 4 * i + 1, 1.0), (i, 4 * i + 3, -1.0)]);
+        let jump = u[4 * i] - u[4 * i + 2];
+        match rng.gen_range(0..3) {
+            0 => {
+                ln[i] = rng.gen_range(0.5..2.0);
+                gap[i] = jump;
+            }
+            1 => gap[i] = jump,
+            _ => gap[i] = jump + rng.gen_range(0.1..1.0),
+        }
+        if with_friction {
+            let b = rng.gen_range(0.1..1.0);
+            bounds[i] = b;
+            let slip = match rng.gen_range(0..3) {
+                0 => {
+                    lt[i] = rng.gen_range(-0.9..0.9) * b;
+                    0.0
+                }
+                1 => {
+                    let s: f64 =
+                        rng.gen_range(0.1..1.0) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+                    lt[i] = b * s.signum();
+                    s
+                }
+                _ => {
+                    lt[i] = if rng.gen_bool(0.5) { b } else { -b };
+                    0.0
+                }
+            };
+            u[4 * i + 3] = u[4 * i + 1] - slip;
+        }
+    }
+    let normal = rows(m, n, &normal);
+    let tangential = rows(m, n, &tangential);
+    let mut load = vec![0.0; n];
+    for j in 0..n {
+        for (&i, &v) in k.row_idx_of_col_raw(j).iter().zip(k.val_of_col(j)) {
+            load[i] += v * u[j];
+        }
+    }
+    normal.add_transpose_apply(&ln, &mut load);
+    let friction = with_friction.then(|| {
+        tangential.add_transpose_apply(&lt, &mut load);
+        Friction::try_new(tangential, bounds).expect("valid friction")
+    });
+    let system = ContactSystem::try_new(k, load, normal, gap, friction).expect("valid system");
+    (system, u, ln, lt)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    /// The condensed solver recovers manufactured KKT points with weakly active nodes (both
+    /// sides of every switch) to round-off; the exact (interior-point) solver agrees to its
+    /// accuracy, which degenerate (weakly active) nodes limit to about 1e-5 here.
+    #[test]
+    fn condensed_solver_recovers_manufactured_kkt_points(seed in 0u64..1_000_000, with_friction in proptest::bool::ANY) {
+        let (system, u, ln, lt) = manufactured_system(seed, with_friction);
+        let c = solve(&mut condensed(), &system);
+        let e = solve(&mut exact(), &system);
+        for (solution, tol) in [(&c, 1e-10), (&e, 1e-4)] {
+            let du = max_difference(solution.displacement.iter().zip(&u));
+            let dn = max_difference(solution.normal_force.iter().zip(&ln));
+            let dt = if with_friction { max_difference(solution.tangential_force.iter().zip(&lt)) } else { 0.0 };
+            proptest::prop_assert!(du < tol && dn < tol && dt < tol, "{}: du {du:e} dn {dn:e} dt {dt:e}", solution.report.solver);
+        }
     }
 }

@@ -24,6 +24,8 @@
 //!   For frictionless systems it is all zeros.
 
 mod active_set;
+mod box_qp;
+mod condensed;
 mod error;
 #[cfg(feature = "clarabel")]
 mod exact;
@@ -33,6 +35,7 @@ mod report;
 mod system;
 
 pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};
+pub use condensed::{CondensedSettings, CondensedSettingsBuilder, CondensedSolver};
 pub use error::{ContactSolverError, SettingsError};
 #[cfg(feature = "clarabel")]
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
