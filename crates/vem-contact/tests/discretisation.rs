@@ -4,8 +4,8 @@
 use std::sync::Arc;
 
 use vem_contact::{
-    ActiveSetSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings, ExactSolver,
-    PenaltySolver,
+    ActiveSetSolver, CondensedSolver, ContactLaw, ContactProblem, ContactSolver, ExactSettings,
+    ExactSolver, PenaltySolver,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
@@ -77,6 +77,10 @@ fn a_reused_solver_agrees_with_a_fresh_one() {
     let solvers: Vec<(Box<dyn ContactSolver>, Box<dyn ContactSolver>)> = vec![
         (Box::new(tight_exact()), Box::new(tight_exact())),
         (
+            Box::new(CondensedSolver::default()),
+            Box::new(CondensedSolver::default()),
+        ),
+        (
             Box::new(PenaltySolver::default()),
             Box::new(PenaltySolver::default()),
         ),
@@ -119,33 +123,43 @@ fn a_load_step_scales_a_fully_closed_contact() {
     // The blocks touch along the whole interface at every load factor: the problem is linear
     // there, so every force scales with the load factor.
     let d = blocks(ContactLaw::Frictionless, 0.03).discretise().unwrap();
-    let mut solver = ActiveSetSolver::default();
-    let full = d.solve(&mut solver).unwrap();
-    let half = d.solve_scaled(&mut solver, 0.5).unwrap();
-    let scale = full.normal_resultant();
-    for (a, b) in full.nodes.iter().zip(&half.nodes) {
-        assert!((0.5 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
-        assert!((0.5 * a.normal_jump - b.normal_jump).abs() < 1e-14);
+    for mut solver in [
+        Box::new(ActiveSetSolver::default()) as Box<dyn ContactSolver>,
+        Box::new(CondensedSolver::default()),
+    ] {
+        let solver = &mut *solver;
+        let full = d.solve(solver).unwrap();
+        let half = d.solve_scaled(solver, 0.5).unwrap();
+        let scale = full.normal_resultant();
+        for (a, b) in full.nodes.iter().zip(&half.nodes) {
+            assert!((0.5 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
+            assert!((0.5 * a.normal_jump - b.normal_jump).abs() < 1e-14);
+        }
+        // Equilibrium of the upper block at half load: support reaction + contact force + applied
+        // traction = 0 (vertical), the traction 0.02 y on x = 1 having resultant 0.01 at full load.
+        let upper = &half.bodies[0].solution;
+        let support: f64 = upper.reactions().iter().map(|r| r.force.y).sum();
+        let contact = half.force_on_body_a().y;
+        assert!(
+            (support + contact + 0.5 * 0.01).abs() < 1e-12,
+            "{support} {contact}"
+        );
+        // Twice the load: still closed everywhere, every node in contact, forces doubled.
+        let double = d.solve_scaled(solver, 2.0).unwrap();
+        for (a, b) in full.nodes.iter().zip(&double.nodes) {
+            assert_ne!(b.status, vem_contact::NodeStatus::Open, "{b:?}");
+            assert!((2.0 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
+        }
+        // No assembly and no symbolic analysis for the second solve.
+        assert_eq!(half.work.assemblies, 0);
+        assert_eq!(half.work.symbolic_analyses, 0);
+        if half.report.solver.starts_with("condensed") {
+            // Nor any factorisation: only the load changed.
+            assert_eq!(half.work.numeric_factorisations, 0);
+        } else {
+            assert!(half.work.numeric_factorisations >= 1);
+        }
     }
-    // Equilibrium of the upper block at half load: support reaction + contact force + applied
-    // traction = 0 (vertical), the traction 0.02 y on x = 1 having resultant 0.01 at full load.
-    let upper = &half.bodies[0].solution;
-    let support: f64 = upper.reactions().iter().map(|r| r.force.y).sum();
-    let contact = half.force_on_body_a().y;
-    assert!(
-        (support + contact + 0.5 * 0.01).abs() < 1e-12,
-        "{support} {contact}"
-    );
-    // Twice the load: still closed everywhere, every node in contact, forces doubled.
-    let double = d.solve_scaled(&mut solver, 2.0).unwrap();
-    for (a, b) in full.nodes.iter().zip(&double.nodes) {
-        assert_ne!(b.status, vem_contact::NodeStatus::Open, "{b:?}");
-        assert!((2.0 * a.normal_force - b.normal_force).abs() < 1e-12 * scale);
-    }
-    // No assembly and no symbolic analysis for the second solve.
-    assert_eq!(half.work.assemblies, 0);
-    assert_eq!(half.work.symbolic_analyses, 0);
-    assert!(half.work.numeric_factorisations >= 1);
 }
 
 #[test]
@@ -155,11 +169,18 @@ fn coulomb_costs_one_assembly_and_one_symbolic_analysis() {
         Box::new(PenaltySolver::default()) as Box<dyn ContactSolver>,
         Box::new(ActiveSetSolver::default()),
         Box::new(tight_exact()),
+        Box::new(CondensedSolver::default()),
     ] {
         let result = blocks(law.clone(), 0.03).solve(&mut *solver).unwrap();
         let steps = result.fixed_point.as_ref().unwrap().steps;
         assert!(steps >= 1);
         assert_eq!(result.work.assemblies, 2, "one per body"); // built once
+        if result.report.solver.starts_with("condensed") {
+            // One analysis and one factorisation per body for the whole fixed point.
+            assert_eq!(result.work.symbolic_analyses, 2);
+            assert_eq!(result.work.numeric_factorisations, 2);
+            continue;
+        }
         assert_eq!(result.work.symbolic_analyses, 1, "{}", result.report.solver);
         assert!(result.work.numeric_factorisations > steps);
         // Coulomb's law node by node.

@@ -6,8 +6,8 @@
 use std::sync::Arc;
 
 use vem_contact::{
-    ContactLaw, ContactProblem, ContactResult, ContactSolver, ExactSettings, ExactSolver,
-    NodeStatus, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver,
+    CondensedSolver, ContactLaw, ContactProblem, ContactResult, ContactSolver, ExactSettings,
+    ExactSolver, NodeStatus, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
@@ -253,11 +253,16 @@ fn contact_patch_tests_are_exact_on_matching_and_non_matching_meshes() {
     ] {
         for (pairing, upper, lower) in pairings() {
             let label = format!("{name} on {pairing}");
-            let result = patch
-                .problem(upper, lower)
+            let problem = patch.problem(upper, lower);
+            let result = problem
                 .solve(&mut tight_exact())
                 .unwrap_or_else(|e| panic!("{label}: {e}"));
             check_exact(&patch, &result, 1e-9, &label);
+            // The condensed solver is exact up to round-off.
+            let condensed = problem
+                .solve(&mut CondensedSolver::default())
+                .unwrap_or_else(|e| panic!("{label}, condensed: {e}"));
+            check_exact(&patch, &condensed, 1e-11, &label);
             let expected_status = match (patch.law, name) {
                 (Law::Tresca, "PTC3") => NodeStatus::Stick,
                 _ => NodeStatus::Slip,
