@@ -6,7 +6,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use vem_contact::{ActiveSetSolver, ContactSolver, ExactSolver, PenaltySolver};
+use vem_contact::{ActiveSetSolver, CondensedSolver, ContactSolver, ExactSolver, PenaltySolver};
 use vem_mesh::generators::MeshFamily;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
@@ -37,6 +37,7 @@ fn main() {
                     .contact_problem()
                     .unwrap();
             let solvers: Vec<Box<dyn ContactSolver>> = vec![
+                Box::new(CondensedSolver::default()),
                 Box::new(ExactSolver::default()),
                 Box::new(PenaltySolver::default()),
                 Box::new(ActiveSetSolver::default()),

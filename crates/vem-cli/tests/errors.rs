@@ -158,7 +158,7 @@ fn law_settings_must_match_the_law() {
         &error_of(&text),
         &text,
         "{ factor",
-        &["`penalty` does not apply to solver = \"exact\""],
+        &["`penalty` does not apply to solver = \"condensed\""],
     );
 }
 
