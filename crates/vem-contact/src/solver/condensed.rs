@@ -22,19 +22,35 @@
 //! the solver keeps the factorisations and `H`; per solve it does two triangular solve pairs
 //! per body and dense interface work. The multipliers of the last solve start the next one.
 //!
-//! A body whose stiffness is singular (held only by contact or friction) has no Cholesky
-//! factor; the solver then hands the system to the [`ActiveSetSolver`], whose shifted
-//! factorisation and free-mode test handle it, and its report says so.
+//! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
+//! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
+//! factorised as `K_s = K + s E_G` (`E_G` the identity on its interface unknowns, `s` a small
+//! multiple of their largest stiffness), which changes only the trailing block (`M = S + s I`)
+//! because those unknowns are eliminated last. The exact problem is recovered by proximal point
+//! steps on the interface,
+//!
+//! ```text
+//! v_k+1 = argmin 1/2 v'Sv - f~'v + s/2 |v - v_k|^2 (+ friction)  s.t.  B v <= g,
+//! ```
+//!
+//! each the same box QP with `H = B M^-1 B'` and a new `d`; they converge to a minimiser when
+//! the contact or friction holds the body, and otherwise move along the free mode by a
+//! constant step, which is reported as [`ContactSolverError::RigidSliding`] or
+//! [`ContactSolverError::Unbounded`]. The answer is `u = K_s^-1 (f - B' lambda + s E_G v)`.
+//! A body that stays singular with the shift (a part not connected to the interface) is
+//! handed to the [`ActiveSetSolver`], whose report then says so.
 
 use std::time::Instant;
 
 use faer::linalg::matmul::matmul;
-use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
-use faer::{Accum, Mat, Par};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Accum, Mat, MatRef, Par};
 use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 
 use super::active_set::ActiveSetSolver;
-use super::box_qp::BoxQp;
+use super::box_qp::{BoxQp, BoxQpOutcome};
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{KktResiduals, SolveReport, SolveStatus, WorkCounters};
 use super::system::{ContactSystem, PatternId};
@@ -155,16 +171,16 @@ struct Structure {
     pattern: PatternId,
     stiffness_version: u64,
     has_friction: bool,
-    /// `None` when a body's stiffness is singular (the active-set fallback solves).
+    /// `None` when a body stays singular with the shift (the active-set fallback solves).
     factors: Option<Factors>,
 }
 
 #[derive(Debug)]
 struct Factors {
     bodies: Vec<BodyFactor>,
-    /// `H = B S^-1 B'` (rows: normal, then tangential).
+    /// `H = B M^-1 B'` (rows: normal, then tangential).
     hessian: Mat<f64>,
-    /// The load of the last solve and `u0 = K^-1 f` for it.
+    /// The load of the last solve and `u0 = K_s^-1 f` for it.
     unconstrained: Option<(Vec<f64>, Vec<f64>)>,
     /// The multipliers of the last solve (warm start).
     multipliers: Option<Vec<f64>>,
@@ -175,6 +191,22 @@ struct BodyFactor {
     offset: usize,
     n: usize,
     cholesky: CholeskySolver,
+    /// The body's interface unknowns (local numbering, in trailing order).
+    interface: Vec<usize>,
+    /// The shift `s` of the interface unknowns (0 for a body held by Dirichlet conditions).
+    shift: f64,
+    /// Shifted bodies: `L_GG`, `W = L_GG^-1 B_G'` and the interface displacement `v` of the
+    /// last solve (the start of the next proximal iteration).
+    proximal: Option<Proximal>,
+}
+
+#[derive(Debug)]
+struct Proximal {
+    trailing: Mat<f64>,
+    w: Mat<f64>,
+    interface_displacement: Vec<f64>,
+    /// The change of `v` in the last proximal step.
+    last_step: Vec<f64>,
 }
 
 impl CondensedSolver {
@@ -193,6 +225,11 @@ impl CondensedSolver {
     }
 }
 
+/// The shift of a singular body's interface unknowns, relative to their largest stiffness.
+const RELATIVE_SHIFT: f64 = 1e-4;
+/// Proximal steps whose size shrinks by less than this factor move along a free mode.
+const STAGNATION: f64 = 0.999;
+
 /// The constraint rows of a system as `(columns, values)` per row: normal rows, then
 /// tangential rows.
 fn all_rows<'s>(system: &'s ContactSystem<'_>) -> Vec<(&'s [usize], &'s [f64])> {
@@ -205,16 +242,23 @@ fn all_rows<'s>(system: &'s ContactSystem<'_>) -> Vec<(&'s [usize], &'s [f64])> 
     rows
 }
 
+fn backend(e: SolveError) -> ContactSolverError {
+    ContactSolverError::Backend {
+        solver: NAME,
+        detail: e.to_string(),
+    }
+}
+
+fn inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
 impl Structure {
     fn build(
         system: &ContactSystem<'_>,
         settings: &CondensedSettings,
         work: &mut WorkCounters,
     ) -> Result<Self, ContactSolverError> {
-        let backend = |e: SolveError| ContactSolverError::Backend {
-            solver: NAME,
-            detail: e.to_string(),
-        };
         let rows = all_rows(system);
         let mut bodies = Vec::new();
         let mut hessian = Mat::<f64>::zeros(rows.len(), rows.len());
@@ -244,17 +288,10 @@ impl Structure {
                 .map_err(backend)?;
             work.symbolic_analyses += 1;
             work.times.symbolic += start.elapsed();
-            let start = Instant::now();
-            let factorised = cholesky.factorise(k);
-            work.numeric_factorisations += 1;
-            work.times.numeric += start.elapsed();
-            match factorised {
-                Ok(()) => {}
-                Err(SolveError::NotPositiveDefinite { .. }) => {
-                    return Ok(Self::singular(system));
-                }
-                Err(e) => return Err(backend(e)),
-            }
+            let Some(shift) = factorise_or_shift(&mut cholesky, k, &interface, work)? else {
+                return Ok(Self::singular(system));
+            };
+            let mut proximal = None;
             if !interface.is_empty() {
                 // W = L_GG^-1 B_G' and H += W'W.
                 let mut w = Mat::<f64>::zeros(interface.len(), rows.len());
@@ -275,11 +312,22 @@ impl Structure {
                     1.0,
                     Par::rayon(0),
                 );
+                if shift > 0.0 {
+                    proximal = Some(Proximal {
+                        trailing: l,
+                        w,
+                        interface_displacement: vec![0.0; interface.len()],
+                        last_step: vec![0.0; interface.len()],
+                    });
+                }
             }
             bodies.push(BodyFactor {
                 offset,
                 n,
                 cholesky,
+                interface,
+                shift,
+                proximal,
             });
         }
         Ok(Self {
@@ -311,25 +359,232 @@ impl Structure {
     }
 }
 
+/// Factorises `k`; if it is singular, factorises `k + s E_G` instead (the shift on the
+/// interface unknowns). Returns the shift (`0` without one), or `None` if the shifted matrix
+/// is singular too.
+fn factorise_or_shift(
+    cholesky: &mut CholeskySolver,
+    k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    interface: &[usize],
+    work: &mut WorkCounters,
+) -> Result<Option<f64>, ContactSolverError> {
+    let start = Instant::now();
+    let plain = cholesky.factorise(k);
+    work.numeric_factorisations += 1;
+    work.times.numeric += start.elapsed();
+    match plain {
+        Ok(()) => return Ok(Some(0.0)),
+        Err(SolveError::NotPositiveDefinite { .. }) if !interface.is_empty() => {}
+        Err(SolveError::NotPositiveDefinite { .. }) => return Ok(None),
+        Err(e) => return Err(backend(e)),
+    }
+    let diagonal_slot = |j: usize| {
+        let rows = k.symbolic().row_idx_of_col_raw(j);
+        rows.binary_search(&j).ok().map(|p| k.col_ptr()[j] + p)
+    };
+    let largest = interface
+        .iter()
+        .filter_map(|&j| diagonal_slot(j).map(|slot| k.val()[slot].abs()))
+        .fold(0.0f64, f64::max);
+    let shift = RELATIVE_SHIFT * largest;
+    let pattern = k.symbolic().to_owned().map_err(|e| {
+        backend(SolveError::Backend {
+            reason: e.to_string(),
+        })
+    })?;
+    let mut shifted = faer::sparse::SparseColMat::new(pattern, k.val().to_vec());
+    for &j in interface {
+        // The stiffness pattern holds every diagonal entry (element matrices are dense).
+        if let Some(slot) = diagonal_slot(j) {
+            shifted.val_mut()[slot] += shift;
+        }
+    }
+    let start = Instant::now();
+    let outcome = cholesky.factorise(shifted.as_ref());
+    work.numeric_factorisations += 1;
+    work.times.numeric += start.elapsed();
+    match outcome {
+        Ok(()) if shift > 0.0 => Ok(Some(shift)),
+        Ok(()) | Err(SolveError::NotPositiveDefinite { .. }) => Ok(None),
+        Err(e) => Err(backend(e)),
+    }
+}
+
 impl Factors {
-    /// `K^-1 x`, body by body.
+    /// `K_s^-1 x`, body by body.
     fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
         let start = Instant::now();
         for body in &self.bodies {
             let part = &mut x[body.offset..body.offset + body.n];
-            let solved = body
-                .cholesky
-                .solve(part)
-                .map_err(|e| ContactSolverError::Backend {
-                    solver: NAME,
-                    detail: e.to_string(),
-                })?;
+            let solved = body.cholesky.solve(part).map_err(backend)?;
             part.copy_from_slice(&solved);
             work.triangular_solves += 1;
         }
         work.times.solves += start.elapsed();
         Ok(())
     }
+
+    fn is_shifted(&self) -> bool {
+        self.bodies.iter().any(|b| b.proximal.is_some())
+    }
+}
+
+/// What the interface iteration returns.
+struct Interface {
+    lambda: Vec<f64>,
+    iterations: usize,
+    converged: bool,
+    /// The proximal steps moved along a free mode instead of converging.
+    free_mode: bool,
+}
+
+/// The bound-constrained interface QP, with the tolerance relative to `max_i |d_i| / H_ii` (the
+/// force that would close the largest unconstrained penetration alone); zero data give exactly
+/// zero forces.
+fn interface_qp(
+    hessian: MatRef<'_, f64>,
+    d: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    warm: &[f64],
+    settings: &CondensedSettings,
+) -> BoxQpOutcome {
+    let force_scale = (0..d.len())
+        .filter(|&i| hessian[(i, i)] > 0.0)
+        .fold(0.0f64, |a, i| a.max(d[i].abs() / hessian[(i, i)]));
+    if force_scale == 0.0 {
+        return BoxQpOutcome {
+            x: vec![0.0; d.len()],
+            iterations: 0,
+            converged: true,
+            factorisations: 0,
+        };
+    }
+    BoxQp {
+        hessian,
+        linear: d,
+        lower,
+        upper,
+    }
+    .solve(
+        warm,
+        settings.tolerance * force_scale,
+        settings.max_iterations,
+    )
+}
+
+/// Proximal point steps on the interface for systems with shifted (singular) bodies: each step
+/// is the interface QP with `d = d0 + sum_b W_b' L_b^-1 (s_b v_b)`, then
+/// `v_b <- u0_b + L_b^-T (L_b^-1 s_b v_b - W_b lambda)` on each shifted body. Stops when the
+/// interface force residual `s_b |v_k+1 - v_k|` is below the tolerance times the force scale
+/// `max(||f||, ||B' lambda||)`, or when the steps stop shrinking (a free mode).
+#[allow(clippy::too_many_arguments)]
+fn proximal_iteration(
+    factors: &mut Factors,
+    system: &ContactSystem<'_>,
+    rows: &[(&[usize], &[f64])],
+    u0: &[f64],
+    d0: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    warm: Vec<f64>,
+    settings: &CondensedSettings,
+) -> Interface {
+    let mut result = Interface {
+        lambda: warm,
+        iterations: 0,
+        converged: false,
+        free_mode: false,
+    };
+    let load_scale = inf(system.load());
+    let (mut previous_step, mut stagnant) = (f64::INFINITY, 0);
+    for _ in 0..settings.max_iterations {
+        let mut d = d0.to_vec();
+        let mut shifted_loads = Vec::new();
+        for body in &factors.bodies {
+            if let Some(p) = &body.proximal {
+                let mut z = Mat::<f64>::from_fn(p.interface_displacement.len(), 1, |i, _| {
+                    body.shift * p.interface_displacement[i]
+                });
+                solve_lower_triangular_in_place(p.trailing.as_ref(), z.as_mut(), Par::Seq);
+                let mut dm = Mat::<f64>::from_fn(d.len(), 1, |i, _| d[i]);
+                matmul(
+                    dm.as_mut(),
+                    Accum::Add,
+                    p.w.transpose(),
+                    z.as_ref(),
+                    1.0,
+                    Par::Seq,
+                );
+                d = (0..d.len()).map(|i| dm[(i, 0)]).collect();
+                shifted_loads.push(z);
+            }
+        }
+        let outcome = interface_qp(
+            factors.hessian.as_ref(),
+            &d,
+            lower,
+            upper,
+            &result.lambda,
+            settings,
+        );
+        result.iterations += outcome.iterations;
+        result.lambda = outcome.x;
+        if !outcome.converged {
+            return result;
+        }
+        let lambda = Mat::<f64>::from_fn(result.lambda.len(), 1, |i, _| result.lambda[i]);
+        let mut residual = 0.0f64;
+        let mut step = 0.0f64;
+        for (body, mut z) in factors
+            .bodies
+            .iter_mut()
+            .filter(|b| b.proximal.is_some())
+            .zip(shifted_loads)
+        {
+            let p = body.proximal.as_mut().expect("filtered");
+            matmul(
+                z.as_mut(),
+                Accum::Add,
+                p.w.as_ref(),
+                lambda.as_ref(),
+                -1.0,
+                Par::Seq,
+            );
+            solve_upper_triangular_in_place(p.trailing.transpose(), z.as_mut(), Par::Seq);
+            let mut body_step = 0.0f64;
+            for (k, &i) in body.interface.iter().enumerate() {
+                let v = u0[body.offset + i] + z[(k, 0)];
+                p.last_step[k] = v - p.interface_displacement[k];
+                body_step = body_step.max(p.last_step[k].abs());
+                p.interface_displacement[k] = v;
+            }
+            residual = residual.max(body.shift * body_step);
+            step = step.max(body_step);
+        }
+        let mut reaction = vec![0.0; system.n_dofs()];
+        for (&(cols, values), &l) in rows.iter().zip(&result.lambda) {
+            for (&c, v) in cols.iter().zip(values) {
+                reaction[c] += v * l;
+            }
+        }
+        let force_scale = load_scale.max(inf(&reaction));
+        if residual <= settings.tolerance * force_scale {
+            result.converged = true;
+            return result;
+        }
+        stagnant = if step > STAGNATION * previous_step {
+            stagnant + 1
+        } else {
+            0
+        };
+        if stagnant >= 5 {
+            result.free_mode = true;
+            return result;
+        }
+        previous_step = step;
+    }
+    result
 }
 
 impl ContactSolver for CondensedSolver {
@@ -346,20 +601,17 @@ impl ContactSolver for CondensedSolver {
         }
         let structure = self.structure.as_mut().expect("built above");
         let Some(factors) = structure.factors.as_mut() else {
-            // A singular stiffness: the active-set solver's shifted factorisation handles it.
+            // Singular even with the interface shifted: the active-set solver's shifted
+            // factorisation and free-mode test handle it.
             let fallback = self.fallback.get_or_insert_with(ActiveSetSolver::default);
-            return match fallback.solve(system) {
-                Ok(mut solution) => {
-                    solution.report.work += work;
-                    Ok(solution)
-                }
-                Err(e) => Err(e),
-            };
+            let mut solution = fallback.solve(system)?;
+            solution.report.work += work;
+            return Ok(solution);
         };
         let (n, m) = (system.n_dofs(), system.n_constraints());
         let rows = all_rows(system);
 
-        // u0 = K^-1 f (kept while the load does not change: Coulomb steps).
+        // u0 = K_s^-1 f (kept while the load does not change: Coulomb steps).
         let unconstrained = match factors.unconstrained.take() {
             Some((load, u0)) if load == system.load() => (load, u0),
             _ => {
@@ -369,13 +621,13 @@ impl ContactSolver for CondensedSolver {
             }
         };
         let u0 = &unconstrained.1;
-
-        // The interface problem.
-        let mut d: Vec<f64> = rows
-            .iter()
-            .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * u0[c]).sum())
-            .collect();
-        for (di, g) in d.iter_mut().zip(system.gap()) {
+        let apply_rows = |x: &[f64]| -> Vec<f64> {
+            rows.iter()
+                .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * x[c]).sum())
+                .collect()
+        };
+        let mut d0 = apply_rows(u0);
+        for (di, g) in d0.iter_mut().zip(system.gap()) {
             *di -= g;
         }
         let mut lower = vec![0.0; rows.len()];
@@ -386,49 +638,59 @@ impl ContactSolver for CondensedSolver {
                 upper[m + i] = b;
             }
         }
-        let hessian = factors.hessian.as_ref();
-        let force_scale = (0..rows.len())
-            .filter(|&i| hessian[(i, i)] > 0.0)
-            .fold(0.0f64, |a, i| a.max(d[i].abs() / hessian[(i, i)]));
         let warm = factors
             .multipliers
             .take()
             .filter(|l| l.len() == rows.len())
             .unwrap_or_else(|| vec![0.0; rows.len()]);
-        let qp = BoxQp {
-            hessian,
-            linear: &d,
-            lower: &lower,
-            upper: &upper,
-        };
-        let outcome = if force_scale == 0.0 {
-            // No load and no gap: the forces are exactly zero.
-            super::box_qp::BoxQpOutcome {
-                x: vec![0.0; rows.len()],
-                iterations: 0,
-                converged: true,
-                factorisations: 0,
-            }
-        } else {
-            qp.solve(
-                &warm,
-                self.settings.tolerance * force_scale,
-                self.settings.max_iterations,
+        let interface = if factors.is_shifted() {
+            proximal_iteration(
+                factors,
+                system,
+                &rows,
+                u0,
+                &d0,
+                &lower,
+                &upper,
+                warm,
+                &self.settings,
             )
+        } else {
+            let outcome = interface_qp(
+                factors.hessian.as_ref(),
+                &d0,
+                &lower,
+                &upper,
+                &warm,
+                &self.settings,
+            );
+            Interface {
+                lambda: outcome.x,
+                iterations: outcome.iterations,
+                converged: outcome.converged,
+                free_mode: false,
+            }
         };
-        let lambda = outcome.x;
+        let lambda = interface.lambda;
 
-        // u = u0 - K^-1 B' lambda.
-        let mut reaction = vec![0.0; n];
+        // u = K_s^-1 (f - B' lambda + s E_G v) = u0 - K_s^-1 (B' lambda - s E_G v).
+        let mut correction = vec![0.0; n];
         for (&(cols, values), &l) in rows.iter().zip(&lambda) {
             if l != 0.0 {
                 for (&c, v) in cols.iter().zip(values) {
-                    reaction[c] += v * l;
+                    correction[c] += v * l;
                 }
             }
         }
-        factors.solve(&mut reaction, &mut work)?;
-        let displacement: Vec<f64> = u0.iter().zip(&reaction).map(|(a, b)| a - b).collect();
+        for body in &factors.bodies {
+            if let Some(p) = &body.proximal {
+                for (&i, v) in body.interface.iter().zip(&p.interface_displacement) {
+                    correction[body.offset + i] -= body.shift * v;
+                }
+            }
+        }
+        factors.solve(&mut correction, &mut work)?;
+        let displacement: Vec<f64> = u0.iter().zip(&correction).map(|(a, b)| a - b).collect();
         let normal_force = lambda[..m].to_vec();
         let tangential_force = if system.friction().is_some() {
             lambda[m..].to_vec()
@@ -443,17 +705,38 @@ impl ContactSolver for CondensedSolver {
         work.times.contact_solve = start.elapsed();
         let report = SolveReport {
             solver: NAME,
-            status: if outcome.converged {
+            status: if interface.converged {
                 SolveStatus::Converged
+            } else if interface.free_mode {
+                SolveStatus::Unbounded
             } else {
                 SolveStatus::MaxIterations
             },
-            iterations: outcome.iterations,
+            iterations: interface.iterations,
             work,
             wall_time: start.elapsed(),
             residuals,
         };
-        if outcome.converged {
+        if interface.free_mode {
+            // The free mode: the change of u over one proximal step, from the last
+            // interface step (zero load, zero force: K_s d = s E_G dv).
+            let mut direction = vec![0.0; n];
+            for body in &factors.bodies {
+                if let Some(p) = &body.proximal {
+                    for (&i, v) in body.interface.iter().zip(&p.last_step) {
+                        direction[body.offset + i] = body.shift * v;
+                    }
+                }
+            }
+            let mut scratch = WorkCounters::default();
+            factors.solve(&mut direction, &mut scratch)?;
+            return Err(ContactSolverError::from_free_mode(
+                system,
+                &direction,
+                Box::new(report),
+            ));
+        }
+        if interface.converged {
             Ok(ContactSolution {
                 displacement,
                 normal_force,
