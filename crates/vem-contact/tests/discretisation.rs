@@ -210,3 +210,59 @@ fn a_refilled_material_agrees_with_a_fresh_build() {
         assert!((a.friction_force - b.friction_force).abs() < 1e-10 * scale);
     }
 }
+
+/// At stiffness contrasts of 1e6, 1e7 and 1e8 either way the condensed solver's forces
+/// converge to the limit of a rigid body like `1 / contrast`: each tenfold contrast changes
+/// them ten times less (round-off would break the sequence). Where the active-set solver
+/// converges its answer agrees to its accuracy on such data (1e-3: its stationarity is relative
+/// to the stiff body's internal forces); with Tresca friction and a soft upper body its
+/// stick/slip split cycles, which the condensed solver cannot do.
+#[test]
+fn stiffness_contrasts_up_to_1e8_converge_to_the_rigid_limit() {
+    for upper_is_stiff in [true, false] {
+        for law in [
+            ContactLaw::Frictionless,
+            ContactLaw::try_tresca(0.004).unwrap(),
+        ] {
+            let forces: Vec<Vec<f64>> = [1e6, 1e7, 1e8]
+                .iter()
+                .map(|&contrast| {
+                    let ratio = if upper_is_stiff {
+                        contrast
+                    } else {
+                        1.0 / contrast
+                    };
+                    let upper = Material::from_lame(2.0 * ratio, ratio, Plane::Strain).unwrap();
+                    let problem = blocks_of(law.clone(), 0.03, upper);
+                    let c = problem.solve(&mut CondensedSolver::default()).unwrap();
+                    assert!(c.report.residuals.stationarity < 1e-12, "{:?}", c.report);
+                    if let Ok(a) = problem.solve(&mut ActiveSetSolver::default()) {
+                        let scale = c.nodes.iter().fold(0.0f64, |m, n| m.max(n.normal_force));
+                        for (x, y) in c.nodes.iter().zip(&a.nodes) {
+                            assert!((x.normal_force - y.normal_force).abs() < 1e-3 * scale);
+                            assert!((x.friction_force - y.friction_force).abs() < 1e-3 * scale);
+                        }
+                    }
+                    c.nodes
+                        .iter()
+                        .flat_map(|n| [n.normal_force, n.friction_force])
+                        .collect()
+                })
+                .collect();
+            let change = |a: &[f64], b: &[f64]| {
+                a.iter()
+                    .zip(b)
+                    .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+            };
+            let (first, second) = (
+                change(&forces[0], &forces[1]),
+                change(&forces[1], &forces[2]),
+            );
+            let ratio = second / first;
+            assert!(
+                (0.05..0.2).contains(&ratio),
+                "upper stiff {upper_is_stiff}, {law:?}: changes {first:e}, {second:e}"
+            );
+        }
+    }
+}
