@@ -331,7 +331,8 @@ impl ContactDiscretisation {
             }
         };
         let post = Instant::now();
-        let mut result = self.collect(load_factor, solution, fixed_point, solver.force_accuracy())?;
+        let mut result =
+            self.collect(load_factor, solution, fixed_point, solver.force_accuracy())?;
         work.times.post = post.elapsed();
         result.work = work;
         result.model.total_time = start.elapsed();
@@ -507,12 +508,15 @@ impl ContactDiscretisation {
             solution = next;
             if change <= tolerance {
                 if change > settings.tolerance() {
-                    solution.report.warnings.push(Warning::FixedPointAtForceFloor {
-                        solver: solution.report.solver,
-                        force_accuracy: solver.force_accuracy(),
-                        tolerance: settings.tolerance(),
-                        change,
-                    });
+                    solution
+                        .report
+                        .warnings
+                        .push(Warning::FixedPointAtForceFloor {
+                            solver: solution.report.solver,
+                            force_accuracy: solver.force_accuracy(),
+                            tolerance: settings.tolerance(),
+                            change,
+                        });
                 }
                 let report = FixedPointReport {
                     steps: step,

@@ -58,10 +58,8 @@ pub use warning::{Warning, ZoneLimit};
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, ConstraintRows, ContactSolution, ContactSolver,
     ContactSolverError, ContactSystem, ContactSystemError, Friction, KktResiduals, KktScales,
-    KktTolerance, PatternId,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
-    StageTimes, StiffnessBlock, WorkCounters,
+    KktTolerance, PatternId, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
+    SolveReport, SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
 };
 #[cfg(feature = "clarabel")]
-
 pub use solver::{ExactSettings, ExactSolver};

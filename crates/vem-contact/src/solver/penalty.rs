@@ -39,9 +39,9 @@ use super::report::{
     block_ranges, certify, unloaded, unloaded_solution, ForceScales, KktResiduals, KktTolerance,
     SolveReport, SolveStatus,
 };
-use crate::warning::Warning;
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
+use crate::warning::Warning;
 
 const NAME: &str = "penalty (semismooth Newton)";
 
