@@ -559,6 +559,7 @@ impl ContactDiscretisation {
         let system = self.system_with(load_factor, bounds.map(Cow::Borrowed));
         let forces = ForceScales::of(
             &system,
+            u,
             &system.stiffness_apply(u),
             &solution.normal_force,
             &solution.tangential_force,

@@ -31,7 +31,7 @@ pub enum Warning {
     /// to the solver's tolerance (its round-off floor is above it); the answer passed the KKT
     /// check at the floor. A smaller penalty is as accurate and better conditioned.
     #[error(
-        "{solver}: the penalty {penalty:.3e} (x {penalty_factor:.1e} the constrained stiffness) \
+        "{solver}: the penalty {penalty:.3e} (x {penalty_factor:.1e} the softest constrained stiffness) \
          is in its round-off regime: the gradient is known only to {noise_floor:.1e} relative, \
          above the tolerance {tolerance:.1e}"
     )]
@@ -40,7 +40,8 @@ pub enum Warning {
         solver: &'static str,
         /// The normal penalty.
         penalty: f64,
-        /// The penalty divided by the largest constrained diagonal entry of `K`.
+        /// The penalty divided by the constrained stiffness of the softest body
+        /// ([`ContactSystem::softest_constrained_diagonal`](crate::ContactSystem::softest_constrained_diagonal)).
         penalty_factor: f64,
         /// The relative round-off floor of the gradient.
         noise_floor: f64,

@@ -48,9 +48,10 @@ const NAME: &str = "penalty (semismooth Newton)";
 /// How a penalty parameter is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PenaltyParameter {
-    /// `factor` times the largest diagonal entry of `K` over the unknowns that appear in a
-    /// constraint row (falls back to the largest diagonal entry of `K`, then to 1, if that
-    /// vanishes).
+    /// `factor` times the constrained stiffness of the softest body
+    /// ([`ContactSystem::softest_constrained_diagonal`]: for one body, the largest diagonal
+    /// entry of `K` over the unknowns that appear in a constraint row; falls back to the
+    /// largest diagonal entry of `K`, then to 1, if that vanishes).
     RelativeToStiffness(f64),
     /// An absolute value (force per length for unit constraint rows).
     Absolute(f64),
@@ -73,7 +74,7 @@ impl PenaltyParameter {
         match *self {
             Self::Absolute(v) => v,
             Self::RelativeToStiffness(factor) => {
-                let mut scale = system.max_constrained_diagonal();
+                let mut scale = system.softest_constrained_diagonal();
                 if scale <= 0.0 {
                     scale = system.stiffness_diagonal().into_iter().fold(0.0, f64::max);
                 }
@@ -305,7 +306,7 @@ impl Penalised<'_> {
             .map(|((k, f), r)| k - f + r)
             .collect();
         // Relative to each body's own force scale, as the acceptance test measures it.
-        let forces = ForceScales::of(sys, &ku, &normal_force, &tangential_force);
+        let forces = ForceScales::of(sys, u, &ku, &normal_force, &tangential_force);
         let relative_gradient = forces.stationarity;
         let magnitudes = self.magnitudes(u);
         let relative_noise = block_ranges(sys)
@@ -628,7 +629,7 @@ impl ContactSolver for PenaltySolver {
         };
         let mut warnings = Vec::new();
         if status == SolveStatus::Converged && state.relative_noise > s.tolerance {
-            let constrained = system.max_constrained_diagonal();
+            let constrained = system.softest_constrained_diagonal();
             warnings.push(Warning::PenaltyRoundOff {
                 solver: NAME,
                 penalty: p.eps_n,
