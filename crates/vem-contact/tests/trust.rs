@@ -158,7 +158,6 @@ fn solved_or_refused(
         }
         Err(ContactError::Solver(ContactSolverError::NotConverged { report })) if may_fail => {
             assert_ne!(report.status, SolveStatus::Converged);
-            eprintln!("{} refused: {:?}", solver.name(), report.status);
             None
         }
         Err(e) => panic!("{}: unexpected failure: {e} {:?}", solver.name(), e),
@@ -399,4 +398,137 @@ fn a_huge_friction_bound_ties_the_contact() {
             );
         }
     }
+}
+
+/// A structured quad grid over the lines `xs`, `ys`, vertices moved by `map`, with parts
+/// "bottom", "top", "left", "right".
+fn grid(xs: &[f64], ys: &[f64], map: impl Fn(f64, f64) -> Point) -> vem_mesh::Mesh {
+    let (nx, ny) = (xs.len(), ys.len());
+    let id = |i: usize, j: usize| nx * j + i;
+    let vertices = ys
+        .iter()
+        .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
+        .map(|(x, y)| map(x, y))
+        .collect();
+    let mut polygons = Vec::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            polygons.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let part = |name: &str, edges: Vec<[usize; 2]>| vem_mesh::PartSpec::new(name, edges);
+    let parts = vec![
+        part(
+            "bottom",
+            (0..nx - 1).map(|i| [id(i, 0), id(i + 1, 0)]).collect(),
+        ),
+        part(
+            "top",
+            (0..nx - 1)
+                .map(|i| [id(i, ny - 1), id(i + 1, ny - 1)])
+                .collect(),
+        ),
+        part(
+            "left",
+            (0..ny - 1).map(|j| [id(0, j), id(0, j + 1)]).collect(),
+        ),
+        part(
+            "right",
+            (0..ny - 1)
+                .map(|j| [id(nx - 1, j), id(nx - 1, j + 1)])
+                .collect(),
+        ),
+    ];
+    vem_mesh::Mesh::from_polygons(vertices, &polygons, parts).expect("grid mesh")
+}
+
+fn lines(n: usize, from: f64, to: f64) -> Vec<f64> {
+    (0..=n)
+        .map(|i| from + (to - from) * i as f64 / n as f64)
+        .collect()
+}
+
+/// An upper block whose bottom rises as `0.1 x` (a wedge opening to the right), pushed down
+/// by 0.03 on its top, on a clamped lower block; the contact zone ends inside the interface.
+fn wedge(
+    options: Option<vem_mesh::interface::InterfaceOptions>,
+    upper_ys: &[f64],
+) -> ContactProblem {
+    let element = Arc::new(LowestOrderVem::default());
+    let material = Material::from_lame(2.0, 1.0, Plane::Strain).expect("material");
+    let upper_mesh = grid(&lines(10, 0.0, 1.0), upper_ys, |x, y| {
+        Point::new(x, y + 0.1 * x * (1.0 - y))
+    });
+    let lower_mesh = grid(&lines(13, 0.0, 1.0), &lines(4, -1.0, 0.0), Point::new);
+    let upper = ElasticBody::builder("upper", upper_mesh, material, element.clone())
+        .dirichlet(Dirichlet::prescribed("top", Component::Both, |_| {
+            Vector::new(0.0, -0.03)
+        }))
+        .build()
+        .expect("body");
+    let lower = ElasticBody::builder("lower", lower_mesh, material, element)
+        .clamp("bottom")
+        .build()
+        .expect("body");
+    let problem =
+        ContactProblem::two_bodies(upper, "bottom", lower, "top", ContactLaw::Frictionless);
+    match options {
+        Some(options) => problem.with_interface_options(options),
+        None => problem,
+    }
+}
+
+#[test]
+fn a_contact_zone_clipped_by_the_pairing_limit_is_a_warning() {
+    let clipped = |result: &ContactResult| {
+        result.warnings.iter().any(|w| {
+            matches!(
+                w,
+                Warning::ContactZoneAtLimit {
+                    limit: vem_contact::ZoneLimit::PairingLimit,
+                    ..
+                }
+            )
+        })
+    };
+    let full = wedge(None, &lines(5, 0.0, 1.0))
+        .solve(&mut ActiveSetSolver::default())
+        .expect("solve");
+    let (open, _, _) = full.status_counts();
+    assert!(open > 0, "the zone ends inside the interface");
+    assert!(!clipped(&full), "{:?}", full.warnings);
+    // Pair only nodes closer than 0.015: the zone (gaps up to ~0.03) is cut at x ~ 0.15.
+    let options = vem_mesh::interface::InterfaceOptions::builder()
+        .max_distance(0.015)
+        .build()
+        .expect("options");
+    let cut = wedge(Some(options), &lines(5, 0.0, 1.0))
+        .solve(&mut ActiveSetSolver::default())
+        .expect("solve");
+    assert!(cut.nodes.len() < full.nodes.len());
+    assert!(clipped(&cut), "{:?}", cut.warnings);
+}
+
+#[test]
+fn elements_far_outside_a1_are_named_in_a_warning() {
+    // A row of cells of height 1e-5 under the top of the upper block: gamma ~ 1e-4.
+    let mut ys = lines(5, 0.0, 1.0);
+    ys.insert(5, 1.0 - 1e-5);
+    let result = wedge(None, &ys)
+        .solve(&mut ActiveSetSolver::default())
+        .expect("solve");
+    let named: Vec<&Warning> = result
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, Warning::ElementShape { body, gamma, .. } if body == "upper" && *gamma < 1e-3))
+        .collect();
+    assert!(!named.is_empty(), "{:?}", result.warnings);
+    assert!(named[0].to_string().contains("body 'upper', element"));
+    let plain = wedge(None, &lines(5, 0.0, 1.0))
+        .solve(&mut ActiveSetSolver::default())
+        .expect("solve");
+    assert!(!plain
+        .warnings
+        .iter()
+        .any(|w| matches!(w, Warning::ElementShape { .. })));
 }
