@@ -706,7 +706,7 @@ impl ContactDiscretisation {
 }
 
 /// Elements whose gamma (A1) is below this are reported ([`Warning::ElementShape`]).
-const ELEMENT_GAMMA_FLOOR: f64 = 1e-3;
+const ELEMENT_GAMMA_FLOOR: f64 = 1e-4;
 /// At most this many element warnings per body (the worst first).
 const MAX_ELEMENT_WARNINGS: usize = 5;
 /// A friction bound this many times the force scale makes the contact effectively tied.

@@ -65,7 +65,8 @@ pub enum Warning {
         ratio: f64,
     },
     /// An element is far outside the shape-regularity assumption A1 (its gamma, the smaller of
-    /// shortest edge / diameter and star radius / diameter, is below `1e-3`): the error
+    /// shortest edge / diameter and star radius / diameter, is below `1e-4`; interface node
+    /// insertion alone cuts edges down to `1e-3`): the error
     /// estimates do not hold for it and the stiffness may be badly conditioned.
     #[error(
         "body '{body}', element {element}: gamma (A1) = {gamma:.3e} (shortest edge / diameter \

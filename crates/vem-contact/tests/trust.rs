@@ -520,7 +520,7 @@ fn elements_far_outside_a1_are_named_in_a_warning() {
     let named: Vec<&Warning> = result
         .warnings
         .iter()
-        .filter(|w| matches!(w, Warning::ElementShape { body, gamma, .. } if body == "upper" && *gamma < 1e-3))
+        .filter(|w| matches!(w, Warning::ElementShape { body, gamma, .. } if body == "upper" && *gamma < 1e-4))
         .collect();
     assert!(!named.is_empty(), "{:?}", result.warnings);
     assert!(named[0].to_string().contains("body 'upper', element"));

@@ -17,8 +17,8 @@ use clarabel::solver::{
 
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{
-    certify, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus, StageTimes,
-    WorkCounters,
+    certify, unloaded, unloaded_solution, KktResiduals, KktTolerance, SolveReport, SolveStatus,
+    StageTimes, WorkCounters,
 };
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
@@ -75,10 +75,18 @@ impl ExactSettings {
         self.accept_reduced_accuracy
     }
 
-    /// The acceptance test of an answer: every relative KKT residual
-    /// ([`KktResiduals`]) below `max(100 max(eps_abs, eps_rel), 1e-8)`.
-    pub fn acceptance(&self) -> f64 {
-        (100.0 * self.eps_abs.max(self.eps_rel)).max(1e-8)
+    /// The acceptance test of an answer: stationarity, penetration and the signs and bounds
+    /// of the forces below `t = max(100 max(eps_abs, eps_rel), 1e-8)` (`1e-8` by default), the
+    /// normal and friction complementarity below `max(t, 1e-2 force accuracy)` (`1e-6` by
+    /// default: the interior point stops at a barrier parameter of about its tolerance, and a
+    /// weakly active node then has a force and a gap each only accurate to its square root).
+    pub fn acceptance(&self) -> KktTolerance {
+        let t = (100.0 * self.eps_abs.max(self.eps_rel)).max(1e-8);
+        let force_accuracy = 10.0 * self.eps_abs.max(self.eps_rel).sqrt();
+        KktTolerance {
+            complementarity: t.max(1e-2 * force_accuracy),
+            ..KktTolerance::from(t)
+        }
     }
 }
 

@@ -142,6 +142,13 @@ impl PenaltySettings {
         (100.0 * self.tolerance).max(1e-6)
     }
 
+    /// The round-off floor of the gradient above which a converged answer carries a
+    /// [`Warning::PenaltyRoundOff`]: `min(100 tolerance, acceptance)` (`1e-8` by default; the
+    /// default penalty factor `1e3` stays well below it).
+    pub fn round_off_warning(&self) -> f64 {
+        (100.0 * self.tolerance).min(self.acceptance())
+    }
+
     /// Newton iteration limit.
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
@@ -628,7 +635,7 @@ impl ContactSolver for PenaltySolver {
             Err((status, _)) => (*status, KktResiduals::evaluate(system, &u, ln, lt)),
         };
         let mut warnings = Vec::new();
-        if status == SolveStatus::Converged && state.relative_noise > s.tolerance {
+        if status == SolveStatus::Converged && state.relative_noise > s.round_off_warning() {
             let constrained = system.softest_constrained_diagonal();
             warnings.push(Warning::PenaltyRoundOff {
                 solver: NAME,
