@@ -652,7 +652,7 @@ impl ContactDiscretisation {
             let mesh = body.mesh();
             let mut poor: Vec<(usize, vem_mesh::quality::ElementQuality)> = (0..mesh.n_polygons())
                 .map(|p| (p, mesh.element_quality(p)))
-                .filter(|(_, q)| !(q.gamma() >= ELEMENT_GAMMA_FLOOR))
+                .filter(|(_, q)| q.gamma() < ELEMENT_GAMMA_FLOOR || q.gamma().is_nan())
                 .collect();
             poor.sort_by(|a, b| a.1.gamma().total_cmp(&b.1.gamma()));
             for (element, q) in poor.into_iter().take(MAX_ELEMENT_WARNINGS) {
