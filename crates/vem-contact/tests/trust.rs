@@ -532,3 +532,36 @@ fn elements_far_outside_a1_are_named_in_a_warning() {
         .iter()
         .any(|w| matches!(w, Warning::ElementShape { .. })));
 }
+
+#[test]
+fn a_coulomb_fixed_point_stopped_at_the_force_floor_says_so() {
+    // Asked for 1e-14, the fixed point over the interior point (force accuracy 1e-4) stops at
+    // 1e-4; over the active set (exact forces) it meets the request.
+    let settings = vem_contact::FixedPointSettings::builder()
+        .tolerance(1e-14)
+        .build()
+        .expect("settings");
+    let problem = blocks(
+        1.0,
+        1.0,
+        1.0,
+        Loading::Shear,
+        ContactLaw::try_coulomb_with(0.3, settings).expect("law"),
+    );
+    let floored = |result: &ContactResult| {
+        result
+            .warnings
+            .iter()
+            .any(|w| matches!(w, Warning::FixedPointAtForceFloor { .. }))
+    };
+    let exact = problem.solve(&mut ExactSolver::default()).expect("exact");
+    let fixed_point = exact.fixed_point.as_ref().expect("Coulomb");
+    assert_eq!(fixed_point.tolerance, 10.0 * 1e-10f64.sqrt());
+    assert!(fixed_point.residual > 1e-14, "{fixed_point:?}");
+    assert!(floored(&exact), "{:?}", exact.warnings);
+    match problem.solve(&mut ActiveSetSolver::default()) {
+        Ok(active) => assert!(!floored(&active)),
+        Err(ContactError::FixedPointNotConverged { .. }) => {}
+        Err(e) => panic!("active set: {e}"),
+    }
+}
