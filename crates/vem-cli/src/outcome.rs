@@ -219,7 +219,10 @@ impl Model {
                     status: format!("{:?}", report.status),
                     iterations: report.iterations,
                     work: result.work.into(),
+                    warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
                     residuals: Residuals {
+                        force_scale: r.scales.force,
+                        displacement_scale: r.scales.displacement,
                         max_penetration: r.max_penetration,
                         negative_normal_force: r.negative_normal_force,
                         complementarity: r.complementarity,
@@ -379,8 +382,10 @@ pub struct ContactSummary {
     /// What the contact problem cost, build and every solve together (one assembly per body
     /// and one symbolic analysis for a Coulomb fixed point of any number of steps).
     pub work: Work,
-    /// KKT residuals of the answer.
+    /// KKT residuals of the answer, relative to the problem's scales.
     pub residuals: Residuals,
+    /// Warnings about the answer (solver and model), one sentence each.
+    pub warnings: Vec<String>,
     /// Coulomb: the fixed point.
     pub fixed_point: Option<FixedPointSummary>,
     /// Resultant contact forces.
@@ -439,20 +444,25 @@ impl From<vem_contact::WorkCounters> for Work {
     }
 }
 
-/// KKT residuals (see `vem_contact::KktResiduals`).
+/// KKT residuals (see `vem_contact::KktResiduals`), each relative to the force scale `F` and
+/// the displacement scale `U` of the problem (unit free).
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Residuals {
-    /// Largest penetration.
+    /// The force scale `F` (in the scene's force units).
+    pub force_scale: f64,
+    /// The displacement scale `U` (in the scene's length units).
+    pub displacement_scale: f64,
+    /// Largest penetration / `U`.
     pub max_penetration: f64,
-    /// Most negative normal force.
+    /// Most negative normal force / `F`.
     pub negative_normal_force: f64,
-    /// Normal complementarity.
+    /// Normal complementarity / (`F U`).
     pub complementarity: f64,
-    /// Relative stationarity.
+    /// Stationarity of every body relative to its own force scale.
     pub stationarity: f64,
-    /// Friction bound violation.
+    /// Friction bound violation / `F`.
     pub friction_bound_violation: f64,
-    /// Friction complementarity.
+    /// Friction complementarity / (`F U`).
     pub slip_direction_violation: f64,
 }
 
@@ -680,9 +690,14 @@ impl fmt::Display for RunSummary {
                 let r = &c.residuals;
                 writeln!(
                     f,
-                    "    KKT residuals: penetration {:.2e}, negative force {:.2e}, \
-                     complementarity {:.2e}, stationarity {:.2e}",
-                    r.max_penetration, r.negative_normal_force, r.complementarity, r.stationarity
+                    "    KKT residuals (relative to F = {:.3e}, U = {:.3e}): penetration {:.2e}, \
+                     negative force {:.2e}, complementarity {:.2e}, stationarity {:.2e}",
+                    r.force_scale,
+                    r.displacement_scale,
+                    r.max_penetration,
+                    r.negative_normal_force,
+                    r.complementarity,
+                    r.stationarity
                 )?;
                 if c.tangential_rows > 0 {
                     writeln!(
@@ -705,6 +720,9 @@ impl fmt::Display for RunSummary {
                     "    nodes: {} ({} open, {} stick, {} slip)",
                     c.nodes.total, c.nodes.open, c.nodes.stick, c.nodes.slip
                 )?;
+                for warning in &c.warnings {
+                    writeln!(f, "    warning: {warning}")?;
+                }
                 if let Some(h) = &c.hertz {
                     writeln!(
                         f,

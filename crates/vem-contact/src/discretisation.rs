@@ -61,6 +61,8 @@ use crate::result::{
     classify, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
 };
 use crate::solver::borrowed_block;
+use crate::solver::ForceScales;
+use crate::warning::{Warning, ZoneLimit};
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactProblem, ContactSolution, ContactSolver,
     ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
@@ -112,6 +114,8 @@ pub struct ContactDiscretisation {
     /// Tresca: `b_i = l_i g_F(x_i)`.
     friction_bounds: Option<Vec<f64>>,
     load: Vec<f64>,
+    /// What lies beyond the first and the last interface node.
+    zone_ends: [ZoneLimit; 2],
     work: WorkCounters,
 }
 
@@ -122,7 +126,7 @@ impl ContactDiscretisation {
         problem.law().validate()?;
         let mut work = WorkCounters::default();
         let start = Instant::now();
-        let (bodies, nodes, inserted_nodes) = interface(problem)?;
+        let (bodies, nodes, inserted_nodes, zone_ends) = interface(problem)?;
         work.times.insertion = start.elapsed();
         let start = Instant::now();
         let systems = bodies
@@ -153,6 +157,7 @@ impl ContactDiscretisation {
             tangential_rows: None,
             friction_bounds: None,
             load,
+            zone_ends,
             work,
         };
         let (normal_rows, normal_lifting) = discretisation.jump_rows(|node| node.normal)?;
@@ -326,7 +331,8 @@ impl ContactDiscretisation {
             }
         };
         let post = Instant::now();
-        let mut result = self.collect(load_factor, solution, fixed_point)?;
+        let mut result =
+            self.collect(load_factor, solution, fixed_point, solver.force_accuracy())?;
         work.times.post = post.elapsed();
         result.work = work;
         result.model.total_time = start.elapsed();
@@ -501,6 +507,17 @@ impl ContactDiscretisation {
             history.push(change);
             solution = next;
             if change <= tolerance {
+                if change > settings.tolerance() {
+                    solution
+                        .report
+                        .warnings
+                        .push(Warning::FixedPointAtForceFloor {
+                            solver: solution.report.solver,
+                            force_accuracy: solver.force_accuracy(),
+                            tolerance: settings.tolerance(),
+                            change,
+                        });
+                }
                 let report = FixedPointReport {
                     steps: step,
                     residual: change,
@@ -520,12 +537,17 @@ impl ContactDiscretisation {
         })
     }
 
-    /// Per-body solutions, per-node results, resultants.
+    /// Per-body solutions, per-node results, resultants, warnings. Statuses are decided in
+    /// the force scales of the acceptance test: node `i` is open when
+    /// `lambda_N,i <= theta F_i` and sticks when `|lambda_T,i| < b_i - theta F_i`, with `F_i`
+    /// the force scale of its bodies ([`KktResiduals`](crate::KktResiduals)) and
+    /// `theta = max(force_accuracy, 1e-8)` (the solver's force accuracy).
     fn collect(
         &self,
         load_factor: f64,
         solution: ContactSolution,
         fixed_point: Option<FixedPointReport>,
+        force_accuracy: f64,
     ) -> Result<ContactResult, ContactError> {
         let u = &solution.displacement;
         let normal_jump_free = self.normal_rows.apply(u);
@@ -534,12 +556,15 @@ impl ContactDiscretisation {
             .as_ref()
             .map(|fp| fp.final_bounds.as_slice())
             .or(self.friction_bounds.as_deref());
-        // A node is open when its force is negligible against the largest of the contact forces
-        // and the nodal loads (an interior-point solver leaves ~1e-10 relative on open nodes).
-        let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
-        let force_scale =
-            largest(&solution.normal_force).max(load_factor.abs() * largest(&self.load));
-        let force_tolerance = 1e-6 * force_scale.max(f64::MIN_POSITIVE);
+        let system = self.system_with(load_factor, bounds.map(Cow::Borrowed));
+        let forces = ForceScales::of(
+            &system,
+            u,
+            &system.stiffness_apply(u),
+            &solution.normal_force,
+            &solution.tangential_force,
+        );
+        let theta = force_accuracy.max(1e-8);
         let nodes: Vec<InterfaceNode> = self
             .nodes
             .iter()
@@ -552,7 +577,7 @@ impl ContactDiscretisation {
                 let friction = -solution.tangential_force[i];
                 let status = classify(
                     normal_force,
-                    force_tolerance,
+                    theta * forces.rows[i],
                     friction,
                     bounds.map(|b| b[i]),
                     self.law.has_friction(),
@@ -574,6 +599,8 @@ impl ContactDiscretisation {
                 }
             })
             .collect();
+        let mut warnings = solution.report.warnings.clone();
+        warnings.extend(self.model_warnings(&nodes, bounds, forces.global()));
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (k, (body, system)) in self.bodies.iter().zip(&self.systems).enumerate() {
             let free = &u[self.offsets[k]..self.offsets[k + 1]];
@@ -607,15 +634,83 @@ impl ContactDiscretisation {
             inserted_nodes: self.inserted_nodes,
             total_time: Duration::ZERO,
         };
-        Ok(ContactResult::new(
-            bodies,
-            nodes,
-            solution.report,
-            fixed_point,
-            model,
-        ))
+        let mut result = ContactResult::new(bodies, nodes, solution.report, fixed_point, model);
+        result.warnings = warnings;
+        Ok(result)
+    }
+
+    /// Warnings about the model behind a converged answer: elements far outside A1, a contact
+    /// zone at a limit of the interface, an effectively tied friction bound.
+    fn model_warnings(
+        &self,
+        nodes: &[InterfaceNode],
+        bounds: Option<&[f64]>,
+        force_scale: f64,
+    ) -> Vec<Warning> {
+        let mut warnings = Vec::new();
+        for body in &self.bodies {
+            let mesh = body.mesh();
+            let mut poor: Vec<(usize, vem_mesh::quality::ElementQuality)> = (0..mesh.n_polygons())
+                .map(|p| (p, mesh.element_quality(p)))
+                .filter(|(_, q)| q.gamma() < ELEMENT_GAMMA_FLOOR || q.gamma().is_nan())
+                .collect();
+            poor.sort_by(|a, b| a.1.gamma().total_cmp(&b.1.gamma()));
+            for (element, q) in poor.into_iter().take(MAX_ELEMENT_WARNINGS) {
+                warnings.push(Warning::ElementShape {
+                    body: body.name().to_string(),
+                    element,
+                    gamma: q.gamma(),
+                    shortest_edge_ratio: q.shortest_edge_ratio,
+                    star_ratio: q.star_ratio,
+                    diameter: q.diameter,
+                });
+            }
+        }
+        let ends = [nodes.first(), nodes.last()];
+        for (k, (node, limit)) in ends.iter().zip(self.zone_ends).enumerate() {
+            if k == 1 && nodes.len() == 1 {
+                break;
+            }
+            if let Some(node) = node {
+                if node.status != crate::NodeStatus::Open {
+                    warnings.push(Warning::ContactZoneAtLimit {
+                        limit,
+                        x: node.position.x,
+                        y: node.position.y,
+                        normal_force: node.normal_force,
+                    });
+                }
+            }
+        }
+        if let (Some(bounds), ContactLaw::Tresca { .. }) = (bounds, &self.law) {
+            // The smallest bound among the nodes in contact: if even it exceeds every force
+            // by far, no node can slip.
+            let tied = nodes
+                .iter()
+                .zip(bounds)
+                .filter(|(n, _)| n.status != crate::NodeStatus::Open)
+                .min_by(|a, b| a.1.total_cmp(b.1));
+            if let Some((node, &bound)) = tied {
+                if bound > TIED_RATIO * force_scale && force_scale > 0.0 {
+                    warnings.push(Warning::EffectivelyTied {
+                        x: node.position.x,
+                        y: node.position.y,
+                        bound,
+                        ratio: bound / force_scale,
+                    });
+                }
+            }
+        }
+        warnings
     }
 }
+
+/// Elements whose gamma (A1) is below this are reported ([`Warning::ElementShape`]).
+const ELEMENT_GAMMA_FLOOR: f64 = 1e-4;
+/// At most this many element warnings per body (the worst first).
+const MAX_ELEMENT_WARNINGS: usize = 5;
+/// A friction bound this many times the force scale makes the contact effectively tied.
+const TIED_RATIO: f64 = 1e6;
 
 /// The load vectors of the bodies, one after the other.
 fn concatenated_load(systems: &[Arc<AssembledSystem>]) -> Vec<f64> {
@@ -627,11 +722,12 @@ fn concatenated_load(systems: &[Arc<AssembledSystem>]) -> Vec<f64> {
 
 /// Interface insertion (two bodies) or chain extraction (obstacle): the bodies on their
 /// (enlarged) meshes, the node geometry with the imposed gap added, the inserted node count.
+#[allow(clippy::type_complexity)]
 fn interface(
     problem: &ContactProblem,
-) -> Result<(Vec<ElasticBody>, Vec<ContactNode>, usize), ContactError> {
+) -> Result<(Vec<ElasticBody>, Vec<ContactNode>, usize, [ZoneLimit; 2]), ContactError> {
     let (body, part) = (problem.body(), problem.part());
-    let (bodies, mut nodes, inserted) = match problem.counterpart() {
+    let (bodies, mut nodes, inserted, zone_ends) = match problem.counterpart() {
         Counterpart::Body {
             body: other,
             part: other_part,
@@ -652,6 +748,30 @@ fn interface(
                 source,
             })?;
             let inserted = interface.inserted_a + interface.inserted_b;
+            // A paired end that is not an end of body A's chain: the nodes beyond were left
+            // unpaired (beyond the pairing limit, or beyond the end of the other part).
+            let chain =
+                boundary_chain(&interface.mesh_a, part).map_err(|source| ContactError::Mesh {
+                    context: format!("contact part of body '{}'", body.name()),
+                    source,
+                })?;
+            let chain_ends = [
+                chain.first().map(|c| c.vertex),
+                chain.last().map(|c| c.vertex),
+            ];
+            let beyond = |vertex: Option<usize>| {
+                if vertex.is_some() && chain_ends.contains(&vertex) {
+                    ZoneLimit::EndOfPart
+                } else if problem.interface_options().max_distance().is_some() {
+                    ZoneLimit::PairingLimit
+                } else {
+                    ZoneLimit::EndOfPart
+                }
+            };
+            let zone_ends = [
+                beyond(interface.pairs.first().map(|p| p.node_a)),
+                beyond(interface.pairs.last().map(|p| p.node_a)),
+            ];
             let body_a = body.with_mesh(interface.mesh_a)?;
             let body_b = other.with_mesh(interface.mesh_b)?;
             let nodes: Vec<ContactNode> = interface
@@ -667,7 +787,7 @@ fn interface(
                     initial_gap: pair.initial_gap,
                 })
                 .collect();
-            (vec![body_a, body_b], nodes, inserted)
+            (vec![body_a, body_b], nodes, inserted, zone_ends)
         }
         Counterpart::Obstacle(obstacle) => {
             obstacle.validate()?;
@@ -690,7 +810,12 @@ fn interface(
                     }
                 })
                 .collect();
-            (vec![body.clone()], nodes, 0)
+            (
+                vec![body.clone()],
+                nodes,
+                0,
+                [ZoneLimit::EndOfPart, ZoneLimit::EndOfPart],
+            )
         }
     };
     if let Some(imposed) = problem.imposed_gap() {
@@ -707,5 +832,5 @@ fn interface(
             node.initial_gap += h0;
         }
     }
-    Ok((bodies, nodes, inserted))
+    Ok((bodies, nodes, inserted, zone_ends))
 }

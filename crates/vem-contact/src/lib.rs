@@ -38,6 +38,7 @@ mod problem;
 pub mod registry;
 mod result;
 pub mod solver;
+mod warning;
 
 pub use discretisation::{ContactDiscretisation, ContactNode};
 pub use error::ContactError;
@@ -52,11 +53,14 @@ pub use result::{
     NodeStatus,
 };
 
+pub use warning::{Warning, ZoneLimit};
+
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
     ContactSolution, ContactSolver, ContactSolverError, ContactSystem, ContactSystemError,
-    Friction, KktResiduals, PatternId, PenaltyParameter, PenaltySettings, PenaltySolver,
-    SettingsError, SolveReport, SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
+    Friction, KktResiduals, KktScales, KktTolerance, PatternId, PenaltyParameter, PenaltySettings,
+    PenaltySolver, SettingsError, SolveReport, SolveStatus, StageTimes, StiffnessBlock,
+    WorkCounters,
 };
 #[cfg(feature = "clarabel")]
 pub use solver::{ExactSettings, ExactSolver};

@@ -7,7 +7,7 @@ use std::time::Duration;
 use vem_elastic::{AssembledSystem, ElasticBody, Solution};
 use vem_mesh::{Point, Vector};
 
-use crate::{SolveReport, WorkCounters};
+use crate::{SolveReport, Warning, WorkCounters};
 
 /// The contact state of an interface node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,9 +31,9 @@ impl NodeStatus {
     }
 }
 
-/// Classifies a node from its forces: open when the normal force is below `force_tolerance`;
-/// with friction, slip when the friction force reaches its bound (to 1e-6 relative), else stick;
-/// frictionless contact nodes slide freely (slip).
+/// Classifies a node from its forces: open when the normal force is at most `force_tolerance`;
+/// with friction, stick when the friction force is below its bound by more than
+/// `force_tolerance`, else slip; frictionless contact nodes slide freely (slip).
 pub(crate) fn classify(
     normal_force: f64,
     force_tolerance: f64,
@@ -45,7 +45,7 @@ pub(crate) fn classify(
         return NodeStatus::Open;
     }
     match (has_friction, friction_bound) {
-        (true, Some(bound)) if friction_force.abs() < bound * (1.0 - 1e-6) => NodeStatus::Stick,
+        (true, Some(bound)) if friction_force.abs() < bound - force_tolerance => NodeStatus::Stick,
         _ => NodeStatus::Slip,
     }
 }
@@ -168,6 +168,10 @@ pub struct ContactResult {
     /// What the call computed: assemblies (when it built the discretisation), symbolic
     /// analyses, numeric factorisations, triangular solves, and the time of each stage.
     pub work: WorkCounters,
+    /// What the user should know about this converged answer: the solver's warnings (also in
+    /// [`SolveReport::warnings`]) and those about the model (elements far outside A1, a
+    /// contact zone at a limit of the interface, an effectively tied friction bound).
+    pub warnings: Vec<Warning>,
 }
 
 impl ContactResult {
@@ -185,6 +189,7 @@ impl ContactResult {
             fixed_point,
             model,
             work: WorkCounters::default(),
+            warnings: Vec::new(),
         }
     }
 

@@ -96,9 +96,11 @@ fn one_dof_spring_touching_the_wall() {
     let u = (f + eps * g) / (k + eps);
     assert_close(p.displacement[0], u, 1e-13, "penalty u");
     assert_close(p.normal_force[0], eps * (u - g), 1e-10, "penalty lambda");
+    // Relative to the displacement scale U = max(|u|, |g|, |f| / k) = 1.5.
+    assert_eq!(p.report.residuals.scales.displacement, f / k);
     assert_close(
         p.report.residuals.max_penetration,
-        u - g,
+        (u - g) / (f / k),
         1e-13,
         "penetration",
     );

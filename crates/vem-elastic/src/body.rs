@@ -12,8 +12,8 @@ use crate::assembly::ElementContribution;
 use crate::boundary::VectorField;
 use crate::post::{ElementField, PartReaction, Solution};
 use crate::{
-    AssembledSystem, CholeskySolver, Component, Dirichlet, DofMap, ElasticError, LinearSolver,
-    Material, Traction,
+    AssembledSystem, CholeskySettings, CholeskySolver, Component, Dirichlet, DofMap, ElasticError,
+    LinearSolver, Material, SolveError, Traction,
 };
 
 /// A linear elastic body discretised by an [`ElementSpace`] on a polygonal mesh, with its
@@ -343,7 +343,11 @@ impl ElasticBody {
 
     /// Solves the assembled `system` with `solver` (analyse, factorise, solve) and
     /// post-processes: full displacement, reactions, strain energy. A non-positive-definite
-    /// stiffness is [`ElasticError::SingularStiffness`].
+    /// stiffness is [`ElasticError::SingularStiffness`] when the Dirichlet conditions leave a
+    /// rigid motion free ([`ElasticBody::holds_rigid_motions`]); for a held body (badly shaped
+    /// elements) it is factorised again accepting any positive pivot, and the answer is kept if
+    /// it solves the system to `1e-8` relative, else [`ElasticError::IllConditioned`] names the
+    /// worst element.
     pub fn solve_system(
         &self,
         system: &AssembledSystem,
@@ -354,11 +358,118 @@ impl ElasticBody {
         } else {
             let map = |e| ElasticError::from_solver(&self.name, e);
             solver.analyse(system.stiffness().symbolic()).map_err(map)?;
-            solver.factorise(system.stiffness().as_ref()).map_err(map)?;
-            solver.solve(system.rhs()).map_err(map)?
+            match solver.factorise(system.stiffness().as_ref()) {
+                Ok(()) => solver.solve(system.rhs()).map_err(map)?,
+                Err(SolveError::NotPositiveDefinite { .. }) if self.holds_rigid_motions() => {
+                    self.solve_ill_conditioned(system)?
+                }
+                Err(e) => return Err(map(e)),
+            }
         };
         let displacement = system.expand(&u_free)?;
         self.solution(system, displacement)
+    }
+
+    /// True when the Dirichlet conditions fix the three rigid motions (the translations and
+    /// the rotation about the centroid of the prescribed vertices): the prescribed components
+    /// of the rigid motions, as columns, have rank 3 (their correlation matrix has a
+    /// determinant above `1e-12`). A body that is not held has a singular stiffness whatever
+    /// its mesh; a held body's stiffness is positive definite in exact arithmetic.
+    pub fn holds_rigid_motions(&self) -> bool {
+        let dofs = self.dofs();
+        let points: Vec<(Point, usize)> = dofs
+            .prescribed_dofs()
+            .iter()
+            .map(|&dof| (self.mesh.vertex(dof / 2), dof % 2))
+            .collect();
+        if points.is_empty() {
+            return false;
+        }
+        let n = points.len() as f64;
+        let centre = points
+            .iter()
+            .fold(Vector::zeros(), |c, (p, _)| c + p.coords)
+            / n;
+        let extent = points
+            .iter()
+            .fold(0.0f64, |e, (p, _)| e.max((p.coords - centre).norm()));
+        // Rows of the rigid motions (t_x, t_y, rotation) at each prescribed component.
+        let mut gram = [[0.0f64; 3]; 3];
+        for (p, component) in &points {
+            let r = (p.coords - centre) / if extent > 0.0 { extent } else { 1.0 };
+            let row = if *component == 0 {
+                [1.0, 0.0, -r.y]
+            } else {
+                [0.0, 1.0, r.x]
+            };
+            for a in 0..3 {
+                for b in 0..3 {
+                    gram[a][b] += row[a] * row[b];
+                }
+            }
+        }
+        if (0..3).any(|a| gram[a][a] <= 0.0) {
+            return false;
+        }
+        let c = |a: usize, b: usize| gram[a][b] / (gram[a][a] * gram[b][b]).sqrt();
+        let det = c(0, 0) * (c(1, 1) * c(2, 2) - c(1, 2) * c(2, 1))
+            - c(0, 1) * (c(1, 0) * c(2, 2) - c(1, 2) * c(2, 0))
+            + c(0, 2) * (c(1, 0) * c(2, 1) - c(1, 1) * c(2, 0));
+        det > 1e-12
+    }
+
+    /// A held body whose factorisation was refused for a tiny pivot (badly shaped elements):
+    /// factorise again accepting any positive pivot, and keep the answer only if it solves
+    /// the system to `1e-8` relative (else [`ElasticError::IllConditioned`], naming the worst
+    /// element).
+    fn solve_ill_conditioned(&self, system: &AssembledSystem) -> Result<Vec<f64>, ElasticError> {
+        let ill = |reason: String| {
+            let (element, quality) = (0..self.mesh.n_polygons())
+                .map(|p| (p, self.mesh.element_quality(p)))
+                .min_by(|a, b| a.1.gamma().total_cmp(&b.1.gamma()))
+                .map_or((0, None), |(p, q)| (p, Some(q)));
+            ElasticError::IllConditioned {
+                body: self.name.clone(),
+                reason,
+                element,
+                gamma: quality.map_or(f64::NAN, |q| q.gamma()),
+                diameter: quality.map_or(f64::NAN, |q| q.diameter),
+            }
+        };
+        let settings = CholeskySettings::builder()
+            .singular_pivot_tolerance(0.0)
+            .build()
+            .map_err(|e| ElasticError::from_solver(&self.name, e))?;
+        let mut solver = CholeskySolver::new(settings);
+        let k = system.stiffness().as_ref();
+        solver
+            .analyse(system.stiffness().symbolic())
+            .map_err(|e| ElasticError::from_solver(&self.name, e))?;
+        solver
+            .factorise(k)
+            .map_err(|e| ill(format!("the Cholesky factorisation failed: {e}")))?;
+        let u = solver
+            .solve(system.rhs())
+            .map_err(|e| ElasticError::from_solver(&self.name, e))?;
+        // Relative residual ||K u - f|| / (|| |K||u| || + ||f||).
+        let (rows, values) = (k.row_idx(), k.val());
+        let mut residual: Vec<f64> = system.rhs().iter().map(|f| -f).collect();
+        let mut magnitude: Vec<f64> = system.rhs().iter().map(|f| f.abs()).collect();
+        for (j, &uj) in u.iter().enumerate() {
+            for p in k.col_range(j) {
+                residual[rows[p]] += values[p] * uj;
+                magnitude[rows[p]] += (values[p] * uj).abs();
+            }
+        }
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let relative = inf(&residual) / inf(&magnitude).max(f64::MIN_POSITIVE);
+        if relative.is_finite() && relative <= 1e-8 {
+            Ok(u)
+        } else {
+            Err(ill(format!(
+                "relative residual {relative:.1e} of the solve"
+            )))
+        }
     }
 
     /// Post-processes a full displacement vector: reactions per Dirichlet condition and the

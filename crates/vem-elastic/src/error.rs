@@ -162,6 +162,25 @@ pub enum ElasticError {
         /// The body's name.
         body: String,
     },
+    /// The reduced stiffness of a held body (its Dirichlet conditions fix the three rigid
+    /// motions) could not be factorised or solved accurately: badly shaped elements make it
+    /// too ill-conditioned for double precision. Names the worst element.
+    #[error(
+        "body '{body}' is held but its stiffness is too ill-conditioned to solve ({reason}); \
+         worst element {element}: gamma (A1) = {gamma:.3e}, diameter {diameter:.3e}"
+    )]
+    IllConditioned {
+        /// The body's name.
+        body: String,
+        /// What failed (the factorisation, or the accuracy of the solve).
+        reason: String,
+        /// The polygon with the smallest gamma of assumption A1.
+        element: usize,
+        /// Its gamma (smaller of shortest edge / diameter and star radius / diameter).
+        gamma: f64,
+        /// Its diameter.
+        diameter: f64,
+    },
     /// The linear solver failed for another reason.
     #[error("body '{body}': the linear solver failed")]
     Solver {

@@ -17,7 +17,10 @@
 //! - Solve: behind the [`LinearSolver`] trait (analyse a pattern once, factorise values as
 //!   often as needed, solve); [`CholeskySolver`] is faer's sparse Cholesky with AMD. A
 //!   stiffness that is not positive definite is reported as
-//!   [`ElasticError::SingularStiffness`] (the body is not held).
+//!   [`ElasticError::SingularStiffness`] when the Dirichlet conditions leave a rigid motion
+//!   free ([`ElasticBody::holds_rigid_motions`]); a held body with badly shaped elements is
+//!   solved if it can be to `1e-8`, else [`ElasticError::IllConditioned`] names the worst
+//!   element.
 //! - Post-processing ([`Solution`], [`ElasticBody::element_fields`]): displacements, strain and
 //!   stress of `Pi u_h` per element, von Mises stress (plane strain includes
 //!   `sigma_zz = lambda tr eps`), strain energy `1/2 u^T K u`, reactions per Dirichlet part.

@@ -247,3 +247,82 @@ fn with_mesh_rebuilds_the_body_on_another_mesh() {
         "{err}"
     );
 }
+
+/// A 4 x 5 grid of quads on `[0, 1] x [0, 1 + h]` whose middle row has height `h`; parts
+/// "bottom" and "top".
+fn thin_row_mesh(h: f64) -> vem_mesh::Mesh {
+    let ys = [0.0, 0.25, 0.5, 0.5 + h, 0.75 + h, 1.0 + h];
+    let mut vertices = Vec::new();
+    for &y in &ys {
+        for i in 0..5 {
+            vertices.push(Point::new(0.25 * i as f64, y));
+        }
+    }
+    let id = |i: usize, j: usize| 5 * j + i;
+    let mut polygons = Vec::new();
+    for j in 0..ys.len() - 1 {
+        for i in 0..4 {
+            polygons.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let top = ys.len() - 1;
+    let parts = vec![
+        vem_mesh::PartSpec::new("bottom", (0..4).map(|i| [id(i, 0), id(i + 1, 0)]).collect()),
+        vem_mesh::PartSpec::new(
+            "top",
+            (0..4).map(|i| [id(i, top), id(i + 1, top)]).collect(),
+        ),
+    ];
+    vem_mesh::Mesh::from_polygons(vertices, &polygons, parts).unwrap()
+}
+
+#[test]
+fn a_held_body_with_needle_cells_solves() {
+    // A row of cells of aspect ratio 0.25 / h = 2e9 and 4e9 across the body: the body is
+    // held, so it must solve (or report ill-conditioning), not claim it is floating. The
+    // reaction balances the load (conservation) to the accuracy the conditioning allows.
+    for h in [1.25e-10, 6.25e-11] {
+        let body = ElasticBody::builder("needles", thin_row_mesh(h), lame(2.0, 1.0), vem())
+            .clamp("bottom")
+            .traction("top", |_| Vector::new(0.3, -1.0))
+            .build()
+            .unwrap();
+        assert!(body.holds_rigid_motions());
+        // The default pivot tolerance refuses the factorisation at 4e9 (smallest relative
+        // pivot 1.07e-9 at 2e9)...
+        let mut strict = vem_elastic::CholeskySolver::default();
+        let system = body.assemble().unwrap();
+        use vem_elastic::LinearSolver;
+        strict.analyse(system.stiffness().symbolic()).unwrap();
+        let strict_result = strict.factorise(system.stiffness().as_ref());
+        assert_eq!(strict_result.is_err(), h < 1e-10);
+        // ... and the body solves all the same.
+        let solution = body.solve().unwrap_or_else(|e| panic!("h = {h:e}: {e}"));
+        let reaction = solution.reaction("bottom").unwrap();
+        assert!((reaction.x + 0.3).abs() < 1e-6, "{reaction:?}");
+        assert!((reaction.y - 1.0).abs() < 1e-6, "{reaction:?}");
+    }
+}
+
+#[test]
+fn rigid_motions_left_free_are_detected() {
+    let square = Rectangle::unit_square();
+    let mesh = structured_quads(&square, 3, 3).unwrap();
+    let build = |conditions: Vec<Dirichlet>| {
+        let mut b = ElasticBody::builder("b", mesh.clone(), lame(2.0, 1.0), vem());
+        for c in conditions {
+            b = b.dirichlet(c);
+        }
+        b.build().unwrap().holds_rigid_motions()
+    };
+    // Clamped bottom, or y on the bottom and x on the left side, hold all three rigid motions.
+    assert!(build(vec![Dirichlet::fixed("bottom", Component::Both)]));
+    assert!(build(vec![
+        Dirichlet::fixed("bottom", Component::Y),
+        Dirichlet::fixed("left", Component::X),
+    ]));
+    assert!(!build(vec![]));
+    assert!(!build(vec![Dirichlet::fixed("bottom", Component::Y)]));
+    // x fixed along a vertical line only: the y translation is free.
+    assert!(!build(vec![Dirichlet::fixed("left", Component::X)]));
+}

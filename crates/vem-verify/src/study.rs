@@ -733,7 +733,11 @@ impl Study {
             body_errors,
             contact,
             solver_iterations: interface.map(|i| i.report.iterations),
-            max_penetration: interface.map(|i| i.report.residuals.max_penetration),
+            // The report's residual is relative to the displacement scale: back to a length.
+            max_penetration: interface.map(|i| {
+                let r = &i.report.residuals;
+                r.max_penetration * r.scales.displacement
+            }),
             inserted_nodes: interface.map(|i| i.inserted_nodes),
             fixed_point_steps: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.steps)),
             work: solution.work.into(),

@@ -27,7 +27,7 @@ use faer::Par;
 
 use super::error::{ContactSolverError, SettingsError};
 use super::newton_matrix::{NewtonMatrix, SingularGuard};
-use super::report::{KktResiduals, SolveReport, SolveStatus};
+use super::report::{certify, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus};
 use super::system::ContactSystem;
 use super::{ContactSolution, ContactSolver, PenaltyParameter};
 
@@ -76,6 +76,12 @@ impl ActiveSetSettings {
     /// `max(||u||_inf, ||g||_inf)`.
     pub fn tolerance(&self) -> f64 {
         self.tolerance
+    }
+
+    /// The acceptance test of an answer: every relative KKT residual
+    /// ([`KktResiduals`](super::KktResiduals)) below `max(100 tolerance, 1e-9)`.
+    pub fn acceptance(&self) -> f64 {
+        (100.0 * self.tolerance).max(1e-9)
     }
 
     /// Limit on the number of splits (outer iterations).
@@ -219,6 +225,9 @@ impl ContactSolver for ActiveSetSolver {
 
     fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
+        if unloaded(system) {
+            return Ok(unloaded_solution(system, NAME, start));
+        }
         let s = self.settings;
         let (n, m) = (system.n_dofs(), system.n_constraints());
         let rho = s.augmentation.value(system);
@@ -326,12 +335,16 @@ impl ContactSolver for ActiveSetSolver {
             }
             previous = Some(split);
         };
-        let residuals = KktResiduals::evaluate(system, &u, &ln, &lt);
+        let (status, residuals) = match &outcome {
+            Ok(()) => match certify(system, &u, &ln, &lt, s.acceptance()) {
+                Ok(residuals) => (SolveStatus::Converged, residuals),
+                Err(residuals) => (SolveStatus::FailedCheck, residuals),
+            },
+            Err((status, _)) => (*status, KktResiduals::evaluate(system, &u, &ln, &lt)),
+        };
         let report = SolveReport {
             solver: NAME,
-            status: outcome
-                .as_ref()
-                .map_or_else(|(status, _)| *status, |_| SolveStatus::Converged),
+            status,
             iterations,
             work: {
                 let mut work = matrix.take_work();
@@ -340,9 +353,10 @@ impl ContactSolver for ActiveSetSolver {
             },
             wall_time: start.elapsed(),
             residuals,
+            warnings: Vec::new(),
         };
         match outcome {
-            Ok(()) => Ok(ContactSolution {
+            Ok(()) if status == SolveStatus::Converged => Ok(ContactSolution {
                 displacement: u,
                 normal_force: ln,
                 tangential_force: lt,
@@ -353,7 +367,7 @@ impl ContactSolver for ActiveSetSolver {
                 &direction,
                 Box::new(report),
             )),
-            Err(_) => Err(ContactSolverError::NotConverged {
+            _ => Err(ContactSolverError::NotConverged {
                 report: Box::new(report),
             }),
         }

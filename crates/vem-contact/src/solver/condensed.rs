@@ -52,7 +52,9 @@ use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome};
 use super::error::{ContactSolverError, SettingsError};
-use super::report::{KktResiduals, SolveReport, SolveStatus, WorkCounters};
+use super::report::{
+    certify, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus, WorkCounters,
+};
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
 
@@ -91,6 +93,12 @@ impl CondensedSettings {
     /// alone).
     pub fn tolerance(&self) -> f64 {
         self.tolerance
+    }
+
+    /// The acceptance test of an answer: every relative KKT residual
+    /// ([`KktResiduals`](super::KktResiduals)) below `max(100 tolerance, 1e-9)`.
+    pub fn acceptance(&self) -> f64 {
+        (100.0 * self.tolerance).max(1e-9)
     }
 
     /// Limit on the projected Newton steps.
@@ -594,6 +602,9 @@ impl ContactSolver for CondensedSolver {
 
     fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
+        if unloaded(system) {
+            return Ok(unloaded_solution(system, NAME, start));
+        }
         let mut work = WorkCounters::default();
         if !self.structure.as_ref().is_some_and(|s| s.fits(system)) {
             self.structure = None;
@@ -700,22 +711,36 @@ impl ContactSolver for CondensedSolver {
         factors.multipliers = Some(lambda);
         factors.unconstrained = Some(unconstrained);
 
-        let residuals =
-            KktResiduals::evaluate(system, &displacement, &normal_force, &tangential_force);
-        work.times.contact_solve = start.elapsed();
-        let report = SolveReport {
-            solver: NAME,
-            status: if interface.converged {
-                SolveStatus::Converged
-            } else if interface.free_mode {
+        let (status, residuals) = if interface.converged {
+            match certify(
+                system,
+                &displacement,
+                &normal_force,
+                &tangential_force,
+                self.settings.acceptance(),
+            ) {
+                Ok(residuals) => (SolveStatus::Converged, residuals),
+                Err(residuals) => (SolveStatus::FailedCheck, residuals),
+            }
+        } else {
+            let status = if interface.free_mode {
                 SolveStatus::Unbounded
             } else {
                 SolveStatus::MaxIterations
-            },
+            };
+            let residuals =
+                KktResiduals::evaluate(system, &displacement, &normal_force, &tangential_force);
+            (status, residuals)
+        };
+        work.times.contact_solve = start.elapsed();
+        let report = SolveReport {
+            solver: NAME,
+            status,
             iterations: interface.iterations,
             work,
             wall_time: start.elapsed(),
             residuals,
+            warnings: Vec::new(),
         };
         if interface.free_mode {
             // The free mode: the change of u over one proximal step, from the last
@@ -736,7 +761,7 @@ impl ContactSolver for CondensedSolver {
                 Box::new(report),
             ));
         }
-        if interface.converged {
+        if status == SolveStatus::Converged {
             Ok(ContactSolution {
                 displacement,
                 normal_force,

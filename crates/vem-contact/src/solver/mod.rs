@@ -40,7 +40,10 @@ pub use error::{ContactSolverError, SettingsError};
 #[cfg(feature = "clarabel")]
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};
 pub use penalty::{PenaltyParameter, PenaltySettings, PenaltySettingsBuilder, PenaltySolver};
-pub use report::{KktResiduals, SolveReport, SolveStatus, StageTimes, WorkCounters};
+pub(crate) use report::ForceScales;
+pub use report::{
+    KktResiduals, KktScales, KktTolerance, SolveReport, SolveStatus, StageTimes, WorkCounters,
+};
 pub(crate) use system::borrowed_block;
 pub use system::{
     ConstraintRows, ContactSystem, ContactSystemError, Friction, PatternId, StiffnessBlock,

@@ -35,18 +35,23 @@ use faer::Par;
 
 use super::error::{ContactSolverError, SettingsError};
 use super::newton_matrix::{NewtonMatrix, SingularGuard, FREE_MODE_CURVATURE};
-use super::report::{KktResiduals, SolveReport, SolveStatus};
+use super::report::{
+    block_ranges, certify, unloaded, unloaded_solution, ForceScales, KktResiduals, KktTolerance,
+    SolveReport, SolveStatus,
+};
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
+use crate::warning::Warning;
 
 const NAME: &str = "penalty (semismooth Newton)";
 
 /// How a penalty parameter is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PenaltyParameter {
-    /// `factor` times the largest diagonal entry of `K` over the unknowns that appear in a
-    /// constraint row (falls back to the largest diagonal entry of `K`, then to 1, if that
-    /// vanishes).
+    /// `factor` times the constrained stiffness of the softest body
+    /// ([`ContactSystem::softest_constrained_diagonal`]: for one body, the largest diagonal
+    /// entry of `K` over the unknowns that appear in a constraint row; falls back to the
+    /// largest diagonal entry of `K`, then to 1, if that vanishes).
     RelativeToStiffness(f64),
     /// An absolute value (force per length for unit constraint rows).
     Absolute(f64),
@@ -69,7 +74,7 @@ impl PenaltyParameter {
         match *self {
             Self::Absolute(v) => v,
             Self::RelativeToStiffness(factor) => {
-                let mut scale = system.max_constrained_diagonal();
+                let mut scale = system.softest_constrained_diagonal();
                 if scale <= 0.0 {
                     scale = system.stiffness_diagonal().into_iter().fold(0.0, f64::max);
                 }
@@ -125,6 +130,23 @@ impl PenaltySettings {
     /// [`KktResiduals::stationarity`]).
     pub fn tolerance(&self) -> f64 {
         self.tolerance
+    }
+
+    /// The acceptance test of an answer: relative stationarity and the signs and bounds of
+    /// the forces below `max(100 tolerance, 1e-6)` (penetration and complementarity are the
+    /// penalty's consistency error, reported but not bounded; see
+    /// [`KktTolerance::penalty`]). A penalty so large that the gradient's round-off floor
+    /// exceeds this fails the test; one whose floor is between the tolerance and this passes
+    /// with a [`Warning::PenaltyRoundOff`].
+    pub fn acceptance(&self) -> f64 {
+        (100.0 * self.tolerance).max(1e-6)
+    }
+
+    /// The round-off floor of the gradient above which a converged answer carries a
+    /// [`Warning::PenaltyRoundOff`]: `min(100 tolerance, acceptance)` (`1e-8` by default; the
+    /// default penalty factor `1e3` stays well below it).
+    pub fn round_off_warning(&self) -> f64 {
+        (100.0 * self.tolerance).min(self.acceptance())
     }
 
     /// Newton iteration limit.
@@ -255,6 +277,7 @@ impl Penalised<'_> {
 
     fn state(&self, u: &[f64]) -> State {
         let sys = self.system;
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let m = sys.n_constraints();
         let constraint: Vec<f64> = sys
             .normal_rows()
@@ -289,11 +312,22 @@ impl Penalised<'_> {
             .zip(&reaction)
             .map(|((k, f), r)| k - f + r)
             .collect();
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let scale = inf(sys.load()).max(inf(&ku)).max(inf(&reaction));
-        let scale = if scale > 0.0 { scale } else { 1.0 };
-        let relative_gradient = inf(&gradient) / scale;
-        let relative_noise = 8.0 * f64::EPSILON * inf(&self.magnitudes(u)) / scale;
+        // Relative to each body's own force scale, as the acceptance test measures it.
+        let forces = ForceScales::of(sys, u, &ku, &normal_force, &tangential_force);
+        let relative_gradient = forces.stationarity;
+        let magnitudes = self.magnitudes(u);
+        let relative_noise = block_ranges(sys)
+            .into_iter()
+            .zip(&forces.blocks)
+            .map(|(range, &scale)| {
+                let noise = 8.0 * f64::EPSILON * inf(&magnitudes[range]);
+                if scale > 0.0 {
+                    noise / scale
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0f64, f64::max);
         let mut sets: Vec<bool> = constraint.iter().map(|&c| c > 0.0).collect();
         sets.extend(
             slip.iter()
@@ -483,6 +517,9 @@ impl ContactSolver for PenaltySolver {
 
     fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
         let start = Instant::now();
+        if unloaded(system) {
+            return Ok(unloaded_solution(system, NAME, start));
+        }
         let s = self.settings;
         let n = system.n_dofs();
         let m = system.n_constraints();
@@ -589,13 +626,32 @@ impl ContactSolver for PenaltySolver {
             previous_sets = Some(std::mem::take(&mut state.sets));
             state = p.state(&u);
         };
-        let residuals =
-            KktResiduals::evaluate(system, &u, &state.normal_force, &state.tangential_force);
+        let (ln, lt) = (&state.normal_force, &state.tangential_force);
+        let (status, residuals) = match &outcome {
+            Ok(()) => match certify(system, &u, ln, lt, KktTolerance::penalty(s.acceptance())) {
+                Ok(residuals) => (SolveStatus::Converged, residuals),
+                Err(residuals) => (SolveStatus::FailedCheck, residuals),
+            },
+            Err((status, _)) => (*status, KktResiduals::evaluate(system, &u, ln, lt)),
+        };
+        let mut warnings = Vec::new();
+        if status == SolveStatus::Converged && state.relative_noise > s.round_off_warning() {
+            let constrained = system.softest_constrained_diagonal();
+            warnings.push(Warning::PenaltyRoundOff {
+                solver: NAME,
+                penalty: p.eps_n,
+                penalty_factor: if constrained > 0.0 {
+                    p.eps_n / constrained
+                } else {
+                    f64::NAN
+                },
+                noise_floor: state.relative_noise,
+                tolerance: s.tolerance,
+            });
+        }
         let report = SolveReport {
             solver: NAME,
-            status: outcome
-                .as_ref()
-                .map_or_else(|(status, _)| *status, |_| SolveStatus::Converged),
+            status,
             iterations,
             work: {
                 let mut work = matrix.take_work();
@@ -604,9 +660,10 @@ impl ContactSolver for PenaltySolver {
             },
             wall_time: start.elapsed(),
             residuals,
+            warnings,
         };
         match outcome {
-            Ok(()) => Ok(ContactSolution {
+            Ok(()) if status == SolveStatus::Converged => Ok(ContactSolution {
                 displacement: {
                     self.warm = Some((system.pattern(), u.clone()));
                     u
@@ -620,7 +677,7 @@ impl ContactSolver for PenaltySolver {
                 &direction,
                 Box::new(report),
             )),
-            Err(_) => Err(ContactSolverError::NotConverged {
+            _ => Err(ContactSolverError::NotConverged {
                 report: Box::new(report),
             }),
         }

@@ -4,6 +4,7 @@ use std::ops::AddAssign;
 use std::time::Duration;
 
 use super::system::ContactSystem;
+use crate::warning::Warning;
 
 /// How a solver run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,6 +22,9 @@ pub enum SolveStatus {
     Unbounded,
     /// The backend failed numerically (lack of progress, factorisation failure, ...).
     NumericalFailure,
+    /// The solver stopped on its own criteria, but its answer failed the KKT acceptance test
+    /// (the residuals in the report exceed the solver's tolerance).
+    FailedCheck,
 }
 
 impl SolveStatus {
@@ -33,38 +37,194 @@ impl SolveStatus {
             SolveStatus::Infeasible => "infeasible constraints",
             SolveStatus::Unbounded => "unbounded energy",
             SolveStatus::NumericalFailure => "numerical failure",
+            SolveStatus::FailedCheck => "answer failed the KKT check",
         }
     }
 }
 
+/// The scales in which [`KktResiduals`] are measured, taken from the problem and the answer
+/// (so that the residuals do not change with the units of lengths, forces or moduli).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct KktScales {
+    /// Force scale `F = max_b F_b` over the stiffness blocks (bodies) `b`, with
+    /// `F_b = max(||f_b||_inf, ||(K u)_b||_inf, ||(B_N' lambda_N + B_T' lambda_T)_b||_inf)`.
+    /// Zero only for an unloaded problem with a zero answer.
+    pub force: f64,
+    /// Displacement scale `U = max(||u||_inf, ||g||_inf, ||f||_inf / k)` with `k` the largest
+    /// diagonal entry of `K` (the last term keeps `U` a scale of the problem when the answer
+    /// and the gaps vanish).
+    pub displacement: f64,
+}
+
 /// KKT residuals of a returned `(u, lambda_N, lambda_T)`, computed independently of the solver
-/// that produced it (see [`KktResiduals::evaluate`]).
+/// that produced it (see [`KktResiduals::evaluate`]), every one relative to the problem's own
+/// scales ([`KktScales`]): unit free, invariant under a change of the units of lengths, forces
+/// and moduli.
 ///
 /// Conventions (spec section 4): `(B_N u - g)_i > 0` is penetration; `lambda_N,i >= 0` is the
 /// compressive nodal contact force; the tangential force satisfies
 /// `lambda_T,i = b_i sign((B_T u)_i)` where node `i` slips.
+///
+/// The force scale of interface node `i`, `F_i`, is the smallest `F_b` of the bodies its rows
+/// touch: a contact force must be accurate relative to the forces of the softer (or less
+/// loaded) body, not only to those of a stiff body whose Dirichlet lifting dominates the load.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct KktResiduals {
-    /// `max_i (B_N u - g)_i^+`: largest penetration (a length).
+    /// The scales the figures below are relative to.
+    pub scales: KktScales,
+    /// `max_i (B_N u - g)_i^+ / U`: largest penetration.
     pub max_penetration: f64,
-    /// `max_i (-lambda_N,i)^+`: magnitude of the most negative (tensile) normal force.
+    /// `max_i (-lambda_N,i)^+ / F_i`: most negative (tensile) normal force.
     pub negative_normal_force: f64,
-    /// `max_i |lambda_N,i (B_N u - g)_i|`: normal complementarity (force x length).
+    /// `max_i |lambda_N,i| |(g - B_N u)_i| / (F_i U)`: normal complementarity.
     pub complementarity: f64,
-    /// `||K u - f + B_N' lambda_N + B_T' lambda_T||_inf / s` with
-    /// `s = max(||f||_inf, ||K u||_inf, ||B_N' lambda_N + B_T' lambda_T||_inf)` (or 1 if all
-    /// vanish): relative stationarity.
+    /// `max_b ||(K u - f + B_N' lambda_N + B_T' lambda_T)_b||_inf / F_b`: stationarity of
+    /// every body relative to its own force scale.
     pub stationarity: f64,
-    /// `max_i (|lambda_T,i| - b_i)^+`: violation of the friction bound (0 when frictionless).
+    /// The round-off floor of [`KktResiduals::stationarity`]:
+    /// `max_b 8 eps ||(|K||u| + |f| + |B_N'||lambda_N| + |B_T'||lambda_T|)_b||_inf / F_b`. A
+    /// body with a large rigid displacement (held only by a soft body) cannot be checked
+    /// below it; the acceptance test takes the larger of its tolerance and this floor.
+    pub stationarity_floor: f64,
+    /// `max_i (|lambda_T,i| - b_i)^+ / F_i`: violation of the friction bound (0 when
+    /// frictionless).
     pub friction_bound_violation: f64,
-    /// `max_i |b_i |(B_T u)_i| - lambda_T,i (B_T u)_i|`: friction complementarity, i.e. the
-    /// failure of the tangential force to be `b_i` times the slip direction where the node
-    /// slips (force x length; 0 when frictionless).
+    /// `max_i |b_i |s_i| - lambda_T,i s_i| / (F_i U)` over the nodes that slip,
+    /// `|s_i| = |(B_T u)_i| > t U` (`t`: the acceptance tolerance, `1e-10` for
+    /// [`KktResiduals::evaluate`]): the failure of the tangential force to be `b_i` times the
+    /// slip direction (0 when frictionless). Slips below `t U` count as stick.
     pub slip_direction_violation: f64,
 }
 
+/// Slips below this fraction of the displacement scale count as stick in
+/// [`KktResiduals::evaluate`].
+const DEFAULT_SLIP_FLOOR: f64 = 1e-10;
+
+/// `x / s`, with `0 / 0 = 0` (a residual that vanishes with its scale).
+fn relative(x: f64, s: f64) -> f64 {
+    if x == 0.0 {
+        0.0
+    } else if s > 0.0 {
+        x / s
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+/// Per-body force scales `F_b` and the stationarity residual `r = K u - f + B' lambda`.
+pub(crate) struct ForceScales {
+    /// `F_b` for every stiffness block.
+    pub(crate) blocks: Vec<f64>,
+    /// `F_i` for every interface node (smallest `F_b` of the blocks its rows touch).
+    pub(crate) rows: Vec<f64>,
+    /// `max_b ||r_b||_inf / F_b`.
+    pub(crate) stationarity: f64,
+    /// Round-off floor of `stationarity` (see [`KktResiduals::stationarity_floor`]).
+    pub(crate) stationarity_floor: f64,
+}
+
+impl ForceScales {
+    /// Force scales of the answer `(u, lambda_N, lambda_T)` given `K u`.
+    pub(crate) fn of(
+        system: &ContactSystem<'_>,
+        displacement: &[f64],
+        ku: &[f64],
+        normal_force: &[f64],
+        tangential_force: &[f64],
+    ) -> Self {
+        let mut reaction = vec![0.0; system.n_dofs()];
+        system
+            .normal_rows()
+            .add_transpose_apply(normal_force, &mut reaction);
+        if let Some(friction) = system.friction() {
+            friction
+                .tangential_rows()
+                .add_transpose_apply(tangential_force, &mut reaction);
+        }
+        let load = system.load();
+        // |K||u| + |f| + |B'||lambda|: what the evaluation of r rounds.
+        let mut magnitude: Vec<f64> = load.iter().map(|f| f.abs()).collect();
+        let abs_u: Vec<f64> = displacement.iter().map(|x| x.abs()).collect();
+        system.stiffness_apply_with(&abs_u, &mut magnitude, f64::abs);
+        let mut add_abs = |rows: &super::ConstraintRows, y: &[f64]| {
+            for (i, &yi) in y.iter().enumerate() {
+                let (cols, vals) = rows.row(i);
+                for (&c, v) in cols.iter().zip(vals) {
+                    magnitude[c] += (v * yi).abs();
+                }
+            }
+        };
+        add_abs(system.normal_rows(), normal_force);
+        if let Some(friction) = system.friction() {
+            add_abs(friction.tangential_rows(), tangential_force);
+        }
+        let ranges = block_ranges(system);
+        let mut blocks = Vec::with_capacity(ranges.len());
+        let mut stationarity = 0.0f64;
+        let mut stationarity_floor = 0.0f64;
+        for range in &ranges {
+            let r = range.clone();
+            let scale = inf_norm(&load[r.clone()])
+                .max(inf_norm(&ku[r.clone()]))
+                .max(inf_norm(&reaction[r.clone()]));
+            let residual = r.fold(0.0f64, |a, j| a.max((ku[j] - load[j] + reaction[j]).abs()));
+            stationarity = stationarity.max(relative(residual, scale));
+            let floor = 8.0 * f64::EPSILON * inf_norm(&magnitude[range.clone()]);
+            stationarity_floor = stationarity_floor.max(relative(floor, scale));
+            blocks.push(scale);
+        }
+        let global = blocks.iter().fold(0.0f64, |a, &b| a.max(b));
+        let block_of = |col: usize| ranges.iter().position(|r| r.contains(&col));
+        let m = system.n_constraints();
+        let mut rows = vec![f64::INFINITY; m];
+        let mut touch = |rows_b: &super::ConstraintRows| {
+            for (i, row_scale) in rows.iter_mut().enumerate() {
+                for &c in rows_b.row(i).0 {
+                    if let Some(b) = block_of(c) {
+                        *row_scale = row_scale.min(blocks[b]);
+                    }
+                }
+            }
+        };
+        touch(system.normal_rows());
+        if let Some(friction) = system.friction() {
+            touch(friction.tangential_rows());
+        }
+        for row_scale in &mut rows {
+            if !row_scale.is_finite() {
+                *row_scale = global;
+            }
+        }
+        Self {
+            blocks,
+            rows,
+            stationarity,
+            stationarity_floor,
+        }
+    }
+
+    /// `F = max_b F_b`.
+    pub(crate) fn global(&self) -> f64 {
+        self.blocks.iter().fold(0.0f64, |a, &b| a.max(b))
+    }
+}
+
+/// The unknowns of every stiffness block.
+pub(crate) fn block_ranges(system: &ContactSystem<'_>) -> Vec<std::ops::Range<usize>> {
+    system
+        .stiffness_blocks()
+        .iter()
+        .map(|b| b.offset()..b.offset() + b.matrix().ncols())
+        .collect()
+}
+
 impl KktResiduals {
-    /// Recomputes every residual from the problem and a candidate answer.
+    /// Recomputes every residual from the problem and a candidate answer, in the problem's
+    /// own scales (see the field docs); slips below `1e-10 U` count as stick.
     ///
     /// For a frictionless system `tangential_force` is ignored (it should be all zeros).
     ///
@@ -76,58 +236,215 @@ impl KktResiduals {
         normal_force: &[f64],
         tangential_force: &[f64],
     ) -> Self {
+        Self::evaluate_with_floor(
+            system,
+            displacement,
+            normal_force,
+            tangential_force,
+            DEFAULT_SLIP_FLOOR,
+        )
+    }
+
+    fn evaluate_with_floor(
+        system: &ContactSystem,
+        displacement: &[f64],
+        normal_force: &[f64],
+        tangential_force: &[f64],
+        slip_floor: f64,
+    ) -> Self {
         let m = system.n_constraints();
         assert_eq!(normal_force.len(), m, "KktResiduals: normal force length");
-        let constraint = system.normal_rows().apply(displacement);
-        let mut r = Self::default();
-        for i in 0..m {
-            let c = constraint[i] - system.gap()[i];
-            r.max_penetration = r.max_penetration.max(c);
-            r.negative_normal_force = r.negative_normal_force.max(-normal_force[i]);
-            r.complementarity = r.complementarity.max((normal_force[i] * c).abs());
-        }
-        let mut reaction = vec![0.0; system.n_dofs()];
-        system
-            .normal_rows()
-            .add_transpose_apply(normal_force, &mut reaction);
-        if let Some(friction) = system.friction() {
+        if system.friction().is_some() {
             assert_eq!(
                 tangential_force.len(),
                 m,
                 "KktResiduals: tangential force length"
             );
+        }
+        let zeros;
+        let tangential_force = if system.friction().is_some() {
+            tangential_force
+        } else {
+            zeros = vec![0.0; m];
+            &zeros
+        };
+        let ku = system.stiffness_apply(displacement);
+        let forces = ForceScales::of(system, displacement, &ku, normal_force, tangential_force);
+        let k_max = system
+            .stiffness_diagonal()
+            .into_iter()
+            .fold(0.0f64, f64::max);
+        let load_displacement = if k_max > 0.0 {
+            inf_norm(system.load()) / k_max
+        } else {
+            0.0
+        };
+        let u_scale = inf_norm(displacement)
+            .max(inf_norm(system.gap()))
+            .max(load_displacement);
+        let constraint = system.normal_rows().apply(displacement);
+        let mut r = Self {
+            scales: KktScales {
+                force: forces.global(),
+                displacement: u_scale,
+            },
+            stationarity: forces.stationarity,
+            stationarity_floor: forces.stationarity_floor,
+            ..Self::default()
+        };
+        for i in 0..m {
+            let c = constraint[i] - system.gap()[i];
+            let f_i = forces.rows[i];
+            r.max_penetration = r.max_penetration.max(relative(c.max(0.0), u_scale));
+            r.negative_normal_force = r
+                .negative_normal_force
+                .max(relative((-normal_force[i]).max(0.0), f_i));
+            r.complementarity = r
+                .complementarity
+                .max(relative((normal_force[i] * c).abs(), f_i * u_scale));
+        }
+        if let Some(friction) = system.friction() {
             let slip = friction.tangential_rows().apply(displacement);
             for i in 0..m {
                 let (b, lt, s) = (friction.bounds()[i], tangential_force[i], slip[i]);
-                r.friction_bound_violation = r.friction_bound_violation.max(lt.abs() - b);
-                r.slip_direction_violation =
-                    r.slip_direction_violation.max((b * s.abs() - lt * s).abs());
+                let f_i = forces.rows[i];
+                r.friction_bound_violation = r
+                    .friction_bound_violation
+                    .max(relative((lt.abs() - b).max(0.0), f_i));
+                if s.abs() > slip_floor * u_scale {
+                    r.slip_direction_violation = r
+                        .slip_direction_violation
+                        .max(relative((b * s.abs() - lt * s).abs(), f_i * u_scale));
+                }
             }
-            friction
-                .tangential_rows()
-                .add_transpose_apply(tangential_force, &mut reaction);
         }
-        let ku = system.stiffness_apply(displacement);
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let scale = inf(system.load()).max(inf(&ku)).max(inf(&reaction));
-        let scale = if scale > 0.0 { scale } else { 1.0 };
-        let residual = ku
-            .iter()
-            .zip(system.load())
-            .zip(&reaction)
-            .fold(0.0f64, |a, ((k, f), b)| a.max((k - f + b).abs()));
-        r.stationarity = residual / scale;
         r
     }
 
-    /// The largest of all residuals except stationarity, each in its own unit: a quick
-    /// "is this an answer" figure for tests and logs.
+    /// The largest of all residuals except stationarity: a quick "is this an answer" figure
+    /// for tests and logs (unit free, like every residual).
     pub fn max_violation(&self) -> f64 {
         self.max_penetration
             .max(self.negative_normal_force)
             .max(self.complementarity)
             .max(self.friction_bound_violation)
             .max(self.slip_direction_violation)
+    }
+
+    /// Whether every residual passes `tolerance` (see [`KktTolerance`]); stationarity passes
+    /// at its round-off floor too.
+    pub fn passes(&self, tolerance: &KktTolerance) -> bool {
+        self.stationarity <= tolerance.stationarity.max(self.stationarity_floor)
+            && self.max_penetration <= tolerance.feasibility
+            && self.negative_normal_force <= tolerance.sign
+            && self.complementarity <= tolerance.complementarity
+            && self.friction_bound_violation <= tolerance.sign
+            && self.slip_direction_violation <= tolerance.complementarity
+    }
+}
+
+/// What a solver's answer must satisfy to be reported as converged: a bound on each relative
+/// [`KktResiduals`] figure. A number converts into the same bound on every figure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KktTolerance {
+    /// Bound on [`KktResiduals::stationarity`].
+    pub stationarity: f64,
+    /// Bound on [`KktResiduals::max_penetration`].
+    pub feasibility: f64,
+    /// Bound on [`KktResiduals::negative_normal_force`] and
+    /// [`KktResiduals::friction_bound_violation`] (the signs and bounds of the forces).
+    pub sign: f64,
+    /// Bound on [`KktResiduals::complementarity`] and
+    /// [`KktResiduals::slip_direction_violation`]; also the slip below which (relative to
+    /// `U`) a node counts as stick.
+    pub complementarity: f64,
+}
+
+impl From<f64> for KktTolerance {
+    fn from(t: f64) -> Self {
+        Self {
+            stationarity: t,
+            feasibility: t,
+            sign: t,
+            complementarity: t,
+        }
+    }
+}
+
+impl KktTolerance {
+    /// What a penalty method guarantees: stationarity and the signs and bounds of its forces to
+    /// `t`; penetration and complementarity are its consistency error (`O(1 / penalty)`),
+    /// reported but not bounded.
+    pub fn penalty(t: f64) -> Self {
+        Self {
+            stationarity: t,
+            feasibility: f64::INFINITY,
+            sign: t,
+            complementarity: f64::INFINITY,
+        }
+    }
+}
+
+/// The acceptance test every solver runs on its answer before reporting
+/// [`SolveStatus::Converged`]: the KKT residuals recomputed from `(u, lambda_N, lambda_T)` in
+/// the problem's own scales, checked against `tolerance` (a number bounds every figure; see
+/// [`KktTolerance`]). `Ok(residuals)` when they pass, `Err(residuals)` otherwise: the solver
+/// then returns [`ContactSolverError::NotConverged`](super::ContactSolverError::NotConverged)
+/// with status [`SolveStatus::FailedCheck`] and these residuals in its report.
+pub(crate) fn certify(
+    system: &ContactSystem<'_>,
+    displacement: &[f64],
+    normal_force: &[f64],
+    tangential_force: &[f64],
+    tolerance: impl Into<KktTolerance>,
+) -> Result<KktResiduals, KktResiduals> {
+    let tolerance = tolerance.into();
+    let residuals = KktResiduals::evaluate_with_floor(
+        system,
+        displacement,
+        normal_force,
+        tangential_force,
+        tolerance.complementarity.min(DEFAULT_SLIP_FLOOR.sqrt()),
+    );
+    if residuals.passes(&tolerance) {
+        Ok(residuals)
+    } else {
+        Err(residuals)
+    }
+}
+
+/// True when the answer is exactly `u = 0, lambda = 0`: no load and no gap closed by the
+/// prescribed displacements (`f = 0`, `g >= 0`). Then `u = 0` minimises the (non-negative)
+/// energy and every solver returns it without iterating, so a zero load gives exactly zero
+/// contact forces.
+pub(crate) fn unloaded(system: &ContactSystem<'_>) -> bool {
+    system.load().iter().all(|&f| f == 0.0) && system.gap().iter().all(|&g| g >= 0.0)
+}
+
+/// The answer of an [`unloaded`] system with its report.
+pub(crate) fn unloaded_solution(
+    system: &ContactSystem<'_>,
+    solver: &'static str,
+    start: std::time::Instant,
+) -> super::ContactSolution {
+    let (n, m) = (system.n_dofs(), system.n_constraints());
+    let displacement = vec![0.0; n];
+    let normal_force = vec![0.0; m];
+    let tangential_force = vec![0.0; m];
+    let residuals = KktResiduals::evaluate(system, &displacement, &normal_force, &tangential_force);
+    super::ContactSolution {
+        displacement,
+        normal_force,
+        tangential_force,
+        report: SolveReport {
+            solver,
+            status: SolveStatus::Converged,
+            iterations: 0,
+            work: WorkCounters::default(),
+            wall_time: start.elapsed(),
+            residuals,
+            warnings: Vec::new(),
+        },
     }
 }
 
@@ -149,6 +466,9 @@ pub struct SolveReport {
     pub wall_time: Duration,
     /// KKT residuals of the returned answer.
     pub residuals: KktResiduals,
+    /// What the answer's user should know although the solve converged (a penalty in its
+    /// round-off regime, ...).
+    pub warnings: Vec<Warning>,
 }
 
 /// Seconds spent in each stage of a model build or a solve. A backend that does not expose a

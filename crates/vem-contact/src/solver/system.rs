@@ -681,6 +681,32 @@ impl<'a> ContactSystem<'a> {
     /// Largest diagonal entry of `K` over the unknowns that appear in a normal or tangential
     /// row (the "constrained DOFs"); 0 if there are none.
     pub fn max_constrained_diagonal(&self) -> f64 {
+        self.constrained_diagonals()
+            .into_iter()
+            .fold(0.0f64, f64::max)
+    }
+
+    /// The constrained stiffness of the softest body: the smallest, over the stiffness blocks
+    /// with a constrained unknown, of the block's largest constrained diagonal entry of `K`
+    /// (0 if no unknown is constrained). A contact row is as stiff as the softer of the two
+    /// bodies it joins: penalties and augmentations relative to this keep a stiffness
+    /// contrast out of the round-off regime.
+    pub fn softest_constrained_diagonal(&self) -> f64 {
+        let softest = self
+            .constrained_diagonals()
+            .into_iter()
+            .filter(|&d| d > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        if softest.is_finite() {
+            softest
+        } else {
+            0.0
+        }
+    }
+
+    /// The largest constrained diagonal entry of every stiffness block (0 for a block without
+    /// a constrained unknown).
+    fn constrained_diagonals(&self) -> Vec<f64> {
         let mut constrained = vec![false; self.n_dofs()];
         let mut mark = |rows: &ConstraintRows| {
             for i in 0..rows.nrows() {
@@ -693,11 +719,16 @@ impl<'a> ContactSystem<'a> {
         if let Some(fr) = &self.friction {
             mark(&fr.tangential_rows);
         }
-        self.stiffness_diagonal()
+        let diagonal = self.stiffness_diagonal();
+        self.blocks
             .iter()
-            .zip(&constrained)
-            .filter(|(_, &c)| c)
-            .fold(0.0f64, |max, (&d, _)| max.max(d))
+            .map(|block| {
+                let range = block.offset..block.offset + block.matrix().ncols();
+                range
+                    .filter(|&j| constrained[j])
+                    .fold(0.0f64, |max, j| max.max(diagonal[j]))
+            })
+            .collect()
     }
 }
 

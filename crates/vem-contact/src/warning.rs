@@ -1,0 +1,123 @@
+//! Warnings that travel with a converged answer: what its user should know about the model or
+//! the solve although every check passed.
+
+/// Why a limit of the contact zone was reached (see [`Warning::ContactZoneAtLimit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ZoneLimit {
+    /// The first or last node of the contact part is in contact: the zone may extend beyond
+    /// the part.
+    EndOfPart,
+    /// A node in contact is next to a node left unpaired because it lies farther than the
+    /// pairing limit `max_distance` from the other side (or the paired nodes end there): the
+    /// zone may be clipped by the limit.
+    PairingLimit,
+}
+
+impl ZoneLimit {
+    fn describe(self) -> &'static str {
+        match self {
+            ZoneLimit::EndOfPart => "the end of the contact part",
+            ZoneLimit::PairingLimit => "the pairing limit max_distance",
+        }
+    }
+}
+
+/// Something a user should know about a result whose solve converged. Each names what and
+/// where, with the figures that triggered it.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Warning {
+    /// The penalty is so large that the gradient of the penalised energy cannot be evaluated
+    /// to the solver's tolerance (its round-off floor is above it); the answer passed the KKT
+    /// check at the floor. A smaller penalty is as accurate and better conditioned.
+    #[error(
+        "{solver}: the penalty {penalty:.3e} (x {penalty_factor:.1e} the softest constrained stiffness) \
+         is in its round-off regime: the gradient is known only to {noise_floor:.1e} relative, \
+         above the tolerance {tolerance:.1e}"
+    )]
+    PenaltyRoundOff {
+        /// The solver.
+        solver: &'static str,
+        /// The normal penalty.
+        penalty: f64,
+        /// The penalty divided by the constrained stiffness of the softest body
+        /// ([`ContactSystem::softest_constrained_diagonal`](crate::ContactSystem::softest_constrained_diagonal)).
+        penalty_factor: f64,
+        /// The relative round-off floor of the gradient.
+        noise_floor: f64,
+        /// The requested relative gradient tolerance.
+        tolerance: f64,
+    },
+    /// A friction bound exceeds every force of the problem by far: friction never reaches it,
+    /// the interface is effectively tied (bonded) wherever it is in contact.
+    #[error(
+        "friction bound b = {bound:.3e} at ({x}, {y}) is {ratio:.1e} times the largest force of \
+         the problem: the contact is effectively tied (no node can slip)"
+    )]
+    EffectivelyTied {
+        /// Position of the node with the largest bound.
+        x: f64,
+        /// See `x`.
+        y: f64,
+        /// Its nodal bound `b_i = l_i g_F(x_i)`.
+        bound: f64,
+        /// `b_i / F` with `F` the force scale of the answer.
+        ratio: f64,
+    },
+    /// An element is far outside the shape-regularity assumption A1 (its gamma, the smaller of
+    /// shortest edge / diameter and star radius / diameter, is below `1e-4`; interface node
+    /// insertion alone cuts edges down to `1e-3`): the error
+    /// estimates do not hold for it and the stiffness may be badly conditioned.
+    #[error(
+        "body '{body}', element {element}: gamma (A1) = {gamma:.3e} (shortest edge / diameter \
+         {shortest_edge_ratio:.3e}, star radius / diameter {star_ratio:.3e}, diameter \
+         {diameter:.3e}), far outside assumption A1"
+    )]
+    ElementShape {
+        /// The body.
+        body: String,
+        /// The polygon index in the body's (enlarged) mesh.
+        element: usize,
+        /// Its gamma.
+        gamma: f64,
+        /// Shortest edge / diameter.
+        shortest_edge_ratio: f64,
+        /// Star radius / diameter.
+        star_ratio: f64,
+        /// Diameter.
+        diameter: f64,
+    },
+    /// The contact zone reaches a limit of the modelled interface: the zone (and the pressure
+    /// near it) may be clipped.
+    #[error(
+        "the contact zone reaches {} at the node ({x}, {y}) (normal force {normal_force:.3e}): \
+         it may be clipped",
+        limit.describe()
+    )]
+    ContactZoneAtLimit {
+        /// Which limit.
+        limit: ZoneLimit,
+        /// Position of the node in contact at the limit.
+        x: f64,
+        /// See `x`.
+        y: f64,
+        /// Its normal force.
+        normal_force: f64,
+    },
+    /// The Coulomb fixed point stopped at the inner solver's force accuracy, above the
+    /// requested tolerance: the friction bounds are settled only to that accuracy.
+    #[error(
+        "Coulomb fixed point stopped at the force accuracy {force_accuracy:.1e} of {solver}, \
+         above the requested tolerance {tolerance:.1e} (last change {change:.1e})"
+    )]
+    FixedPointAtForceFloor {
+        /// The inner solver.
+        solver: &'static str,
+        /// Its force accuracy.
+        force_accuracy: f64,
+        /// The requested fixed-point tolerance.
+        tolerance: f64,
+        /// The last relative change of the normal forces.
+        change: f64,
+    },
+}
