@@ -741,9 +741,9 @@ fn manufactured_system(
     let normal = rows(m, n, &normal);
     let tangential = rows(m, n, &tangential);
     let mut load = vec![0.0; n];
-    for j in 0..n {
+    for (j, uj) in u.iter().enumerate() {
         for (&i, &v) in k.row_idx_of_col_raw(j).iter().zip(k.val_of_col(j)) {
-            load[i] += v * u[j];
+            load[i] += v * uj;
         }
     }
     normal.add_transpose_apply(&ln, &mut load);

@@ -235,8 +235,9 @@ impl CondensedSolver {
 
 /// The shift of a singular body's interface unknowns, relative to their largest stiffness.
 const RELATIVE_SHIFT: f64 = 1e-4;
-/// Proximal steps whose size shrinks by less than this factor move along a free mode.
-const STAGNATION: f64 = 0.999;
+/// Proximal steps whose size shrinks by less than this factor (five times in a row) move along
+/// a free mode: nothing holds it. (A mode held by a stiffness below `1e-6 s` looks the same.)
+const STAGNATION: f64 = 1.0 - 1e-6;
 
 /// The constraint rows of a system as `(columns, values)` per row: normal rows, then
 /// tangential rows.
@@ -595,6 +596,19 @@ fn proximal_iteration(
     result
 }
 
+/// Solves with the active-set solver (its report names it), adding the work done so far.
+fn fall_back(
+    fallback: &mut Option<ActiveSetSolver>,
+    system: &ContactSystem<'_>,
+    work: WorkCounters,
+) -> Result<ContactSolution, ContactSolverError> {
+    let mut solution = fallback
+        .get_or_insert_with(ActiveSetSolver::default)
+        .solve(system)?;
+    solution.report.work += work;
+    Ok(solution)
+}
+
 impl ContactSolver for CondensedSolver {
     fn name(&self) -> &'static str {
         NAME
@@ -614,10 +628,7 @@ impl ContactSolver for CondensedSolver {
         let Some(factors) = structure.factors.as_mut() else {
             // Singular even with the interface shifted: the active-set solver's shifted
             // factorisation and free-mode test handle it.
-            let fallback = self.fallback.get_or_insert_with(ActiveSetSolver::default);
-            let mut solution = fallback.solve(system)?;
-            solution.report.work += work;
-            return Ok(solution);
+            return fall_back(&mut self.fallback, system, work);
         };
         let (n, m) = (system.n_dofs(), system.n_constraints());
         let rows = all_rows(system);
@@ -682,6 +693,12 @@ impl ContactSolver for CondensedSolver {
                 free_mode: false,
             }
         };
+        if !interface.converged && !interface.free_mode && factors.is_shifted() {
+            // The proximal steps converge too slowly (a floating body held by a much softer
+            // one): the active-set solver's shifted factorisation of the whole system does not
+            // depend on the shift's size in the same way.
+            return fall_back(&mut self.fallback, system, work);
+        }
         let lambda = interface.lambda;
 
         // u = K_s^-1 (f - B' lambda + s E_G v) = u0 - K_s^-1 (B' lambda - s E_G v).
