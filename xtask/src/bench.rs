@@ -143,6 +143,10 @@ pub struct BenchOneArgs {
     /// Parallelism of the elastic reference's factorisation.
     #[arg(long, value_enum, default_value = "default")]
     parallelism: Parallelism,
+    /// Measure the model building only (meshes, discretisation): no contact solve, no
+    /// elastic reference.
+    #[arg(long)]
+    model_only: bool,
 }
 
 /// One measurement, as the child prints it and the reports carry it. Times in seconds, memory
@@ -304,6 +308,11 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
             (k.val().len() * 16 + k.symbolic().col_ptr().len() * 8) as u64
         })
         .sum();
+    if args.model_only {
+        m.status = "model only".to_string();
+        println!("{}", serde_json::to_string(&m)?);
+        return Ok(true);
+    }
     let start = Instant::now();
     match discretisation.solve(solver.as_mut()) {
         Ok(result) => {
