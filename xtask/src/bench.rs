@@ -689,6 +689,12 @@ fn options(args: &BenchArgs) -> String {
     if !args.solvers.is_empty() {
         o.push_str(&format!(" --solvers {}", args.solvers.join(",")));
     }
+    if args.exact_max_unknowns != 200_000 {
+        o.push_str(&format!(
+            " --exact-max-unknowns {}",
+            args.exact_max_unknowns
+        ));
+    }
     if !args.cases.is_empty() {
         let c: Vec<&str> = args.cases.iter().map(|c| c.name()).collect();
         o.push_str(&format!(" --cases {}", c.join(",")));
