@@ -1,7 +1,10 @@
 //! Project tasks, run as `cargo xtask <task>` (an alias of `cargo run --release -p xtask --`).
 //!
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
+//! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
+//!   `docs/benchmarks.md`).
 
+mod bench;
 mod convergence;
 
 use std::process::ExitCode;
@@ -23,12 +26,21 @@ enum Task {
     /// Writes JSON, Markdown and SVG plots; exits with status 1 when a study falls short of
     /// the expected rates (E_grad and E_a >= 0.9, E_0 >= 1.8).
     Convergence(convergence::ConvergenceArgs),
+    /// Contact solves against one elastic solve of the same meshes (Hertz-like frictionless
+    /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
+    /// measurement in a child process. Writes bench.md, bench.json and bench.svg.
+    Bench(bench::BenchArgs),
+    /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
+    #[command(hide = true)]
+    BenchOne(bench::BenchOneArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.task {
         Task::Convergence(args) => convergence::run(&args),
+        Task::Bench(args) => bench::run(&args),
+        Task::BenchOne(args) => bench::run_one(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,

@@ -48,7 +48,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use std::borrow::Cow;
+use std::borrow::{Borrow, Cow};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -121,12 +121,18 @@ pub struct ContactDiscretisation {
 
 impl ContactDiscretisation {
     /// Inserts the interface nodes (two bodies) or extracts the contact chain (obstacle),
-    /// assembles every body on its enlarged mesh and builds the constraint rows.
-    pub(crate) fn try_new(problem: &ContactProblem) -> Result<Self, ContactError> {
-        problem.law().validate()?;
+    /// assembles every body on its enlarged mesh and builds the constraint rows. A problem
+    /// given by value is dropped once the interface is inserted, before the assembly: the
+    /// original meshes and the stiffness are never held together.
+    pub(crate) fn try_new(problem: impl Borrow<ContactProblem>) -> Result<Self, ContactError> {
+        let problem_ref = problem.borrow();
+        problem_ref.law().validate()?;
         let mut work = WorkCounters::default();
         let start = Instant::now();
-        let (bodies, nodes, inserted_nodes, zone_ends) = interface(problem)?;
+        let (bodies, nodes, inserted_nodes, zone_ends) = interface(problem_ref)?;
+        let law = problem_ref.law().clone();
+        let obstacle = matches!(problem_ref.counterpart(), Counterpart::Obstacle(_));
+        drop(problem);
         work.times.insertion = start.elapsed();
         let start = Instant::now();
         let systems = bodies
@@ -145,8 +151,8 @@ impl ContactDiscretisation {
         let mut discretisation = Self {
             pattern: PatternId::fresh(),
             stiffness_version: 0,
-            law: problem.law().clone(),
-            obstacle: matches!(problem.counterpart(), Counterpart::Obstacle(_)),
+            law,
+            obstacle,
             bodies,
             systems,
             offsets,

@@ -359,6 +359,17 @@ impl ContactProblem {
         ContactDiscretisation::try_new(self)
     }
 
+    /// As [`ContactProblem::discretise`], giving up the problem: the bodies on their original
+    /// meshes are dropped once the interface nodes are inserted, before the assembly, which
+    /// lowers the peak memory of the build by the original meshes (when nothing else holds
+    /// them).
+    ///
+    /// # Errors
+    /// As [`ContactProblem::discretise`].
+    pub fn into_discretisation(self) -> Result<ContactDiscretisation, ContactError> {
+        ContactDiscretisation::try_new(self)
+    }
+
     /// Discretises and solves the problem with `solver`: a thin driver over
     /// [`ContactProblem::discretise`] and [`ContactDiscretisation::solve`]. The result's
     /// [`work`](ContactResult::work) counts the build (insertion, assembly) and the solve.

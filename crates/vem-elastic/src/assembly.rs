@@ -64,8 +64,9 @@ pub(crate) struct ElementContribution {
 impl AssembledSystem {
     /// An all-zero system with the pattern of `mesh` and the split of `dofs`.
     pub(crate) fn with_pattern(body: &str, mesh: &Mesh, dofs: DofMap) -> Self {
-        let adjacency = vertex_adjacency(mesh);
-        let (ff, fp, pp) = block_patterns(&adjacency, &dofs);
+        // The adjacency is dropped before the values are allocated: it never lives beside a
+        // whole copy of `K`.
+        let (ff, fp, pp) = block_patterns(&vertex_adjacency(mesh), &dofs);
         let zeros = |p: SymbolicSparseColMat<usize>| {
             let nnz = p.row_idx().len();
             SparseColMat::new(p, vec![0.0; nnz])
@@ -377,6 +378,8 @@ fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
                 .collect();
             neighbours.sort_unstable();
             neighbours.dedup();
+            // The repeats made the vector about twice as long as it stays.
+            neighbours.shrink_to_fit();
             neighbours
         })
         .collect()

@@ -91,7 +91,8 @@ pub use error::{ElasticError, SolveError};
 pub use material::{von_mises, Material, Plane};
 pub use post::{ElementField, PartReaction, Solution};
 pub use solver::{
-    CholeskySettings, CholeskySettingsBuilder, CholeskySolver, LinearSolver, Ordering,
+    CholeskySettings, CholeskySettingsBuilder, CholeskySolver, FactorisationParallelism,
+    LinearSolver, Ordering,
 };
 #[cfg(feature = "testkit")]
 pub mod testkit;

@@ -54,6 +54,49 @@ pub enum Ordering {
     Natural,
 }
 
+/// How the numeric factorisation of [`CholeskySolver`] is parallelised.
+///
+/// A [`Par`] converts into [`FactorisationParallelism::Fixed`], so
+/// `builder.factorisation_parallelism(Par::Seq)` reads as before.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FactorisationParallelism {
+    /// Sequential for a factor with fewer than
+    /// [`FactorisationParallelism::PARALLEL_MIN_FACTOR_ENTRIES`] stored entries, all rayon
+    /// threads above (the default): on small factors the threads cost more than they save.
+    #[default]
+    Auto,
+    /// Always this parallelism.
+    Fixed(Par),
+}
+
+impl FactorisationParallelism {
+    /// Stored entries of the factor from which [`FactorisationParallelism::Auto`] factorises
+    /// in parallel: 5e7, about 3.5e5 unknowns of the lowest-order VEM on quadrilaterals
+    /// (1.1e7 entries at 1e5 unknowns, 1.8e8 at 1e6). Measured with two cores (see
+    /// `docs/benchmarks.md`): the parallel factorisation is slower than the sequential one at
+    /// 1e4 and 1e5 unknowns.
+    pub const PARALLEL_MIN_FACTOR_ENTRIES: usize = 50_000_000;
+
+    /// The parallelism for a factor of `factor_entries` stored entries.
+    pub fn for_factor(self, factor_entries: usize) -> Par {
+        match self {
+            FactorisationParallelism::Fixed(par) => par,
+            FactorisationParallelism::Auto
+                if factor_entries < Self::PARALLEL_MIN_FACTOR_ENTRIES =>
+            {
+                Par::Seq
+            }
+            FactorisationParallelism::Auto => Par::rayon(0),
+        }
+    }
+}
+
+impl From<Par> for FactorisationParallelism {
+    fn from(par: Par) -> Self {
+        FactorisationParallelism::Fixed(par)
+    }
+}
+
 /// Settings of [`CholeskySolver`], built and checked by [`CholeskySettings::builder`]
 /// (or [`Default`]).
 ///
@@ -73,7 +116,7 @@ pub enum Ordering {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CholeskySettings {
     ordering: Ordering,
-    factorisation_parallelism: Par,
+    factorisation_parallelism: FactorisationParallelism,
     solve_parallelism: Par,
     singular_pivot_tolerance: f64,
 }
@@ -96,7 +139,7 @@ impl CholeskySettings {
     }
 
     /// Parallelism of the numeric factorisation.
-    pub fn factorisation_parallelism(&self) -> Par {
+    pub fn factorisation_parallelism(&self) -> FactorisationParallelism {
         self.factorisation_parallelism
     }
 
@@ -112,11 +155,12 @@ impl CholeskySettings {
 }
 
 impl Default for CholeskySettings {
-    /// AMD, factorisation on all rayon threads, sequential solves, pivot tolerance `1e-9`.
+    /// AMD, factorisation parallelism chosen by the factor's size
+    /// ([`FactorisationParallelism::Auto`]), sequential solves, pivot tolerance `1e-9`.
     fn default() -> Self {
         Self {
             ordering: Ordering::Amd,
-            factorisation_parallelism: Par::rayon(0),
+            factorisation_parallelism: FactorisationParallelism::Auto,
             solve_parallelism: Par::Seq,
             singular_pivot_tolerance: Self::DEFAULT_SINGULAR_PIVOT_TOLERANCE,
         }
@@ -136,9 +180,13 @@ impl CholeskySettingsBuilder {
         self
     }
 
-    /// Parallelism of the numeric factorisation (default: all rayon threads).
-    pub fn factorisation_parallelism(mut self, parallelism: Par) -> Self {
-        self.settings.factorisation_parallelism = parallelism;
+    /// Parallelism of the numeric factorisation (default
+    /// [`FactorisationParallelism::Auto`]; a [`Par`] fixes it).
+    pub fn factorisation_parallelism(
+        mut self,
+        parallelism: impl Into<FactorisationParallelism>,
+    ) -> Self {
+        self.settings.factorisation_parallelism = parallelism.into();
         self
     }
 
@@ -233,6 +281,13 @@ impl CholeskySolver {
     /// Number of stored values of the factor `L` (after [`LinearSolver::analyse`]).
     pub fn factor_len(&self) -> Option<usize> {
         self.analysis.as_ref().map(|a| a.symbolic.len_val())
+    }
+
+    /// The parallelism the numeric factorisation uses for the analysed pattern (after
+    /// [`LinearSolver::analyse`]): [`FactorisationParallelism::for_factor`] of the factor's size.
+    pub fn factorisation_par(&self) -> Option<Par> {
+        self.factor_len()
+            .map(|len| self.settings.factorisation_parallelism.for_factor(len))
     }
 
     /// True when the analysis chose the supernodal (blocked) factorisation.
@@ -504,8 +559,11 @@ impl LinearSolver for CholeskySolver {
                 ),
             });
         }
-        let par = self.settings.factorisation_parallelism;
         let symbolic = &analysis.symbolic;
+        let par = self
+            .settings
+            .factorisation_parallelism
+            .for_factor(symbolic.len_val());
         let mut values = vec![0.0; symbolic.len_val()];
         let mut scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),

@@ -5,10 +5,11 @@ mod common;
 
 use common::{lame, vem};
 use faer::sparse::SparseColMat;
+use faer::Par;
 use nalgebra::DMatrix;
 use vem_elastic::{
-    CholeskySettings, CholeskySolver, Component, Dirichlet, DofStatus, ElasticBody, LinearSolver,
-    Ordering, SolveError,
+    CholeskySettings, CholeskySolver, Component, Dirichlet, DofStatus, ElasticBody,
+    FactorisationParallelism, LinearSolver, Ordering, SolveError,
 };
 use vem_mesh::generators::{structured_quads, structured_triangles, Rectangle};
 use vem_mesh::Vector;
@@ -213,4 +214,46 @@ fn natural_and_amd_orderings_agree() {
     let r = &k * nalgebra::DVector::from_column_slice(&amd)
         - nalgebra::DVector::from_column_slice(system.rhs());
     assert!(r.amax() < 1e-12 * k.amax() * scale);
+}
+
+#[test]
+fn automatic_parallelism_is_sequential_on_small_factors_and_agrees_with_parallel() {
+    let body = body();
+    let system = body.assemble().unwrap();
+    let solve = |parallelism: FactorisationParallelism| {
+        let mut solver = CholeskySolver::new(
+            CholeskySettings::builder()
+                .factorisation_parallelism(parallelism)
+                .build()
+                .unwrap(),
+        );
+        solver.analyse(system.stiffness().symbolic()).unwrap();
+        solver.factorise(system.stiffness().as_ref()).unwrap();
+        (
+            solver.factorisation_par(),
+            solver.solve(system.rhs()).unwrap(),
+        )
+    };
+    let (auto_par, auto) = solve(FactorisationParallelism::Auto);
+    assert_eq!(auto_par, Some(Par::Seq));
+    let (rayon_par, parallel) = solve(Par::rayon(0).into());
+    assert_eq!(rayon_par, Some(Par::rayon(0)));
+    let scale = auto.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (a, b) in auto.iter().zip(&parallel) {
+        assert!((a - b).abs() <= 1e-13 * scale);
+    }
+    // The threshold: sequential below it, all threads from it on.
+    let threshold = FactorisationParallelism::PARALLEL_MIN_FACTOR_ENTRIES;
+    assert_eq!(
+        FactorisationParallelism::Auto.for_factor(threshold - 1),
+        Par::Seq
+    );
+    assert_eq!(
+        FactorisationParallelism::Auto.for_factor(threshold),
+        Par::rayon(0)
+    );
+    assert_eq!(
+        FactorisationParallelism::from(Par::Seq).for_factor(threshold),
+        Par::Seq
+    );
 }

@@ -125,6 +125,33 @@ fn bits(mesh: &Mesh) -> Vec<(u64, u64)> {
 }
 
 #[test]
+fn voronoi_does_not_depend_on_the_number_of_threads() {
+    // The cells are computed in parallel: one thread and three give the same mesh, bit for
+    // bit, and the same as the mesh the sequential code made (its fingerprint).
+    let rect = Rectangle::unit_square();
+    let generate = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| voronoi(&rect, 32, 1).unwrap())
+    };
+    let (one, three) = (generate(1), generate(3));
+    assert_eq!(bits(&one), bits(&three));
+    assert_eq!(one.polygon_vertex_indices(), three.polygon_vertex_indices());
+    assert_eq!((one.n_polygons(), one.n_vertices()), (1024, 1990));
+    let fnv = bits(&one)
+        .iter()
+        .flat_map(|&(x, y)| [x, y])
+        .chain(one.polygon_vertex_indices().iter().map(|&v| v as u64))
+        .fold(0xcbf2_9ce4_8422_2325_u64, |h, x| {
+            (h ^ x).wrapping_mul(0x100_0000_01b3)
+        });
+    // FNV-1a of the vertex bits and the polygon loops of the mesh made by the sequential code.
+    assert_eq!(fnv, 0x1e12_f905_b63d_04a9);
+}
+
+#[test]
 fn same_seed_same_mesh_bit_for_bit() {
     let rect = rectangles()[1];
     for family in MeshFamily::all() {

@@ -2,7 +2,8 @@
 //!
 //! The Voronoi cell of a site is computed directly as the rectangle clipped by the bisector
 //! half-planes of the nearby sites (found through a uniform grid of sites, ring by ring, until
-//! the next ring is farther than twice the cell's radius). Lloyd iterations move every site to
+//! the next ring is farther than twice the cell's radius); the cells are computed in parallel
+//! (rayon) in the order of the grid, and the result does not depend on the number of threads. Lloyd iterations move every site to
 //! the exact centroid of its cell. The cells are then made into one conforming mesh: cell
 //! vertices closer than 1e-9 of the site spacing are identified (they are the same Voronoi
 //! vertex computed from different cells), and edges shorter than [`SHORT_EDGE_RATIO`] h_T are
@@ -10,6 +11,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 use super::{cell_counts, mesh_with_sides, Rectangle};
 use crate::{geometry, Mesh, MeshError, Point, Vector};
@@ -127,57 +129,85 @@ impl SiteGrid {
 }
 
 /// The Voronoi cell of every site, clipped to the rectangle, counter-clockwise.
+///
+/// The cells are computed bucket by bucket (neighbouring sites one after the other, their
+/// neighbours' positions copied next to each other, so the lookups stay in cache) and in
+/// parallel. Each cell depends only on the sites (it is clipped by the same sites in the same
+/// order whatever the order the cells are computed in), so the result is the same bit for bit
+/// whatever the number of threads.
 fn voronoi_cells(grid: &SiteGrid, sites: &[Point]) -> Vec<Vec<Point>> {
     let (start, items) = grid.bucket(sites);
+    let bucketed: Vec<Point> = items.iter().map(|&s| sites[s]).collect();
+    let computed: Vec<Vec<Point>> = (0..items.len())
+        .into_par_iter()
+        .map_init(Vec::new, |scratch, k| {
+            voronoi_cell(grid, &start, &items, &bucketed, k, scratch)
+        })
+        .collect();
+    let mut cells = vec![Vec::new(); sites.len()];
+    for (&site, cell) in items.iter().zip(computed) {
+        cells[site] = cell;
+    }
+    cells
+}
+
+/// The Voronoi cell of the site `items[k]` (at `bucketed[k]`): the rectangle clipped by the
+/// bisectors of the sites of the grid cells around it, ring by ring, until the next ring is
+/// farther than twice the cell's radius.
+fn voronoi_cell(
+    grid: &SiteGrid,
+    start: &[usize],
+    items: &[usize],
+    bucketed: &[Point],
+    k: usize,
+    scratch: &mut Vec<Point>,
+) -> Vec<Point> {
     let rect = grid.rect;
     let (hx, hy) = (
         rect.width() / grid.nx as f64,
         rect.height() / grid.ny as f64,
     );
     let max_ring = grid.nx.max(grid.ny);
-    let mut scratch = Vec::new();
-    sites
-        .iter()
-        .enumerate()
-        .map(|(i, &site)| {
-            let mut cell = vec![
-                rect.min,
-                Point::new(rect.max.x, rect.min.y),
-                rect.max,
-                Point::new(rect.min.x, rect.max.y),
-            ];
-            let mut radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
-            let (ci, cj) = grid.cell_of(site);
-            for ring in 0..=max_ring {
-                for (gi, gj) in ring_cells(ci, cj, ring, grid.nx, grid.ny) {
-                    let c = gj * grid.nx + gi;
-                    for &other in &items[start[c]..start[c + 1]] {
-                        // A site at least twice the cell's radius away cannot cut it.
-                        if other != i && (sites[other] - site).norm() < 2.0 * radius {
-                            clip_bisector(&cell, site, sites[other], &mut scratch);
-                            std::mem::swap(&mut cell, &mut scratch);
-                            radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
-                        }
-                    }
-                }
-                // Sites outside the block of cells (ci +- ring, cj +- ring) are at least `reach`
-                // away; they cut the cell only if closer than twice its radius.
-                let r = ring as f64;
-                let reach = [
-                    site.x - (rect.min.x + (ci as f64 - r) * hx),
-                    rect.min.x + (ci as f64 + r + 1.0) * hx - site.x,
-                    site.y - (rect.min.y + (cj as f64 - r) * hy),
-                    rect.min.y + (cj as f64 + r + 1.0) * hy - site.y,
-                ]
-                .into_iter()
-                .fold(f64::INFINITY, f64::min);
-                if reach >= 2.0 * radius {
-                    break;
+    let (i, site) = (items[k], bucketed[k]);
+    let mut cell = vec![
+        rect.min,
+        Point::new(rect.max.x, rect.min.y),
+        rect.max,
+        Point::new(rect.min.x, rect.max.y),
+    ];
+    let mut radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
+    let (ci, cj) = grid.cell_of(site);
+    for ring in 0..=max_ring {
+        for (gi, gj) in ring_cells(ci, cj, ring, grid.nx, grid.ny) {
+            let c = gj * grid.nx + gi;
+            for (&other, &position) in items[start[c]..start[c + 1]]
+                .iter()
+                .zip(&bucketed[start[c]..start[c + 1]])
+            {
+                // A site at least twice the cell's radius away cannot cut it.
+                if other != i && (position - site).norm() < 2.0 * radius {
+                    clip_bisector(&cell, site, position, scratch);
+                    std::mem::swap(&mut cell, scratch);
+                    radius = cell.iter().map(|v| (v - site).norm()).fold(0.0, f64::max);
                 }
             }
-            cell
-        })
-        .collect()
+        }
+        // Sites outside the block of cells (ci +- ring, cj +- ring) are at least `reach`
+        // away; they cut the cell only if closer than twice its radius.
+        let r = ring as f64;
+        let reach = [
+            site.x - (rect.min.x + (ci as f64 - r) * hx),
+            rect.min.x + (ci as f64 + r + 1.0) * hx - site.x,
+            site.y - (rect.min.y + (cj as f64 - r) * hy),
+            rect.min.y + (cj as f64 + r + 1.0) * hy - site.y,
+        ]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+        if reach >= 2.0 * radius {
+            break;
+        }
+    }
+    cell
 }
 
 /// Grid cells at Chebyshev distance `ring` from (ci, cj), inside the grid.
@@ -249,18 +279,22 @@ fn conforming(
         .map(|(k, &p)| (key(p), k))
         .collect();
     sorted.sort_unstable();
-    for a in 0..points.len() {
+    // The root of a cluster is its smallest member whatever the order the pairs are joined
+    // in: the points are visited in the order of their keys (neighbours one after the other,
+    // their positions side by side, so the searches stay in cache).
+    let sorted_points: Vec<Point> = sorted.iter().map(|&(_, k)| points[k]).collect();
+    for &(_, a) in &sorted {
         let p = points[a];
         let lo = key(p - Vector::new(tolerance, tolerance));
         let hi = key(p + Vector::new(tolerance, tolerance));
         for cx in lo.0..=hi.0 {
             for cy in lo.1..=hi.1 {
                 let from = sorted.partition_point(|&(k, _)| k < (cx, cy));
-                for &(k, b) in &sorted[from..] {
+                for (&(k, b), &q) in sorted[from..].iter().zip(&sorted_points[from..]) {
                     if k != (cx, cy) {
                         break;
                     }
-                    if b > a && (points[b] - p).norm() <= tolerance {
+                    if b > a && (q - p).norm() <= tolerance {
                         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
                         if ra != rb {
                             parent[ra.max(rb)] = ra.min(rb);

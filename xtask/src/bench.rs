@@ -1,0 +1,787 @@
+//! `cargo xtask bench`: the cost of contact against one elastic solve of the same meshes.
+//!
+//! Every measurement (one case, one size, one solver) runs in a child process (`cargo xtask
+//! bench-one`, the same binary re-invoked) so that the peak memory the OS reports (`VmHWM` of
+//! `/proc/self/status`, a process high-water mark) belongs to that measurement alone. The child
+//! builds the meshes, discretises (interface insertion, assembly, constraint rows), solves the
+//! contact problem, then assembles, analyses, factorises and solves every body alone with its
+//! Dirichlet data (the elastic reference) and prints one JSON line.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+use vem_contact::{ContactLaw, ContactProblem, SolverOptions, SolverRegistry};
+use vem_elastic::{
+    CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
+    Plane,
+};
+use vem_mesh::generators::{structured_quads, voronoi, MeshFamily, Rectangle};
+use vem_mesh::{Mesh, Point, Vector};
+use vem_space::LowestOrderVem;
+use vem_verify::exact::{case_by_name, ExactSolution, Lame};
+use vem_verify::problem::{DiscreteProblem, ProblemSettings};
+use vem_verify::report::{write_json, write_text};
+
+/// The cases of the benchmark.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+pub enum Case {
+    /// Hertz-like: a CVT (Voronoi) block with a parabolic gap (R = 1) pressed 0.02 onto a
+    /// block of structured quads (1.25 times finer across), frictionless.
+    Hertz,
+    /// The same, sheared 0.006 sideways, Coulomb friction F = 0.3.
+    Coulomb,
+    /// M1 of vem-verify (frictionless manufactured solution), quads on both bodies.
+    #[value(name = "M1")]
+    M1,
+    /// M2 of vem-verify (Tresca manufactured solution), quads on both bodies.
+    #[value(name = "M2")]
+    M2,
+}
+
+impl Case {
+    const ALL: [Case; 4] = [Case::Hertz, Case::Coulomb, Case::M1, Case::M2];
+
+    fn name(self) -> &'static str {
+        match self {
+            Case::Hertz => "hertz",
+            Case::Coulomb => "coulomb",
+            Case::M1 => "M1",
+            Case::M2 => "M2",
+        }
+    }
+
+    fn describe(self) -> &'static str {
+        match self {
+            Case::Hertz => "Hertz-like, frictionless (voronoi / quads)",
+            Case::Coulomb => "Hertz-like, Coulomb F = 0.3 (voronoi / quads)",
+            Case::M1 => "M1 frictionless (quads / quads)",
+            Case::M2 => "M2 Tresca (quads / quads)",
+        }
+    }
+
+    /// The size parameter n giving about `unknowns` free unknowns.
+    fn size_for(self, unknowns: usize) -> usize {
+        // Voronoi: about 2 vertices per cell; quads 1.25 n across: (1.25 n)^2 vertices.
+        let per_n2 = match self {
+            Case::Hertz | Case::Coulomb => 2.0 * (2.0 + 1.25 * 1.25),
+            Case::M1 | Case::M2 => 4.0,
+        };
+        ((unknowns as f64 / per_n2).sqrt().round() as usize).max(2)
+    }
+}
+
+/// Parallelism of the elastic reference's factorisation (to measure the choice of the
+/// default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+pub enum Parallelism {
+    /// The default of `CholeskySettings`.
+    Default,
+    /// Sequential.
+    Seq,
+    /// All rayon threads.
+    Rayon,
+}
+
+/// The ladder of sizes (unknowns) the benchmark takes its sizes from.
+const LADDER: [usize; 8] = [
+    10_000, 30_000, 100_000, 300_000, 1_000_000, 2_000_000, 4_000_000, 8_000_000,
+];
+/// Sizes of `--quick`.
+const QUICK_SIZES: [usize; 2] = [5_000, 10_000];
+
+/// Options of `cargo xtask bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Small sizes only (5 10^3 and 10^4 unknowns; under a minute, for CI).
+    #[arg(long)]
+    quick: bool,
+    /// Where bench.md, bench.json and bench.svg are written.
+    #[arg(long, default_value = "target/bench")]
+    out: PathBuf,
+    /// Largest size of the ladder 1e4, 3e4, 1e5, 3e5, 1e6, 2e6, 4e6, 8e6 (unknowns).
+    #[arg(long, default_value_t = 1_000_000)]
+    max_unknowns: usize,
+    /// The whole ladder up to 8e6 unknowns (the same as `--max-unknowns 8000000`).
+    #[arg(long)]
+    full: bool,
+    /// Explicit sizes (approximate numbers of unknowns, comma separated); overrides the ladder.
+    #[arg(long, value_delimiter = ',')]
+    sizes: Vec<usize>,
+    /// Solvers by registry name (comma separated); default: every registered solver.
+    #[arg(long, value_delimiter = ',')]
+    solvers: Vec<String>,
+    /// The exact solver (registry name "exact") only up to this many unknowns.
+    #[arg(long, default_value_t = 200_000)]
+    exact_max_unknowns: usize,
+    /// Cases (comma separated); default all.
+    #[arg(long, value_delimiter = ',', value_enum)]
+    cases: Vec<Case>,
+    /// Parallelism of the elastic reference's factorisation.
+    #[arg(long, value_enum, default_value = "default")]
+    parallelism: Parallelism,
+}
+
+/// Options of the hidden `cargo xtask bench-one` (one measurement, one JSON line).
+#[derive(Debug, Args)]
+pub struct BenchOneArgs {
+    /// The case.
+    #[arg(long, value_enum)]
+    case: Case,
+    /// Approximate number of unknowns.
+    #[arg(long)]
+    unknowns: usize,
+    /// The solver's registry name.
+    #[arg(long)]
+    solver: String,
+    /// Parallelism of the elastic reference's factorisation.
+    #[arg(long, value_enum, default_value = "default")]
+    parallelism: Parallelism,
+    /// Measure the model building only (meshes, discretisation): no contact solve, no
+    /// elastic reference.
+    #[arg(long)]
+    model_only: bool,
+}
+
+/// One measurement, as the child prints it and the reports carry it. Times in seconds, memory
+/// in bytes.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct Measurement {
+    case: String,
+    target_unknowns: usize,
+    solver: String,
+    /// The size parameter n of the meshes.
+    n: usize,
+    unknowns: usize,
+    contact_rows: usize,
+    mesh_generation: f64,
+    insertion: f64,
+    assembly: f64,
+    symbolic: f64,
+    numeric: f64,
+    solves: f64,
+    contact_solve: f64,
+    iterations: usize,
+    fixed_point_steps: usize,
+    symbolic_analyses: usize,
+    factorisations: usize,
+    triangular_solves: usize,
+    status: String,
+    normal_resultant: f64,
+    /// VmHWM after the meshes are generated.
+    peak_meshes: u64,
+    /// VmHWM after discretising.
+    peak_build: u64,
+    /// VmHWM after the contact solve.
+    peak_contact: u64,
+    /// VmHWM at the end (elastic reference included).
+    peak_total: u64,
+    /// Bytes of the stiffness matrices (values, row indices, column pointers).
+    stiffness_bytes: u64,
+    /// Bytes of the Cholesky factors' values of the elastic reference.
+    factor_bytes: u64,
+    elastic_assembly: f64,
+    elastic_analyse: f64,
+    elastic_factorise: f64,
+    elastic_solve: f64,
+    /// The failure, when the solve (or the child) failed.
+    error: Option<String>,
+}
+
+impl Measurement {
+    fn elastic_total(&self) -> f64 {
+        self.elastic_assembly + self.elastic_analyse + self.elastic_factorise + self.elastic_solve
+    }
+
+    fn ratio(&self) -> Option<f64> {
+        (self.error.is_none() && self.elastic_total() > 0.0)
+            .then(|| self.contact_solve / self.elastic_total())
+    }
+}
+
+/// `VmHWM` of this process in bytes (0 where /proc is not available).
+fn peak_memory() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|status| {
+            status.lines().find_map(|line| {
+                let kb = line.strip_prefix("VmHWM:")?.trim().strip_suffix("kB")?;
+                kb.trim().parse::<u64>().ok()
+            })
+        })
+        .map_or(0, |kb| 1024 * kb)
+}
+
+fn seconds(d: Duration) -> f64 {
+    d.as_secs_f64()
+}
+
+/// The contact problem of `case` at size `n`.
+fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
+    match case {
+        Case::Hertz | Case::Coulomb => {
+            let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain)?;
+            let element = Arc::new(LowestOrderVem::default());
+            let upper = Rectangle::new(Point::new(0.0, 0.0), Point::new(1.0, 1.0));
+            let lower = Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0));
+            let m = ((1.25 * n as f64).round() as usize).max(1);
+            let shift = if case == Case::Coulomb { 0.006 } else { 0.0 };
+            let indenter = ElasticBody::builder(
+                "indenter",
+                voronoi(&upper, n, 1)?,
+                material,
+                element.clone(),
+            )
+            .dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+                Vector::new(shift, -0.02)
+            }))
+            .build()?;
+            let block =
+                ElasticBody::builder("block", structured_quads(&lower, m, m)?, material, element)
+                    .dirichlet(Dirichlet::prescribed("bottom", Component::Both, |_| {
+                        Vector::zeros()
+                    }))
+                    .build()?;
+            let law = if case == Case::Coulomb {
+                ContactLaw::try_coulomb(0.3)?
+            } else {
+                ContactLaw::Frictionless
+            };
+            // A parabolic indenter of radius 1 over x = 1/2.
+            Ok(
+                ContactProblem::two_bodies(indenter, "bottom", block, "top", law)
+                    .with_imposed_gap(|x| 0.5 * (x.x - 0.5) * (x.x - 0.5)),
+            )
+        }
+        Case::M1 | Case::M2 => {
+            let exact: Arc<dyn ExactSolution> =
+                Arc::from(case_by_name(case.name(), Lame::default())?);
+            let meshes: Vec<Mesh> = exact
+                .bodies()
+                .iter()
+                .map(|&b| MeshFamily::Quads.generate(&exact.domain(b), n, 1))
+                .collect::<Result<_, _>>()?;
+            let discrete =
+                DiscreteProblem::try_new(Arc::clone(&exact), meshes, &ProblemSettings::default())?;
+            discrete
+                .contact_problem()
+                .ok_or_else(|| format!("{} is not a contact case", case.name()).into())
+        }
+    }
+}
+
+/// `cargo xtask bench-one`: measures and prints one JSON line; a failing solve is a line with
+/// `error` set.
+pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    let n = args.case.size_for(args.unknowns);
+    let mut m = Measurement {
+        case: args.case.name().to_string(),
+        target_unknowns: args.unknowns,
+        solver: args.solver.clone(),
+        n,
+        ..Measurement::default()
+    };
+    let mut solver = SolverRegistry::builtin().make(&args.solver, &SolverOptions::default())?;
+    let start = Instant::now();
+    let problem = problem(args.case, n)?;
+    m.mesh_generation = seconds(start.elapsed());
+    m.peak_meshes = peak_memory();
+    // By value: the original meshes are dropped before the assembly.
+    let discretisation = problem.into_discretisation()?;
+    m.peak_build = peak_memory();
+    let build = discretisation.work();
+    m.insertion = seconds(build.times.insertion);
+    m.assembly = seconds(build.times.assembly);
+    m.unknowns = discretisation.n_dofs();
+    m.contact_rows = discretisation.normal_rows().nrows();
+    m.stiffness_bytes = discretisation
+        .systems()
+        .iter()
+        .map(|s| {
+            let k = s.stiffness();
+            (k.val().len() * 16 + k.symbolic().col_ptr().len() * 8) as u64
+        })
+        .sum();
+    if args.model_only {
+        m.status = "model only".to_string();
+        println!("{}", serde_json::to_string(&m)?);
+        return Ok(true);
+    }
+    let start = Instant::now();
+    match discretisation.solve(solver.as_mut()) {
+        Ok(result) => {
+            let work = result.work;
+            m.symbolic = seconds(work.times.symbolic);
+            m.numeric = seconds(work.times.numeric);
+            m.solves = seconds(work.times.solves);
+            m.contact_solve = seconds(work.times.contact_solve.max(start.elapsed()));
+            m.symbolic_analyses = work.symbolic_analyses;
+            m.factorisations = work.numeric_factorisations;
+            m.triangular_solves = work.triangular_solves;
+            m.iterations = result
+                .fixed_point
+                .as_ref()
+                .map_or(result.report.iterations, |fp| fp.solver_iterations);
+            m.fixed_point_steps = result.fixed_point.as_ref().map_or(0, |fp| fp.steps);
+            m.status = format!("{:?}", result.report.status);
+            m.normal_resultant = result.normal_resultant();
+        }
+        Err(error) => {
+            m.contact_solve = seconds(start.elapsed());
+            m.status = "failed".to_string();
+            m.error = Some(chain(&error));
+        }
+    }
+    m.peak_contact = peak_memory();
+    // The elastic reference: every body alone with its Dirichlet data, on the enlarged meshes.
+    let settings = match args.parallelism {
+        Parallelism::Default => CholeskySettings::default(),
+        Parallelism::Seq => CholeskySettings::builder()
+            .factorisation_parallelism(faer::Par::Seq)
+            .build()?,
+        Parallelism::Rayon => CholeskySettings::builder()
+            .factorisation_parallelism(faer::Par::rayon(0))
+            .build()?,
+    };
+    let bodies: Vec<ElasticBody> = discretisation.bodies().to_vec();
+    drop(discretisation);
+    for body in &bodies {
+        let start = Instant::now();
+        let system = body.assemble()?;
+        m.elastic_assembly += seconds(start.elapsed());
+        let mut cholesky = CholeskySolver::new(settings);
+        let start = Instant::now();
+        cholesky.analyse(system.stiffness().symbolic())?;
+        m.elastic_analyse += seconds(start.elapsed());
+        let start = Instant::now();
+        cholesky.factorise(system.stiffness().as_ref())?;
+        m.elastic_factorise += seconds(start.elapsed());
+        m.factor_bytes += 8 * cholesky.factor_len().unwrap_or(0) as u64;
+        let start = Instant::now();
+        let u = cholesky.solve(system.rhs())?;
+        m.elastic_solve += seconds(start.elapsed());
+        std::hint::black_box(u);
+    }
+    m.peak_total = peak_memory();
+    let mut stdout = std::io::stdout().lock();
+    writeln!(stdout, "{}", serde_json::to_string(&m)?)?;
+    Ok(true)
+}
+
+/// An error and its causes on one line.
+fn chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text
+}
+
+/// One planned measurement.
+struct Planned {
+    case: Case,
+    unknowns: usize,
+    solver: String,
+}
+
+fn plan(args: &BenchArgs) -> Result<Vec<Planned>, String> {
+    let registry = SolverRegistry::builtin();
+    let solvers: Vec<String> = if args.solvers.is_empty() {
+        registry.names().into_iter().map(String::from).collect()
+    } else {
+        args.solvers.clone()
+    };
+    if let Some(unknown) = solvers.iter().find(|s| !registry.contains(s)) {
+        return Err(format!(
+            "unknown solver {unknown:?}; the solvers are {}",
+            registry.names().join(", ")
+        ));
+    }
+    let max = if args.full {
+        LADDER[7]
+    } else {
+        args.max_unknowns
+    };
+    let sizes: Vec<usize> = if !args.sizes.is_empty() {
+        args.sizes.clone()
+    } else if args.quick {
+        QUICK_SIZES.to_vec()
+    } else {
+        LADDER.iter().copied().filter(|&s| s <= max).collect()
+    };
+    let cases: Vec<Case> = if args.cases.is_empty() {
+        Case::ALL.to_vec()
+    } else {
+        args.cases.clone()
+    };
+    let mut planned = Vec::new();
+    for &case in &cases {
+        for &unknowns in &sizes {
+            for solver in &solvers {
+                if solver == "exact" && unknowns > args.exact_max_unknowns {
+                    continue;
+                }
+                planned.push(Planned {
+                    case,
+                    unknowns,
+                    solver: solver.clone(),
+                });
+            }
+        }
+    }
+    Ok(planned)
+}
+
+/// Runs one measurement in a child process; a child that fails gives a row with the error.
+fn measure(p: &Planned, parallelism: Parallelism) -> Result<Measurement, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
+    let parallelism = parallelism
+        .to_possible_value()
+        .map_or_else(|| "default".to_string(), |v| v.get_name().to_string());
+    let output = Command::new(exe)
+        .args(["bench-one", "--case", p.case.name(), "--solver", &p.solver])
+        .args(["--unknowns", &p.unknowns.to_string()])
+        .args(["--parallelism", &parallelism])
+        .output()
+        .map_err(|e| format!("cannot start the measurement: {e}"))?;
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    if let Some(line) = stdout.lines().rev().find(|l| l.starts_with('{')) {
+        if let Ok(m) = serde_json::from_str::<Measurement>(line) {
+            return Ok(m);
+        }
+    }
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let reason = stderr
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    Ok(Measurement {
+        case: p.case.name().to_string(),
+        target_unknowns: p.unknowns,
+        solver: p.solver.clone(),
+        status: "failed".to_string(),
+        error: Some(format!(
+            "the measurement exited with {}: {reason}",
+            output.status
+        )),
+        ..Measurement::default()
+    })
+}
+
+/// `cargo xtask bench`.
+pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    let started = Instant::now();
+    let planned = plan(args)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let weight = |p: &Planned| (p.unknowns as u64 / 1000).max(1);
+    let bar = ProgressBar::new(planned.iter().map(weight).sum());
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:<8} [{bar:30}] {elapsed:>4} (eta {eta}) {msg}")?
+            .progress_chars("=> "),
+    );
+    bar.set_prefix("bench");
+    let mut rows = Vec::with_capacity(planned.len());
+    for p in &planned {
+        bar.set_message(format!(
+            "{} ~{} unknowns, {}",
+            p.case.name(),
+            p.unknowns,
+            p.solver
+        ));
+        let m = measure(p, args.parallelism)?;
+        bar.suspend(|| eprintln!("{}", row_line(&m, None)));
+        rows.push(m);
+        bar.inc(weight(p));
+    }
+    bar.finish_with_message("done");
+    let seconds = started.elapsed().as_secs_f64();
+    let markdown = markdown(&rows, args, seconds);
+    println!("{markdown}");
+    write_text(args.out.join("bench.md"), &markdown)?;
+    write_json(
+        args.out.join("bench.json"),
+        &JsonReport {
+            quick: args.quick,
+            seconds,
+            machine: machine(),
+            measurements: &rows,
+        },
+    )?;
+    write_text(args.out.join("bench.svg"), &plot_svg(&rows)?)?;
+    eprintln!(
+        "wrote {0}/bench.md, {0}/bench.json and {0}/bench.svg",
+        args.out.display()
+    );
+    Ok(true)
+}
+
+/// The JSON form of a run.
+#[derive(Serialize)]
+struct JsonReport<'a> {
+    quick: bool,
+    seconds: f64,
+    machine: String,
+    measurements: &'a [Measurement],
+}
+
+const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+
+/// The contact solve time of the exact solver on the same case and size.
+fn exact_time(rows: &[Measurement], m: &Measurement) -> Option<f64> {
+    rows.iter()
+        .find(|r| {
+            r.solver == "exact"
+                && r.case == m.case
+                && r.target_unknowns == m.target_unknowns
+                && r.error.is_none()
+        })
+        .map(|r| r.contact_solve)
+}
+
+fn row_line(m: &Measurement, exact: Option<f64>) -> String {
+    if let Some(error) = &m.error {
+        if m.unknowns == 0 {
+            return format!(
+                "| {} | ~{} | {} | failed: {} |",
+                m.case,
+                m.target_unknowns,
+                m.solver,
+                error.replace('|', "/")
+            );
+        }
+    }
+    let ratio = m
+        .ratio()
+        .map_or_else(|| "—".to_string(), |r| format!("{r:.2}"));
+    let exact_ratio = exact
+        .filter(|_| m.error.is_none() && m.contact_solve > 0.0)
+        .map_or_else(
+            || "—".to_string(),
+            |e| format!("{:.1}", e / m.contact_solve),
+        );
+    let status = match &m.error {
+        Some(error) => format!("failed: {}", error.replace('|', "/")),
+        None => m.status.clone(),
+    };
+    format!(
+        "| {} | {} | {} | {} | {:.2} | {:.2} / {:.2} | {:.2} / {:.2} / {:.2} | {:.2} | {} | {} ({}) | {} / {} | {:.2} | {} | {:.2} / {:.2} / {:.2} | {:.3} / {:.3} | {} |",
+        m.case,
+        m.unknowns,
+        m.contact_rows,
+        m.solver,
+        m.mesh_generation,
+        m.insertion,
+        m.assembly,
+        m.symbolic,
+        m.numeric,
+        m.solves,
+        m.contact_solve,
+        ratio,
+        m.iterations,
+        m.fixed_point_steps,
+        m.factorisations,
+        m.triangular_solves,
+        m.elastic_total(),
+        exact_ratio,
+        m.peak_build as f64 / GIB,
+        m.peak_contact as f64 / GIB,
+        m.peak_total as f64 / GIB,
+        m.stiffness_bytes as f64 / GIB,
+        m.factor_bytes as f64 / GIB,
+        status,
+    )
+}
+
+/// The machine: CPU model and cores, memory, rustc.
+fn machine() -> String {
+    let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = cpuinfo
+        .lines()
+        .find_map(|l| l.strip_prefix("model name"))
+        .map_or("unknown CPU", |l| l.trim_start_matches([' ', '\t', ':']));
+    let cores = cpuinfo
+        .lines()
+        .filter(|l| l.starts_with("processor"))
+        .count();
+    let memory = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|m| {
+            m.lines().find_map(|l| {
+                let kb = l.strip_prefix("MemTotal:")?.trim().strip_suffix("kB")?;
+                kb.trim().parse::<f64>().ok()
+            })
+        })
+        .map_or_else(
+            || "unknown memory".to_string(),
+            |kb| format!("{:.1} GiB", kb / 1024.0 / 1024.0),
+        );
+    let rustc = Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string()))
+        .arg("--version")
+        .output()
+        .ok()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    format!("{model}, {cores} logical cores, {memory}, {rustc}")
+}
+
+/// The Markdown report.
+fn markdown(rows: &[Measurement], args: &BenchArgs, seconds: f64) -> String {
+    let mut out = String::from("# Benchmark: contact against one elastic solve\n\n");
+    out.push_str(&format!(
+        "Run: `cargo xtask bench{}`, {} measurements in {seconds:.0} s on {}.\n\n",
+        options(args),
+        rows.len(),
+        machine()
+    ));
+    out.push_str("Cases: ");
+    out.push_str(
+        &Case::ALL
+            .iter()
+            .map(|c| format!("`{}` {}", c.name(), c.describe()))
+            .collect::<Vec<_>>()
+            .join("; "),
+    );
+    out.push_str(
+        ".\n\nTimes in seconds. *contact / elastic*: the contact solve against one elastic \
+         solve (assembly + analyse + factorise + solve of every body alone with its Dirichlet \
+         data, same enlarged meshes, same process). *exact / this*: the exact solver's contact \
+         solve against this one's. Iterations: the solver's (summed over the fixed-point steps, \
+         in parentheses, for Coulomb). Peaks: VmHWM after discretising, after the contact solve \
+         and at the end, GiB; K: the stiffness matrices; L: the elastic factors.\n\n",
+    );
+    out.push_str(
+        "| case | unknowns | rows | solver | meshes | insertion / assembly | symbolic / numeric / solves | contact solve | contact / elastic | iterations (steps) | factorisations / solves | elastic | exact / this | peak build / contact / total [GiB] | K / L [GiB] | status |\n",
+    );
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for m in rows {
+        out.push_str(&row_line(m, exact_time(rows, m)));
+        out.push('\n');
+    }
+    out.push_str("\n![contact / elastic](bench.svg)\n");
+    out
+}
+
+fn options(args: &BenchArgs) -> String {
+    let mut o = String::new();
+    if args.quick {
+        o.push_str(" --quick");
+    }
+    if args.full {
+        o.push_str(" --full");
+    } else if args.max_unknowns != 1_000_000 {
+        o.push_str(&format!(" --max-unknowns {}", args.max_unknowns));
+    }
+    if !args.sizes.is_empty() {
+        let s: Vec<String> = args.sizes.iter().map(usize::to_string).collect();
+        o.push_str(&format!(" --sizes {}", s.join(",")));
+    }
+    if !args.solvers.is_empty() {
+        o.push_str(&format!(" --solvers {}", args.solvers.join(",")));
+    }
+    if args.exact_max_unknowns != 200_000 {
+        o.push_str(&format!(
+            " --exact-max-unknowns {}",
+            args.exact_max_unknowns
+        ));
+    }
+    if !args.cases.is_empty() {
+        let c: Vec<&str> = args.cases.iter().map(|c| c.name()).collect();
+        o.push_str(&format!(" --cases {}", c.join(",")));
+    }
+    if args.parallelism != Parallelism::Default {
+        o.push_str(&format!(" --parallelism {:?}", args.parallelism).to_lowercase());
+    }
+    o
+}
+
+/// Log-log plot of contact solve / elastic solve against unknowns, one series per case and
+/// solver.
+fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> {
+    let points: Vec<(&Measurement, f64)> = rows
+        .iter()
+        .filter_map(|m| m.ratio().map(|r| (m, r)))
+        .filter(|&(m, r)| r > 0.0 && m.unknowns > 0)
+        .collect();
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (m, r) in &points {
+        let label = format!("{} {}", m.case, m.solver);
+        let point = (m.unknowns as f64, *r);
+        match series.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, p)) => p.push(point),
+            None => series.push((label, vec![point])),
+        }
+    }
+    let (x_lo, x_hi) = points
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), (m, _)| {
+            (lo.min(m.unknowns as f64), hi.max(m.unknowns as f64))
+        });
+    let (y_lo, y_hi) = points
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), (_, r)| {
+            (lo.min(*r), hi.max(*r))
+        });
+    let (x_lo, x_hi) = if x_lo.is_finite() {
+        (x_lo / 1.5, x_hi * 1.5)
+    } else {
+        (1e3, 1e7)
+    };
+    let (y_lo, y_hi) = if y_lo.is_finite() {
+        (y_lo / 1.5, y_hi * 1.5)
+    } else {
+        (0.1, 100.0)
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
+        let draw = |e: &dyn std::fmt::Display| format!("plot: {e}");
+        root.fill(&WHITE).map_err(|e| draw(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("contact solve / one elastic solve", ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())
+            .map_err(|e| draw(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("unknowns")
+            .y_desc("contact / elastic")
+            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .y_label_formatter(&|y| format!("{y:.2}"))
+            .draw()
+            .map_err(|e| draw(&e))?;
+        for (k, (label, mut pts)) in series.into_iter().enumerate() {
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let colour = Palette99::pick(k).to_rgba();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
+                .map_err(|e| draw(&e))?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            chart
+                .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
+                .map_err(|e| draw(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| draw(&e))?;
+        root.present().map_err(|e| draw(&e))?;
+    }
+    Ok(svg)
+}
