@@ -661,9 +661,9 @@ mod tests {
 
     fn apply(a: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; x.len()];
-        for j in 0..a.ncols() {
+        for (j, xj) in x.iter().enumerate() {
             for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                y[i] += v * x[j];
+                y[i] += v * xj;
             }
         }
         y
