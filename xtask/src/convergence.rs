@@ -23,7 +23,7 @@ pub struct ConvergenceArgs {
     /// Where the JSON, Markdown and SVG files are written.
     #[arg(long, default_value = "target/convergence")]
     out: PathBuf,
-    /// The contact solver: a name of the solver registry (exact, penalty, active-set).
+    /// The contact solver: a name of the solver registry (condensed, exact, penalty, active-set).
     #[arg(long, default_value = SolverRegistry::DEFAULT)]
     solver: String,
     /// The element of every body: a name of the element registry (vem1, vem1-shear,
@@ -131,7 +131,7 @@ Body 1 = (0,1) x (0,1) on top, body 2 = (0,1) x (-1,0) below, Gamma_C = (0,1) x 
 lambda = 2, mu = 1 (plane strain). Each body is meshed by its own family; the interface nodes
 of each side are inserted into the other side's boundary polygons, so the contact constraint
 is node-to-node (`vem-contact`). The contact solver is named in the summary (default: the
-exact QP by Clarabel).
+condensed solver, exact up to round-off).
 
 **Measured** (per body, then the square root of the sum of squares over the bodies;
 `vem_verify::norms`):
@@ -157,7 +157,7 @@ themselves are reported, not asserted: the transitions are flat by design
 
 **Reproduce**: `cargo xtask convergence` (this report, about the time given below on 2 cores),
 `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default `target/convergence`),
-`--solver NAME` (a name of the solver registry: `exact`, `penalty`, `active-set`),
+`--solver NAME` (a name of the solver registry: `condensed`, `exact`, `penalty`, `active-set`),
 `--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `p1`), `--case NAME` (repeatable; any
 case of the case registry, e.g. `M3` or `PTC2`). One study of your own: `cargo run --release -p vem-verify
 --example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
