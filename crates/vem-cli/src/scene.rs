@@ -242,7 +242,7 @@ pub struct ContactSpec {
     /// Only points of the two sides closer than this (along the normal) are paired.
     #[serde(default)]
     pub max_distance: Option<Spanned<f64>>,
-    /// A name of the solver registry: "exact" (default), "penalty", "active-set", or a
+    /// A name of the solver registry: "condensed" (default), "exact", "penalty", "active-set", or a
     /// solver registered by the program that runs the scene.
     #[serde(default)]
     pub solver: Option<Spanned<String>>,

@@ -3,9 +3,11 @@
 //! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
 //! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction
 //! with nodal quadrature, tangential rows `B_T` with nodal bounds `b`. Solvers implement
-//! [`ContactSolver`]: [`ExactSolver`] (convex QP by Clarabel), [`PenaltySolver`]
-//! (semismooth Newton on faer sparse Cholesky) and [`ActiveSetSolver`] (primal-dual active set
-//! on faer sparse Cholesky, exact KKT answer). Every answer carries a [`SolveReport`] with KKT
+//! [`ContactSolver`]: [`CondensedSolver`] (the default: one factorisation per body, the exact
+//! dual problem on the interface unknowns), [`ExactSolver`] (convex QP by Clarabel, the
+//! independent oracle of the tests), [`PenaltySolver`] (semismooth Newton on faer sparse
+//! Cholesky) and [`ActiveSetSolver`] (primal-dual active set on faer sparse Cholesky, exact KKT
+//! answer). Every answer carries a [`SolveReport`] with KKT
 //! residuals recomputed from it. Sign conventions are in the [`solver`] module docs:
 //! `normal_force >= 0` is compression.
 //!

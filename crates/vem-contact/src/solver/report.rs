@@ -456,7 +456,8 @@ pub struct SolveReport {
     pub solver: &'static str,
     /// How the run ended.
     pub status: SolveStatus,
-    /// Iterations of the solver: interior-point iterations (exact), Newton steps (penalty) or
+    /// Iterations of the solver: projected Newton steps of the interface problem, summed over
+    /// proximal steps (condensed), interior-point iterations (exact), Newton steps (penalty) or
     /// active-set splits solved (active set).
     pub iterations: usize,
     /// What the run computed: symbolic analyses, numeric factorisations, triangular solves and
