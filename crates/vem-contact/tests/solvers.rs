@@ -453,16 +453,19 @@ fn penalty_error_falls_like_one_over_penalty() {
     }
 }
 
-/// A deterministic random problem: SPD banded `K` (n = 60), 20 normal rows with 2-4 entries,
-/// optional friction rows and bounds, loads that activate part of the constraints.
-fn random_system(seed: u64, with_friction: bool) -> ContactSystem<'static> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = 60;
-    let m = 20;
+/// A random symmetric banded matrix, strictly diagonally dominant (hence SPD): off-diagonal
+/// entries in (-1, 0) within `band - 1` of the diagonal, each diagonal entry the sum of its
+/// row's off-diagonal magnitudes plus a draw from `excess`.
+fn banded_spd(
+    rng: &mut ChaCha8Rng,
+    n: usize,
+    band: usize,
+    excess: std::ops::Range<f64>,
+) -> SparseColMat<usize, f64> {
     let mut entries = Vec::new();
     let mut diag = vec![0.0; n];
     for i in 0..n {
-        for j in (i + 1)..(i + 4).min(n) {
+        for j in (i + 1)..(i + band).min(n) {
             let v: f64 = rng.gen_range(-1.0..0.0);
             entries.push((i, j, v));
             entries.push((j, i, v));
@@ -471,8 +474,18 @@ fn random_system(seed: u64, with_friction: bool) -> ContactSystem<'static> {
         }
     }
     for (i, d) in diag.iter().enumerate() {
-        entries.push((i, i, d + rng.gen_range(0.1..1.0)));
+        entries.push((i, i, d + rng.gen_range(excess.clone())));
     }
+    matrix(n, &entries)
+}
+
+/// A deterministic random problem: SPD banded `K` (n = 60), 20 normal rows with 2-4 entries,
+/// optional friction rows and bounds, loads that activate part of the constraints.
+fn random_system(seed: u64, with_friction: bool) -> ContactSystem<'static> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let n = 60;
+    let m = 20;
+    let k = banded_spd(&mut rng, n, 4, 0.1..1.0);
     let random_rows = |rng: &mut ChaCha8Rng| {
         let mut t = Vec::new();
         for r in 0..m {
@@ -491,7 +504,7 @@ fn random_system(seed: u64, with_friction: bool) -> ContactSystem<'static> {
         let bounds: Vec<f64> = (0..m).map(|_| rng.gen_range(0.0..0.5)).collect();
         Friction::try_new(tangential, bounds).expect("valid friction")
     });
-    ContactSystem::try_new(matrix(n, &entries), load, normal, gap, friction).expect("valid system")
+    ContactSystem::try_new(k, load, normal, gap, friction).expect("valid system")
 }
 
 fn max_difference<'a>(a: impl IntoIterator<Item = (&'a f64, &'a f64)>) -> f64 {
@@ -685,21 +698,7 @@ fn manufactured_system(
 ) -> (ContactSystem<'static>, Vec<f64>, Vec<f64>, Vec<f64>) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let (n, m) = (40, 8);
-    let mut entries = Vec::new();
-    let mut diag = vec![0.0; n];
-    for i in 0..n {
-        for j in (i + 1)..(i + 5).min(n) {
-            let v: f64 = rng.gen_range(-1.0..0.0);
-            entries.push((i, j, v));
-            entries.push((j, i, v));
-            diag[i] += v.abs();
-            diag[j] += v.abs();
-        }
-    }
-    for (i, d) in diag.iter().enumerate() {
-        entries.push((i, i, d + rng.gen_range(0.01..1.0)));
-    }
-    let k = matrix(n, &entries);
+    let k = banded_spd(&mut rng, n, 5, 0.01..1.0);
     let mut u: Vec<f64> = (0..n).map(|_| rng.gen_range(-1.0..1.0)).collect();
     let (mut ln, mut lt, mut gap, mut bounds) =
         (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
