@@ -772,3 +772,30 @@ proptest::proptest! {
         }
     }
 }
+
+/// A floating body (two unknowns joined by a spring, no support) pushed towards a wall far
+/// away: it must travel 1e6 times its elastic stretch before the wall holds it. The condensed
+/// solver's proximal steps move it by equal steps until it touches, which is not a free mode.
+#[test]
+fn a_floating_body_far_from_the_wall_travels_to_it() {
+    let (k, f) = (4.0, 1.0);
+    let gap = 1e6 * f / k;
+    let system = ContactSystem::try_new(
+        matrix(2, &[(0, 0, k), (0, 1, -k), (1, 0, -k), (1, 1, k)]),
+        vec![0.0, f],
+        rows(1, 2, &[(0, 0, 1.0)]),
+        vec![gap],
+        None,
+    )
+    .expect("valid system");
+    let s = solve(&mut condensed(), &system);
+    assert_eq!(s.report.solver, condensed().name(), "no hand-over");
+    assert_close(s.normal_force[0], f, 1e-9 * f, "wall reaction");
+    assert_close(s.displacement[0], gap, 1e-9 * gap, "at the wall");
+    assert_close(
+        s.displacement[1] - s.displacement[0],
+        f / k,
+        1e-6 * f / k,
+        "stretch f / k",
+    );
+}

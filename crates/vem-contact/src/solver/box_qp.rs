@@ -104,8 +104,12 @@ impl BoxQp<'_> {
         loop {
             let pg = self.projected_gradient(&x, &g, &scaling);
             if pg <= tolerance {
-                outcome.converged = true;
-                break;
+                // Accept on a gradient recomputed from x, not on the updated one.
+                g = self.gradient(&x);
+                if self.projected_gradient(&x, &g, &scaling) <= tolerance {
+                    outcome.converged = true;
+                    break;
+                }
             }
             if outcome.iterations == max_iterations {
                 break;

@@ -89,8 +89,8 @@ impl CondensedSettings {
     }
 
     /// Tolerance on the projected gradient of the interface problem, a force, relative to
-    /// `max_i |d_i| / H_ii` (the force that would close the largest unconstrained penetration
-    /// alone).
+    /// `max_i |clamp(d_i / H_ii)|` (the force that would close the largest unconstrained
+    /// penetration, or stop the largest slip, alone, within its bounds).
     pub fn tolerance(&self) -> f64 {
         self.tolerance
     }
@@ -447,8 +447,9 @@ struct Interface {
     free_mode: bool,
 }
 
-/// The bound-constrained interface QP, with the tolerance relative to `max_i |d_i| / H_ii` (the
-/// force that would close the largest unconstrained penetration alone); zero data give exactly
+/// The bound-constrained interface QP, with the tolerance relative to
+/// `max_i |clamp(d_i / H_ii)|` (the force that would close the largest unconstrained
+/// penetration, or stop the largest slip, alone, within its bounds); zero data give exactly
 /// zero forces.
 fn interface_qp(
     hessian: MatRef<'_, f64>,
@@ -458,9 +459,14 @@ fn interface_qp(
     warm: &[f64],
     settings: &CondensedSettings,
 ) -> BoxQpOutcome {
+    // Rows that cannot carry a force do not set the scale: an open gap (d_i < 0 on a normal
+    // row, whose lower bound is 0) and a tangential row beyond its bound.
     let force_scale = (0..d.len())
         .filter(|&i| hessian[(i, i)] > 0.0)
-        .fold(0.0f64, |a, i| a.max(d[i].abs() / hessian[(i, i)]));
+        .fold(0.0f64, |a, i| {
+            let force = d[i] / hessian[(i, i)];
+            a.max(force.max(lower[i]).min(upper[i]).abs())
+        });
     if force_scale == 0.0 {
         return BoxQpOutcome {
             x: vec![0.0; d.len()],
@@ -506,6 +512,7 @@ fn proximal_iteration(
         free_mode: false,
     };
     let load_scale = inf(system.load());
+    let mut reaction = vec![0.0; system.n_dofs()];
     let (mut previous_step, mut stagnant) = (f64::INFINITY, 0);
     for _ in 0..settings.max_iterations {
         let mut d = d0.to_vec();
@@ -571,18 +578,28 @@ fn proximal_iteration(
             residual = residual.max(body.shift * body_step);
             step = step.max(body_step);
         }
-        let mut reaction = vec![0.0; system.n_dofs()];
+        // ||B' lambda||_inf, touching only the rows' columns.
         for (&(cols, values), &l) in rows.iter().zip(&result.lambda) {
             for (&c, v) in cols.iter().zip(values) {
                 reaction[c] += v * l;
             }
         }
-        let force_scale = load_scale.max(inf(&reaction));
+        let mut reaction_scale = 0.0f64;
+        for &(cols, _) in rows {
+            for &c in cols {
+                reaction_scale = reaction_scale.max(reaction[c].abs());
+                reaction[c] = 0.0;
+            }
+        }
+        let force_scale = load_scale.max(reaction_scale);
         if residual <= settings.tolerance * force_scale {
             result.converged = true;
             return result;
         }
-        stagnant = if step > STAGNATION * previous_step {
+        // A step that does not shrink moves along a free mode only if it approaches no normal
+        // row (otherwise a gap is still closing, by steps of the same size).
+        let not_shrinking = step > STAGNATION * previous_step;
+        stagnant = if not_shrinking && !approaches_a_constraint(factors, system, rows) {
             stagnant + 1
         } else {
             0
@@ -594,6 +611,30 @@ fn proximal_iteration(
         previous_step = step;
     }
     result
+}
+
+/// True when the last proximal step `dv` of the shifted bodies moves some node towards closing
+/// its normal gap: `(B_N dv)_i > 0`.
+fn approaches_a_constraint(
+    factors: &Factors,
+    system: &ContactSystem<'_>,
+    rows: &[(&[usize], &[f64])],
+) -> bool {
+    let mut step = vec![0.0; system.n_dofs()];
+    for body in &factors.bodies {
+        if let Some(p) = &body.proximal {
+            for (&i, dv) in body.interface.iter().zip(&p.last_step) {
+                step[body.offset + i] = *dv;
+            }
+        }
+    }
+    let largest = inf(&step);
+    rows[..system.n_constraints()]
+        .iter()
+        .any(|&(cols, values)| {
+            let approach: f64 = cols.iter().zip(values).map(|(&c, v)| v * step[c]).sum();
+            approach > 1e-12 * largest
+        })
 }
 
 /// Solves with the active-set solver (its report names it), adding the work done so far.
@@ -694,6 +735,7 @@ impl ContactSolver for CondensedSolver {
             }
         };
         if !interface.converged && !interface.free_mode && factors.is_shifted() {
+            factors.unconstrained = Some(unconstrained);
             // The proximal steps converge too slowly (a floating body held by a much softer
             // one): the active-set solver's shifted factorisation of the whole system does not
             // depend on the shift's size in the same way.
@@ -712,8 +754,15 @@ impl ContactSolver for CondensedSolver {
         }
         for body in &factors.bodies {
             if let Some(p) = &body.proximal {
-                for (&i, v) in body.interface.iter().zip(&p.interface_displacement) {
-                    correction[body.offset + i] -= body.shift * v;
+                // v_k, the start of the last proximal step (whose lambda this is): then the
+                // interface part of u is v_k+1 exactly.
+                for ((&i, v), dv) in body
+                    .interface
+                    .iter()
+                    .zip(&p.interface_displacement)
+                    .zip(&p.last_step)
+                {
+                    correction[body.offset + i] -= body.shift * (v - dv);
                 }
             }
         }
