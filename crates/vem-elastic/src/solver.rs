@@ -303,9 +303,7 @@ impl CholeskySolver {
     pub fn smallest_relative_pivot(&self) -> Option<f64> {
         self.factor.as_ref().map(|f| f.smallest_relative_pivot)
     }
-}
 
-impl CholeskySolver {
     /// Symbolic analysis that eliminates the unknowns `trailing` last, in the order given, after
     /// the others in the solver's fill-reducing order ([`Ordering::Amd`] of the matrix without
     /// them, or natural). With `P A P' = L L'` split as

@@ -35,8 +35,6 @@ pub(crate) struct BoxQpOutcome {
     pub iterations: usize,
     /// True when the scaled projected gradient fell below the tolerance.
     pub converged: bool,
-    /// Dense Cholesky factorisations of reduced Hessians.
-    pub factorisations: usize,
 }
 
 const ARMIJO: f64 = 1e-4;
@@ -99,7 +97,6 @@ impl BoxQp<'_> {
             x: Vec::new(),
             iterations: 0,
             converged: false,
-            factorisations: 0,
         };
         loop {
             let pg = self.projected_gradient(&x, &g, &scaling);
@@ -126,7 +123,6 @@ impl BoxQp<'_> {
             let free: Vec<usize> = (0..m).filter(|&i| !binding[i]).collect();
             let mut p: Vec<f64> = (0..m).map(|i| -g[i] * scaling[i]).collect();
             if !free.is_empty() {
-                outcome.factorisations += 1;
                 if let Some(step) = self.reduced_newton_step(&free, &g) {
                     for (k, &i) in free.iter().enumerate() {
                         p[i] = step[k];

@@ -46,14 +46,15 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 
 use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome};
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{
-    certify, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus, WorkCounters,
+    certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
+    WorkCounters,
 };
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
@@ -201,15 +202,15 @@ struct BodyFactor {
     cholesky: CholeskySolver,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
-    /// The shift `s` of the interface unknowns (0 for a body held by Dirichlet conditions).
-    shift: f64,
-    /// Shifted bodies: `L_GG`, `W = L_GG^-1 B_G'` and the interface displacement `v` of the
-    /// last solve (the start of the next proximal iteration).
+    /// Bodies with a singular stiffness: the shift, `L_GG`, `W = L_GG^-1 B_G'` and the
+    /// interface displacement `v` of the last solve (the start of the next proximal iteration).
     proximal: Option<Proximal>,
 }
 
 #[derive(Debug)]
 struct Proximal {
+    /// The shift `s` of the interface unknowns.
+    shift: f64,
     trailing: Mat<f64>,
     w: Mat<f64>,
     interface_displacement: Vec<f64>,
@@ -258,16 +259,35 @@ fn backend(e: SolveError) -> ContactSolverError {
     }
 }
 
-fn inf(v: &[f64]) -> f64 {
-    v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
-}
-
 impl Structure {
+    /// The structure of `system`; `factors` is `None` when a body stays singular with the
+    /// shift.
     fn build(
         system: &ContactSystem<'_>,
         settings: &CondensedSettings,
         work: &mut WorkCounters,
     ) -> Result<Self, ContactSolverError> {
+        Ok(Self {
+            pattern: system.pattern(),
+            stiffness_version: system.stiffness_version(),
+            has_friction: system.friction().is_some(),
+            factors: Factors::build(system, settings, work)?,
+        })
+    }
+
+    fn fits(&self, system: &ContactSystem<'_>) -> bool {
+        self.pattern == system.pattern()
+            && self.stiffness_version == system.stiffness_version()
+            && self.has_friction == system.friction().is_some()
+    }
+}
+
+impl Factors {
+    fn build(
+        system: &ContactSystem<'_>,
+        settings: &CondensedSettings,
+        work: &mut WorkCounters,
+    ) -> Result<Option<Self>, ContactSolverError> {
         let rows = all_rows(system);
         let mut bodies = Vec::new();
         let mut hessian = Mat::<f64>::zeros(rows.len(), rows.len());
@@ -298,7 +318,7 @@ impl Structure {
             work.symbolic_analyses += 1;
             work.times.symbolic += start.elapsed();
             let Some(shift) = factorise_or_shift(&mut cholesky, k, &interface, work)? else {
-                return Ok(Self::singular(system));
+                return Ok(None);
             };
             let mut proximal = None;
             if !interface.is_empty() {
@@ -323,6 +343,7 @@ impl Structure {
                 );
                 if shift > 0.0 {
                     proximal = Some(Proximal {
+                        shift,
                         trailing: l,
                         w,
                         interface_displacement: vec![0.0; interface.len()],
@@ -335,36 +356,15 @@ impl Structure {
                 n,
                 cholesky,
                 interface,
-                shift,
                 proximal,
             });
         }
-        Ok(Self {
-            pattern: system.pattern(),
-            stiffness_version: system.stiffness_version(),
-            has_friction: system.friction().is_some(),
-            factors: Some(Factors {
-                bodies,
-                hessian,
-                unconstrained: None,
-                multipliers: None,
-            }),
-        })
-    }
-
-    fn singular(system: &ContactSystem<'_>) -> Self {
-        Self {
-            pattern: system.pattern(),
-            stiffness_version: system.stiffness_version(),
-            has_friction: system.friction().is_some(),
-            factors: None,
-        }
-    }
-
-    fn fits(&self, system: &ContactSystem<'_>) -> bool {
-        self.pattern == system.pattern()
-            && self.stiffness_version == system.stiffness_version()
-            && self.has_friction == system.friction().is_some()
+        Ok(Some(Self {
+            bodies,
+            hessian,
+            unconstrained: None,
+            multipliers: None,
+        }))
     }
 }
 
@@ -425,8 +425,9 @@ impl Factors {
         let start = Instant::now();
         for body in &self.bodies {
             let part = &mut x[body.offset..body.offset + body.n];
-            let solved = body.cholesky.solve(part).map_err(backend)?;
-            part.copy_from_slice(&solved);
+            body.cholesky
+                .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                .map_err(backend)?;
             work.triangular_solves += 1;
         }
         work.times.solves += start.elapsed();
@@ -472,7 +473,6 @@ fn interface_qp(
             x: vec![0.0; d.len()],
             iterations: 0,
             converged: true,
-            factorisations: 0,
         };
     }
     BoxQp {
@@ -520,19 +520,13 @@ fn proximal_iteration(
         for body in &factors.bodies {
             if let Some(p) = &body.proximal {
                 let mut z = Mat::<f64>::from_fn(p.interface_displacement.len(), 1, |i, _| {
-                    body.shift * p.interface_displacement[i]
+                    p.shift * p.interface_displacement[i]
                 });
                 solve_lower_triangular_in_place(p.trailing.as_ref(), z.as_mut(), Par::Seq);
-                let mut dm = Mat::<f64>::from_fn(d.len(), 1, |i, _| d[i]);
-                matmul(
-                    dm.as_mut(),
-                    Accum::Add,
-                    p.w.transpose(),
-                    z.as_ref(),
-                    1.0,
-                    Par::Seq,
-                );
-                d = (0..d.len()).map(|i| dm[(i, 0)]).collect();
+                let wz = p.w.transpose() * &z;
+                for (i, di) in d.iter_mut().enumerate() {
+                    *di += wz[(i, 0)];
+                }
                 shifted_loads.push(z);
             }
         }
@@ -575,7 +569,7 @@ fn proximal_iteration(
                 body_step = body_step.max(p.last_step[k].abs());
                 p.interface_displacement[k] = v;
             }
-            residual = residual.max(body.shift * body_step);
+            residual = residual.max(p.shift * body_step);
             step = step.max(body_step);
         }
         // ||B' lambda||_inf, touching only the rows' columns.
@@ -762,7 +756,7 @@ impl ContactSolver for CondensedSolver {
                     .zip(&p.interface_displacement)
                     .zip(&p.last_step)
                 {
-                    correction[body.offset + i] -= body.shift * (v - dv);
+                    correction[body.offset + i] -= p.shift * (v - dv);
                 }
             }
         }
@@ -815,7 +809,7 @@ impl ContactSolver for CondensedSolver {
             for body in &factors.bodies {
                 if let Some(p) = &body.proximal {
                     for (&i, v) in body.interface.iter().zip(&p.last_step) {
-                        direction[body.offset + i] = body.shift * v;
+                        direction[body.offset + i] = p.shift * v;
                     }
                 }
             }

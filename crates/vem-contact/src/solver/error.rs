@@ -141,7 +141,7 @@ impl ContactSolverError {
         direction: &[f64],
         report: Box<SolveReport>,
     ) -> Self {
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let inf = super::report::inf_norm;
         let load_along = |d: &[f64], scale: f64| {
             system
                 .load()

@@ -215,7 +215,7 @@ impl Units {
         if stiffness <= 0.0 {
             stiffness = 1.0;
         }
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let inf = super::report::inf_norm;
         let length = inf(system.gap()).max(inf(system.load()) / stiffness);
         Self {
             stiffness,

@@ -277,7 +277,7 @@ impl Penalised<'_> {
 
     fn state(&self, u: &[f64]) -> State {
         let sys = self.system;
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let inf = super::report::inf_norm;
         let m = sys.n_constraints();
         let constraint: Vec<f64> = sys
             .normal_rows()

@@ -111,7 +111,8 @@ fn relative(x: f64, s: f64) -> f64 {
     }
 }
 
-fn inf_norm(v: &[f64]) -> f64 {
+/// `max_i |v_i|`.
+pub(crate) fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
 
