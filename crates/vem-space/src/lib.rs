@@ -11,7 +11,7 @@
 //!   `gamma_xy = 2 eps_xy`, so that `sigma = C eps` with a symmetric 3x3 `C`.
 //!
 //! Element types: [`LowestOrderVem`] ("vem1", any polygon, with a [`Stabilisation`]: the
-//! built-in [`DofiDofi`] and [`DRecipe`] or a user's own) and [`LinearTriangle`] ("p1", the
+//! built-in [`DofiDofi`], [`DRecipe`] and the locking-free [`BBar`] or a user's own) and [`LinearTriangle`] ("p1", the
 //! classical linear triangle, an independent check: on a triangle the two agree to round-off),
 //! by name from the [`ElementRegistry`]. The validated geometry of one polygon is
 //! [`PolygonGeometry`]. Loads: [`ElementSpace::body_load`] and [`edge_traction_load`]; quadrature
@@ -59,7 +59,7 @@ pub use material::ElasticityTensor;
 pub use p1::LinearTriangle;
 pub use polygon::PolygonGeometry;
 pub use registry::{ElementFactory, ElementRegistry, RegistryError};
-pub use stabilisation::{DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
+pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
 pub use vem::LowestOrderVem;
 
 use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};

@@ -80,6 +80,33 @@ impl ElasticityTensor {
         self.voigt[(2, 2)]
     }
 
+    /// The deviatoric part `C_dev = P^T C P` (Voigt), with `P = I - m m^T / 2` the projection
+    /// of a Voigt strain `[eps_xx, eps_yy, 2 eps_xy]` onto its trace-free part (`m = [1, 1, 0]`,
+    /// `m . eps = tr eps`). For an isotropic material `lambda` drops out:
+    /// `C_dev = mu [[1, -1, 0], [-1, 1, 0], [0, 0, 1]]`, of trace `3 mu`.
+    ///
+    /// ```
+    /// use vem_space::ElasticityTensor;
+    /// let c = ElasticityTensor::try_isotropic(1e6, 1.0)?;
+    /// assert!((c.deviatoric().trace() - 3.0).abs() < 1e-9);
+    /// # Ok::<(), vem_space::SpaceError>(())
+    /// ```
+    pub fn deviatoric(&self) -> Matrix3<f64> {
+        let m = Vector3::new(1.0, 1.0, 0.0);
+        let p = Matrix3::identity() - m * m.transpose() * 0.5;
+        p.transpose() * self.voigt * p
+    }
+
+    /// The bulk modulus `kappa = m^T C m / 4` (`m = [1, 1, 0]`): the stress `kappa tr(eps)` of a
+    /// pure dilatation `eps = tr(eps) m / 2`, averaged over the two normal directions
+    /// (`lambda + mu` for an isotropic plane-strain material). With it,
+    /// `trace(C) = trace(C_dev) + 2 kappa` for every tensor (the cross terms `P C m` have no
+    /// trace).
+    pub fn bulk_modulus(&self) -> f64 {
+        let m = Vector3::new(1.0, 1.0, 0.0);
+        m.dot(&(self.voigt * m)) / 4.0
+    }
+
     /// The stress `sigma = C eps` in Voigt notation `[xx, yy, xy]` of a strain
     /// `[eps_xx, eps_yy, 2 eps_xy]` (engineering shear).
     pub fn stress(&self, strain: &Vector3<f64>) -> Vector3<f64> {
@@ -104,6 +131,22 @@ mod tests {
         let c = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
         let sigma = c.stress(&Vector3::new(0.2, 0.4, 0.2));
         assert!((sigma - Vector3::new(1.6, 2.0, 0.2)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn deviatoric_and_bulk_split_the_trace() {
+        // Isotropic: trace(C_dev) = 3 mu, kappa = lambda + mu, independent of each other.
+        let c = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
+        assert!((c.deviatoric().trace() - 3.0).abs() < 1e-15);
+        assert!((c.bulk_modulus() - 3.0).abs() < 1e-15);
+        // A fully anisotropic tensor: trace(C) = trace(C_dev) + 2 kappa, C_dev m = 0.
+        let c = ElasticityTensor::try_from_voigt(Matrix3::new(
+            5.0, 1.5, 0.7, 1.5, 4.0, -0.4, 0.7, -0.4, 2.0,
+        ))
+        .unwrap();
+        let split = c.deviatoric().trace() + 2.0 * c.bulk_modulus();
+        assert!((split - c.trace()).abs() < 1e-14);
+        assert!((c.deviatoric() * Vector3::new(1.0, 1.0, 0.0)).norm() < 1e-15);
     }
 
     #[test]

@@ -4,7 +4,7 @@ use std::fmt;
 use std::sync::Arc;
 
 use crate::{
-    DRecipe, DofiDofi, ElementSpace, LinearTriangle, LowestOrderVem, StabilisationScaling,
+    BBar, DRecipe, DofiDofi, ElementSpace, LinearTriangle, LowestOrderVem, StabilisationScaling,
 };
 
 /// What builds an element of a registered name.
@@ -61,14 +61,14 @@ struct Entry {
 /// use std::sync::Arc;
 /// use vem_space::{ElementRegistry, ElementSpace, LinearTriangle, RegistryError};
 /// let mut registry = ElementRegistry::builtin();
-/// assert_eq!(registry.names(), ["vem1", "vem1-shear", "vem1-drecipe", "p1"]);
+/// assert_eq!(registry.names(), ["vem1", "vem1-shear", "vem1-drecipe", "vem1-bbar", "p1"]);
 /// assert_eq!(registry.make(ElementRegistry::DEFAULT)?.name(), "vem1");
 /// registry.register("my-p1", "the linear triangle again", || Arc::new(LinearTriangle))?;
 /// assert_eq!(registry.make("my-p1")?.name(), "p1");
 /// let unknown = registry.make("vem2").err().expect("no element is named vem2");
 /// assert_eq!(
 ///     unknown.to_string(),
-///     "unknown element 'vem2' (known: vem1, vem1-shear, vem1-drecipe, p1, my-p1)"
+///     "unknown element 'vem2' (known: vem1, vem1-shear, vem1-drecipe, vem1-bbar, p1, my-p1)"
 /// );
 /// # Ok::<(), RegistryError>(())
 /// ```
@@ -96,11 +96,12 @@ impl ElementRegistry {
     }
 
     /// The elements of this crate: `"vem1"` (default; dofi-dofi, `trace(C)`), `"vem1-shear"`
-    /// (dofi-dofi, shear modulus), `"vem1-drecipe"` (D-recipe) and `"p1"` (linear triangle,
+    /// (dofi-dofi, shear modulus), `"vem1-drecipe"` (D-recipe), `"vem1-bbar"` (locking-free:
+    /// [`BBar`], the bulk part of the stabilisation bounded) and `"p1"` (linear triangle,
     /// triangles only). Each element's [`ElementSpace::name`] is its registry name.
     pub fn builtin() -> Self {
         let mut registry = Self::empty();
-        let builtin: [(&str, &str, ElementFactory); 4] = [
+        let builtin: [(&str, &str, ElementFactory); 5] = [
             (
                 "vem1",
                 "lowest-order VEM, any polygon; dofi-dofi stabilisation alpha = trace(C)/8",
@@ -119,6 +120,11 @@ impl ElementRegistry {
                 "vem1-drecipe",
                 "lowest-order VEM, any polygon; D-recipe stabilisation S = diag(K_c)",
                 Arc::new(|| Arc::new(LowestOrderVem::from_valid(Arc::new(DRecipe)))),
+            ),
+            (
+                "vem1-bbar",
+                "lowest-order VEM, any polygon; locking-free: alpha = min(trace(C), 3 trace(C_dev))/8",
+                Arc::new(|| Arc::new(LowestOrderVem::from_valid(Arc::new(BBar)))),
             ),
             (
                 "p1",
@@ -242,7 +248,7 @@ mod tests {
                 Err(RegistryError::InvalidName { .. })
             ));
         }
-        assert_eq!(registry.names().len(), 4);
+        assert_eq!(registry.names().len(), 5);
         assert_eq!(registry.summary("nothing"), None);
     }
 }

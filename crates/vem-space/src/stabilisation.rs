@@ -3,7 +3,9 @@
 //! [`crate::LowestOrderVem`] computes `K_s = (I - Pi_dof)^T S (I - Pi_dof)` with a diagonal
 //! `S` that a [`Stabilisation`] supplies; `K_s` vanishes on linear fields whatever `S` is, so
 //! consistency (3.1) holds for every stabilisation, and a positive `S` gives the rank `2n - 3`.
-//! Two are built in: [`DofiDofi`] (`S = alpha I`) and [`DRecipe`] (`S = diag(K_c)`). A user's
+//! Three are built in: [`DofiDofi`] (`S = alpha I`), [`DRecipe`] (`S = diag(K_c)`) and
+//! [`BBar`] (`S = alpha I` with a bulk part bounded independently of lambda: locking-free on
+//! nearly incompressible materials). A user's
 //! own implements the trait outside this crate and is passed to
 //! [`crate::LowestOrderVem::try_new`] (see `docs/elements.md`).
 
@@ -248,5 +250,129 @@ impl Stabilisation for DRecipe {
     ) -> Result<DVector<f64>, SpaceError> {
         let floor = Self::FLOOR * material.trace();
         Ok(consistency.diagonal().map(|k| k.max(floor)))
+    }
+}
+
+/// The locking-free stabilisation "bbar": `S = alpha I` with
+/// `alpha = min(trace(C), 3 trace(C_dev)) / 8 = (trace(C_dev) + 2 min(kappa, trace(C_dev))) / 8`
+/// ([`ElasticityTensor::deviatoric`], [`ElasticityTensor::bulk_modulus`]).
+///
+/// The consistency part of the lowest-order VEM already sees the volume change only through the
+/// cell mean of the divergence (the B-bar idea: the volumetric strain projected on constants,
+/// one constraint per cell). What makes the default `alpha = trace(C)/8` lock is its bulk part
+/// `2 kappa / 8`: it penalises the non-polynomial modes, whose divergence is not zero pointwise,
+/// like lambda. "bbar" keeps the bulk part while it is at most the deviatoric one and bounds it
+/// there beyond, so that `3 trace(C_dev)/8 >= alpha >= trace(C_dev)/8` whatever lambda is
+/// (isotropic: `9 mu/8 >= alpha >= 3 mu/8`): the stabilisation stays spectrally equivalent to
+/// the deviatoric energy, with constants independent of lambda.
+///
+/// For `kappa <= trace(C_dev)` (isotropic: `lambda <= 2 mu`, Poisson's ratio `<= 1/3`) it is
+/// exactly the default [`DofiDofi`], so results there are unchanged; beyond, the element
+/// differs from the default only in the stabilisation constant.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use vem_space::{BBar, ElasticityTensor, Point, PolygonGeometry, Stabilisation};
+/// let square = [
+///     Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0),
+/// ];
+/// let geometry = PolygonGeometry::try_new(&square)?;
+/// let k_c = DMatrix::zeros(8, 8); // not used by "bbar"
+/// // lambda = 1.5, mu = 1 (nu = 0.3): alpha = trace(C)/8 = 1, as the default stabilisation.
+/// let moderate = ElasticityTensor::try_isotropic(1.5, 1.0)?;
+/// assert_eq!(BBar.diagonal(&geometry, &moderate, &k_c)?[0], 1.0);
+/// // lambda = 1e6 mu: alpha = 9 mu / 8, not (2 lambda + 5 mu) / 8.
+/// let nearly_incompressible = ElasticityTensor::try_isotropic(1e6, 1.0)?;
+/// assert!((BBar.diagonal(&geometry, &nearly_incompressible, &k_c)?[0] - 1.125).abs() < 1e-9);
+/// # Ok::<(), vem_space::SpaceError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BBar;
+
+impl BBar {
+    /// The scale of `alpha`, as [`DofiDofi::DEFAULT_SCALE`].
+    pub const SCALE: f64 = DofiDofi::DEFAULT_SCALE;
+
+    /// `alpha` for the material `material`.
+    pub fn alpha(material: &ElasticityTensor) -> f64 {
+        Self::SCALE * material.trace().min(3.0 * material.deviatoric().trace())
+    }
+}
+
+impl Stabilisation for BBar {
+    /// `"bbar"`.
+    fn name(&self) -> String {
+        "bbar".into()
+    }
+
+    fn description(&self) -> String {
+        "dofi-dofi, alpha = min(trace(C), 3 trace(C_dev))/8 (bulk part bounded)".into()
+    }
+
+    fn diagonal(
+        &self,
+        _geometry: &PolygonGeometry,
+        material: &ElasticityTensor,
+        consistency: &DMatrix<f64>,
+    ) -> Result<DVector<f64>, SpaceError> {
+        Ok(DVector::from_element(
+            consistency.nrows(),
+            Self::alpha(material),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::{ElementSpace, LowestOrderVem, Point};
+
+    fn hexagon() -> Vec<Point> {
+        (0..6)
+            .map(|k| {
+                let t = std::f64::consts::PI * k as f64 / 3.0;
+                Point::new(t.cos(), 0.5 * t.sin())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn bbar_is_the_default_up_to_lambda_two_mu_and_bounded_beyond() {
+        let vem1 = LowestOrderVem::default();
+        let bbar = LowestOrderVem::try_new(Arc::new(BBar)).unwrap();
+        assert_eq!(bbar.name(), "vem1-bbar");
+        let polygon = hexagon();
+        // lambda <= 2 mu: the same matrix, entry by entry.
+        for lambda in [0.0, 1.5, 2.0] {
+            let c = ElasticityTensor::try_isotropic(lambda, 1.0).unwrap();
+            let (a, b) = (
+                vem1.stiffness(&polygon, &c).unwrap(),
+                bbar.stiffness(&polygon, &c).unwrap(),
+            );
+            assert_eq!(a, b, "lambda = {lambda}");
+        }
+        // lambda > 2 mu: the same consistency part; the stabilisation is the one of
+        // alpha = 9 mu/8 = trace(C)/8 at lambda = 2 mu, whatever lambda is.
+        let reference = vem1
+            .stiffness(
+                &polygon,
+                &ElasticityTensor::try_isotropic(2.0, 1.0).unwrap(),
+            )
+            .unwrap();
+        for lambda in [10.0, 1e6] {
+            let c = ElasticityTensor::try_isotropic(lambda, 1.0).unwrap();
+            let (a, b) = (
+                vem1.stiffness(&polygon, &c).unwrap(),
+                bbar.stiffness(&polygon, &c).unwrap(),
+            );
+            assert_eq!(a.consistency, b.consistency);
+            let difference = (&b.stabilisation - &reference.stabilisation).amax();
+            assert!(difference < 1e-14, "lambda = {lambda}: {difference}");
+            // The default's stabilisation grows like lambda.
+            let ratio = a.stabilisation.amax() / b.stabilisation.amax();
+            assert!((ratio - (2.0 * lambda + 5.0) / 9.0).abs() < 1e-9 * ratio);
+        }
     }
 }

@@ -11,7 +11,7 @@ use vem_space::testkit::{
     self, check_element, linear_fields, standard_materials, voigt_strain, ElementCheck,
 };
 use vem_space::{
-    edge_traction_load, DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle,
+    edge_traction_load, BBar, DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle,
     LowestOrderVem, Point, PolygonGeometry, SpaceError, Stabilisation, StabilisationScaling,
     Vector,
 };
@@ -116,11 +116,12 @@ fn materials() -> Vec<ElasticityTensor> {
 }
 
 fn elements() -> Vec<LowestOrderVem> {
-    let stabilisations: [Arc<dyn Stabilisation>; 4] = [
+    let stabilisations: [Arc<dyn Stabilisation>; 5] = [
         Arc::new(DofiDofi::default()),
         Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)),
         Arc::new(DofiDofi::try_new(StabilisationScaling::TraceOfC, 2.0).unwrap()),
         Arc::new(DRecipe),
+        Arc::new(BBar),
     ];
     stabilisations
         .into_iter()

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_space::testkit::{ElementCheck, DEFAULT_TOLERANCE};
 use vem_space::{
-    DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle, LowestOrderVem, Point,
+    BBar, DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle, LowestOrderVem, Point,
     Stabilisation, StabilisationScaling, Vector,
 };
 
@@ -17,10 +17,11 @@ use vem_space::{
 fn every_polygon_of_every_family_passes_the_element_patch_test() {
     let rect = Rectangle::new(Point::new(-0.5, 0.0), Point::new(1.5, 1.0));
     let material = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
-    let stabilisations: [Arc<dyn Stabilisation>; 3] = [
+    let stabilisations: [Arc<dyn Stabilisation>; 4] = [
         Arc::new(DofiDofi::default()),
         Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)),
         Arc::new(DRecipe),
+        Arc::new(BBar),
     ];
     let mut elements: Vec<Arc<dyn ElementSpace>> = stabilisations
         .into_iter()

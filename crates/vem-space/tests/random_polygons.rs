@@ -8,7 +8,7 @@ use std::sync::Arc;
 use proptest::prelude::*;
 use vem_space::testkit::ElementCheck;
 use vem_space::{
-    DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle, LowestOrderVem, Point,
+    BBar, DRecipe, DofiDofi, ElasticityTensor, ElementSpace, LinearTriangle, LowestOrderVem, Point,
     Stabilisation, StabilisationScaling,
 };
 /// A polygon with a number of vertices in `sizes`, star-shaped with respect to a random centre:
@@ -57,6 +57,7 @@ fn stabilisation() -> impl Strategy<Value = Arc<dyn Stabilisation>> {
         Just(Arc::new(DofiDofi::default()) as Arc<dyn Stabilisation>),
         Just(Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)) as Arc<dyn Stabilisation>),
         Just(Arc::new(DRecipe) as Arc<dyn Stabilisation>),
+        Just(Arc::new(BBar) as Arc<dyn Stabilisation>),
     ]
 }
 
