@@ -17,6 +17,7 @@
 //! | E1, E2 | [`E1`], [`E2`] | one body, clamped: trigonometric; divergence free (locking) |
 //! | PT0a, PT0b | [`AffinePatch`] | one body, linear patch tests |
 //! | PTC1, PTC1h, PTC2, PTC3 | [`ContactPatch`] | two bodies, linear contact patch tests |
+//! | E2c | [`DivergenceFreeContact`] | two bodies, frictionless full contact, divergence free (locking); not in [`CASE_NAMES`] |
 //!
 //! ```
 //! use vem_verify::exact::{case_by_name, BodyId, Lame};
@@ -30,6 +31,7 @@
 //! ```
 
 mod contact_patch;
+mod divergence_free;
 mod elasticity;
 mod error;
 mod family_a;
@@ -37,6 +39,7 @@ mod jet;
 mod solution;
 
 pub use contact_patch::{ContactPatch, PATCH_FRICTION_BOUND};
+pub use divergence_free::{DivergenceFreeContact, DIVERGENCE_FREE_GAP};
 pub use elasticity::{AffinePatch, E1, E2};
 pub use error::ExactError;
 pub use family_a::{
