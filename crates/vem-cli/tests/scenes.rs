@@ -323,13 +323,13 @@ fn coulomb_fixed_point_with_slip_at_the_edges() {
 }
 
 /// The element key: the patch scene is solved exactly by every element of the registry that
-/// takes its polygons (the D-recipe and shear-scaled VEM), and a P1 element on polygons it
+/// takes its polygons (the D-recipe, shear-scaled and locking-free VEM), and a P1 element on polygons it
 /// cannot take is refused before assembly, naming the body and the element.
 #[test]
 fn element_key_selects_a_registered_element() {
     let path = scene("patch");
     let source = std::fs::read_to_string(&path).unwrap();
-    for element in ["vem1-drecipe", "vem1-shear"] {
+    for element in ["vem1-drecipe", "vem1-shear", "vem1-bbar"] {
         let text = source.replacen(
             "[[body]]\nname = \"upper\"",
             &format!("[[body]]\nname = \"upper\"\nelement = \"{element}\""),
