@@ -270,6 +270,11 @@ impl Stabilisation for DRecipe {
 /// exactly the default [`DofiDofi`], so results there are unchanged; beyond, the element
 /// differs from the default only in the stabilisation constant.
 ///
+/// The price: where `lambda` is large and the load drives an O(1) volume change (stress and
+/// pressure `lambda div u` growing like `lambda`), the pressure is represented by one constant
+/// per cell and the errors grow like `lambda h`; the default, whose stabilisation is scaled
+/// by `lambda`, is the more accurate element there (`docs/elements.md`, "The trade-off").
+///
 /// ```
 /// use nalgebra::DMatrix;
 /// use vem_space::{BBar, ElasticityTensor, Point, PolygonGeometry, Stabilisation};

@@ -211,20 +211,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
     }
-    println!("\nE1 at nu = 0.3 (lambda = 1.5, mu = 1): errors at the finest size, rates\n");
-    println!("| family | element | E_grad | E_0 | rates |");
-    println!("|---|---|---|---|---|");
+    println!(
+        "\nE1 at nu = 0.3 (lambda = 1.5, mu = 1): errors at the finest size, rates; and the \
+         ratio of the errors at nu = 0.49999 to those (not a locking test: div u = O(1))\n"
+    );
+    println!("| family | element | E_grad | E_0 | rates | E_grad, E_0 ratio at 0.49999 |");
+    println!("|---|---|---|---|---|---|");
     for family in families() {
         for element in ELEMENTS {
             let result = study("E1", family, element, 0.3, &sizes)?;
             let errors = result.finest().map(|f| f.errors).unwrap_or_default();
+            let stiff = study("E1", family, element, 0.49999, &sizes)?;
+            let stiff = stiff.finest().map(|f| f.errors).unwrap_or_default();
             println!(
-                "| {} | {element} | {:.4e} | {:.4e} | {}, {} |",
+                "| {} | {element} | {:.4e} | {:.4e} | {}, {} | {:.1}, {:.1} |",
                 family.name(),
                 errors.grad,
                 errors.l2,
                 rate(result.rates.grad),
                 rate(result.rates.l2),
+                stiff.grad / errors.grad,
+                stiff.l2 / errors.l2,
             );
         }
     }
