@@ -1,6 +1,6 @@
 //! `vem`: contact scenes in TOML, solved with the lowest-order virtual element method.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -113,13 +113,16 @@ fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
     progress.set_message(format!("writing {}", dir.display()));
     let files = outcome.write(&dir)?;
     progress.finish_and_clear();
-    print!("{}", outcome.summary());
     let names: Vec<String> = files
         .iter()
         .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
-    println!("wrote {}: {}", dir.display(), names.join(", "));
-    Ok(())
+    emit(&format!(
+        "{}wrote {}: {}\n",
+        outcome.summary(),
+        dir.display(),
+        names.join(", ")
+    ))
 }
 
 fn check(scene: &Path) -> Result<(), CliError> {
@@ -128,11 +131,31 @@ fn check(scene: &Path) -> Result<(), CliError> {
     let scene = Scene::load(scene)?;
     let report = Model::build(&scene)?.check()?;
     progress.finish_and_clear();
-    print!("{report}");
-    Ok(())
+    emit(&report.to_string())
+}
+
+/// Writes `text` to standard output. A closed pipe (`vem check scene.toml | head`) is not an
+/// error: the reader has what it wanted; any other failure (a full disk) is.
+fn emit(text: &str) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Io {
+            action: "write to",
+            path: PathBuf::from("standard output"),
+            source: e,
+        }),
+        _ => Ok(()),
+    }
 }
 
 fn main() -> ExitCode {
+    // Errors are values; a panic is a bug. Say so in one line, without a backtrace dump.
+    std::panic::set_hook(Box::new(|info| {
+        let _ = writeln!(
+            std::io::stderr().lock(),
+            "error: internal error (a bug in vem, please report it): {info}"
+        );
+    }));
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run { scene, out } => run(&scene, out),
@@ -149,12 +172,13 @@ fn main() -> ExitCode {
             (None, Some(family)) => generate_mesh(&family, n, seed, rect, &out),
             (None, None) => Err(CliError::Usage("give a .msh file or --family".to_string())),
         }
-        .map(|report| print!("{report}")),
+        .and_then(|report| emit(&report.to_string())),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", e.chain());
+            // Standard error may be closed too: nothing more can be said then.
+            let _ = writeln!(std::io::stderr().lock(), "error: {}", e.chain());
             ExitCode::FAILURE
         }
     }
