@@ -61,12 +61,13 @@ mod model;
 mod outcome;
 mod output;
 mod plot;
+pub mod resources;
 pub mod scene;
 
 use std::path::{Path, PathBuf};
 
 pub use error::{CliError, Location};
-pub use mesh_command::{convert_mesh, generate_mesh, MeshReport};
+pub use mesh_command::{convert_mesh, generate_mesh, generate_mesh_within, MeshReport};
 pub use model::{
     CheckReport, CheckedBody, CheckedContact, Model, ModelBody, ModelContact, ModelCounterpart,
     Registries,

@@ -7,7 +7,8 @@ use std::time::Duration;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use vem_cli::{convert_mesh, default_output_dir, generate_mesh, CliError, Model, Scene};
+use vem_cli::resources::{LimitOrigin, MemoryLimit};
+use vem_cli::{convert_mesh, default_output_dir, generate_mesh_within, CliError, Model, Scene};
 
 /// Contact of elastic bodies with the lowest-order virtual element method (VEM).
 ///
@@ -38,6 +39,10 @@ enum Command {
         /// Output directory [default: out/SCENE_STEM].
         #[arg(long, short, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// The memory the run may plan to use, in GiB [default: the scene's `[limits]
+        /// memory_gib`, else the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
     /// Check a scene without solving it.
     ///
@@ -47,6 +52,10 @@ enum Command {
     Check {
         /// The scene file (TOML).
         scene: PathBuf,
+        /// The memory the run may plan to use, in GiB [default: the scene's `[limits]
+        /// memory_gib`, else the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
     /// Generate a mesh of a family, or convert a Gmsh file, to .vtu and .svg.
     ///
@@ -73,6 +82,9 @@ enum Command {
         /// Output directory.
         #[arg(long, short, value_name = "DIR", default_value = "out/mesh")]
         out: PathBuf,
+        /// The memory the mesh may take, in GiB [default: the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
 }
 
@@ -101,10 +113,23 @@ fn spinner() -> ProgressBar {
     bar
 }
 
-fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
+/// The scene at `path` with the command line's memory limit, if any.
+fn load(path: &Path, memory_limit: Option<f64>) -> Result<Scene, CliError> {
+    let scene = Scene::load(path)?;
+    Ok(match memory_limit {
+        Some(gib) => scene.with_memory_limit(command_line_limit(gib)?),
+        None => scene,
+    })
+}
+
+fn command_line_limit(gib: f64) -> Result<MemoryLimit, CliError> {
+    MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine)
+}
+
+fn run(scene: &Path, out: Option<PathBuf>, memory_limit: Option<f64>) -> Result<(), CliError> {
     let progress = spinner();
     progress.set_message(format!("reading {}", scene.display()));
-    let scene = Scene::load(scene)?;
+    let scene = load(scene, memory_limit)?;
     progress.set_message("building meshes and bodies");
     let model = Model::build(&scene)?;
     progress.set_message("solving");
@@ -125,10 +150,10 @@ fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
     ))
 }
 
-fn check(scene: &Path) -> Result<(), CliError> {
+fn check(scene: &Path, memory_limit: Option<f64>) -> Result<(), CliError> {
     let progress = spinner();
     progress.set_message(format!("checking {}", scene.display()));
-    let scene = Scene::load(scene)?;
+    let scene = load(scene, memory_limit)?;
     let report = Model::build(&scene)?.check()?;
     progress.finish_and_clear();
     emit(&report.to_string())
@@ -158,8 +183,15 @@ fn main() -> ExitCode {
     }));
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { scene, out } => run(&scene, out),
-        Command::Check { scene } => check(&scene),
+        Command::Run {
+            scene,
+            out,
+            memory_limit,
+        } => run(&scene, out, memory_limit),
+        Command::Check {
+            scene,
+            memory_limit,
+        } => check(&scene, memory_limit),
         Command::Mesh {
             file,
             family,
@@ -167,9 +199,12 @@ fn main() -> ExitCode {
             seed,
             rect,
             out,
+            memory_limit,
         } => match (file, family) {
             (Some(file), _) => convert_mesh(&file, &out),
-            (None, Some(family)) => generate_mesh(&family, n, seed, rect, &out),
+            (None, Some(family)) => memory_limit
+                .map_or_else(|| Ok(MemoryLimit::available()), command_line_limit)
+                .and_then(|limit| generate_mesh_within(&family, n, seed, rect, &out, limit)),
             (None, None) => Err(CliError::Usage("give a .msh file or --family".to_string())),
         }
         .and_then(|report| emit(&report.to_string())),

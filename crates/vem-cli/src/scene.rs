@@ -15,6 +15,7 @@ use toml::Spanned;
 
 use vem_contact::SolverRegistry;
 
+use crate::resources::{LimitOrigin, MemoryLimit};
 use crate::CliError;
 
 /// The largest magnitude of a number of a scene (see [`Scene::check_number`]).
@@ -42,6 +43,9 @@ pub struct SceneFile {
     /// Output options (`[output]`).
     #[serde(default)]
     pub output: OutputSpec,
+    /// Resource limits (`[limits]`).
+    #[serde(default)]
+    pub limits: LimitsSpec,
 }
 
 /// One elastic body (`[[body]]`).
@@ -346,10 +350,16 @@ pub struct OutputSpec {
     /// Width of the pictures in pixels (default 900, at most [`MAX_WIDTH`]).
     #[serde(default)]
     pub width: Option<Spanned<f64>>,
+}
+
+/// `[limits]`: what a run may use.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsSpec {
     /// The memory a run may plan to use, in GiB (default: the memory the system reports
     /// available); meshes and systems estimated larger are refused before they are built.
     #[serde(default)]
-    pub memory_limit_gib: Option<Spanned<f64>>,
+    pub memory_gib: Option<Spanned<f64>>,
 }
 
 /// A parsed and checked scene file.
@@ -358,6 +368,7 @@ pub struct Scene {
     path: PathBuf,
     source: String,
     file: SceneFile,
+    memory_limit: Option<MemoryLimit>,
 }
 
 impl Scene {
@@ -379,9 +390,35 @@ impl Scene {
         let source = source.into();
         let file: SceneFile = toml::from_str(&source)
             .map_err(|e| CliError::at(&path, &source, e.span(), e.message().trim_end()))?;
-        let scene = Self { path, source, file };
+        let scene = Self {
+            path,
+            source,
+            file,
+            memory_limit: None,
+        };
         scene.check()?;
         Ok(scene)
+    }
+
+    /// The same scene with the memory limit `limit` (the command line's `--memory-limit`),
+    /// which overrides the scene's `[limits] memory_gib`.
+    pub fn with_memory_limit(mut self, limit: MemoryLimit) -> Self {
+        self.memory_limit = Some(limit);
+        self
+    }
+
+    /// The memory the run may plan to use: the command line's limit, else the scene's
+    /// `[limits] memory_gib`, else the memory the system reports available.
+    pub fn memory_limit(&self) -> MemoryLimit {
+        if let Some(limit) = self.memory_limit {
+            return limit;
+        }
+        self.file
+            .limits
+            .memory_gib
+            .as_ref()
+            .and_then(|gib| MemoryLimit::try_from_gib(*gib.get_ref(), LimitOrigin::Scene).ok())
+            .unwrap_or_else(MemoryLimit::available)
     }
 
     /// The scene file's path.
@@ -486,9 +523,9 @@ impl Scene {
                 ));
             }
         }
-        if let Some(limit) = &output.memory_limit_gib {
-            self.positive(limit, "memory_limit_gib")?;
-            self.check_number(Some(limit.span()), "`memory_limit_gib`", *limit.get_ref())?;
+        if let Some(limit) = &file.limits.memory_gib {
+            self.positive(limit, "memory_gib")?;
+            self.check_number(Some(limit.span()), "`memory_gib`", *limit.get_ref())?;
         }
         self.check_ranges()
     }
