@@ -76,7 +76,7 @@ pub use outcome::{
     BodySummary, ContactSummary, FixedPointSummary, HertzComparison, NodeCounts, Outcome,
     ReactionSummary, Residuals, Resultants, RunSummary, SolvedBody, Times, Work,
 };
-pub use output::{CONTACT_COLUMNS, DEFAULT_WIDTH};
+pub use output::{status_label, CONTACT_COLUMNS, DEFAULT_WIDTH};
 pub use scene::Scene;
 
 /// The default output directory of a scene: `out/<scene file stem>` under the current

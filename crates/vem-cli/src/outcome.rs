@@ -291,11 +291,22 @@ impl Model {
                         tangential: tidy(result.tangential_resultant()),
                         force_on_body_a: [tidy(force.x), tidy(force.y)],
                     },
-                    nodes: NodeCounts {
-                        total: result.nodes.len(),
-                        open,
-                        stick,
-                        slip,
+                    nodes: if result.model.tangential_rows == 0 {
+                        NodeCounts {
+                            total: result.nodes.len(),
+                            open,
+                            stick,
+                            slip: 0,
+                            contact: slip,
+                        }
+                    } else {
+                        NodeCounts {
+                            total: result.nodes.len(),
+                            open,
+                            stick,
+                            slip,
+                            contact: 0,
+                        }
                     },
                     hertz: c.hertz_radius.map(|radius| {
                         let a = &self.bodies()[c.body].body;
@@ -549,8 +560,10 @@ pub struct NodeCounts {
     pub open: usize,
     /// Stick.
     pub stick: usize,
-    /// Slip (all contact nodes of a frictionless law).
+    /// Slip (friction at its bound).
     pub slip: usize,
+    /// In contact without friction (frictionless law; stick and slip are then zero).
+    pub contact: usize,
 }
 
 /// Wall-clock times in seconds.
@@ -765,11 +778,19 @@ impl fmt::Display for RunSummary {
                     c.resultants.force_on_body_a[0],
                     c.resultants.force_on_body_a[1]
                 )?;
-                writeln!(
-                    f,
-                    "    nodes: {} ({} open, {} stick, {} slip)",
-                    c.nodes.total, c.nodes.open, c.nodes.stick, c.nodes.slip
-                )?;
+                if c.tangential_rows == 0 {
+                    writeln!(
+                        f,
+                        "    nodes: {} ({} open, {} in contact)",
+                        c.nodes.total, c.nodes.open, c.nodes.contact
+                    )?;
+                } else {
+                    writeln!(
+                        f,
+                        "    nodes: {} ({} open, {} stick, {} slip)",
+                        c.nodes.total, c.nodes.open, c.nodes.stick, c.nodes.slip
+                    )?;
+                }
                 for warning in &c.warnings {
                     writeln!(f, "    warning: {warning}")?;
                 }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use vem_contact::{InterfaceNode, Obstacle};
+use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
 use vem_mesh::io::{remove_stale_temporaries, write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions, VtuData};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -70,7 +70,8 @@ impl Outcome {
         written.push(path);
         if let Some(contact) = &self.contact {
             let path = dir.join("contact.csv");
-            write_atomically(&path, |w| write_contact_csv(w, &contact.nodes))
+            let frictionless = contact.model.tangential_rows == 0;
+            write_atomically(&path, |w| write_contact_csv(w, &contact.nodes, frictionless))
                 .map_err(mesh_error(&path))?;
             written.push(path);
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.as_ref());
@@ -412,7 +413,20 @@ fn vtu_data(solved: &SolvedBody, contact_pressure: Option<Vec<f64>>) -> VtuData 
 
 /// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`], numbers in
 /// shortest round-trip scientific notation.
-fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Result<()> {
+/// A node's status as the outputs name it: "open", "stick", "slip", and "contact" for a
+/// node in contact without friction (where there is no stick or slip to tell apart).
+pub fn status_label(status: NodeStatus, frictionless: bool) -> &'static str {
+    match status {
+        NodeStatus::Slip if frictionless => "contact",
+        other => other.name(),
+    }
+}
+
+fn write_contact_csv(
+    w: &mut dyn Write,
+    nodes: &[InterfaceNode],
+    frictionless: bool,
+) -> std::io::Result<()> {
     writeln!(w, "{CONTACT_COLUMNS}")?;
     for n in nodes {
         writeln!(
@@ -428,7 +442,7 @@ fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Res
             tidy(n.pressure),
             tidy(n.friction_force),
             tidy(n.slip),
-            n.status.name()
+            status_label(n.status, frictionless)
         )?;
     }
     Ok(())
