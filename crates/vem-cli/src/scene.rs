@@ -591,17 +591,30 @@ impl Scene {
                     self.check_number(Some(s.span()), &of("stabilisation.scale"), scale)?;
                 }
             }
+            let on = |table: &str, key: &str, part: &Spanned<String>| {
+                format!(
+                    "`{key}` of the {table} on part '{}' of body '{name}'",
+                    part.get_ref()
+                )
+            };
             for d in &body.dirichlet {
-                let values: Vec<f64> = [d.get_ref().x, d.get_ref().y].into_iter().flatten().collect();
-                self.check_numbers(Some(d.span()), &of("dirichlet"), &values)?;
+                let spec = d.get_ref();
+                for (key, value) in [("x", spec.x), ("y", spec.y)] {
+                    if let Some(v) = value {
+                        let key = on("Dirichlet condition", key, &spec.part);
+                        self.check_number(Some(d.span()), &key, v)?;
+                    }
+                }
             }
             for t in &body.traction {
                 let spec = t.get_ref();
                 if let Some(v) = &spec.value {
-                    self.check_numbers(Some(t.span()), &of("traction.value"), v)?;
+                    let key = on("traction", "value", &spec.part);
+                    self.check_numbers(Some(t.span()), &key, v)?;
                 }
                 if let Some(p) = spec.pressure {
-                    self.check_number(Some(t.span()), &of("traction.pressure"), p)?;
+                    let key = on("traction", "pressure", &spec.part);
+                    self.check_number(Some(t.span()), &key, p)?;
                 }
             }
             if let Some(f) = &body.body_force {

@@ -125,7 +125,7 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
             "pressure = 0.5",
             "pressure = 1e300",
             "[[body.traction]]",
-            "traction.pressure",
+            "`pressure` of the traction on part 'top' of body 'block'",
         ),
         (
             "pressure = 0.5",
@@ -138,7 +138,7 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
             "x = 0.0",
             "x = inf",
             "[[body.dirichlet]]",
-            "`dirichlet` of body 'block' = inf",
+            "`x` of the Dirichlet condition on part 'left' of body 'block' = inf",
         ),
         (
             "point = [0.0, 0.0]",
