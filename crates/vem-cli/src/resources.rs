@@ -175,7 +175,7 @@ impl MemoryLimit {
         }
         let how = match self.origin {
             LimitOrigin::Available | LimitOrigin::Unknown => {
-                "the memory available (MemAvailable of /proc/meminfo)"
+                "the memory the system reports available"
             }
             LimitOrigin::Scene => "`[limits] memory_gib` of the scene",
             LimitOrigin::CommandLine => "--memory-limit",
