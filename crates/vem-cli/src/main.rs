@@ -174,15 +174,35 @@ fn emit(text: &str) -> Result<(), CliError> {
 }
 
 fn main() -> ExitCode {
-    // Errors are values; a panic is a bug. Say so in one line, without a backtrace dump.
-    std::panic::set_hook(Box::new(|info| {
-        let _ = writeln!(
-            std::io::stderr().lock(),
-            "error: internal error (a bug in vem, please report it): {info}"
-        );
-    }));
     let cli = Cli::parse();
-    let result = match cli.command {
+    // Errors are values; a panic is a bug. The default hook's message and backtrace are not
+    // shown (a library may catch a panic of a dependency and return an error instead); an
+    // uncaught one is reported below in one line.
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| execute(cli)))
+        .unwrap_or_else(|payload| {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "no message".to_string());
+            Err(CliError::Usage(format!(
+                "internal error (a bug in vem, please report it with the input): {what}"
+            )))
+        });
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // Standard error may be closed too: nothing more can be said then.
+            let _ = writeln!(std::io::stderr().lock(), "error: {}", e.chain());
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs the command of `cli`.
+fn execute(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
         Command::Run {
             scene,
             out,
@@ -208,13 +228,5 @@ fn main() -> ExitCode {
             (None, None) => Err(CliError::Usage("give a .msh file or --family".to_string())),
         }
         .and_then(|report| emit(&report.to_string())),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            // Standard error may be closed too: nothing more can be said then.
-            let _ = writeln!(std::io::stderr().lock(), "error: {}", e.chain());
-            ExitCode::FAILURE
-        }
     }
 }
