@@ -110,7 +110,7 @@ pub enum CliError {
         gaps: String,
         /// The solver's failure.
         #[source]
-        source: ContactError,
+        source: Box<ContactError>,
     },
     /// A picture or plot could not be drawn.
     #[error("cannot draw {}: {reason}", path.display())]

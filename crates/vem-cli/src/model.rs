@@ -20,11 +20,11 @@ use vem_space::{
     StabilisationScaling,
 };
 
+use crate::resources::Footprint;
 use crate::scene::{
     list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
     StabilisationKind,
 };
-use crate::resources::Footprint;
 use crate::{CliError, Scene};
 
 /// One body as built: its elastic body (mesh, material, conditions) and where its mesh came
@@ -412,9 +412,9 @@ fn check_planned_memory(scene: &Scene) -> Result<(), CliError> {
 /// Refuses, before interface nodes are inserted and systems assembled, meshes (generated or
 /// read) whose run would not fit the memory limit.
 fn check_memory_of_meshes(scene: &Scene, meshes: &[(Mesh, String)]) -> Result<(), CliError> {
-    let total = meshes
-        .iter()
-        .fold(Footprint::default(), |sum, (mesh, _)| sum + Footprint::of_mesh(mesh));
+    let total = meshes.iter().fold(Footprint::default(), |sum, (mesh, _)| {
+        sum + Footprint::of_mesh(mesh)
+    });
     scene
         .memory_limit()
         .check(

@@ -96,24 +96,23 @@ impl Model {
                     .iter()
                     .map(|n| (n.position, n.normal, n.initial_gap)),
             );
-            let mut result = discretisation
-                .solve(solver.as_mut())
-                .map_err(|e| match (e, &overlap) {
-                    (
-                        ContactError::Solver(
-                            source @ ContactSolverError::Unbounded { .. },
-                        ),
-                        overlap,
-                    ) => CliError::NoSupport {
-                        pair: self.describe_contact(c),
-                        gaps: overlap.as_ref().map_or_else(
-                            || gap_range(discretisation.nodes()),
-                            |o| o.to_string(),
-                        ),
-                        source: ContactError::Solver(source),
-                    },
-                    (e, _) => crate::model::locate_contact(self.scene(), e),
-                })?;
+            let mut result =
+                discretisation
+                    .solve(solver.as_mut())
+                    .map_err(|e| match (e, &overlap) {
+                        (
+                            ContactError::Solver(source @ ContactSolverError::Unbounded { .. }),
+                            overlap,
+                        ) => CliError::NoSupport {
+                            pair: self.describe_contact(c),
+                            gaps: overlap.as_ref().map_or_else(
+                                || gap_range(discretisation.nodes()),
+                                |o| o.to_string(),
+                            ),
+                            source: Box::new(ContactError::Solver(source)),
+                        },
+                        (e, _) => crate::model::locate_contact(self.scene(), e),
+                    })?;
             let mut work = discretisation.work();
             work += result.work;
             result.work = work;

@@ -10,7 +10,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
-use vem_mesh::io::{remove_stale_temporaries, write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions, VtuData};
+use vem_mesh::io::{
+    remove_stale_temporaries, write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions,
+    VtuData,
+};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
 use crate::outcome::{tidy, SolvedBody};
@@ -71,8 +74,10 @@ impl Outcome {
         if let Some(contact) = &self.contact {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
-            write_atomically(&path, |w| write_contact_csv(w, &contact.nodes, frictionless))
-                .map_err(mesh_error(&path))?;
+            write_atomically(&path, |w| {
+                write_contact_csv(w, &contact.nodes, frictionless)
+            })
+            .map_err(mesh_error(&path))?;
             written.push(path);
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.as_ref());
             let path = dir.join("pressure.svg");

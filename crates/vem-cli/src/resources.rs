@@ -192,7 +192,10 @@ impl MemoryLimit {
 /// `MemAvailable` of the text of `/proc/meminfo`, in bytes.
 fn mem_available_bytes(meminfo: &str) -> Option<f64> {
     meminfo.lines().find_map(|line| {
-        let kib = line.strip_prefix("MemAvailable:")?.trim().strip_suffix("kB")?;
+        let kib = line
+            .strip_prefix("MemAvailable:")?
+            .trim()
+            .strip_suffix("kB")?;
         kib.trim().parse::<f64>().ok().map(|k| 1024.0 * k)
     })
 }
@@ -246,7 +249,12 @@ mod tests {
         let limit = MemoryLimit::try_from_gib(1.0, LimitOrigin::CommandLine).unwrap();
         assert!(limit.check(GIB, "x").is_ok());
         let refused = limit.check(3.5 * GIB, "solving").unwrap_err();
-        assert!(refused.starts_with("solving needs about 3.5 GiB, more than the limit of 1.0 GiB (--memory-limit)"), "{refused}");
+        assert!(
+            refused.starts_with(
+                "solving needs about 3.5 GiB, more than the limit of 1.0 GiB (--memory-limit)"
+            ),
+            "{refused}"
+        );
         assert!(MemoryLimit::try_from_gib(0.0, LimitOrigin::Scene).is_err());
         assert!(MemoryLimit::try_from_gib(f64::INFINITY, LimitOrigin::Scene).is_err());
     }

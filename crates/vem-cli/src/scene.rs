@@ -581,7 +581,12 @@ impl Scene {
             }
             let m = body.material.get_ref();
             let material = Some(body.material.span());
-            for (key, value) in [("E", m.young), ("nu", m.nu), ("lambda", m.lambda), ("mu", m.mu)] {
+            for (key, value) in [
+                ("E", m.young),
+                ("nu", m.nu),
+                ("lambda", m.lambda),
+                ("mu", m.mu),
+            ] {
                 if let Some(v) = value {
                     self.check_number(material.clone(), &of(key), v)?;
                 }
@@ -957,6 +962,9 @@ mod exact {
     /// A point or vector `[x, y]`: a rectangle corner is a point too.
     type Pair = Exact<f64, 2>;
 
+    /// Two opposite corners of a rectangle.
+    type Corners = [[f64; 2]; 2];
+
     pub(super) fn pair<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
         Pair::deserialize(d).map(|p| p.0)
     }
@@ -975,7 +983,7 @@ mod exact {
 
     pub(super) fn optional_spanned_rectangle<'de, D: Deserializer<'de>>(
         d: D,
-    ) -> Result<Option<Spanned<[[f64; 2]; 2]>>, D::Error> {
+    ) -> Result<Option<Spanned<Corners>>, D::Error> {
         let value = Spanned::<Exact<Pair, 2>>::deserialize(d)?;
         let span = value.span();
         let [a, b] = value.into_inner().0;

@@ -82,8 +82,18 @@ fn arrays_of_the_wrong_length_are_refused_at_their_line() {
             "[[0, 0], [2, 1], [3, 3]]",
             "3 entries",
         ),
-        ("[[0, 0], [2, 1]]", "[[0, 0, 0], [2, 1]]", "[[0, 0, 0]", "3 entries"),
-        ("point = [0.0, 0.0]", "point = [0.0]", "point = [0.0]", "1 entries"),
+        (
+            "[[0, 0], [2, 1]]",
+            "[[0, 0, 0], [2, 1]]",
+            "[[0, 0, 0]",
+            "3 entries",
+        ),
+        (
+            "point = [0.0, 0.0]",
+            "point = [0.0]",
+            "point = [0.0]",
+            "1 entries",
+        ),
         (
             "normal = [0.0, 1.0]",
             "normal = [0.0, 1.0, 0.0]",
@@ -112,7 +122,12 @@ fn arrays_of_the_wrong_length_are_refused_at_their_line() {
 #[test]
 fn numbers_out_of_range_are_refused_with_key_and_line() {
     let cases = [
-        ("E = 100.0", "E = 1e308", "material", "`E` of body 'block' = 1e308"),
+        (
+            "E = 100.0",
+            "E = 1e308",
+            "material",
+            "`E` of body 'block' = 1e308",
+        ),
         ("E = 100.0", "E = 1e155", "material", "out of range"),
         (
             "E = 100.0, nu = 0.3",
@@ -133,7 +148,12 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
             "[[body.traction]]",
             "must be finite",
         ),
-        ("[2, 1]]", "[2, 1e200]]", "rectangle", "`rectangle` of body 'block'"),
+        (
+            "[2, 1]]",
+            "[2, 1e200]]",
+            "rectangle",
+            "`rectangle` of body 'block'",
+        ),
         (
             "x = 0.0",
             "x = inf",
@@ -154,7 +174,12 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
     }
     // A Hertz radius of f64::MAX, a picture 1e300 pixels wide.
     let text = format!("{SIGNORINI}hertz = {{ radius = 1.7976931348623157e308 }}\n");
-    assert_at(&error_of(&text), &text, "hertz", &["hertz `radius`", "out of range"]);
+    assert_at(
+        &error_of(&text),
+        &text,
+        "hertz",
+        &["hertz `radius`", "out of range"],
+    );
     let text = format!("{SIGNORINI}\n[output]\nwidth = 1e300\n");
     assert_at(&error_of(&text), &text, "width", &["at most 20000"]);
     // The limits themselves are accepted: 1e100 and 1e-100.
@@ -182,7 +207,12 @@ fn meshes_beyond_the_memory_limit_are_refused_before_generation() {
         &e,
         &text,
         "mesh =",
-        &["49000000 polygons", "needs about", "64.0 GiB", "[limits] memory_gib"],
+        &[
+            "49000000 polygons",
+            "needs about",
+            "64.0 GiB",
+            "[limits] memory_gib",
+        ],
     );
     // The same scene within a (generous) limit of the command line is only counted, not
     // built: a small limit refuses even the 4 x 2 block.
@@ -244,16 +274,32 @@ fn closed_or_full_standard_output_is_no_panic() {
     if let Ok(full) = fs::OpenOptions::new().write(true).open("/dev/full") {
         let (code, stderr) = vem(&["check", scene], Stdio::from(full));
         assert_eq!(code, Some(1), "{stderr}");
-        assert!(stderr.contains("cannot write to standard output"), "{stderr}");
+        assert!(
+            stderr.contains("cannot write to standard output"),
+            "{stderr}"
+        );
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
     // The command line's memory limit, and its refusal of nonsense.
     let (code, stderr) = vem(
-        &["mesh", "--family", "quads", "--n", "18", "--rect", "0,0,1,1e5", "--memory-limit", "1"],
+        &[
+            "mesh",
+            "--family",
+            "quads",
+            "--n",
+            "18",
+            "--rect",
+            "0,0,1,1e5",
+            "--memory-limit",
+            "1",
+        ],
         Stdio::null(),
     );
     assert_eq!(code, Some(1), "{stderr}");
-    assert!(stderr.contains("32400000 polygons") && stderr.contains("--memory-limit"), "{stderr}");
+    assert!(
+        stderr.contains("32400000 polygons") && stderr.contains("--memory-limit"),
+        "{stderr}"
+    );
     let (code, stderr) = vem(&["check", scene, "--memory-limit=-3"], Stdio::null());
     assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("memory limit -3 GiB"), "{stderr}");
@@ -298,7 +344,10 @@ fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
     assert_eq!(names(&dir), ["out", "s.toml"]);
     // The summary on disk is this run's.
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
-    assert!(summary.contains(&format!("\"total\": {}", outcome.summary.contact.as_ref().unwrap().nodes.total)));
+    assert!(summary.contains(&format!(
+        "\"total\": {}",
+        outcome.summary.contact.as_ref().unwrap().nodes.total
+    )));
     // A run that fails leaves the earlier result as it was and no temporary.
     let before = fs::read(out.join("summary.json")).unwrap();
     let pulled = dir.join("pulled.toml");
@@ -320,7 +369,11 @@ fn overlap_is_a_warning_and_no_support_names_the_gaps() {
     // The line 0.1 above the bottom: every node overlaps by 0.1, solved as an interference
     // fit; the contact pressure is then set by the imposed overlap, not by p.
     let scene = dir.join("overlap.toml");
-    fs::write(&scene, signorini_with("point = [0.0, 0.0]", "point = [0.0, 0.1]")).unwrap();
+    fs::write(
+        &scene,
+        signorini_with("point = [0.0, 0.0]", "point = [0.0, 0.1]"),
+    )
+    .unwrap();
     let (outcome, _) = vem_cli::run(&scene, Some(&dir.join("out"))).unwrap();
     let contact = outcome.summary.contact.as_ref().unwrap();
     let warning = contact
@@ -328,7 +381,10 @@ fn overlap_is_a_warning_and_no_support_names_the_gaps() {
         .iter()
         .find(|w| w.starts_with("initial overlap"))
         .unwrap_or_else(|| panic!("{:?}", contact.warnings));
-    assert!(warning.contains("5 of 5 interface nodes") && warning.contains("-1.000e-1"), "{warning}");
+    assert!(
+        warning.contains("5 of 5 interface nodes") && warning.contains("-1.000e-1"),
+        "{warning}"
+    );
     // Frictionless nodes in contact are labelled so.
     assert_eq!(contact.nodes.contact, 5);
     assert_eq!(contact.nodes.slip, 0);
@@ -343,7 +399,10 @@ fn overlap_is_a_warning_and_no_support_names_the_gaps() {
             && shown.contains("initial gaps from 0.000e0 to 0.000e0 at its 5 nodes"),
         "{shown}"
     );
-    assert!(!shown.contains("floating body"), "the cause is told once, by the source: {shown}");
+    assert!(
+        !shown.contains("floating body"),
+        "the cause is told once, by the source: {shown}"
+    );
     assert!(e.chain().contains("unbounded energy"), "{}", e.chain());
     fs::remove_dir_all(&dir).unwrap();
 }

@@ -5,8 +5,8 @@ use std::str::FromStr;
 
 use super::voronoi::voronoi_counts;
 use super::{
-    cell_counts, MAX_CELLS, hanging_nodes, hexagons, nonconvex, perturbed_quads, structured_quads,
-    structured_triangles, voronoi, Rectangle,
+    cell_counts, hanging_nodes, hexagons, nonconvex, perturbed_quads, structured_quads,
+    structured_triangles, voronoi, Rectangle, MAX_CELLS,
 };
 use crate::{Mesh, MeshError};
 
@@ -129,7 +129,9 @@ impl MeshFamily {
             MeshFamily::Hexagons => {
                 rect.check("hexagons")?;
                 let n = n as f64;
-                let m = (3f64.sqrt() * n * rect.height() / rect.width()).round().max(1.0);
+                let m = (3f64.sqrt() * n * rect.height() / rect.width())
+                    .round()
+                    .max(1.0);
                 if n * m > 2.0 * MAX_CELLS as f64 {
                     return Err(MeshError::BadGeneratorParameter {
                         generator: "hexagons",
@@ -145,7 +147,11 @@ impl MeshFamily {
                 let (nx, ny) = voronoi_counts(rect, n)?;
                 let (nx, ny) = (nx as f64, ny as f64);
                 let cells = nx * ny;
-                (cells, 2.0 * cells + 2.0 * (nx + ny) + 4.0, 6.0 * cells + 2.0 * (nx + ny))
+                (
+                    cells,
+                    2.0 * cells + 2.0 * (nx + ny) + 4.0,
+                    6.0 * cells + 2.0 * (nx + ny),
+                )
             }
             MeshFamily::NonConvex => {
                 let (nx, ny) = lattice("nonconvex")?;
@@ -155,7 +161,11 @@ impl MeshFamily {
             MeshFamily::HangingNodes => {
                 let (nx, ny) = lattice("hanging_nodes")?;
                 let cells = nx * ny;
-                (4.0 * cells, (2.0 * nx + 1.0) * (2.0 * ny + 1.0), 16.0 * cells)
+                (
+                    4.0 * cells,
+                    (2.0 * nx + 1.0) * (2.0 * ny + 1.0),
+                    16.0 * cells,
+                )
             }
         };
         Ok(MeshSize {
@@ -250,9 +260,8 @@ mod tests {
                 for n in [1, 3, 8] {
                     let size = family.size(rect, n).unwrap();
                     let mesh = family.generate(rect, n, 7).unwrap();
-                    let corners: usize = (0..mesh.n_polygons())
-                        .map(|p| mesh.polygon(p).len())
-                        .sum();
+                    let corners: usize =
+                        (0..mesh.n_polygons()).map(|p| mesh.polygon(p).len()).sum();
                     let what = format!("{family} n = {n} on {rect:?}");
                     assert!(mesh.n_polygons() <= size.polygons, "{what}: {size:?}");
                     assert!(mesh.n_vertices() <= size.vertices, "{what}: {size:?}");

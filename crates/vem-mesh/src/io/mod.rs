@@ -260,7 +260,14 @@ mod tests {
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
         left.sort();
-        assert_eq!(left, [".a.vtu.".to_string() + &format!("{own}.0.tmp"), ".hidden.tmp".into(), "a.vtu".into()]);
+        assert_eq!(
+            left,
+            [
+                ".a.vtu.".to_string() + &format!("{own}.0.tmp"),
+                ".hidden.tmp".into(),
+                "a.vtu".into()
+            ]
+        );
         fs::remove_dir_all(&dir).unwrap();
     }
 
