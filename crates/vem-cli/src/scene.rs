@@ -534,8 +534,9 @@ impl Scene {
     /// [`SMALLEST`] and [`LARGEST`], so that the products the model forms of moduli, lengths
     /// and loads (stiffness entries, resultants, energies) stay finite. `key` names the number
     /// and its owner ("`E` of body 'a'"); `span` is where it is written. A new numeric scene
-    /// key is validated by one call of this from [`Scene::check`] (or of
-    /// [`Scene::check_numbers`] for an array), plus its own sign or interval check.
+    /// key is validated by one call of this (or of [`Scene::check_numbers`] for an array) in
+    /// the range check that [`Scene::parse`] runs (`Scene::check_ranges`), plus its own sign
+    /// or interval check.
     pub fn check_number(
         &self,
         span: Option<std::ops::Range<usize>>,
