@@ -213,8 +213,8 @@ mod tests {
 
     #[test]
     fn overflowing_moduli_are_refused_once() {
-        // E = 1e308: mu and lambda are finite, lambda + 2 mu is not.
-        let err = Material::from_young_poisson(1e308, 0.3, Plane::Strain).unwrap_err();
+        // E = 1.5e308: mu and lambda are finite, lambda + 2 mu (2.0e308) is not.
+        let err = Material::from_young_poisson(1.5e308, 0.3, Plane::Strain).unwrap_err();
         let text = err.to_string();
         assert!(text.contains("overflows"), "{text}");
         assert_eq!(text.matches("invalid material").count(), 1, "{text}");
