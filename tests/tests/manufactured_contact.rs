@@ -1,4 +1,4 @@
-//! The contact cases M1–M4 of manufactured.md solved by the contact layer: active sets,
+//! The contact cases M1–M4 of docs/manufactured.md solved by the contact layer: active sets,
 //! stick/slip sets, the friction law node by node, and resultants against the exact values.
 
 use std::sync::Arc;

@@ -1,5 +1,5 @@
 //! `cargo xtask convergence`: the convergence studies of the project (Theorems 4.1 and 4.2 of
-//! the paper, `contact-vem.md` section 3; measurement as in `manufactured.md` section 8).
+//! the paper, `docs/formulation.md` section 3; measurement as in `docs/manufactured.md` section 8).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -115,11 +115,11 @@ fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Vec<Plan
 /// What the studies measure, for the head of the Markdown report.
 const INTRODUCTION: &str = r#"# Convergence of the lowest-order VEM for two-body contact
 
-The paper proves (Theorems 4.1 and 4.2, `contact-vem.md` section 3) that the lowest-order
+The paper proves (Theorems 4.1 and 4.2, [formulation.md](formulation.md) section 3) that the lowest-order
 virtual element method converges at the optimal rate O(h) in the energy norm for the contact
 of two elastic bodies, frictionless (P1) and with Tresca friction (P2), on meshes that do not
 match on the contact interface. This report checks it with manufactured solutions
-(`manufactured.md`):
+([manufactured.md](manufactured.md)):
 
 - **M1** (Theorem 4.1): frictionless; contact on [0, x_c), separation on (x_c, 1],
   x_c = (sqrt 5 - 1)/2.
@@ -153,7 +153,7 @@ meshes), E_0 second order (expected, not proved for contact). Verdict per study:
 least-squares rates over the three finest sizes are E_grad >= 0.9, E_a >= 0.9, E_0 >= 1.8,
 and on the finest mesh no interface node contradicts the expected sets. The switch points
 themselves are reported, not asserted: the transitions are flat by design
-(`manufactured.md` section 8), so nodes just past them may take either status.
+([manufactured.md](manufactured.md) section 8), so nodes just past them may take either status.
 
 **Reproduce**: `cargo xtask convergence` (this report, about the time given below on 2 cores),
 `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default `target/convergence`),

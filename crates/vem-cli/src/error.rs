@@ -95,6 +95,23 @@ pub enum CliError {
     /// The contact problem failed (interface, solver, fixed point); the error names the stage.
     #[error(transparent)]
     Contact(#[from] ContactError),
+    /// The contact pair holds nothing: the solve found the energy unbounded along a mode the
+    /// contact does not stop (a body pulled away from its counterpart, a contact part facing
+    /// away from it, a body held only by the contact). Names the pair and its initial gaps;
+    /// the solver's figures are the source.
+    #[error(
+        "the contact of {pair} gives the body no support under its load ({gaps}): hold the \
+         body by a Dirichlet condition, or check that the contact part faces its counterpart"
+    )]
+    NoSupport {
+        /// Which parts face what.
+        pair: String,
+        /// The initial gaps of the interface, or its overlap.
+        gaps: String,
+        /// The solver's failure.
+        #[source]
+        source: Box<ContactError>,
+    },
     /// A picture or plot could not be drawn.
     #[error("cannot draw {}: {reason}", path.display())]
     Plot {

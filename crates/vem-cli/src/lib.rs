@@ -61,12 +61,13 @@ mod model;
 mod outcome;
 mod output;
 mod plot;
+pub mod resources;
 pub mod scene;
 
 use std::path::{Path, PathBuf};
 
 pub use error::{CliError, Location};
-pub use mesh_command::{convert_mesh, generate_mesh, MeshReport};
+pub use mesh_command::{convert_mesh, generate_mesh, generate_mesh_within, MeshReport};
 pub use model::{
     CheckReport, CheckedBody, CheckedContact, Model, ModelBody, ModelContact, ModelCounterpart,
     Registries,
@@ -75,7 +76,7 @@ pub use outcome::{
     BodySummary, ContactSummary, FixedPointSummary, HertzComparison, NodeCounts, Outcome,
     ReactionSummary, Residuals, Resultants, RunSummary, SolvedBody, Times, Work,
 };
-pub use output::{CONTACT_COLUMNS, DEFAULT_WIDTH};
+pub use output::{status_label, CONTACT_COLUMNS, DEFAULT_WIDTH};
 pub use scene::Scene;
 
 /// The default output directory of a scene: `out/<scene file stem>` under the current

@@ -1,13 +1,14 @@
 //! `vem`: contact scenes in TOML, solved with the lowest-order virtual element method.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use vem_cli::{convert_mesh, default_output_dir, generate_mesh, CliError, Model, Scene};
+use vem_cli::resources::{LimitOrigin, MemoryLimit};
+use vem_cli::{convert_mesh, default_output_dir, generate_mesh_within, CliError, Model, Scene};
 
 /// Contact of elastic bodies with the lowest-order virtual element method (VEM).
 ///
@@ -38,6 +39,10 @@ enum Command {
         /// Output directory [default: out/SCENE_STEM].
         #[arg(long, short, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// The memory the run may plan to use, in GiB [default: the scene's `[limits]
+        /// memory_gib`, else the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
     /// Check a scene without solving it.
     ///
@@ -47,6 +52,10 @@ enum Command {
     Check {
         /// The scene file (TOML).
         scene: PathBuf,
+        /// The memory the run may plan to use, in GiB [default: the scene's `[limits]
+        /// memory_gib`, else the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
     /// Generate a mesh of a family, or convert a Gmsh file, to .vtu and .svg.
     ///
@@ -73,6 +82,9 @@ enum Command {
         /// Output directory.
         #[arg(long, short, value_name = "DIR", default_value = "out/mesh")]
         out: PathBuf,
+        /// The memory the mesh may take, in GiB [default: the memory available].
+        #[arg(long, value_name = "GIB")]
+        memory_limit: Option<f64>,
     },
 }
 
@@ -101,10 +113,23 @@ fn spinner() -> ProgressBar {
     bar
 }
 
-fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
+/// The scene at `path` with the command line's memory limit, if any.
+fn load(path: &Path, memory_limit: Option<f64>) -> Result<Scene, CliError> {
+    let scene = Scene::load(path)?;
+    Ok(match memory_limit {
+        Some(gib) => scene.with_memory_limit(command_line_limit(gib)?),
+        None => scene,
+    })
+}
+
+fn command_line_limit(gib: f64) -> Result<MemoryLimit, CliError> {
+    MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine)
+}
+
+fn run(scene: &Path, out: Option<PathBuf>, memory_limit: Option<f64>) -> Result<(), CliError> {
     let progress = spinner();
     progress.set_message(format!("reading {}", scene.display()));
-    let scene = Scene::load(scene)?;
+    let scene = load(scene, memory_limit)?;
     progress.set_message("building meshes and bodies");
     let model = Model::build(&scene)?;
     progress.set_message("solving");
@@ -113,30 +138,80 @@ fn run(scene: &Path, out: Option<PathBuf>) -> Result<(), CliError> {
     progress.set_message(format!("writing {}", dir.display()));
     let files = outcome.write(&dir)?;
     progress.finish_and_clear();
-    print!("{}", outcome.summary());
     let names: Vec<String> = files
         .iter()
         .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
-    println!("wrote {}: {}", dir.display(), names.join(", "));
-    Ok(())
+    emit(&format!(
+        "{}wrote {}: {}\n",
+        outcome.summary(),
+        dir.display(),
+        names.join(", ")
+    ))
 }
 
-fn check(scene: &Path) -> Result<(), CliError> {
+fn check(scene: &Path, memory_limit: Option<f64>) -> Result<(), CliError> {
     let progress = spinner();
     progress.set_message(format!("checking {}", scene.display()));
-    let scene = Scene::load(scene)?;
+    let scene = load(scene, memory_limit)?;
     let report = Model::build(&scene)?.check()?;
     progress.finish_and_clear();
-    print!("{report}");
-    Ok(())
+    emit(&report.to_string())
+}
+
+/// Writes `text` to standard output. A closed pipe (`vem check scene.toml | head`) is not an
+/// error: the reader has what it wanted; any other failure (a full disk) is.
+fn emit(text: &str) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Io {
+            action: "write to",
+            path: PathBuf::from("standard output"),
+            source: e,
+        }),
+        _ => Ok(()),
+    }
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Run { scene, out } => run(&scene, out),
-        Command::Check { scene } => check(&scene),
+    // Errors are values; a panic is a bug. The default hook's message and backtrace are not
+    // shown (a library may catch a panic of a dependency and return an error instead); an
+    // uncaught one is reported below in one line.
+    std::panic::set_hook(Box::new(|_| {}));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| execute(cli)))
+        .unwrap_or_else(|payload| {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "no message".to_string());
+            Err(CliError::Usage(format!(
+                "internal error (a bug in vem, please report it with the input): {what}"
+            )))
+        });
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // Standard error may be closed too: nothing more can be said then.
+            let _ = writeln!(std::io::stderr().lock(), "error: {}", e.chain());
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs the command of `cli`.
+fn execute(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Command::Run {
+            scene,
+            out,
+            memory_limit,
+        } => run(&scene, out, memory_limit),
+        Command::Check {
+            scene,
+            memory_limit,
+        } => check(&scene, memory_limit),
         Command::Mesh {
             file,
             family,
@@ -144,18 +219,14 @@ fn main() -> ExitCode {
             seed,
             rect,
             out,
+            memory_limit,
         } => match (file, family) {
             (Some(file), _) => convert_mesh(&file, &out),
-            (None, Some(family)) => generate_mesh(&family, n, seed, rect, &out),
+            (None, Some(family)) => memory_limit
+                .map_or_else(|| Ok(MemoryLimit::available()), command_line_limit)
+                .and_then(|limit| generate_mesh_within(&family, n, seed, rect, &out, limit)),
             (None, None) => Err(CliError::Usage("give a .msh file or --family".to_string())),
         }
-        .map(|report| print!("{report}")),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {}", e.chain());
-            ExitCode::FAILURE
-        }
+        .and_then(|report| emit(&report.to_string())),
     }
 }

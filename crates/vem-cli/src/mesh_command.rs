@@ -10,6 +10,7 @@ use vem_mesh::io::{write_svg, write_vtu, SvgOptions, VtuData};
 use vem_mesh::quality::QualitySummary;
 use vem_mesh::{Mesh, Point};
 
+use crate::resources::{Footprint, MemoryLimit};
 use crate::CliError;
 
 /// What `vem mesh` made and wrote.
@@ -49,6 +50,9 @@ impl fmt::Display for MeshReport {
 
 /// Generates the mesh of `family` (a [`MeshFamily`] name) of size `n` on `rect`
 /// (`[x0, y0, x1, y1]`) and writes `<family>-<n>.vtu` and `.svg` into `out`.
+///
+/// A mesh larger than the memory the system reports available is refused before it is
+/// generated ([`generate_mesh_within`] takes another limit).
 pub fn generate_mesh(
     family: &str,
     n: usize,
@@ -56,10 +60,36 @@ pub fn generate_mesh(
     rect: [f64; 4],
     out: &Path,
 ) -> Result<MeshReport, CliError> {
+    generate_mesh_within(family, n, seed, rect, out, MemoryLimit::available())
+}
+
+/// As [`generate_mesh`], refusing a mesh estimated larger than `limit` before generating it.
+pub fn generate_mesh_within(
+    family: &str,
+    n: usize,
+    seed: u64,
+    rect: [f64; 4],
+    out: &Path,
+    limit: MemoryLimit,
+) -> Result<MeshReport, CliError> {
     let parsed: MeshFamily = family
         .parse()
         .map_err(|e: vem_mesh::MeshError| CliError::Usage(e.to_string()))?;
     let rectangle = Rectangle::new(Point::new(rect[0], rect[1]), Point::new(rect[2], rect[3]));
+    let mesh_error = |source| CliError::Mesh {
+        context: format!("family '{family}'"),
+        source,
+    };
+    let size = parsed.size(&rectangle, n).map_err(mesh_error)?;
+    limit
+        .check(
+            Footprint::of_size(&size).mesh_bytes(),
+            &format!(
+                "the mesh {family}, n = {n} ({} polygons, {} vertices)",
+                size.polygons, size.vertices
+            ),
+        )
+        .map_err(CliError::Usage)?;
     let mesh = parsed
         .generate(&rectangle, n, seed)
         .map_err(|source| CliError::Mesh {
@@ -93,6 +123,11 @@ pub fn convert_mesh(file: &Path, out: &Path) -> Result<MeshReport, CliError> {
 fn write_mesh(mesh: Mesh, source: String, out: &Path, stem: &str) -> Result<MeshReport, CliError> {
     std::fs::create_dir_all(out).map_err(|source| CliError::Io {
         action: "create the directory",
+        path: out.to_path_buf(),
+        source,
+    })?;
+    vem_mesh::io::remove_stale_temporaries(out).map_err(|source| CliError::Io {
+        action: "clean the temporaries in",
         path: out.to_path_buf(),
         source,
     })?;

@@ -20,6 +20,7 @@ use vem_space::{
     StabilisationScaling,
 };
 
+use crate::resources::Footprint;
 use crate::scene::{
     list, BodySpec, ContactSpec, LawKind, ObstacleSpec, PenaltySpec, PlaneSpec, ScalingSpec,
     StabilisationKind,
@@ -115,6 +116,7 @@ impl Model {
     pub fn build_with(scene: &Scene, registries: &Registries) -> Result<Self, CliError> {
         let registry = &registries.solvers;
         let start = Instant::now();
+        check_planned_memory(scene)?;
         let meshes = scene
             .file()
             .bodies
@@ -122,6 +124,7 @@ impl Model {
             .map(|spec| build_mesh(scene, spec))
             .collect::<Result<Vec<_>, _>>()?;
         let mesh_time = start.elapsed();
+        check_memory_of_meshes(scene, &meshes)?;
         let mut bodies = Vec::with_capacity(meshes.len());
         for (spec, (mesh, mesh_source)) in scene.file().bodies.iter().zip(meshes) {
             bodies.push(build_body(
@@ -351,6 +354,77 @@ fn interface_options(scene: &Scene) -> Result<InterfaceOptions, CliError> {
         .max_distance(*distance.get_ref())
         .build()
         .map_err(|e| scene.error(Some(distance.span()), e.to_string()))
+}
+
+/// Refuses, before any mesh is generated, a scene whose generated meshes would not fit the
+/// memory limit, or whose run would not: the error is at the largest body's mesh.
+fn check_planned_memory(scene: &Scene) -> Result<(), CliError> {
+    let limit = scene.memory_limit();
+    let mut total = Footprint::default();
+    let mut largest: Option<(f64, &BodySpec)> = None;
+    for spec in &scene.file().bodies {
+        let mesh = spec.mesh.get_ref();
+        let (Some(family), Some(rectangle), Some(n)) = (&mesh.family, &mesh.rectangle, &mesh.n)
+        else {
+            continue; // a file: counted once read
+        };
+        let name = spec.name.get_ref();
+        let parsed: MeshFamily = family
+            .get_ref()
+            .parse()
+            .map_err(|e: vem_mesh::MeshError| scene.error(Some(family.span()), e.to_string()))?;
+        let [[x0, y0], [x1, y1]] = *rectangle.get_ref();
+        let rect = Rectangle::new(Point::new(x0, y0), Point::new(x1, y1));
+        let size = parsed
+            .size(&rect, *n.get_ref())
+            .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
+        let footprint = Footprint::of_size(&size);
+        limit
+            .check(
+                footprint.mesh_bytes(),
+                &format!(
+                    "body '{name}': generating its mesh ({} polygons, {} vertices)",
+                    size.polygons, size.vertices
+                ),
+            )
+            .map_err(|message| scene.error(Some(spec.mesh.span()), message))?;
+        if largest.is_none_or(|(bytes, _)| footprint.run_bytes() > bytes) {
+            largest = Some((footprint.run_bytes(), spec));
+        }
+        total = total + footprint;
+    }
+    match largest {
+        Some((_, spec)) => limit
+            .check(
+                total.run_bytes(),
+                &format!(
+                    "solving the scene ({:.0} polygons, {:.0} vertices in all; largest: body '{}')",
+                    total.polygons,
+                    total.vertices,
+                    spec.name.get_ref()
+                ),
+            )
+            .map_err(|message| scene.error(Some(spec.mesh.span()), message)),
+        None => Ok(()),
+    }
+}
+
+/// Refuses, before interface nodes are inserted and systems assembled, meshes (generated or
+/// read) whose run would not fit the memory limit.
+fn check_memory_of_meshes(scene: &Scene, meshes: &[(Mesh, String)]) -> Result<(), CliError> {
+    let total = meshes.iter().fold(Footprint::default(), |sum, (mesh, _)| {
+        sum + Footprint::of_mesh(mesh)
+    });
+    scene
+        .memory_limit()
+        .check(
+            total.run_bytes(),
+            &format!(
+                "solving the scene ({:.0} polygons, {:.0} vertices in all)",
+                total.polygons, total.vertices
+            ),
+        )
+        .map_err(|message| scene.error(None, message))
 }
 
 /// The mesh of one body and a description of where it came from.

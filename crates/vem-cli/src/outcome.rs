@@ -6,7 +6,10 @@ use std::fmt;
 use std::time::{Duration, Instant};
 
 use serde::Serialize;
-use vem_contact::{ContactLaw, ContactResult, FrictionBound, InterfaceNode, NodeStatus, Obstacle};
+use vem_contact::{
+    ContactError, ContactLaw, ContactNode, ContactResult, ContactSolverError, FrictionBound,
+    InterfaceNode, NodeStatus, Obstacle,
+};
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::quality::ElementQuality;
 
@@ -48,6 +51,24 @@ pub struct Outcome {
     pub(crate) started: Instant,
 }
 
+/// "initial gaps from g0 to g1 (N nodes)" for an interface without overlap.
+fn gap_range(nodes: &[ContactNode]) -> String {
+    let (lo, hi) = nodes
+        .iter()
+        .map(|n| n.initial_gap)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
+            (lo.min(g), hi.max(g))
+        });
+    if nodes.is_empty() {
+        "no interface nodes".to_string()
+    } else {
+        format!(
+            "initial gaps from {lo:.3e} to {hi:.3e} at its {} nodes",
+            nodes.len()
+        )
+    }
+}
+
 impl Model {
     /// Solves the scene: the contact pair with its bodies by the contact library, every other
     /// body as plain elasticity (assembly and sparse Cholesky).
@@ -64,10 +85,38 @@ impl Model {
         let mut contact_bodies = None;
         if let Some(c) = self.contact() {
             let mut solver = self.make_solver(c)?;
-            let mut result = c
+            let start = Instant::now();
+            let discretisation = c
                 .problem
-                .solve(solver.as_mut())
+                .discretise()
                 .map_err(|e| crate::model::locate_contact(self.scene(), e))?;
+            let overlap = vem_contact::Warning::initial_overlap(
+                discretisation
+                    .nodes()
+                    .iter()
+                    .map(|n| (n.position, n.normal, n.initial_gap)),
+            );
+            let mut result =
+                discretisation
+                    .solve(solver.as_mut())
+                    .map_err(|e| match (e, &overlap) {
+                        (
+                            ContactError::Solver(source @ ContactSolverError::Unbounded { .. }),
+                            overlap,
+                        ) => CliError::NoSupport {
+                            pair: self.describe_contact(c),
+                            gaps: overlap.as_ref().map_or_else(
+                                || gap_range(discretisation.nodes()),
+                                |o| o.to_string(),
+                            ),
+                            source: Box::new(ContactError::Solver(source)),
+                        },
+                        (e, _) => crate::model::locate_contact(self.scene(), e),
+                    })?;
+            let mut work = discretisation.work();
+            work += result.work;
+            result.work = work;
+            result.model.total_time = start.elapsed();
             let stages = result.work.times;
             times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
             times.solve_s += stages.contact_solve.as_secs_f64();
@@ -241,11 +290,22 @@ impl Model {
                         tangential: tidy(result.tangential_resultant()),
                         force_on_body_a: [tidy(force.x), tidy(force.y)],
                     },
-                    nodes: NodeCounts {
-                        total: result.nodes.len(),
-                        open,
-                        stick,
-                        slip,
+                    nodes: if result.model.tangential_rows == 0 {
+                        NodeCounts {
+                            total: result.nodes.len(),
+                            open,
+                            stick,
+                            slip: 0,
+                            contact: slip,
+                        }
+                    } else {
+                        NodeCounts {
+                            total: result.nodes.len(),
+                            open,
+                            stick,
+                            slip,
+                            contact: 0,
+                        }
                     },
                     hertz: c.hertz_radius.map(|radius| {
                         let a = &self.bodies()[c.body].body;
@@ -499,8 +559,10 @@ pub struct NodeCounts {
     pub open: usize,
     /// Stick.
     pub stick: usize,
-    /// Slip (all contact nodes of a frictionless law).
+    /// Slip (friction at its bound).
     pub slip: usize,
+    /// In contact without friction (frictionless law; stick and slip are then zero).
+    pub contact: usize,
 }
 
 /// Wall-clock times in seconds.
@@ -715,11 +777,19 @@ impl fmt::Display for RunSummary {
                     c.resultants.force_on_body_a[0],
                     c.resultants.force_on_body_a[1]
                 )?;
-                writeln!(
-                    f,
-                    "    nodes: {} ({} open, {} stick, {} slip)",
-                    c.nodes.total, c.nodes.open, c.nodes.stick, c.nodes.slip
-                )?;
+                if c.tangential_rows == 0 {
+                    writeln!(
+                        f,
+                        "    nodes: {} ({} open, {} in contact)",
+                        c.nodes.total, c.nodes.open, c.nodes.contact
+                    )?;
+                } else {
+                    writeln!(
+                        f,
+                        "    nodes: {} ({} open, {} stick, {} slip)",
+                        c.nodes.total, c.nodes.open, c.nodes.stick, c.nodes.slip
+                    )?;
+                }
                 for warning in &c.warnings {
                     writeln!(f, "    warning: {warning}")?;
                 }

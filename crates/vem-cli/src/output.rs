@@ -1,12 +1,19 @@
-//! The files of `vem run`, each written whole or not at all: one `.vtu` per body,
-//! `contact.csv`, the pictures and plots (SVG), and `summary.json` last.
+//! The files of `vem run`, written as a set, all or nothing: one `.vtu` per body,
+//! `contact.csv`, the pictures and plots (SVG) and `summary.json` are written into a fresh
+//! temporary folder beside the output folder (`.NAME.PID.N.tmp`), which is then renamed into
+//! place; an earlier result in the output folder is replaced as a whole, so a reader never
+//! sees new pictures beside an old summary. Temporaries left by killed runs are removed.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use vem_contact::{InterfaceNode, Obstacle};
-use vem_mesh::io::{write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions, VtuData};
+use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
+use vem_mesh::io::{
+    remove_stale_temporaries, write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions,
+    VtuData,
+};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
 use crate::outcome::{tidy, SolvedBody};
@@ -29,13 +36,24 @@ impl Outcome {
     /// `<body>.vtu` for each body, `deformed.svg`, and with a contact pair `contact.csv`,
     /// `pressure.svg` (and `slip.svg` with friction); `summary.json` last, with the output
     /// and total times.
+    ///
+    /// The set is written into a fresh folder beside `dir` and renamed into place: `dir`
+    /// holds either its earlier contents or the whole new set. `dir` must be new, empty, or
+    /// hold only the files of an earlier run (`.vtu`, `.svg`, `.csv`, `.json`): a folder
+    /// holding anything else is refused rather than replaced.
     pub fn write(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let staging = Staging::begin(dir)?;
+        let written = self.write_into(staging.path())?;
+        staging.commit()?;
+        Ok(written
+            .iter()
+            .filter_map(|p| p.file_name().map(|name| dir.join(name)))
+            .collect())
+    }
+
+    /// Writes every output file into the existing folder `dir`.
+    fn write_into(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let start = Instant::now();
-        std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
-            action: "create the directory",
-            path: dir.to_path_buf(),
-            source,
-        })?;
         let mesh_error = |path: &Path| {
             let context = path.display().to_string();
             move |source| CliError::Mesh { context, source }
@@ -55,8 +73,11 @@ impl Outcome {
         written.push(path);
         if let Some(contact) = &self.contact {
             let path = dir.join("contact.csv");
-            write_atomically(&path, |w| write_contact_csv(w, &contact.nodes))
-                .map_err(mesh_error(&path))?;
+            let frictionless = contact.model.tangential_rows == 0;
+            write_atomically(&path, |w| {
+                write_contact_csv(w, &contact.nodes, frictionless)
+            })
+            .map_err(mesh_error(&path))?;
             written.push(path);
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.as_ref());
             let path = dir.join("pressure.svg");
@@ -200,6 +221,139 @@ impl Outcome {
     }
 }
 
+/// The fresh temporary folder a run's outputs are written into, beside the output folder;
+/// removed when dropped unless committed.
+struct Staging {
+    temporary: PathBuf,
+    target: PathBuf,
+    committed: bool,
+}
+
+/// The extensions of the files a run writes.
+const OUTPUT_EXTENSIONS: [&str; 4] = ["vtu", "svg", "csv", "json"];
+
+impl Staging {
+    /// Checks `target` (new, empty or an earlier run's), removes stale temporaries beside
+    /// and in it, and creates the temporary folder.
+    fn begin(target: &Path) -> Result<Self, CliError> {
+        let io = |action: &'static str, path: &Path| {
+            let path = path.to_path_buf();
+            move |source| CliError::Io {
+                action,
+                path,
+                source,
+            }
+        };
+        let name = target
+            .file_name()
+            .filter(|n| *n != "." && *n != "..")
+            .ok_or_else(|| {
+                CliError::Usage(format!(
+                    "output folder '{}': name a folder (not '.' or '..'), e.g. out/run",
+                    target.display()
+                ))
+            })?;
+        let parent = match target.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).map_err(io("create the directory", &parent))?;
+        remove_stale_temporaries(&parent).map_err(io("clean the temporaries in", &parent))?;
+        if target.is_dir() {
+            remove_stale_temporaries(target).map_err(io("clean the temporaries in", target))?;
+            let entries = std::fs::read_dir(target).map_err(io("read", target))?;
+            for entry in entries {
+                let entry = entry.map_err(io("read", target))?;
+                let path = entry.path();
+                let ours = path.is_file()
+                    && path
+                        .extension()
+                        .and_then(|e| e.to_str())
+                        .is_some_and(|e| OUTPUT_EXTENSIONS.contains(&e));
+                if !ours {
+                    return Err(CliError::Usage(format!(
+                        "output folder '{}' holds '{}', which no run writes: the folder is \
+                         replaced as a whole, so give a new or empty folder, or one of an \
+                         earlier run",
+                        target.display(),
+                        entry.file_name().to_string_lossy()
+                    )));
+                }
+            }
+        } else if target.exists() {
+            return Err(CliError::Usage(format!(
+                "output folder '{}' is a file",
+                target.display()
+            )));
+        }
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        loop {
+            let mut temporary_name = std::ffi::OsString::from(".");
+            temporary_name.push(name);
+            temporary_name.push(format!(
+                ".{}.{}.tmp",
+                std::process::id(),
+                COUNTER.fetch_add(1, Ordering::Relaxed)
+            ));
+            let temporary = parent.join(temporary_name);
+            match std::fs::create_dir(&temporary) {
+                Ok(()) => {
+                    return Ok(Self {
+                        temporary,
+                        target: target.to_path_buf(),
+                        committed: false,
+                    })
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(io("create the directory", &temporary)(e)),
+            }
+        }
+    }
+
+    fn path(&self) -> &Path {
+        &self.temporary
+    }
+
+    /// Renames the temporary folder to the target; an earlier target is moved aside first
+    /// (to `.NAME.PID.N.old`, removed afterwards) and moved back if the rename fails.
+    fn commit(mut self) -> Result<(), CliError> {
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| CliError::Io {
+                action: "move the results into",
+                path,
+                source,
+            }
+        };
+        // `.NAME.PID.N.tmp` -> `.NAME.PID.N.old`.
+        let old = self.temporary.with_extension("old");
+        let replaced = self.target.exists();
+        if replaced {
+            std::fs::rename(&self.target, &old).map_err(io(&self.target))?;
+        }
+        if let Err(e) = std::fs::rename(&self.temporary, &self.target) {
+            if replaced {
+                let _ = std::fs::rename(&old, &self.target);
+            }
+            return Err(io(&self.target)(e));
+        }
+        self.committed = true;
+        if replaced {
+            // What is left (a failure here) is removed as stale by a later run.
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.temporary);
+        }
+    }
+}
+
 /// "<title>: <detail>", the title shortened with an ellipsis so that the line fits a
 /// picture `width` pixels wide (16-pixel sans-serif: about 9 pixels a character).
 fn picture_title(title: &str, detail: &str, width: f64) -> String {
@@ -264,7 +418,20 @@ fn vtu_data(solved: &SolvedBody, contact_pressure: Option<Vec<f64>>) -> VtuData 
 
 /// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`], numbers in
 /// shortest round-trip scientific notation.
-fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Result<()> {
+/// A node's status as the outputs name it: "open", "stick", "slip", and "contact" for a
+/// node in contact without friction (where there is no stick or slip to tell apart).
+pub fn status_label(status: NodeStatus, frictionless: bool) -> &'static str {
+    match status {
+        NodeStatus::Slip if frictionless => "contact",
+        other => other.name(),
+    }
+}
+
+fn write_contact_csv(
+    w: &mut dyn Write,
+    nodes: &[InterfaceNode],
+    frictionless: bool,
+) -> std::io::Result<()> {
     writeln!(w, "{CONTACT_COLUMNS}")?;
     for n in nodes {
         writeln!(
@@ -280,7 +447,7 @@ fn write_contact_csv(w: &mut dyn Write, nodes: &[InterfaceNode]) -> std::io::Res
             tidy(n.pressure),
             tidy(n.friction_force),
             tidy(n.slip),
-            n.status.name()
+            status_label(n.status, frictionless)
         )?;
     }
     Ok(())

@@ -15,7 +15,17 @@ use toml::Spanned;
 
 use vem_contact::SolverRegistry;
 
+use crate::resources::{LimitOrigin, MemoryLimit};
 use crate::CliError;
+
+/// The largest magnitude of a number of a scene (see [`Scene::check_number`]).
+pub const LARGEST: f64 = 1e100;
+
+/// The smallest non-zero magnitude of a number of a scene.
+pub const SMALLEST: f64 = 1e-100;
+
+/// The largest `[output] width`, in pixels.
+pub const MAX_WIDTH: f64 = 20_000.0;
 
 /// The whole scene file.
 #[derive(Debug, Clone, Deserialize)]
@@ -33,6 +43,9 @@ pub struct SceneFile {
     /// Output options (`[output]`).
     #[serde(default)]
     pub output: OutputSpec,
+    /// Resource limits (`[limits]`).
+    #[serde(default)]
+    pub limits: LimitsSpec,
 }
 
 /// One elastic body (`[[body]]`).
@@ -60,7 +73,7 @@ pub struct BodySpec {
     #[serde(default)]
     pub traction: Vec<Spanned<TractionSpec>>,
     /// A constant body force per unit area `[fx, fy]`.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact::optional_spanned")]
     pub body_force: Option<Spanned<[f64; 2]>>,
 }
 
@@ -73,7 +86,7 @@ pub struct MeshSpec {
     #[serde(default)]
     pub family: Option<Spanned<String>>,
     /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact::optional_spanned_rectangle")]
     pub rectangle: Option<Spanned<[[f64; 2]; 2]>>,
     /// The size parameter of a generated mesh (about `n` cells across).
     #[serde(default)]
@@ -171,7 +184,7 @@ pub struct TractionSpec {
     /// The boundary part.
     pub part: Spanned<String>,
     /// A constant traction `[gx, gy]`.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact::optional")]
     pub value: Option<[f64; 2]>,
     /// A normal pressure, positive compressive (along the inward normal of each edge).
     #[serde(default)]
@@ -299,7 +312,7 @@ pub struct ObstacleSpec {
     #[serde(default)]
     pub circle: Option<CircleSpec>,
     /// A polyline with the obstacle on its right.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact::optional_points")]
     pub polyline: Option<Vec<[f64; 2]>>,
 }
 
@@ -308,8 +321,10 @@ pub struct ObstacleSpec {
 #[serde(deny_unknown_fields)]
 pub struct LineSpec {
     /// A point of the line.
+    #[serde(deserialize_with = "exact::pair")]
     pub point: [f64; 2],
     /// The normal pointing out of the obstacle, towards the body.
+    #[serde(deserialize_with = "exact::pair")]
     pub normal: [f64; 2],
 }
 
@@ -318,6 +333,7 @@ pub struct LineSpec {
 #[serde(deny_unknown_fields)]
 pub struct CircleSpec {
     /// Centre.
+    #[serde(deserialize_with = "exact::pair")]
     pub centre: [f64; 2],
     /// Radius.
     pub radius: f64,
@@ -331,9 +347,19 @@ pub struct OutputSpec {
     /// drawn as 8% of the picture's extent).
     #[serde(default)]
     pub magnification: Option<Spanned<f64>>,
-    /// Width of the pictures in pixels (default 900).
+    /// Width of the pictures in pixels (default 900, at most [`MAX_WIDTH`]).
     #[serde(default)]
     pub width: Option<Spanned<f64>>,
+}
+
+/// `[limits]`: what a run may use.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsSpec {
+    /// The memory a run may plan to use, in GiB (default: the memory the system reports
+    /// available); meshes and systems estimated larger are refused before they are built.
+    #[serde(default)]
+    pub memory_gib: Option<Spanned<f64>>,
 }
 
 /// A parsed and checked scene file.
@@ -342,6 +368,7 @@ pub struct Scene {
     path: PathBuf,
     source: String,
     file: SceneFile,
+    memory_limit: Option<MemoryLimit>,
 }
 
 impl Scene {
@@ -363,9 +390,35 @@ impl Scene {
         let source = source.into();
         let file: SceneFile = toml::from_str(&source)
             .map_err(|e| CliError::at(&path, &source, e.span(), e.message().trim_end()))?;
-        let scene = Self { path, source, file };
+        let scene = Self {
+            path,
+            source,
+            file,
+            memory_limit: None,
+        };
         scene.check()?;
         Ok(scene)
+    }
+
+    /// The same scene with the memory limit `limit` (the command line's `--memory-limit`),
+    /// which overrides the scene's `[limits] memory_gib`.
+    pub fn with_memory_limit(mut self, limit: MemoryLimit) -> Self {
+        self.memory_limit = Some(limit);
+        self
+    }
+
+    /// The memory the run may plan to use: the command line's limit, else the scene's
+    /// `[limits] memory_gib`, else the memory the system reports available.
+    pub fn memory_limit(&self) -> MemoryLimit {
+        if let Some(limit) = self.memory_limit {
+            return limit;
+        }
+        self.file
+            .limits
+            .memory_gib
+            .as_ref()
+            .and_then(|gib| MemoryLimit::try_from_gib(*gib.get_ref(), LimitOrigin::Scene).ok())
+            .unwrap_or_else(MemoryLimit::available)
     }
 
     /// The scene file's path.
@@ -457,13 +510,165 @@ impl Scene {
         let output = &file.output;
         if let Some(m) = &output.magnification {
             self.positive(m, "magnification")?;
+            self.check_number(Some(m.span()), "`magnification`", *m.get_ref())?;
         }
         if let Some(w) = &output.width {
-            if !(w.get_ref().is_finite() && *w.get_ref() >= 200.0) {
+            if !(w.get_ref().is_finite() && (200.0..=MAX_WIDTH).contains(w.get_ref())) {
                 return Err(self.error(
                     Some(w.span()),
-                    format!("width = {} pixels: give at least 200", w.get_ref()),
+                    format!(
+                        "width = {} pixels: give at least 200 and at most {MAX_WIDTH}",
+                        w.get_ref()
+                    ),
                 ));
+            }
+        }
+        if let Some(limit) = &file.limits.memory_gib {
+            self.positive(limit, "memory_gib")?;
+            self.check_number(Some(limit.span()), "`memory_gib`", *limit.get_ref())?;
+        }
+        self.check_ranges()
+    }
+
+    /// Checks that a number of the scene is finite and, unless zero, of a magnitude between
+    /// [`SMALLEST`] and [`LARGEST`], so that the products the model forms of moduli, lengths
+    /// and loads (stiffness entries, resultants, energies) stay finite. `key` names the number
+    /// and its owner ("`E` of body 'a'"); `span` is where it is written. A new numeric scene
+    /// key is validated by one call of this (or of [`Scene::check_numbers`] for an array) in
+    /// the range check that [`Scene::parse`] runs (`Scene::check_ranges`), plus its own sign
+    /// or interval check.
+    pub fn check_number(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        key: &str,
+        value: f64,
+    ) -> Result<(), CliError> {
+        let magnitude = value.abs();
+        if !value.is_finite() {
+            return Err(self.error(span, format!("{key} = {value} must be finite")));
+        }
+        if magnitude != 0.0 && !(SMALLEST..=LARGEST).contains(&magnitude) {
+            return Err(self.error(
+                span,
+                format!(
+                    "{key} = {value:e} is out of range: a number of a scene is 0 or of magnitude \
+                     {SMALLEST:e} to {LARGEST:e} (products of moduli, lengths and loads must stay \
+                     finite); change the units"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// [`Scene::check_number`] for every entry of `values`.
+    pub fn check_numbers(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        key: &str,
+        values: &[f64],
+    ) -> Result<(), CliError> {
+        values
+            .iter()
+            .try_for_each(|&v| self.check_number(span.clone(), key, v))
+    }
+
+    /// The range of every number of the bodies and of the contact pair.
+    fn check_ranges(&self) -> Result<(), CliError> {
+        for body in &self.file.bodies {
+            let name = body.name.get_ref();
+            let of = |key: &str| format!("`{key}` of body '{name}'");
+            if let Some(r) = &body.mesh.get_ref().rectangle {
+                self.check_numbers(Some(r.span()), &of("rectangle"), r.get_ref().as_flattened())?;
+            }
+            let m = body.material.get_ref();
+            let material = Some(body.material.span());
+            for (key, value) in [
+                ("E", m.young),
+                ("nu", m.nu),
+                ("lambda", m.lambda),
+                ("mu", m.mu),
+            ] {
+                if let Some(v) = value {
+                    self.check_number(material.clone(), &of(key), v)?;
+                }
+            }
+            if let Some(s) = &body.stabilisation {
+                if let Some(scale) = s.get_ref().scale {
+                    self.check_number(Some(s.span()), &of("stabilisation.scale"), scale)?;
+                }
+            }
+            let on = |table: &str, key: &str, part: &Spanned<String>| {
+                format!(
+                    "`{key}` of the {table} on part '{}' of body '{name}'",
+                    part.get_ref()
+                )
+            };
+            for d in &body.dirichlet {
+                let spec = d.get_ref();
+                for (key, value) in [("x", spec.x), ("y", spec.y)] {
+                    if let Some(v) = value {
+                        let key = on("Dirichlet condition", key, &spec.part);
+                        self.check_number(Some(d.span()), &key, v)?;
+                    }
+                }
+            }
+            for t in &body.traction {
+                let spec = t.get_ref();
+                if let Some(v) = &spec.value {
+                    let key = on("traction", "value", &spec.part);
+                    self.check_numbers(Some(t.span()), &key, v)?;
+                }
+                if let Some(p) = spec.pressure {
+                    let key = on("traction", "pressure", &spec.part);
+                    self.check_number(Some(t.span()), &key, p)?;
+                }
+            }
+            if let Some(f) = &body.body_force {
+                self.check_numbers(Some(f.span()), &of("body_force"), f.get_ref())?;
+            }
+        }
+        let Some(contact) = self.file.contacts.first() else {
+            return Ok(());
+        };
+        let c = contact.get_ref();
+        let keyed = [
+            ("friction_bound", &c.friction_bound),
+            ("coefficient", &c.coefficient),
+            ("fixed_point_tolerance", &c.fixed_point_tolerance),
+            ("imposed_gap", &c.imposed_gap),
+            ("max_distance", &c.max_distance),
+            ("tolerance", &c.tolerance),
+        ];
+        for (key, value) in keyed {
+            if let Some(v) = value {
+                self.check_number(Some(v.span()), &format!("`{key}`"), *v.get_ref())?;
+            }
+        }
+        for (key, p) in [("penalty", &c.penalty), ("augmentation", &c.augmentation)] {
+            if let Some(p) = p {
+                let values: Vec<f64> = [p.get_ref().factor, p.get_ref().value]
+                    .into_iter()
+                    .flatten()
+                    .collect();
+                self.check_numbers(Some(p.span()), &format!("`{key}`"), &values)?;
+            }
+        }
+        if let Some(h) = &c.hertz {
+            self.check_number(Some(h.span()), "hertz `radius`", h.get_ref().radius)?;
+        }
+        if let Some(o) = &c.obstacle {
+            let spec = o.get_ref();
+            let span = Some(o.span());
+            if let Some(line) = &spec.line {
+                self.check_numbers(span.clone(), "obstacle line `point`", &line.point)?;
+                self.check_numbers(span.clone(), "obstacle line `normal`", &line.normal)?;
+            }
+            if let Some(circle) = &spec.circle {
+                self.check_numbers(span.clone(), "obstacle circle `centre`", &circle.centre)?;
+                self.check_number(span.clone(), "obstacle circle `radius`", circle.radius)?;
+            }
+            if let Some(points) = &spec.polyline {
+                self.check_numbers(span, "obstacle `polyline`", points.as_flattened())?;
             }
         }
         Ok(())
@@ -730,4 +935,66 @@ pub(crate) fn law_name(law: LawKind) -> &'static str {
 pub(crate) fn list<S: AsRef<str>>(names: &[S]) -> String {
     let quoted: Vec<String> = names.iter().map(|n| format!("'{}'", n.as_ref())).collect();
     format!("[{}]", quoted.join(", "))
+}
+
+/// Deserialisers of fixed-length arrays that refuse any other length: serde's own `[T; N]`
+/// reads the first `N` entries and ignores the rest, so `[1, 2, 3]` would silently be
+/// `[1, 2]`. The error is reported by the TOML parser at the array, with its line.
+mod exact {
+    use serde::de::Error;
+    use serde::{Deserialize, Deserializer};
+    use toml::Spanned;
+
+    /// `[T; N]` from an array of exactly `N` entries.
+    struct Exact<T, const N: usize>([T; N]);
+
+    impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            let entries = Vec::<T>::deserialize(deserializer)?;
+            let found = entries.len();
+            entries.try_into().map(Exact).map_err(|_| {
+                D::Error::custom(format!(
+                    "an array of {found} entries where exactly {N} are expected"
+                ))
+            })
+        }
+    }
+
+    /// A point or vector `[x, y]`: a rectangle corner is a point too.
+    type Pair = Exact<f64, 2>;
+
+    /// Two opposite corners of a rectangle.
+    type Corners = [[f64; 2]; 2];
+
+    pub(super) fn pair<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+        Pair::deserialize(d).map(|p| p.0)
+    }
+
+    pub(super) fn optional<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 2]>, D::Error> {
+        pair(d).map(Some)
+    }
+
+    pub(super) fn optional_spanned<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Spanned<[f64; 2]>>, D::Error> {
+        let value = Spanned::<Pair>::deserialize(d)?;
+        let span = value.span();
+        Ok(Some(Spanned::new(span, value.into_inner().0)))
+    }
+
+    pub(super) fn optional_spanned_rectangle<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Spanned<Corners>>, D::Error> {
+        let value = Spanned::<Exact<Pair, 2>>::deserialize(d)?;
+        let span = value.span();
+        let [a, b] = value.into_inner().0;
+        Ok(Some(Spanned::new(span, [a.0, b.0])))
+    }
+
+    pub(super) fn optional_points<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Option<Vec<[f64; 2]>>, D::Error> {
+        let points = Vec::<Pair>::deserialize(d)?;
+        Ok(Some(points.into_iter().map(|p| p.0).collect()))
+    }
 }

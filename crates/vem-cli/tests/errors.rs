@@ -297,17 +297,21 @@ fn values_the_library_rejects_are_located_at_their_key() {
         "-1.0\n",
         &["max_distance = -1", "positive and finite"],
     );
+    // Non-finite values are refused by the scene's range check, at their entry.
     let text = format!("{BLOCK}dirichlet = [{{ part = \"left\", x = nan }}]\n");
     assert_located(
         &error_of(&text),
         &text,
         "{ part = \"left\"",
-        &["body 'a'", "'left'", "non-finite"],
+        &["body 'a'", "'left'", "`x`", "must be finite"],
     );
     let text = format!(
         "{BLOCK}dirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0 }}]\ntraction = [{{ part = \"top\", pressure = inf }}]\n"
     );
-    let scene = Scene::parse("bad.toml", text.as_str()).unwrap();
-    let e = Model::build(&scene).unwrap().solve().unwrap_err();
-    assert_located(&e, &text, "{ part = \"top\"", &["'top'", "non-finite load"]);
+    assert_located(
+        &error_of(&text),
+        &text,
+        "{ part = \"top\"",
+        &["'top'", "`pressure`", "must be finite"],
+    );
 }

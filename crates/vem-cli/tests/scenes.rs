@@ -111,7 +111,7 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
     assert_eq!(rows.len(), nodes(&outcome).len());
     assert!(rows
         .iter()
-        .all(|(r, s)| (r[7] - p).abs() < 1e-9 && s == "slip"));
+        .all(|(r, s)| (r[7] - p).abs() < 1e-9 && s == "contact"));
     let summary = summary_json(&dir);
     assert_eq!(summary["contact"]["tangential_rows"], 0);
     assert_eq!(

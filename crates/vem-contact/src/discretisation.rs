@@ -646,7 +646,8 @@ impl ContactDiscretisation {
     }
 
     /// Warnings about the model behind a converged answer: elements far outside A1, a contact
-    /// zone at a limit of the interface, an effectively tied friction bound.
+    /// zone at a limit of the interface, an initial overlap, an effectively tied friction
+    /// bound.
     fn model_warnings(
         &self,
         nodes: &[InterfaceNode],
@@ -688,6 +689,9 @@ impl ContactDiscretisation {
                 }
             }
         }
+        warnings.extend(Warning::initial_overlap(
+            nodes.iter().map(|n| (n.position, n.normal, n.initial_gap)),
+        ));
         if let (Some(bounds), ContactLaw::Tresca { .. }) = (bounds, &self.law) {
             // The smallest bound among the nodes in contact: if even it exceeds every force
             // by far, no node can slip.

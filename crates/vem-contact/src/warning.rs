@@ -104,6 +104,31 @@ pub enum Warning {
         /// Its normal force.
         normal_force: f64,
     },
+    /// The two sides overlap before any load: some initial gaps are negative (an
+    /// interference fit, solved as the sides pressed apart; or a contact part that faces away
+    /// from its counterpart, whose gaps are measured through the body).
+    #[error(
+        "initial overlap: {nodes} of {total} interface nodes have a negative initial gap, down \
+         to {gap:.3e} at ({x}, {y}) (outward normal ({normal_x}, {normal_y})); solved as an \
+         interference fit; if the contact part faces away from its counterpart, choose the \
+         part that faces it"
+    )]
+    InitialOverlap {
+        /// Nodes with a negative initial gap.
+        nodes: usize,
+        /// All interface nodes.
+        total: usize,
+        /// The most negative initial gap.
+        gap: f64,
+        /// Position of its node.
+        x: f64,
+        /// See `x`.
+        y: f64,
+        /// Body A's outward normal at that node, x component.
+        normal_x: f64,
+        /// See `normal_x`.
+        normal_y: f64,
+    },
     /// The Coulomb fixed point stopped at the inner solver's force accuracy, above the
     /// requested tolerance: the friction bounds are settled only to that accuracy.
     #[error(
@@ -120,4 +145,47 @@ pub enum Warning {
         /// The last relative change of the normal forces.
         change: f64,
     },
+}
+
+impl Warning {
+    /// [`Warning::InitialOverlap`] of the interface nodes `(position, outward normal of body
+    /// A, initial gap)`, if any initial gap is negative.
+    ///
+    /// ```
+    /// use vem_contact::Warning;
+    /// use vem_mesh::{Point, Vector};
+    /// let up = Vector::new(0.0, 1.0);
+    /// let nodes = [(Point::new(0.0, 0.0), up, 0.1), (Point::new(1.0, 0.0), up, -0.2)];
+    /// let Some(Warning::InitialOverlap { nodes, total, gap, x, .. }) = Warning::initial_overlap(nodes) else {
+    ///     panic!("an overlap")
+    /// };
+    /// assert_eq!((nodes, total, gap, x), (1, 2, -0.2, 1.0));
+    /// assert!(Warning::initial_overlap([(Point::new(0.0, 0.0), up, 0.0)]).is_none());
+    /// ```
+    pub fn initial_overlap(
+        nodes: impl IntoIterator<Item = (vem_mesh::Point, vem_mesh::Vector, f64)>,
+    ) -> Option<Self> {
+        let mut total = 0;
+        let mut count = 0;
+        let mut deepest: Option<(f64, vem_mesh::Point, vem_mesh::Vector)> = None;
+        for (position, normal, gap) in nodes {
+            total += 1;
+            if gap < 0.0 {
+                count += 1;
+                if deepest.is_none_or(|(g, _, _)| gap < g) {
+                    deepest = Some((gap, position, normal));
+                }
+            }
+        }
+        deepest.map(|(gap, position, normal)| Warning::InitialOverlap {
+            nodes: count,
+            total,
+            gap,
+            x: position.x,
+            y: position.y,
+            // `+ 0.0` writes a negative zero as 0.
+            normal_x: normal.x + 0.0,
+            normal_y: normal.y + 0.0,
+        })
+    }
 }

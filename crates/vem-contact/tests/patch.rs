@@ -1,4 +1,4 @@
-//! Two-body contact patch tests PTC1, PTC1h, PTC2, PTC3 (manufactured.md section 6): linear
+//! Two-body contact patch tests PTC1, PTC1h, PTC2, PTC3 (docs/manufactured.md section 6): linear
 //! fields are in the discrete space on any mesh, also on elements enlarged by inserted
 //! interface nodes, so the discrete contact solution is exact (to the solver tolerance) on
 //! matching and non-matching meshes, node by node, and so are the nodal forces.
@@ -18,7 +18,7 @@ const LAMBDA: f64 = 2.0;
 const MU: f64 = 1.0;
 const FRICTION_BOUND: f64 = 0.25;
 
-/// The linear two-body state of manufactured.md: u_1 = (e - gamma (1 - y), -d + beta (1 - y)),
+/// The linear two-body state of docs/manufactured.md: u_1 = (e - gamma (1 - y), -d + beta (1 - y)),
 /// u_2 = (-e + gamma (1 + y), d - beta (1 + y)).
 #[derive(Debug, Clone, Copy)]
 struct Patch {

@@ -77,6 +77,14 @@ impl Material {
                 lambda + 2.0 * mu / 3.0
             )));
         }
+        let (lambda_in_plane, _) = in_plane(lambda, mu, plane);
+        let largest = lambda_in_plane + 2.0 * mu;
+        if !(largest.is_finite() && lambda_in_plane.is_finite()) {
+            return Err(invalid(format!(
+                "lambda = {lambda} with mu = {mu}: the elasticity tensor's largest entry \
+                 lambda + 2 mu overflows the floating-point range"
+            )));
+        }
         Ok(Self {
             kind: Kind::Isotropic { lambda, mu, plane },
         })
@@ -88,7 +96,7 @@ impl Material {
     /// Such a material is a purely two-dimensional law: it carries no out-of-plane stress
     /// (`sigma_zz = 0` in [`Material::out_of_plane_stress`]).
     pub fn general(voigt: Matrix3<f64>) -> Result<Self, ElasticError> {
-        ElasticityTensor::try_from_voigt(voigt).map_err(|e| invalid(e.to_string()))?;
+        ElasticityTensor::try_from_voigt(voigt).map_err(space_invalid)?;
         Ok(Self {
             kind: Kind::General { voigt },
         })
@@ -129,7 +137,7 @@ impl Material {
             }
             Kind::General { voigt } => ElasticityTensor::try_from_voigt(voigt),
         };
-        tensor.map_err(|e| invalid(e.to_string()))
+        tensor.map_err(space_invalid)
     }
 
     /// The out-of-plane stress `sigma_zz` for an in-plane strain `eps` (Voigt): `lambda tr(eps)`
@@ -156,6 +164,15 @@ fn in_plane(lambda: f64, mu: f64, plane: Plane) -> (f64, f64) {
 
 fn invalid(reason: String) -> ElasticError {
     ElasticError::InvalidMaterial { reason }
+}
+
+/// The element layer's refusal of a tensor, as this layer's error (its reason once, not
+/// "invalid material: invalid material: ...").
+fn space_invalid(error: vem_space::SpaceError) -> ElasticError {
+    match error {
+        vem_space::SpaceError::InvalidMaterial { reason } => invalid(reason),
+        other => invalid(other.to_string()),
+    }
 }
 
 /// The von Mises equivalent stress of the stress state `(sigma_xx, sigma_yy, sigma_xy)` with
@@ -192,6 +209,18 @@ mod tests {
         assert_relative_eq!(c.voigt()[(0, 1)], 1.0, max_relative = 1e-14);
         assert_relative_eq!(c.voigt()[(0, 0)], 3.0, max_relative = 1e-14);
         assert_eq!(m.out_of_plane_stress(&Vector3::new(1.0, 1.0, 0.0)), 0.0);
+    }
+
+    #[test]
+    fn overflowing_moduli_are_refused_once() {
+        // E = 1.5e308: mu and lambda are finite, lambda + 2 mu (2.0e308) is not.
+        let err = Material::from_young_poisson(1.5e308, 0.3, Plane::Strain).unwrap_err();
+        let text = err.to_string();
+        assert!(text.contains("overflows"), "{text}");
+        assert_eq!(text.matches("invalid material").count(), 1, "{text}");
+        // The largest finite pair below the limit is accepted: C_11 = lambda + 2 mu exactly.
+        let m = Material::from_lame(1e307, 1e307, Plane::Strain).unwrap();
+        assert_eq!(m.tensor().unwrap().voigt()[(0, 0)], 3e307);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! companion of `vem_space::testkit`.
 //!
 //! On the unit square meshed by each [`MeshFamily`], the linear field
-//! `u(x, y) = ((1 + 2x + 3y)/10, (2 - x + 4y)/10)` (PT0a of manufactured.md, strain with a
+//! `u(x, y) = ((1 + 2x + 3y)/10, (2 - x + 4y)/10)` (PT0a of docs/manufactured.md, strain with a
 //! shear part, plus a rotation) is prescribed as Dirichlet data on the whole boundary, without
 //! body force. An element that passes the element-level checks reproduces `u` at every vertex
 //! to round-off; [`global_patch_test`] measures by how much it misses.

@@ -1,4 +1,4 @@
-//! E1 (manufactured.md section 6): convergence of the energy projection of the discrete
+//! E1 (docs/manufactured.md section 6): convergence of the energy projection of the discrete
 //! solution, O(h) in the broken H1 seminorm and O(h^2) in L2, on several mesh families; and
 //! equilibrium of reactions and loads.
 
@@ -9,7 +9,7 @@ use vem_elastic::ElasticBody;
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::Vector;
 
-/// Mesh sizes; rates are fitted over the last `FITTED` of them (manufactured.md section 8): the
+/// Mesh sizes; rates are fitted over the last `FITTED` of them (docs/manufactured.md section 8): the
 /// coarsest Voronoi meshes with lambda/mu = 33 are pre-asymptotic in L2.
 const SIZES: [usize; 5] = [4, 8, 16, 32, 64];
 const FITTED: usize = 3;

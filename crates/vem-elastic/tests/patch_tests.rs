@@ -1,4 +1,4 @@
-//! Linear patch tests PT0a and PT0b (manufactured.md section 6): on any polygonal mesh the
+//! Linear patch tests PT0a and PT0b (docs/manufactured.md section 6): on any polygonal mesh the
 //! discrete solution equals the exact linear field at the nodes, the projection reproduces it
 //! in every element, and a_h(u_h, u_h) = a(u, u).
 
@@ -73,7 +73,7 @@ fn check_exact(name: &str, body: &ElasticBody, field: &dyn ExactField, lambda: f
 
 #[test]
 fn reference_energies_of_section_10() {
-    // manufactured.md section 10, lambda = 2, mu = 1.
+    // docs/manufactured.md section 10, lambda = 2, mu = 1.
     assert!((exact_energy_norm(&Pt0a, 2.0, 1.0) - 1.16).abs() < 1e-14);
     assert!((exact_energy_norm(&Pt0b, 2.0, 1.0) - 0.02).abs() < 1e-15);
 }

@@ -127,7 +127,7 @@ mod tests {
 
     #[test]
     fn stress_of_the_pt0a_strain() {
-        // PT0a (manufactured.md): eps = (1/5, 2/5, shear 1/10) -> sigma = (1.6, 2.0, 0.2).
+        // PT0a (docs/manufactured.md): eps = (1/5, 2/5, shear 1/10) -> sigma = (1.6, 2.0, 0.2).
         let c = ElasticityTensor::try_isotropic(2.0, 1.0).unwrap();
         let sigma = c.stress(&Vector3::new(0.2, 0.4, 0.2));
         assert!((sigma - Vector3::new(1.6, 2.0, 0.2)).norm() < 1e-15);

@@ -2,7 +2,7 @@
 //! checks every [`ElementSpace`] for linear elasticity must pass, each returning a number so that
 //! a test can state its own tolerance and print what it measured.
 //!
-//! The checks (spec section 3, manufactured.md PT0), each against an expectation computed here
+//! The checks (spec section 3, docs/manufactured.md PT0), each against an expectation computed here
 //! independently of the element:
 //! - [`rigid_motion_residual`]: the rigid motions `(1, 0)`, `(0, 1)`, `(-y, x)` are in the kernel
 //!   of `K_T`;

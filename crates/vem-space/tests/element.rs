@@ -1,4 +1,4 @@
-//! Element-level checks of the lowest-order VEM (manufactured.md, PT0 companions): rigid-motion
+//! Element-level checks of the lowest-order VEM (docs/manufactured.md, PT0 companions): rigid-motion
 //! kernel, rank, consistency (3.1) against an independent boundary integration, vanishing
 //! stabilisation on P1, symmetry, exact projection of linear fields, energy of linear fields,
 //! equality with the independent P1 triangle, and the load terms.

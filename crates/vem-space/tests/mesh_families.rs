@@ -1,4 +1,4 @@
-//! Element-level patch-test companions (manufactured.md, PT0) on every polygon of a small mesh
+//! Element-level patch-test companions (docs/manufactured.md, PT0) on every polygon of a small mesh
 //! of every generator family, by the element test kit: rigid-motion kernel, rank 2n - 3,
 //! consistency (3.1), symmetry, element patch test (exact projection of linear fields,
 //! vanishing stabilisation on them); P1 where the cells are triangles; and the sum of the body

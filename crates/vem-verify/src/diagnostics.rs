@@ -1,8 +1,8 @@
 //! Contact diagnostics of a discrete solution against an exact contact solution
-//! (`manufactured.md`, section 8): resultants, nodal pressure, the discrete switch points and
+//! (`docs/manufactured.md`, section 8): resultants, nodal pressure, the discrete switch points and
 //! the expected active and stick/slip sets.
 //!
-//! Conventions (`contact-vem.md`, section 4, and `vem_contact`): the nodal contact force
+//! Conventions (`docs/formulation.md`, section 4, and `vem_contact`): the nodal contact force
 //! `lambda_N >= 0` approximates `-sigma_nu` times the tributary length, so
 //! `sum lambda_N -> -int sigma_nu ds`; the nodal friction force on body one along `tau = e_x`
 //! approximates `sigma_1tau` times the tributary length, so its sum tends to

@@ -1,5 +1,5 @@
 //! Verification of the VEM contact solver: exact (manufactured) solutions of the one- and
-//! two-body problems of the specification, in the sign conventions of `contact-vem.md`.
+//! two-body problems of the specification, in the sign conventions of `docs/formulation.md`.
 //!
 //! The module [`exact`] holds the [`ExactSolution`] trait (implement it for a solution of your
 //! own), its contact companion [`ExactContact`] (any law of `vem_contact`: frictionless, Tresca
@@ -10,7 +10,7 @@
 //! - [`problem`]: the discrete (VEM elasticity or contact) problem of an exact solution on given
 //!   meshes, and its solve;
 //! - [`norms`]: the error measures `E_grad = ||grad(u - Pi u_h)||`, `E_0 = ||u - Pi u_h||`
-//!   and `E_a = a_h(u_I - u_h, u_I - u_h)^(1/2)` (`manufactured.md`, section 8);
+//!   and `E_a = a_h(u_I - u_h, u_I - u_h)^(1/2)` (`docs/manufactured.md`, section 8);
 //! - [`diagnostics`]: resultants, switch points and expected sets of contact solutions;
 //! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
 //! - [`cases`]: the registry of cases by name (built-in and a user's own) the tools run;

@@ -1,5 +1,5 @@
-//! Error measures of a discrete solution against an exact one (`manufactured.md`, section 8;
-//! `contact-vem.md`, section 3).
+//! Error measures of a discrete solution against an exact one (`docs/manufactured.md`, section 8;
+//! `docs/formulation.md`, section 3).
 //!
 //! The virtual solution `u_h` is not known inside the elements; what is computable per body is
 //!

@@ -1,7 +1,7 @@
 //! Convergence studies: one exact solution, one mesh family (and size factor) per body, a list
 //! of sizes, a solver; per size the mesh size, the unknowns, every error measure, the contact
 //! diagnostics and the time of each stage; rates fitted by least squares over the finest sizes
-//! and a verdict against the expected rates (`manufactured.md`, section 8).
+//! and a verdict against the expected rates (`docs/manufactured.md`, section 8).
 //!
 //! ```
 //! use std::sync::Arc;
@@ -267,7 +267,7 @@ pub enum Expectation {
 }
 
 impl Expectation {
-    /// The verdict of `manufactured.md`, section 8: `E_grad` and `E_a` rates >= 0.9, `E_0` rate
+    /// The verdict of `docs/manufactured.md`, section 8: `E_grad` and `E_a` rates >= 0.9, `E_0` rate
     /// >= 1.8.
     pub const OPTIMAL_RATES: Expectation = Expectation::Rates {
         grad: 0.9,
@@ -844,7 +844,7 @@ pub fn judge(expectations: &[Expectation], records: &[SizeRecord], rates: &Rates
         judge_one(expectation, records, rates, &mut shortfalls);
     }
     // The statuses away from the switch points must be right on the finest mesh (they held
-    // from n = 32 on in the prototype of manufactured.md, section 8).
+    // from n = 32 on in the prototype of docs/manufactured.md, section 8).
     if let Some(finest) = records.last() {
         if let Some(violation) = finest.contact.iter().flat_map(|c| &c.set_violations).next() {
             let count = finest

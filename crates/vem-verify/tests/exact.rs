@@ -1,4 +1,4 @@
-//! Independent checks of the exact solutions of `manufactured.md`:
+//! Independent checks of the exact solutions of `docs/manufactured.md`:
 //! every reference value of its section 10 (typed from the specification, parsed below),
 //! equilibrium and gradients by finite differences, boundary data, traction continuity, the
 //! contact sign and complementarity conditions on a fine sample of Gamma_C, resultants, load
@@ -15,7 +15,7 @@ use vem_verify::exact::{
     Side, CASE_NAMES, CONTACT_SIDES,
 };
 
-/// Section 10 of `manufactured.md`, verbatim (lambda = 2, mu = 1).
+/// Section 10 of `docs/manufactured.md`, verbatim (lambda = 2, mu = 1).
 const REFERENCE: &str = r##"
 ## M1 (lambda=2, mu=1)
 body1 (1/4,1/3): ux uy sxx syy sxy fx fy =  0.016666666666666667 -0.10837490801351343  0.34084749818168194  0.34836166303003055  0.028011311054673991 -0.64098145530158851 -0.58674243989274653
@@ -834,7 +834,7 @@ fn traction_continuity_across_the_interface() {
     }
 }
 
-/// The hypotheses of the argument of `manufactured.md`, section 1, on 4001 points of Gamma_C
+/// The hypotheses of the argument of `docs/manufactured.md`, section 1, on 4001 points of Gamma_C
 /// (both end points included), and the expected sets against the exact statuses.
 #[test]
 fn contact_sign_conditions_and_complementarity() {

@@ -1,5 +1,5 @@
-//! Error measures against hand-computed and tabulated values (`manufactured.md`, section 10).
-// Reference values are copied verbatim from manufactured.md, section 10.
+//! Error measures against hand-computed and tabulated values (`docs/manufactured.md`, section 10).
+// Reference values are copied verbatim from docs/manufactured.md, section 10.
 #![allow(clippy::excessive_precision)]
 
 use std::sync::Arc;

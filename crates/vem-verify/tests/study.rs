@@ -17,7 +17,7 @@ fn case(name: &str) -> Arc<dyn ExactSolution> {
 }
 
 /// The built-in solvers and "exact-tight": Clarabel with tight tolerances, for the patch tests
-/// are exact up to the solver's accuracy (`manufactured.md`, section 7).
+/// are exact up to the solver's accuracy (`docs/manufactured.md`, section 7).
 fn tight_solver() -> SolverRegistry {
     let mut solvers = SolverRegistry::builtin();
     solvers

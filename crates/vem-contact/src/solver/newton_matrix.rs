@@ -140,11 +140,11 @@ impl NewtonMatrix {
             SymmetricOrdering::Amd,
             Default::default(),
         )
-        .map_err(|e| format!("symbolic Cholesky analysis: {e:?}"))?;
+        .map_err(|e| format!("symbolic Cholesky analysis: {e}"))?;
         let scratch = symbolic
             .factorize_numeric_llt_scratch::<f64>(par, Default::default())
             .or(symbolic.solve_in_place_scratch::<f64>(1, par));
-        let buffer = MemBuffer::try_new(scratch).map_err(|e| format!("workspace: {e:?}"))?;
+        let buffer = MemBuffer::try_new(scratch).map_err(|e| format!("workspace: {e}"))?;
         let factor = vec![0.0; symbolic.len_val()];
         let mut work = WorkCounters {
             symbolic_analyses: 1,

@@ -1,4 +1,4 @@
-//! Shared helpers of the integration tests: exact fields (manufactured.md section 6), error
+//! Shared helpers of the integration tests: exact fields (docs/manufactured.md section 6), error
 //! norms of the energy projection, least-squares rates.
 #![allow(dead_code)]
 
@@ -33,7 +33,7 @@ pub trait ExactField: Sync {
     fn grad(&self, x: Point) -> Matrix2<f64>;
 }
 
-/// PT0a: u = ((1 + 2x + 3y)/10, (2 - x + 4y)/10), f = 0 (manufactured.md section 6).
+/// PT0a: u = ((1 + 2x + 3y)/10, (2 - x + 4y)/10), f = 0 (docs/manufactured.md section 6).
 pub struct Pt0a;
 
 impl ExactField for Pt0a {

@@ -37,13 +37,13 @@ mod perturbed;
 mod structured;
 mod voronoi;
 
-pub use family::MeshFamily;
+pub use family::{MeshFamily, MeshSize};
 pub use hanging::hanging_nodes;
 pub use hexagons::hexagons;
 pub use nonconvex::{nonconvex, CHEVRON_RISE};
 pub use perturbed::perturbed_quads;
 pub use structured::{structured_quads, structured_triangles};
-pub use voronoi::{voronoi, LLOYD_ITERATIONS, SHORT_EDGE_RATIO};
+pub use voronoi::{voronoi, LLOYD_ITERATIONS, MAX_VORONOI_CELLS, SHORT_EDGE_RATIO};
 
 use crate::{Mesh, MeshError, PartSpec, Point};
 

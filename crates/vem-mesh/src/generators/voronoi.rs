@@ -26,6 +26,28 @@ pub const SHORT_EDGE_RATIO: f64 = 0.1;
 /// Largest number of collapsing passes (each pass collapses non-adjacent short edges).
 const MERGE_PASSES: usize = 10;
 
+/// Largest number of Voronoi cells the generator agrees to make: its time grows with the
+/// cells times [`LLOYD_ITERATIONS`] (250 000 cells take about half a minute on two cores), so
+/// a tall rectangle with a modest `n` (n = 9 on [0, 1] x [0, 1e5] asks for 8.1e6 cells) is
+/// refused at once instead of running for many minutes.
+pub const MAX_VORONOI_CELLS: usize = 1_000_000;
+
+/// The sites across and up of [`voronoi`], at most [`MAX_VORONOI_CELLS`] in all.
+pub(crate) fn voronoi_counts(rect: &Rectangle, n: usize) -> Result<(usize, usize), MeshError> {
+    let (nx, ny) = cell_counts("voronoi", rect, n)?;
+    if nx * ny > MAX_VORONOI_CELLS {
+        return Err(MeshError::BadGeneratorParameter {
+            generator: "voronoi",
+            reason: format!(
+                "size n = {n} asks for {} cells ({nx} x {ny}) on this rectangle, more than the \
+                 {MAX_VORONOI_CELLS} the Voronoi generator makes in reasonable time",
+                nx * ny
+            ),
+        });
+    }
+    Ok((nx, ny))
+}
+
 /// A centroidal Voronoi mesh of `rect` with about `n` cells across (`n` x `round(n height /
 /// width)` sites drawn uniformly from a `ChaCha8Rng` seeded with `seed`, then
 /// [`LLOYD_ITERATIONS`] Lloyd iterations).
@@ -44,7 +66,7 @@ const MERGE_PASSES: usize = 10;
 /// # Ok::<(), vem_mesh::MeshError>(())
 /// ```
 pub fn voronoi(rect: &Rectangle, n: usize, seed: u64) -> Result<Mesh, MeshError> {
-    let (nx, ny) = cell_counts("voronoi", rect, n)?;
+    let (nx, ny) = voronoi_counts(rect, n)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut sites: Vec<Point> = (0..nx * ny)
         .map(|_| {

@@ -121,6 +121,55 @@ fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
     }
 }
 
+/// Removes from `directory` the temporaries that processes no longer running left behind:
+/// entries named `.NAME.PID.N.tmp` (files of [`write_atomically`], or folders of the same
+/// pattern) and `.NAME.PID.N.old`, whose process `PID` is not running. Returns how many
+/// were removed. Where the system does not list its processes (no `/proc`) nothing is
+/// removed: a temporary of a running process must not be.
+pub fn remove_stale_temporaries(directory: impl AsRef<Path>) -> io::Result<usize> {
+    if !Path::new("/proc/self").exists() {
+        return Ok(0);
+    }
+    let mut removed = 0;
+    for entry in fs::read_dir(directory)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let Some(pid) = name.to_str().and_then(temporary_owner) else {
+            continue;
+        };
+        if Path::new("/proc").join(pid.to_string()).exists() {
+            continue;
+        }
+        let path = entry.path();
+        let result = if entry.file_type()?.is_dir() {
+            fs::remove_dir_all(&path)
+        } else {
+            fs::remove_file(&path)
+        };
+        match result {
+            Ok(()) => removed += 1,
+            // Removed meanwhile by another run cleaning up too.
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(removed)
+}
+
+/// The process id of a temporary's name `.NAME.PID.N.tmp` or `.NAME.PID.N.old`.
+fn temporary_owner(name: &str) -> Option<u32> {
+    let rest = name.strip_prefix('.')?;
+    let rest = rest
+        .strip_suffix(".tmp")
+        .or_else(|| rest.strip_suffix(".old"))?;
+    let mut fields = rest.rsplitn(3, '.');
+    let counter = fields.next()?;
+    let pid = fields.next()?;
+    let stem = fields.next()?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    (digits(counter) && !stem.is_empty()).then(|| pid.parse().ok())?
+}
+
 /// Escapes the five XML special characters of `text` (attribute values and text content).
 #[cfg(any(feature = "vtu", feature = "svg"))]
 pub(crate) fn xml_escape(text: &str) -> String {
@@ -182,6 +231,53 @@ mod tests {
             }
             other => panic!("unexpected {other}"),
         }
+    }
+
+    /// Temporaries of a process that is gone are removed; those of a running process (this
+    /// one) and ordinary files stay.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn stale_temporaries_of_dead_processes_are_removed() {
+        let dir = scratch_dir("stale");
+        // Process ids above the kernel's largest (2^22) never run.
+        let dead = 4_194_399;
+        let own = std::process::id();
+        let names = [
+            format!(".a.vtu.{dead}.0.tmp"),
+            format!(".out.{dead}.3.old"),
+            format!(".a.vtu.{own}.0.tmp"),
+            "a.vtu".to_string(),
+            ".hidden.tmp".to_string(),
+        ];
+        for name in &names {
+            fs::write(dir.join(name), b"x").unwrap();
+        }
+        fs::create_dir(dir.join(format!(".run.{dead}.1.tmp"))).unwrap();
+        fs::write(dir.join(format!(".run.{dead}.1.tmp/a.vtu")), b"x").unwrap();
+        assert_eq!(remove_stale_temporaries(&dir).unwrap(), 3);
+        let mut left: Vec<String> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            [
+                ".a.vtu.".to_string() + &format!("{own}.0.tmp"),
+                ".hidden.tmp".into(),
+                "a.vtu".into()
+            ]
+        );
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn temporary_names_are_recognised() {
+        assert_eq!(temporary_owner(".a.vtu.12.3.tmp"), Some(12));
+        assert_eq!(temporary_owner(".out.7.0.old"), Some(7));
+        assert_eq!(temporary_owner("a.vtu.12.3.tmp"), None);
+        assert_eq!(temporary_owner(".a.x.3.tmp"), None);
+        assert_eq!(temporary_owner(".12.3.tmp"), None);
     }
 
     #[test]

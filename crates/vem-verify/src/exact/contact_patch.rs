@@ -1,4 +1,4 @@
-//! The two-body contact patch tests PTC1, PTC1h, PTC2, PTC3 (`manufactured.md`, section 6):
+//! The two-body contact patch tests PTC1, PTC1h, PTC2, PTC3 (`docs/manufactured.md`, section 6):
 //! linear fields, zero body force and constant stress, in full contact, which a node-to-node
 //! VEM contact discretisation reproduces exactly on matching and non-matching meshes.
 

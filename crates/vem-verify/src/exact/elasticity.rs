@@ -1,4 +1,4 @@
-//! One-body elasticity solutions on the unit square (`manufactured.md`, section 6): E1
+//! One-body elasticity solutions on the unit square (`docs/manufactured.md`, section 6): E1
 //! (trigonometric), E2 (divergence free, for the locking study) and the linear patch tests
 //! PT0a, PT0b.
 

@@ -1,4 +1,4 @@
-//! Family A: two-body solutions built from interface data (`manufactured.md`, sections 2, 4
+//! Family A: two-body solutions built from interface data (`docs/manufactured.md`, sections 2, 4
 //! and 5): the cases M1 (frictionless, contact/separation), M2 (Tresca, stick/slip), M3 (full
 //! contact) and M4 (no contact), and [`InterfaceData`], the same construction from data of
 //! your own.
@@ -85,7 +85,7 @@ enum Case {
     M4,
 }
 
-/// The interface data of one body of a Family A solution at one abscissa (`manufactured.md`,
+/// The interface data of one body of a Family A solution at one abscissa (`docs/manufactured.md`,
 /// section 2): tangential trace `alpha = u_x(x, 0)`, vertical trace `phi = u_y(x, 0)`, shear
 /// `t = sigma_xy(x, 0)`, pressure `p = -sigma_yy(x, 0)`, each with the derivatives the
 /// construction needs (build them with [`Jet::polynomial`], [`SwitchPower::jet`], sums and
@@ -116,7 +116,7 @@ struct Derived {
     kappa: f64,
 }
 
-/// A Family A two-body solution (`manufactured.md`, section 2): body one on `(0,1) x (0,1)`,
+/// A Family A two-body solution (`docs/manufactured.md`, section 2): body one on `(0,1) x (0,1)`,
 /// body two on `(0,1) x (-1,0)`, clamped at `y = 1` and `y = -1`, tractions on the lateral
 /// sides, contact on `Gamma_C = (0,1) x {0}`.
 ///
@@ -356,7 +356,7 @@ impl ExactContact for FamilyA {
         Jet::<1>::polynomial(&H0, x).value()
     }
 
-    /// The margins of `manufactured.md`, section 8 (they held in the prototype for n = 32, 64
+    /// The margins of `docs/manufactured.md`, section 8 (they held in the prototype for n = 32, 64
     /// on uniform and perturbed meshes).
     fn expected_sets(&self) -> Option<ExpectedSets> {
         Some(match self.case {
@@ -406,7 +406,7 @@ impl ExactContact for FamilyA {
 /// The interface data of a Family A solution: the [`Traces`] of `body` at abscissa `x`.
 pub type TraceData = dyn Fn(BodyId, f64) -> Traces + Send + Sync;
 
-/// A Family A two-body solution built from interface data of your own (`manufactured.md`,
+/// A Family A two-body solution built from interface data of your own (`docs/manufactured.md`,
 /// section 2): the same domains, boundary sides and construction as [`FamilyA`] (body one on
 /// `(0,1) x (0,1)`, body two on `(0,1) x (-1,0)`, clamped at `y = 1` and `y = -1`, tractions on
 /// the lateral sides), with the traces, law and initial gap you give.

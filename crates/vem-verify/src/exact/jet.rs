@@ -1,5 +1,5 @@
 //! One-dimensional jets: a function value together with its first derivatives at a point
-//! (`manufactured.md`, section 4).
+//! (`docs/manufactured.md`, section 4).
 //!
 //! Every two-body solution of Family A is linear in four functions of x (tangential and
 //! vertical traces, shear traction, contact pressure), so adding, scaling and differentiating
@@ -162,7 +162,7 @@ fn falling_factorial(m: usize, j: usize) -> f64 {
 }
 
 /// On which side of its switch point a [`SwitchPower`] is non-zero (the sign `d` of
-/// `manufactured.md`, section 4).
+/// `docs/manufactured.md`, section 4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SwitchSide {
     /// `d = -1`: non-zero for `x < X`.
@@ -181,7 +181,7 @@ impl SwitchSide {
     }
 }
 
-/// The switch function `PP(c, d, X, L, k)(x) = c ((d (x - X))_+ / L)^k` of `manufactured.md`,
+/// The switch function `PP(c, d, X, L, k)(x) = c ((d (x - X))_+ / L)^k` of `docs/manufactured.md`,
 /// section 4: zero on one side of the switch point `X`, a power of the distance to `X` on the
 /// other, `C^(k-1)` across `X`.
 #[derive(Debug, Clone, Copy, PartialEq)]

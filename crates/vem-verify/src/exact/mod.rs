@@ -1,11 +1,11 @@
 //! Exact (manufactured) solutions of the one- and two-body problems of the specification
-//! `manufactured.md` (section numbers below refer to it).
+//! `docs/manufactured.md` (section numbers below refer to it).
 //!
 //! The trait [`ExactSolution`] describes a linear-elasticity solution on one rectangle or on
 //! two stacked rectangles: material, domains, displacement, gradient, stress, body force and
 //! the Dirichlet and Neumann sides with their data. A two-body contact solution also
 //! implements [`ExactContact`]: law (any [`vem_contact::ContactLaw`]), initial gap, interface values in the sign conventions
-//! of `contact-vem.md`, expected active and stick/slip sets, resultants.
+//! of `docs/formulation.md`, expected active and stick/slip sets, resultants.
 //!
 //! Built-in cases (constructors take the [`Lame`] parameters; [`Lame::default`] is the
 //! reference material `lambda = 2`, `mu = 1`):

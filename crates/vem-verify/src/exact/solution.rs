@@ -8,7 +8,7 @@ use vem_mesh::{Point, Vector};
 use super::ExactError;
 
 /// One of the (at most two) bodies of a problem. Body one is the upper body `Omega_1`, body
-/// two the lower body `Omega_2` (`manufactured.md`, section 1).
+/// two the lower body `Omega_2` (`docs/manufactured.md`, section 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum BodyId {
     /// The first (upper) body.
@@ -108,7 +108,7 @@ impl Side {
 }
 
 /// The sides that form the contact interface `Gamma_C`: the bottom side of body one, which
-/// coincides with the top side of body two (`manufactured.md`, section 1; outward normals
+/// coincides with the top side of body two (`docs/manufactured.md`, section 1; outward normals
 /// `nu_1 = (0, -1)`, `nu_2 = (0, 1)`).
 pub const CONTACT_SIDES: [(BodyId, Side); 2] =
     [(BodyId::One, Side::Bottom), (BodyId::Two, Side::Top)];
@@ -122,7 +122,7 @@ pub struct Lame {
 }
 
 impl Lame {
-    /// The reference material of `manufactured.md`, section 10: `lambda = 2`, `mu = 1`
+    /// The reference material of `docs/manufactured.md`, section 10: `lambda = 2`, `mu = 1`
     /// (`lambda != mu`, so that a swapped-constant bug shows).
     pub const REFERENCE: Lame = Lame {
         lambda: 2.0,
@@ -175,7 +175,7 @@ impl Default for Lame {
     }
 }
 
-/// Exact values on `Gamma_C` at one abscissa, in the conventions of `manufactured.md`,
+/// Exact values on `Gamma_C` at one abscissa, in the conventions of `docs/manufactured.md`,
 /// section 1 (scalar tangential components on `tau = e_x`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InterfaceValues {
@@ -389,7 +389,7 @@ pub trait ExactContact: ExactSolution {
     fn initial_gap(&self, x: f64) -> f64;
 
     /// Stresses, jumps and gap at `(x, y_C)` on `Gamma_C`, by default from the fields of the
-    /// two bodies with `nu_1 = (0, -1)` and `tau = e_x` (`manufactured.md`, section 1).
+    /// two bodies with `nu_1 = (0, -1)` and `tau = e_x` (`docs/manufactured.md`, section 1).
     fn interface_values(&self, x: f64) -> InterfaceValues {
         let point = Point::new(x, self.domain(BodyId::One).min.y);
         let nu_1 = Side::Bottom.outward_normal();
