@@ -311,14 +311,16 @@ pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> CliError {
                 .map(|d| d.span())
         }),
         ElasticError::RigidPlateConflict { body: b, plate, .. }
-        | ElasticError::NonFiniteResultant { body: b, part: plate, .. } => {
-            body(b).and_then(|spec| {
-                spec.rigid_plate
-                    .iter()
-                    .find(|r| r.get_ref().part.get_ref() == plate)
-                    .map(|r| r.span())
-            })
-        }
+        | ElasticError::NonFiniteResultant {
+            body: b,
+            part: plate,
+            ..
+        } => body(b).and_then(|spec| {
+            spec.rigid_plate
+                .iter()
+                .find(|r| r.get_ref().part.get_ref() == plate)
+                .map(|r| r.span())
+        }),
         ElasticError::Element {
             body: b,
             source: SpaceError::NonFiniteLoad { .. },

@@ -373,7 +373,11 @@ fn hertz_under_force_control_carries_the_prescribed_load() {
     let (outcome, dir) = run("hertz_force");
     let load = 0.5;
     let summary = outcome.summary.contact.as_ref().unwrap();
-    assert!((summary.resultants.load - load).abs() < 1e-9 * load, "{}", summary.resultants.load);
+    assert!(
+        (summary.resultants.load - load).abs() < 1e-9 * load,
+        "{}",
+        summary.resultants.load
+    );
     let disc = body(&outcome, "disc");
     let plate = disc.solution.reaction("top").unwrap();
     assert!((plate.y + load).abs() < 1e-12 * load, "{plate}");

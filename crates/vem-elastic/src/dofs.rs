@@ -86,12 +86,12 @@ impl DofMap {
         let mut plates = Vec::new();
         for (c, condition) in dirichlet.iter().enumerate() {
             if let Some(resultant) = condition.resultant() {
-                let vertices = mesh.part_vertices(condition.part()).map_err(|source| {
-                    ElasticError::Mesh {
-                        body: body.to_string(),
-                        source,
-                    }
-                })?;
+                let vertices =
+                    mesh.part_vertices(condition.part())
+                        .map_err(|source| ElasticError::Mesh {
+                            body: body.to_string(),
+                            source,
+                        })?;
                 for &k in condition.component().indices() {
                     if !resultant[k].is_finite() {
                         return Err(ElasticError::NonFiniteResultant {

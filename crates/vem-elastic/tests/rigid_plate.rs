@@ -64,7 +64,11 @@ fn a_plate_pushed_with_a_force_compresses_the_block_uniformly() {
         let exact = -p * (1.0 - NU * NU) / E * height;
         for v in mesh.part_vertices("top").unwrap() {
             let u = solution.vertex_displacement(v);
-            assert!((u.y - exact).abs() < 1e-12, "top vertex {v}: {} vs {exact}", u.y);
+            assert!(
+                (u.y - exact).abs() < 1e-12,
+                "top vertex {v}: {} vs {exact}",
+                u.y
+            );
         }
         for v in 0..mesh.n_vertices() {
             let y = mesh.vertex(v).y;
@@ -72,7 +76,10 @@ fn a_plate_pushed_with_a_force_compresses_the_block_uniformly() {
             assert!((u.y - exact * y / height).abs() < 1e-12, "vertex {v}");
         }
         let reaction = solution.reaction("top").unwrap();
-        assert!((reaction - force).norm() < 1e-12 * force.norm(), "{reaction}");
+        assert!(
+            (reaction - force).norm() < 1e-12 * force.norm(),
+            "{reaction}"
+        );
         // Equilibrium: the supports carry the plate's force.
         let bottom = solution.reaction("bottom").unwrap();
         assert!((bottom + force).norm() < 1e-11 * force.norm(), "{bottom}");
@@ -118,9 +125,11 @@ fn force_control_equals_displacement_control_at_the_translation_found() {
         );
         let scale = w.norm();
         for v in 0..mesh.n_vertices() {
-            let difference =
-                solution.vertex_displacement(v) - reference.vertex_displacement(v);
-            assert!(difference.norm() < 1e-10 * scale, "vertex {v}: {difference}");
+            let difference = solution.vertex_displacement(v) - reference.vertex_displacement(v);
+            assert!(
+                difference.norm() < 1e-10 * scale,
+                "vertex {v}: {difference}"
+            );
         }
         // The energy balance of the plate: 1/2 u^T K u = 1/2 P . w.
         let work = 0.5 * force.dot(&w);
@@ -153,7 +162,10 @@ fn a_plate_on_a_prescribed_component_is_a_conflict() {
         )],
     )
     .unwrap_err();
-    assert!(matches!(err, ElasticError::NonFiniteResultant { .. }), "{err:?}");
+    assert!(
+        matches!(err, ElasticError::NonFiniteResultant { .. }),
+        "{err:?}"
+    );
 }
 
 #[test]

@@ -895,6 +895,9 @@ fn landing_next_to(chain: &Chain, hit: Option<Hit>, k: usize, snap: f64) -> Opti
     })
 }
 
+/// A vertex and its new position.
+type VertexMove = (usize, Point);
+
 /// The vertex moves that make every snapped pair of existing nodes coincide (see the module
 /// documentation, "Snapping"): (vertex, new position) for mesh a and for mesh b.
 fn aligning_moves(
@@ -904,7 +907,7 @@ fn aligning_moves(
     hits_a: &[Option<Hit>],
     hits_b: &[Option<Hit>],
     snap: f64,
-) -> (Vec<(usize, Point)>, Vec<(usize, Point)>) {
+) -> (Vec<VertexMove>, Vec<VertexMove>) {
     let (mut moves_a, mut moves_b) = (Vec::new(), Vec::new());
     for st in stations {
         let (Place::Node(i), Place::Node(j)) = (st.a, st.b) else {
@@ -935,7 +938,7 @@ fn insert_points(
     mesh: &Mesh,
     chain: &Chain,
     places: impl Iterator<Item = Place>,
-    moves: &[(usize, Point)],
+    moves: &[VertexMove],
 ) -> Result<(Mesh, Vec<usize>, usize), MeshError> {
     let mut vertices = mesh.vertices().to_vec();
     for &(v, point) in moves {

@@ -145,7 +145,11 @@ pub fn run(pairing: &Pairing, options: InterfaceOptions) -> Result<Outcome, Stri
         let mesh = solved.body.mesh();
         for v in 0..mesh.n_vertices() {
             let x = mesh.vertex(v);
-            let exact = if k == 0 { upper_field(x) } else { lower_field(x) };
+            let exact = if k == 0 {
+                upper_field(x)
+            } else {
+                lower_field(x)
+            };
             error = error.max((solved.solution.vertex_displacement(v) - exact).norm() / 0.05);
         }
     }
