@@ -313,6 +313,17 @@ pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> CliError {
                 .find(|d| d.get_ref().part.get_ref() == part)
                 .map(|d| d.span())
         }),
+        ElasticError::RigidPlateConflict { body: b, plate, .. }
+        | ElasticError::NonFiniteResultant {
+            body: b,
+            part: plate,
+            ..
+        } => body(b).and_then(|spec| {
+            spec.rigid_plate
+                .iter()
+                .find(|r| r.get_ref().part.get_ref() == plate)
+                .map(|r| r.span())
+        }),
         ElasticError::Element {
             body: b,
             source: SpaceError::NonFiniteLoad { .. },
@@ -560,6 +571,21 @@ fn build_body(
         } else {
             Dirichlet::prescribed(part, component, move |_| value)
         });
+    }
+    for r in &spec.rigid_plate {
+        let r = r.get_ref();
+        check_part(scene, &mesh, &name, &r.part)?;
+        let component = match (r.resultant_x, r.resultant_y) {
+            (Some(_), Some(_)) => Component::Both,
+            (Some(_), None) => Component::X,
+            _ => Component::Y,
+        };
+        let resultant = Vector::new(r.resultant_x.unwrap_or(0.0), r.resultant_y.unwrap_or(0.0));
+        builder = builder.dirichlet(Dirichlet::rigid_plate(
+            r.part.get_ref().clone(),
+            component,
+            resultant,
+        ));
     }
     for t in &spec.traction {
         let t = t.get_ref();
@@ -835,6 +861,19 @@ fn describe_conditions(scene: &Scene, name: &str) -> Vec<String> {
         lines.push(format!(
             "dirichlet on '{}': {}",
             d.part.get_ref(),
+            parts.join(", ")
+        ));
+    }
+    for r in &spec.rigid_plate {
+        let r = r.get_ref();
+        let fmt = |c: &str, v: Option<f64>| v.map(|v| format!("R_{c} = {v}"));
+        let parts: Vec<String> = [fmt("x", r.resultant_x), fmt("y", r.resultant_y)]
+            .into_iter()
+            .flatten()
+            .collect();
+        lines.push(format!(
+            "rigid plate on '{}': {}",
+            r.part.get_ref(),
             parts.join(", ")
         ));
     }

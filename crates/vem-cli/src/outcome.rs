@@ -229,7 +229,9 @@ impl Model {
                         .solution
                         .reactions()
                         .iter()
-                        .map(|r| ReactionSummary {
+                        .zip(solved.body.dirichlet())
+                        .map(|(r, condition)| ReactionSummary {
+                            rigid_plate: condition.is_rigid_plate(),
                             part: r.part.clone(),
                             components: match r.component {
                                 Component::X => "x",
@@ -286,6 +288,7 @@ impl Model {
                         solver_iterations: fp.solver_iterations,
                     }),
                     resultants: Resultants {
+                        load: tidy(force.y),
                         normal: tidy(result.normal_resultant()),
                         tangential: tidy(result.tangential_resultant()),
                         force_on_body_a: [tidy(force.x), tidy(force.y)],
@@ -410,6 +413,8 @@ pub struct ReactionSummary {
     pub part: String,
     /// The prescribed components ("x", "y", "x, y").
     pub components: &'static str,
+    /// True for a rigid plate (force control): `force` is then the prescribed resultant.
+    pub rigid_plate: bool,
     /// The force the support exerts on the body.
     pub force: [f64; 2],
 }
@@ -542,7 +547,13 @@ pub struct FixedPointSummary {
 /// Resultant contact forces.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Resultants {
-    /// Sum of the nodal normal forces (compression positive).
+    /// The load `P`: the global y component of the total contact force on body A, that is
+    /// minus the contact force on body B (or on the obstacle) along y; positive when body A is
+    /// pushed up, as a body pressed down onto the counterpart is. With a rigid plate prescribing
+    /// body A's vertical resultant `R_y`, `P = -R_y` at equilibrium (no other load on A).
+    pub load: f64,
+    /// Sum of the nodal normal forces (compression positive) along the contact normals: not
+    /// the load where the normals tilt (curved contact).
     pub normal: f64,
     /// Sum of the nodal friction forces on body A along the tangent.
     pub tangential: f64,
@@ -705,9 +716,14 @@ impl fmt::Display for RunSummary {
                 b.material, b.max_displacement, b.max_von_mises, b.strain_energy
             )?;
             for r in &b.reactions {
+                let what = if r.rigid_plate {
+                    "rigid plate"
+                } else {
+                    "reaction"
+                };
                 writeln!(
                     f,
-                    "    reaction on '{}' ({}): ({:.6e}, {:.6e})",
+                    "    {what} on '{}' ({}): ({:.6e}, {:.6e})",
                     r.part, r.components, r.force[0], r.force[1]
                 )?;
             }
@@ -770,10 +786,9 @@ impl fmt::Display for RunSummary {
                 }
                 writeln!(
                     f,
-                    "    resultants: normal {:.6e}, tangential {:.6e}; force on body A ({:.6e}, \
-                     {:.6e})",
-                    c.resultants.normal,
-                    c.resultants.tangential,
+                    "    load P = {:.6e} (contact force on body A along y); contact force on \
+                     body A ({:.6e}, {:.6e})",
+                    c.resultants.load,
                     c.resultants.force_on_body_a[0],
                     c.resultants.force_on_body_a[1]
                 )?;

@@ -69,6 +69,9 @@ pub struct BodySpec {
     /// Prescribed displacements by part (`[[body.dirichlet]]`).
     #[serde(default)]
     pub dirichlet: Vec<Spanned<DirichletSpec>>,
+    /// Rigid plates with prescribed resultants by part (`[[body.rigid_plate]]`): force control.
+    #[serde(default)]
+    pub rigid_plate: Vec<Spanned<RigidPlateSpec>>,
     /// Tractions by part (`[[body.traction]]`).
     #[serde(default)]
     pub traction: Vec<Spanned<TractionSpec>>,
@@ -175,6 +178,21 @@ pub struct DirichletSpec {
     /// `u_y` on the part (absent: free).
     #[serde(default)]
     pub y: Option<f64>,
+}
+
+/// `[[body.rigid_plate]]`: the part moves as one rigid plate in the given components, pushed
+/// with the given resultant (force control); the translation is computed.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigidPlateSpec {
+    /// The boundary part.
+    pub part: Spanned<String>,
+    /// The resultant force along x the plate applies to the body (absent: x not tied).
+    #[serde(default)]
+    pub resultant_x: Option<f64>,
+    /// The resultant force along y the plate applies to the body (absent: y not tied).
+    #[serde(default)]
+    pub resultant_y: Option<f64>,
 }
 
 /// `[[body.traction]]`: a constant traction vector or a normal pressure on a part.
@@ -772,6 +790,19 @@ impl Scene {
                     format!(
                         "body '{name}': the Dirichlet condition on part '{}' prescribes nothing: \
                          give `x`, `y` or both",
+                        spec.part.get_ref()
+                    ),
+                ));
+            }
+        }
+        for r in &body.rigid_plate {
+            let spec = r.get_ref();
+            if spec.resultant_x.is_none() && spec.resultant_y.is_none() {
+                return Err(self.error(
+                    Some(r.span()),
+                    format!(
+                        "body '{name}': the rigid plate on part '{}' prescribes nothing: give \
+                         `resultant_x`, `resultant_y` or both",
                         spec.part.get_ref()
                     ),
                 ));

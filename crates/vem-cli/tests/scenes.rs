@@ -362,3 +362,39 @@ fn element_key_selects_a_registered_element() {
         "{error}"
     );
 }
+
+/// The Hertz scene under force control: the disc's top is a rigid plate pushed down with
+/// 0.5. The load P of the summary (the contact force on the disc along y) is the prescribed
+/// resultant, which is the plate's reaction and the block's support reaction; the half-width
+/// follows Hertz's formula for that load as in the displacement-controlled scene; the plate's
+/// descent is the same at every vertex of the top.
+#[test]
+fn hertz_under_force_control_carries_the_prescribed_load() {
+    let (outcome, dir) = run("hertz_force");
+    let load = 0.5;
+    let summary = outcome.summary.contact.as_ref().unwrap();
+    assert!(
+        (summary.resultants.load - load).abs() < 1e-9 * load,
+        "{}",
+        summary.resultants.load
+    );
+    let disc = body(&outcome, "disc");
+    let plate = disc.solution.reaction("top").unwrap();
+    assert!((plate.y + load).abs() < 1e-12 * load, "{plate}");
+    let support = body(&outcome, "block").solution.reaction("bottom").unwrap();
+    assert!((support.y - load).abs() < 1e-9 * load, "{support}");
+    let mesh = disc.body.mesh();
+    let top = mesh.part_vertices("top").unwrap();
+    let w = disc.solution.vertex_displacement(top[0]).y;
+    assert!(w < 0.0);
+    for &v in &top {
+        assert_eq!(disc.solution.vertex_displacement(v).y, w);
+    }
+    let hertz = summary.hertz.unwrap();
+    assert!((hertz.load - load).abs() < 1e-6 * load);
+    assert!((hertz.computed_half_width / hertz.half_width - 1.0).abs() < 0.06);
+    let json = summary_json(&dir);
+    assert!((json["contact"]["resultants"]["load"].as_f64().unwrap() - load).abs() < 1e-9 * load);
+    let reactions = json["bodies"][0]["reactions"].as_array().unwrap();
+    assert!(reactions.iter().any(|r| r["rigid_plate"] == true));
+}

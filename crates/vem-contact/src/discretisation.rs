@@ -144,7 +144,7 @@ impl ContactDiscretisation {
         let mut total = 0;
         for system in &systems {
             offsets.push(total);
-            total += system.dofs().n_free();
+            total += system.dofs().n_unknowns();
         }
         offsets.push(total);
         let load = concatenated_load(&systems);
@@ -437,13 +437,14 @@ impl ContactDiscretisation {
                 let dofs = self.systems[body].dofs();
                 for component in 0..2 {
                     let coefficient = sign * d[component];
-                    match dofs.status(2 * vertex + component) {
-                        DofStatus::Free(i) => {
-                            triplets.push((row, self.offsets[body] + i, coefficient))
-                        }
-                        DofStatus::Prescribed(k) => {
+                    let global = 2 * vertex + component;
+                    match (dofs.unknown_index(global), dofs.status(global)) {
+                        // A free value or a rigid plate's translation.
+                        (Some(i), _) => triplets.push((row, self.offsets[body] + i, coefficient)),
+                        (None, DofStatus::Prescribed(k)) => {
                             prescribed_jump[row] += coefficient * dofs.prescribed_values()[k]
                         }
+                        (None, DofStatus::Free(_)) => {}
                     }
                 }
             }

@@ -13,6 +13,20 @@
 //! `K_ff` (the reduced stiffness), `K_fp` (the lifting of the Dirichlet data) and `K_pp`.
 //! `K_pf = K_fp^T` is not stored.
 //!
+//! Rigid plates (force control): the degrees of freedom a plate ties are prescribed ones for
+//! the assembly, with value zero; each plate component `k` adds an unknown `w_k` with
+//! `u_p = E w` on its tied degrees of freedom (`E` has a 1 per tied degree of freedom). The
+//! system solved is the bordered one
+//!
+//! ```text
+//! [ K_ff      K_fp E    ] [u_f]   [ f_f - K_fp u_p0             ]
+//! [ E^T K_pf  E^T K_pp E] [ w ] = [ E^T (f_p - K_pp u_p0) + P   ]
+//! ```
+//!
+//! (`u_p0` the ordinary prescribed values, `P` the prescribed resultants), i.e. `T^T K T` for
+//! the change of unknowns `u = T v`: symmetric, positive semi-definite like `K`. Its pattern
+//! is built once with the blocks; its values are refilled after each assembly.
+//!
 //! Element matrices are computed in parallel, a chunk of polygons at a time (bounded memory),
 //! and scattered in parallel by disjoint blocks of columns, each entry found by binary search
 //! in its column. Polygons are visited along a Morton curve of their vertex means, which keeps
@@ -48,6 +62,8 @@ pub struct AssembledSystem {
     prescribed_block: SparseColMat<usize, f64>,
     load: Vec<f64>,
     rhs: Vec<f64>,
+    /// The bordered stiffness (free and plate unknowns) when the body has rigid plates.
+    bordered: Option<SparseColMat<usize, f64>>,
     /// The order in which polygons are assembled: along a Morton (Z-order) curve of their
     /// vertex means, so that consecutive elements share vertices and the scatter stays in cache
     /// whatever the mesh's numbering.
@@ -67,6 +83,7 @@ impl AssembledSystem {
         // The adjacency is dropped before the values are allocated: it never lives beside a
         // whole copy of `K`.
         let (ff, fp, pp) = block_patterns(&vertex_adjacency(mesh), &dofs);
+        let bordered = (dofs.n_plates() > 0).then(|| bordered_pattern(&ff, &fp, &dofs));
         let zeros = |p: SymbolicSparseColMat<usize>| {
             let nnz = p.row_idx().len();
             SparseColMat::new(p, vec![0.0; nnz])
@@ -76,7 +93,8 @@ impl AssembledSystem {
             n_vertices: mesh.n_vertices(),
             n_polygons: mesh.n_polygons(),
             load: vec![0.0; dofs.n_dofs()],
-            rhs: vec![0.0; dofs.n_free()],
+            rhs: vec![0.0; dofs.n_unknowns()],
+            bordered: bordered.map(zeros),
             element_order: morton_order(mesh),
             dofs,
             stiffness: zeros(ff),
@@ -141,13 +159,39 @@ impl AssembledSystem {
         }
     }
 
-    /// Forms the reduced right-hand side `f_f - K_fp u_p` from the load and the Dirichlet data.
+    /// Forms the reduced right-hand side `f_f - K_fp u_p` from the load and the Dirichlet data
+    /// and, with rigid plates, the bordered stiffness and the plate rows of the right-hand side.
     pub(crate) fn finish_rhs(&mut self) {
+        let n_free = self.dofs.n_free();
         for (i, &g) in self.dofs.free_dofs().iter().enumerate() {
             self.rhs[i] = self.load[g];
         }
         let u_p = self.dofs.prescribed_values();
-        matvec_add(&self.coupling, u_p, -1.0, &mut self.rhs);
+        matvec_add(&self.coupling, u_p, -1.0, &mut self.rhs[..n_free]);
+        if self.dofs.n_plates() == 0 {
+            return;
+        }
+        // Plate rows: E^T (f_p - K_pp u_p0) + P.
+        let mut k_pp_u = vec![0.0; self.dofs.n_prescribed()];
+        matvec_add(&self.prescribed_block, u_p, 1.0, &mut k_pp_u);
+        let prescribed = self.dofs.prescribed_dofs();
+        for (k, plate) in self.dofs.plates().iter().enumerate() {
+            self.rhs[n_free + k] = plate.resultant
+                + plate
+                    .members
+                    .iter()
+                    .map(|&p| self.load[prescribed[p]] - k_pp_u[p])
+                    .sum::<f64>();
+        }
+        if let Some(bordered) = self.bordered.as_mut() {
+            fill_bordered(
+                bordered,
+                &self.stiffness,
+                &self.coupling,
+                &self.prescribed_block,
+                &self.dofs,
+            );
+        }
     }
 
     /// The name of the body this system belongs to.
@@ -160,9 +204,11 @@ impl AssembledSystem {
         &self.dofs
     }
 
-    /// The reduced stiffness `K_ff` (free x free, symmetric, full storage).
+    /// The matrix of the unknowns (symmetric, full storage): the reduced stiffness `K_ff`
+    /// (free x free) or, with rigid plates, the bordered matrix over the free degrees of
+    /// freedom and the plate translations (see the module documentation).
     pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
-        &self.stiffness
+        self.bordered.as_ref().unwrap_or(&self.stiffness)
     }
 
     /// The coupling block `K_fp` (free rows x prescribed columns) that lifts the Dirichlet data.
@@ -180,42 +226,65 @@ impl AssembledSystem {
         &self.load
     }
 
-    /// The reduced right-hand side `f_f - K_fp u_p`.
+    /// The reduced right-hand side `f_f - K_fp u_p` (followed, with rigid plates, by the plate
+    /// rows `E^T (f_p - K_pp u_p) + P`).
     pub fn rhs(&self) -> &[f64] {
         &self.rhs
     }
 
-    /// The full displacement vector (global numbering) from the free values `u_free`.
+    /// The full displacement vector (global numbering) from the unknowns `u_free` (the free
+    /// values, then the rigid-plate translations: [`DofMap::n_unknowns`] values).
     pub fn expand(&self, u_free: &[f64]) -> Result<Vec<f64>, ElasticError> {
         self.expand_scaled(u_free, 1.0)
     }
 
-    /// The full displacement vector from the free values `u_free` with the prescribed values
-    /// scaled by `load_factor` (a load step: Dirichlet data scaled with the loads).
+    /// The full displacement vector from the unknowns `u_free` with the prescribed values
+    /// scaled by `load_factor` (a load step: Dirichlet data scaled with the loads; the plate
+    /// translations are unknowns and are not scaled).
     pub fn expand_scaled(
         &self,
         u_free: &[f64],
         load_factor: f64,
     ) -> Result<Vec<f64>, ElasticError> {
-        self.check_length("u_free", u_free, self.dofs.n_free())?;
+        self.check_length("u_free", u_free, self.dofs.n_unknowns())?;
         let mut full = self.dofs.expand_unchecked(u_free);
         if load_factor != 1.0 {
-            for &g in self.dofs.prescribed_dofs() {
-                full[g] *= load_factor;
+            let plate_of = self.dofs.plate_of_prescribed();
+            for (&g, plate) in self.dofs.prescribed_dofs().iter().zip(plate_of) {
+                if plate.is_none() {
+                    full[g] *= load_factor;
+                }
             }
         }
         Ok(full)
     }
 
-    /// The free values of a full displacement vector.
+    /// The unknowns of a full displacement vector: the free values, then the rigid-plate
+    /// translations (read at the first degree of freedom each plate ties).
     pub fn restrict(&self, displacement: &[f64]) -> Result<Vec<f64>, ElasticError> {
         self.check_length("displacement", displacement, self.dofs.n_dofs())?;
+        let prescribed = self.dofs.prescribed_dofs();
         Ok(self
             .dofs
             .free_dofs()
             .iter()
             .map(|&g| displacement[g])
+            .chain(self.dofs.plates().iter().map(|plate| {
+                plate
+                    .members
+                    .first()
+                    .map_or(0.0, |&p| displacement[prescribed[p]])
+            }))
             .collect())
+    }
+
+    /// The free values of a full displacement vector (without the plate translations).
+    fn free_values(&self, displacement: &[f64]) -> Vec<f64> {
+        self.dofs
+            .free_dofs()
+            .iter()
+            .map(|&g| displacement[g])
+            .collect()
     }
 
     /// The reaction forces `r_p = K_pf u_f + K_pp u_p - f_p` at the prescribed degrees of
@@ -233,7 +302,7 @@ impl AssembledSystem {
         load_factor: f64,
     ) -> Result<Vec<f64>, ElasticError> {
         self.check_length("displacement", displacement, self.dofs.n_dofs())?;
-        let u_f = self.restrict(displacement)?;
+        let u_f = self.free_values(displacement);
         let u_p: Vec<f64> = self
             .dofs
             .prescribed_dofs()
@@ -254,7 +323,7 @@ impl AssembledSystem {
     /// The discrete strain energy `1/2 u^T K u = 1/2 a_h(u, u)` of the full displacement.
     pub fn strain_energy(&self, displacement: &[f64]) -> Result<f64, ElasticError> {
         self.check_length("displacement", displacement, self.dofs.n_dofs())?;
-        let u_f = self.restrict(displacement)?;
+        let u_f = self.free_values(displacement);
         let u_p: Vec<f64> = self
             .dofs
             .prescribed_dofs()
@@ -427,6 +496,106 @@ fn block_patterns(
         fp.finish(n_f, n_p),
         pp.finish(n_p, n_p),
     )
+}
+
+/// The pattern of the bordered matrix `[K_ff, K_fp E; E^T K_pf, E^T K_pp E]`: column `j` of
+/// `K_ff` gains row `n_f + k` where a degree of freedom tied to plate `k` couples to `j`; plate
+/// column `n_f + k` holds those rows and a full plate x plate block.
+fn bordered_pattern(
+    ff: &SymbolicSparseColMat<usize>,
+    fp: &SymbolicSparseColMat<usize>,
+    dofs: &DofMap,
+) -> SymbolicSparseColMat<usize> {
+    let (n_f, m) = (dofs.n_free(), dofs.n_plates());
+    // The free rows coupled to each plate (sorted, distinct).
+    let coupled: Vec<Vec<usize>> = dofs
+        .plates()
+        .iter()
+        .map(|plate| {
+            let mut rows: Vec<usize> = plate
+                .members
+                .iter()
+                .flat_map(|&p| fp.row_idx()[fp.col_ptr()[p]..fp.col_ptr()[p + 1]].iter())
+                .copied()
+                .collect();
+            rows.sort_unstable();
+            rows.dedup();
+            rows
+        })
+        .collect();
+    // For each free column, the plates it couples to.
+    let mut plates_of_column: Vec<Vec<usize>> = vec![Vec::new(); n_f];
+    for (k, rows) in coupled.iter().enumerate() {
+        for &r in rows {
+            plates_of_column[r].push(n_f + k);
+        }
+    }
+    let mut builder = CscBuilder::new(n_f + m, ff.row_idx().len());
+    for (j, extra) in plates_of_column.iter().enumerate() {
+        builder
+            .row_idx
+            .extend_from_slice(&ff.row_idx()[ff.col_ptr()[j]..ff.col_ptr()[j + 1]]);
+        builder.row_idx.extend_from_slice(extra);
+        builder.close_column();
+    }
+    for rows in &coupled {
+        builder.row_idx.extend_from_slice(rows);
+        builder.row_idx.extend(n_f..n_f + m);
+        builder.close_column();
+    }
+    builder.finish(n_f + m, n_f + m)
+}
+
+/// Fills the values of the bordered matrix (pattern of [`bordered_pattern`]) from the blocks.
+fn fill_bordered(
+    bordered: &mut SparseColMat<usize, f64>,
+    ff: &SparseColMat<usize, f64>,
+    fp: &SparseColMat<usize, f64>,
+    pp: &SparseColMat<usize, f64>,
+    dofs: &DofMap,
+) {
+    let (n_f, m) = (dofs.n_free(), dofs.n_plates());
+    // c_k = K_fp E_k (dense over the free rows) and d = E^T K_pp E.
+    let mut c = vec![vec![0.0; n_f]; m];
+    let mut d = vec![vec![0.0; m]; m];
+    let plate_of = dofs.plate_of_prescribed();
+    let (fp_pattern, fp_values) = fp.parts();
+    let (pp_pattern, pp_values) = pp.parts();
+    for (k, plate) in dofs.plates().iter().enumerate() {
+        for &p in &plate.members {
+            for q in fp_pattern.col_ptr()[p]..fp_pattern.col_ptr()[p + 1] {
+                c[k][fp_pattern.row_idx()[q]] += fp_values[q];
+            }
+            for q in pp_pattern.col_ptr()[p]..pp_pattern.col_ptr()[p + 1] {
+                if let Some(l) = plate_of[pp_pattern.row_idx()[q]] {
+                    d[l][k] += pp_values[q];
+                }
+            }
+        }
+    }
+    let (ff_pattern, ff_values) = ff.parts();
+    let (pattern, values) = bordered.parts_mut();
+    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+    for j in 0..n_f + m {
+        let mut q = col_ptr[j];
+        if j < n_f {
+            let own = ff_pattern.col_ptr()[j]..ff_pattern.col_ptr()[j + 1];
+            let len = own.len();
+            values[q..q + len].copy_from_slice(&ff_values[own]);
+            q += len;
+        }
+        for position in q..col_ptr[j + 1] {
+            let row = row_idx[position];
+            // After K_ff's own entries a free column holds only plate rows.
+            values[position] = if j < n_f {
+                c[row - n_f][j]
+            } else if row < n_f {
+                c[j - n_f][row]
+            } else {
+                d[row - n_f][j - n_f]
+            };
+        }
+    }
 }
 
 /// Compressed-column storage built column by column.

@@ -353,7 +353,7 @@ impl ElasticBody {
         system: &AssembledSystem,
         solver: &mut dyn LinearSolver,
     ) -> Result<Solution, ElasticError> {
-        let u_free = if system.dofs().n_free() == 0 {
+        let u_free = if system.dofs().n_unknowns() == 0 {
             Vec::new()
         } else {
             let map = |e| ElasticError::from_solver(&self.name, e);
@@ -370,17 +370,21 @@ impl ElasticBody {
         self.solution(system, displacement)
     }
 
-    /// True when the Dirichlet conditions fix the three rigid motions (the translations and
+    /// True when the Dirichlet conditions fix the three rigid motions (rigid plates do not
+    /// count: their translations are unknowns; the translations and
     /// the rotation about the centroid of the prescribed vertices): the prescribed components
     /// of the rigid motions, as columns, have rank 3 (their correlation matrix has a
     /// determinant above `1e-12`). A body that is not held has a singular stiffness whatever
     /// its mesh; a held body's stiffness is positive definite in exact arithmetic.
     pub fn holds_rigid_motions(&self) -> bool {
         let dofs = self.dofs();
+        // A rigid plate (force control) holds nothing: its translation is an unknown.
         let points: Vec<(Point, usize)> = dofs
             .prescribed_dofs()
             .iter()
-            .map(|&dof| (self.mesh.vertex(dof / 2), dof % 2))
+            .zip(dofs.plate_of_prescribed())
+            .filter(|(_, plate)| plate.is_none())
+            .map(|(&dof, _)| (self.mesh.vertex(dof / 2), dof % 2))
             .collect();
         if points.is_empty() {
             return false;

@@ -45,11 +45,32 @@ impl Component {
 /// assert_eq!(clamp.part(), "left");
 /// assert!(clamp.is_homogeneous() && !pull.is_homogeneous());
 /// ```
+///
+/// # Rigid plate (force control)
+///
+/// [`Dirichlet::rigid_plate`] ties the selected components of every vertex of the part to one
+/// unknown translation per component and prescribes the total force instead of the
+/// displacement: the part moves as a rigid plate pushed with a given resultant. With the
+/// change of unknowns `u = T v` (each tied component of the part's vertices equals the plate's
+/// translation `w_c`), the system becomes `T^T K T v = T^T f + P e_c`: symmetric and positive
+/// semi-definite like `K`, with one extra unknown per prescribed component. The reaction of
+/// the condition ([`crate::Solution::reaction`]) is the prescribed resultant, and the plate's
+/// translation is the displacement of any vertex of the part. Components the plate does not
+/// tie may be prescribed by an ordinary condition on the same part.
+///
+/// ```
+/// use vem_elastic::{Component, Dirichlet};
+/// use vem_mesh::Vector;
+/// let push = Dirichlet::rigid_plate("top", Component::Y, Vector::new(0.0, -10.0));
+/// assert_eq!(push.resultant(), Some(Vector::new(0.0, -10.0)));
+/// assert!(push.is_rigid_plate());
+/// ```
 #[derive(Clone)]
 pub struct Dirichlet {
     part: String,
     component: Component,
     values: Option<VectorField>,
+    resultant: Option<Vector>,
 }
 
 impl Dirichlet {
@@ -59,6 +80,20 @@ impl Dirichlet {
             part: part.into(),
             component,
             values: None,
+            resultant: None,
+        }
+    }
+
+    /// A rigid plate on `part`: the selected components of all the part's vertices move by one
+    /// common unknown translation, and the total force the plate applies to the body in those
+    /// components is `resultant` (only the selected components are used). See the section on
+    /// rigid plates above.
+    pub fn rigid_plate(part: impl Into<String>, component: Component, resultant: Vector) -> Self {
+        Self {
+            part: part.into(),
+            component,
+            values: None,
+            resultant: Some(resultant),
         }
     }
 
@@ -72,6 +107,7 @@ impl Dirichlet {
             part: part.into(),
             component,
             values: Some(Arc::new(values)),
+            resultant: None,
         }
     }
 
@@ -85,12 +121,24 @@ impl Dirichlet {
         self.component
     }
 
-    /// True when the prescribed values are zero.
+    /// True when the prescribed values are zero (false for a rigid plate, whose displacement
+    /// is an unknown).
     pub fn is_homogeneous(&self) -> bool {
-        self.values.is_none()
+        self.values.is_none() && self.resultant.is_none()
     }
 
-    /// The prescribed displacement at `x` (zero for a homogeneous condition).
+    /// True for a rigid plate ([`Dirichlet::rigid_plate`]).
+    pub fn is_rigid_plate(&self) -> bool {
+        self.resultant.is_some()
+    }
+
+    /// The prescribed resultant of a rigid plate (`None` for a prescribed displacement).
+    pub fn resultant(&self) -> Option<Vector> {
+        self.resultant
+    }
+
+    /// The prescribed displacement at `x` (zero for a homogeneous condition and for a rigid
+    /// plate, whose displacement is an unknown).
     pub fn value_at(&self, x: Point) -> Vector {
         self.values.as_ref().map_or_else(Vector::zeros, |g| g(x))
     }
@@ -102,6 +150,7 @@ impl fmt::Debug for Dirichlet {
             .field("part", &self.part)
             .field("component", &self.component)
             .field("homogeneous", &self.is_homogeneous())
+            .field("resultant", &self.resultant)
             .finish()
     }
 }

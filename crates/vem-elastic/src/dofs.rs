@@ -1,5 +1,6 @@
 //! Degrees of freedom: global numbering `dof = 2 * vertex + component` and the split into free
-//! and prescribed (Dirichlet) degrees of freedom used by elimination.
+//! and prescribed (Dirichlet) degrees of freedom used by elimination, plus the translations of
+//! rigid plates (force control) as extra unknowns.
 
 use vem_mesh::Mesh;
 
@@ -37,6 +38,15 @@ pub enum DofStatus {
 /// assert_eq!(dofs.status(2), DofStatus::Free(0));       // vertex 1 = (1/2, 0), x
 /// # Ok::<(), vem_mesh::MeshError>(())
 /// ```
+///
+/// # Rigid plates
+///
+/// The degrees of freedom tied by a rigid plate ([`Dirichlet::rigid_plate`]) are
+/// [`DofStatus::Prescribed`] for the assembly (their columns go to the blocks `K_fp`, `K_pp`),
+/// with value zero in [`DofMap::prescribed_values`]; each tied component of a plate is one
+/// extra unknown, numbered after the free degrees of freedom: the unknowns of the system are
+/// `n_free()` free values followed by `n_plates()` plate translations
+/// ([`DofMap::n_unknowns`], [`DofMap::unknown_index`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DofMap {
     status: Vec<DofStatus>,
@@ -44,6 +54,22 @@ pub struct DofMap {
     prescribed: Vec<usize>,
     prescribed_values: Vec<f64>,
     prescribed_owner: Vec<usize>,
+    /// For each prescribed degree of freedom, the plate unknown it is tied to.
+    plate_of: Vec<Option<usize>>,
+    plates: Vec<PlateUnknown>,
+}
+
+/// One unknown translation of a rigid plate: a component of a [`Dirichlet::rigid_plate`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlateUnknown {
+    /// The index of the condition (in the body's list of Dirichlet conditions).
+    pub condition: usize,
+    /// The component (0 = x, 1 = y).
+    pub component: usize,
+    /// The prescribed resultant in this component.
+    pub resultant: f64,
+    /// The tied degrees of freedom, in the prescribed numbering (sorted).
+    pub members: Vec<usize>,
 }
 
 impl DofMap {
@@ -55,7 +81,48 @@ impl DofMap {
         let n_dofs = 2 * mesh.n_vertices();
         // (owner condition, value) of every prescribed global dof.
         let mut prescribed_by: Vec<Option<(usize, f64)>> = vec![None; n_dofs];
+        // The plate unknown of every tied global dof.
+        let mut tied_to: Vec<Option<usize>> = vec![None; n_dofs];
+        let mut plates = Vec::new();
         for (c, condition) in dirichlet.iter().enumerate() {
+            if let Some(resultant) = condition.resultant() {
+                let vertices =
+                    mesh.part_vertices(condition.part())
+                        .map_err(|source| ElasticError::Mesh {
+                            body: body.to_string(),
+                            source,
+                        })?;
+                for &k in condition.component().indices() {
+                    if !resultant[k].is_finite() {
+                        return Err(ElasticError::NonFiniteResultant {
+                            body: body.to_string(),
+                            part: condition.part().to_string(),
+                            component: k,
+                            value: resultant[k],
+                        });
+                    }
+                    for &v in &vertices {
+                        if let Some((first, _)) = prescribed_by[dof(v, k)] {
+                            return Err(ElasticError::RigidPlateConflict {
+                                body: body.to_string(),
+                                plate: condition.part().to_string(),
+                                other: dirichlet[first].part().to_string(),
+                                vertex: v,
+                                component: k,
+                            });
+                        }
+                        prescribed_by[dof(v, k)] = Some((c, 0.0));
+                        tied_to[dof(v, k)] = Some(plates.len());
+                    }
+                    plates.push(PlateUnknown {
+                        condition: c,
+                        component: k,
+                        resultant: resultant[k],
+                        members: Vec::new(),
+                    });
+                }
+                continue;
+            }
             let vertices =
                 mesh.part_vertices(condition.part())
                     .map_err(|source| ElasticError::Mesh {
@@ -72,6 +139,16 @@ impl DofMap {
                             part: condition.part().to_string(),
                             vertex: v,
                             value: g,
+                        });
+                    }
+                    if tied_to[dof(v, k)].is_some() {
+                        let (plate, _) = prescribed_by[dof(v, k)].unwrap_or((c, 0.0));
+                        return Err(ElasticError::RigidPlateConflict {
+                            body: body.to_string(),
+                            plate: dirichlet[plate].part().to_string(),
+                            other: condition.part().to_string(),
+                            vertex: v,
+                            component: k,
                         });
                     }
                     match prescribed_by[dof(v, k)] {
@@ -100,6 +177,8 @@ impl DofMap {
             prescribed: Vec::new(),
             prescribed_values: Vec::new(),
             prescribed_owner: Vec::new(),
+            plate_of: Vec::new(),
+            plates,
         };
         for (g, entry) in prescribed_by.into_iter().enumerate() {
             match entry {
@@ -108,6 +187,10 @@ impl DofMap {
                     map.free.push(g);
                 }
                 Some((owner, value)) => {
+                    if let Some(plate) = tied_to[g] {
+                        map.plates[plate].members.push(map.prescribed.len());
+                    }
+                    map.plate_of.push(tied_to[g]);
                     map.status.push(DofStatus::Prescribed(map.prescribed.len()));
                     map.prescribed.push(g);
                     map.prescribed_values.push(value);
@@ -128,7 +211,37 @@ impl DofMap {
         self.free.len()
     }
 
-    /// Number of prescribed degrees of freedom.
+    /// Number of rigid-plate unknowns (one per tied component of each rigid plate).
+    pub fn n_plates(&self) -> usize {
+        self.plates.len()
+    }
+
+    /// Number of unknowns of the system: the free degrees of freedom followed by the
+    /// rigid-plate translations, `n_free() + n_plates()`.
+    pub fn n_unknowns(&self) -> usize {
+        self.free.len() + self.plates.len()
+    }
+
+    /// The rigid-plate unknowns; plate `k` is unknown `n_free() + k`.
+    pub fn plates(&self) -> &[PlateUnknown] {
+        &self.plates
+    }
+
+    /// For each prescribed degree of freedom (prescribed numbering), the plate it is tied to.
+    pub fn plate_of_prescribed(&self) -> &[Option<usize>] {
+        &self.plate_of
+    }
+
+    /// The index among the unknowns of global `dof`: its free index, or `n_free() + k` for a
+    /// degree of freedom tied to plate `k`; `None` for a prescribed value.
+    pub fn unknown_index(&self, dof: usize) -> Option<usize> {
+        match self.status[dof] {
+            DofStatus::Free(i) => Some(i),
+            DofStatus::Prescribed(j) => self.plate_of[j].map(|k| self.free.len() + k),
+        }
+    }
+
+    /// Number of prescribed degrees of freedom (rigid-plate ones included).
     pub fn n_prescribed(&self) -> usize {
         self.prescribed.len()
     }
@@ -179,15 +292,20 @@ impl DofMap {
         (free, dof - free)
     }
 
-    /// The full displacement vector from the free values `u_free`: free entries from
-    /// `u_free`, prescribed entries from the Dirichlet data. Panics if the length is wrong;
-    /// see [`crate::AssembledSystem::expand`] for the checked version.
-    pub(crate) fn expand_unchecked(&self, u_free: &[f64]) -> Vec<f64> {
+    /// The full displacement vector from the unknowns `u` (free values, then plate
+    /// translations): free entries from `u`, tied entries from their plate's translation,
+    /// prescribed entries from the Dirichlet data. Panics if the length is wrong; see
+    /// [`crate::AssembledSystem::expand`] for the checked version.
+    pub(crate) fn expand_unchecked(&self, u: &[f64]) -> Vec<f64> {
+        let n_free = self.free.len();
         self.status
             .iter()
             .map(|s| match *s {
-                DofStatus::Free(i) => u_free[i],
-                DofStatus::Prescribed(j) => self.prescribed_values[j],
+                DofStatus::Free(i) => u[i],
+                DofStatus::Prescribed(j) => match self.plate_of[j] {
+                    Some(k) => u[n_free + k],
+                    None => self.prescribed_values[j],
+                },
             })
             .collect()
     }

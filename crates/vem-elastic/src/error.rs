@@ -154,6 +154,33 @@ pub enum ElasticError {
         /// Its value.
         second_value: f64,
     },
+    /// A rigid plate shares a degree of freedom with another condition (a plate's component
+    /// cannot also be prescribed, nor tied to a second plate).
+    #[error("body '{body}': rigid plate '{plate}' and condition on part '{other}' both constrain component {component} of vertex {vertex}")]
+    RigidPlateConflict {
+        /// The body's name.
+        body: String,
+        /// The rigid plate's part.
+        plate: String,
+        /// The part of the other condition.
+        other: String,
+        /// The vertex.
+        vertex: usize,
+        /// The component (0 = x, 1 = y).
+        component: usize,
+    },
+    /// A rigid plate's prescribed resultant is not finite.
+    #[error("body '{body}', rigid plate '{part}': non-finite resultant {value} in component {component}")]
+    NonFiniteResultant {
+        /// The body's name.
+        body: String,
+        /// The rigid plate's part.
+        part: String,
+        /// The component (0 = x, 1 = y).
+        component: usize,
+        /// The value.
+        value: f64,
+    },
     /// The reduced stiffness is not positive definite: the body can move as a rigid body.
     #[error(
         "singular stiffness: body '{body}' is not held (no or insufficient Dirichlet condition)"

@@ -14,6 +14,10 @@
 //!   connectivity; element matrices are computed in parallel (rayon) in chunks and their values
 //!   scattered straight into the compressed-column value arrays (no dense matrix, no triplets).
 //!   The reduced system is `K_ff u_f = f_f - K_fp u_p`.
+//! - Force control ([`Dirichlet::rigid_plate`]): a part moved as one rigid translation per tied
+//!   component with a prescribed resultant; each translation is one extra unknown after the
+//!   free degrees of freedom ([`DofMap::n_unknowns`]) and the matrix of the unknowns is the
+//!   bordered `T^T K T` (pattern built once, values refilled with the blocks).
 //! - Solve: behind the [`LinearSolver`] trait (analyse a pattern once, factorise values as
 //!   often as needed, solve); [`CholeskySolver`] is faer's sparse Cholesky with AMD. A
 //!   stiffness that is not positive definite is reported as
@@ -86,7 +90,7 @@ mod solver;
 pub use assembly::AssembledSystem;
 pub use body::{ElasticBody, ElasticBodyBuilder};
 pub use boundary::{Component, Dirichlet, Traction, VectorField};
-pub use dofs::{dof, DofMap, DofStatus};
+pub use dofs::{dof, DofMap, DofStatus, PlateUnknown};
 pub use error::{ElasticError, SolveError};
 pub use material::{von_mises, Material, Plane};
 pub use post::{ElementField, PartReaction, Solution};

@@ -36,6 +36,18 @@
 //! fraction is created, which protects the mesh assumption A1). The tangential misfit this
 //! introduces is at most that fraction of the edge length.
 //!
+//! That misfit is removed where it can be without changing the bodies' shapes
+//! ([`InterfaceOptions::align_snapped_nodes`], on by default): when a snapped pair joins two
+//! existing nodes that do not coincide, the node of side b moves onto the projection of side
+//! a's node (the point a's node's ray hits on b) if b's chain is straight at that node (its two
+//! chain edges collinear, the node not an end of the chain); otherwise side a's node moves onto
+//! the projection of b's node if a's chain is straight there. The node moves along its own
+//! straight chain by at most the snapping fraction of an adjacent edge, so the body's domain is
+//! unchanged and both sides share exactly the same interface points: a linear field is then
+//! represented without any misfit (contact patch tests exact to round-off). Only where both
+//! chains bend at the pair (two curved parts), or at an end of a chain, does the misfit of the
+//! snapping remain.
+//!
 //! # Different extents
 //!
 //! Only the range where the parts overlap is paired: nodes whose projection misses the other
@@ -76,15 +88,18 @@ pub struct InterfaceOptions {
     snap_tolerance: f64,
     min_edge_fraction: f64,
     max_distance: Option<f64>,
+    align_snapped_nodes: bool,
 }
 
 impl Default for InterfaceOptions {
-    /// `snap_tolerance = 1e-6`, `min_edge_fraction = 1e-3`, no `max_distance`.
+    /// `snap_tolerance = 1e-6`, `min_edge_fraction = 1e-3`, no `max_distance`,
+    /// `align_snapped_nodes = true`.
     fn default() -> Self {
         Self {
             snap_tolerance: 1e-6,
             min_edge_fraction: 1e-3,
             max_distance: None,
+            align_snapped_nodes: true,
         }
     }
 }
@@ -124,6 +139,14 @@ impl InterfaceOptions {
     /// closer than this face each other. `None`: any distance.
     pub fn max_distance(&self) -> Option<f64> {
         self.max_distance
+    }
+
+    /// True when a snapped pair of existing nodes is made to coincide (see the module
+    /// documentation, "Snapping"): the node of one side moves onto the other side's
+    /// projection where its chain is straight. `false` keeps both nodes where they are (the
+    /// tangential misfit of the snapping stays).
+    pub fn align_snapped_nodes(&self) -> bool {
+        self.align_snapped_nodes
     }
 
     /// The fraction of an edge within which a projected point snaps to the edge's end node.
@@ -178,6 +201,12 @@ impl InterfaceOptionsBuilder {
     /// See [`InterfaceOptions::max_distance`].
     pub fn max_distance(mut self, value: f64) -> Self {
         self.options.max_distance = Some(value);
+        self
+    }
+
+    /// See [`InterfaceOptions::align_snapped_nodes`].
+    pub fn align_snapped_nodes(mut self, value: bool) -> Self {
+        self.options.align_snapped_nodes = value;
         self
     }
 
@@ -685,11 +714,16 @@ pub fn insert_interface_nodes(
         }
     }
     let stations = merge_stations(stations, &chain_a, &chain_b, snap, &fail)?;
+    let (moves_a, moves_b) = if options.align_snapped_nodes {
+        aligning_moves(&stations, &chain_a, &chain_b, &hits_a, &hits_b, snap)
+    } else {
+        (Vec::new(), Vec::new())
+    };
 
     let (new_a, vertices_a, inserted_a) =
-        insert_points(mesh_a, &chain_a, stations.iter().map(|st| st.a))?;
+        insert_points(mesh_a, &chain_a, stations.iter().map(|st| st.a), &moves_a)?;
     let (new_b, vertices_b, inserted_b) =
-        insert_points(mesh_b, &chain_b, stations.iter().map(|st| st.b))?;
+        insert_points(mesh_b, &chain_b, stations.iter().map(|st| st.b), &moves_b)?;
 
     // Normals from the new chain of a (spec: nu_1 at the node); lengths on the paired range.
     let new_chain_a = Chain::new(&new_a, part_a, &fail)?;
@@ -838,14 +872,78 @@ fn merge_stations(
     Ok(merged)
 }
 
-/// Inserts the `OnEdge` places into `mesh` (new vertices appended, in order of appearance) and
-/// returns the new mesh, the vertex of every place, and the number of inserted vertices.
+/// True when node `k` of `chain` is interior and its two chain edges are collinear (to
+/// rounding) and run the same way: moving it along the chain keeps the body's shape.
+fn straight_at(chain: &Chain, k: usize) -> bool {
+    if k == 0 || k + 1 >= chain.nodes.len() {
+        return false;
+    }
+    let before = chain.point(k) - chain.point(k - 1);
+    let after = chain.point(k + 1) - chain.point(k);
+    let scale = before.norm() * after.norm();
+    scale > 0.0 && cross(before, after).abs() <= 1e-12 * scale && before.dot(&after) > 0.0
+}
+
+/// The point of `chain` at `hit`, when `hit` lies on an edge next to node `k` within `snap`
+/// of that edge's length from the node; `None` otherwise.
+fn landing_next_to(chain: &Chain, hit: Option<Hit>, k: usize, snap: f64) -> Option<Point> {
+    let hit = hit?;
+    let near = (hit.edge == k && hit.s <= snap) || (hit.edge + 1 == k && hit.s >= 1.0 - snap);
+    near.then(|| {
+        let (p, q) = (chain.point(hit.edge), chain.point(hit.edge + 1));
+        p + (q - p) * hit.s
+    })
+}
+
+/// A vertex and its new position.
+type VertexMove = (usize, Point);
+
+/// The vertex moves that make every snapped pair of existing nodes coincide (see the module
+/// documentation, "Snapping"): (vertex, new position) for mesh a and for mesh b.
+fn aligning_moves(
+    stations: &[Station],
+    chain_a: &Chain,
+    chain_b: &Chain,
+    hits_a: &[Option<Hit>],
+    hits_b: &[Option<Hit>],
+    snap: f64,
+) -> (Vec<VertexMove>, Vec<VertexMove>) {
+    let (mut moves_a, mut moves_b) = (Vec::new(), Vec::new());
+    for st in stations {
+        let (Place::Node(i), Place::Node(j)) = (st.a, st.b) else {
+            continue;
+        };
+        if chain_a.point(i) == chain_b.point(j) {
+            continue;
+        }
+        if straight_at(chain_b, j) {
+            if let Some(target) = landing_next_to(chain_b, hits_a[i], j, snap) {
+                moves_b.push((chain_b.nodes[j].vertex, target));
+                continue;
+            }
+        }
+        if straight_at(chain_a, i) {
+            if let Some(target) = landing_next_to(chain_a, hits_b[j], i, snap) {
+                moves_a.push((chain_a.nodes[i].vertex, target));
+            }
+        }
+    }
+    (moves_a, moves_b)
+}
+
+/// Moves the vertices `moves` (aligned snapped nodes), inserts the `OnEdge` places into `mesh`
+/// (new vertices appended, in order of appearance) and returns the new mesh, the vertex of
+/// every place, and the number of inserted vertices.
 fn insert_points(
     mesh: &Mesh,
     chain: &Chain,
     places: impl Iterator<Item = Place>,
+    moves: &[VertexMove],
 ) -> Result<(Mesh, Vec<usize>, usize), MeshError> {
     let mut vertices = mesh.vertices().to_vec();
+    for &(v, point) in moves {
+        vertices[v] = point;
+    }
     // Directed edge (as its polygon traverses it) -> inserted vertices with their parameter.
     let mut on_edge: HashMap<(usize, usize), Vec<(f64, usize)>> = HashMap::new();
     let mut place_vertices = Vec::new();
@@ -865,7 +963,7 @@ fn insert_points(
         place_vertices.push(vertex);
     }
     let inserted = vertices.len() - mesh.n_vertices();
-    if inserted == 0 {
+    if inserted == 0 && moves.is_empty() {
         return Ok((mesh.clone(), place_vertices, 0));
     }
     let pieces: HashMap<(usize, usize), Vec<usize>> = on_edge

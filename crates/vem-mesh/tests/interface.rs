@@ -219,8 +219,19 @@ fn nearly_coincident_nodes_snap_instead_of_leaving_slivers() {
         assert_eq!(interface.pairs.len(), 5);
         let pair = interface.pairs[2];
         assert_eq!((pair.node_a, pair.node_b), (2, middle));
-        assert_relative_eq!(pair.point_b.x - pair.point_a.x, shift, max_relative = 1e-6);
+        // The straight side b's node slid back onto a's node: no misfit, no sliver.
+        assert_eq!(pair.point_b, pair.point_a);
+        assert_eq!(interface.mesh_b.vertex(middle), Point::new(0.5, 0.0));
         assert!(shortest_edge(&interface.mesh_a) >= 0.25 - 1e-12);
+        assert!(shortest_edge(&interface.mesh_b) >= 0.25 - 1e-12);
+        // Without the alignment both nodes stay: the misfit is the offset.
+        let kept = InterfaceOptions::builder()
+            .align_snapped_nodes(false)
+            .build()
+            .unwrap();
+        let interface = insert_interface_nodes(&a, "bottom", &b, "top", &kept).unwrap();
+        let pair = interface.pairs[2];
+        assert_relative_eq!(pair.point_b.x - pair.point_a.x, shift, max_relative = 1e-6);
         assert!(shortest_edge(&interface.mesh_b) >= 0.25 - 2e-4);
     }
     // Without the sliver guard, a 1e-4 offset (4e-4 of the edge) is inserted on both sides.
