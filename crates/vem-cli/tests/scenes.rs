@@ -34,14 +34,15 @@ fn read_contact_csv(dir: &Path) -> Vec<(Vec<f64>, String)> {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,friction_force,slip,status"
+        "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,\
+         friction_force,consistent_friction_traction,slip,status"
     );
     lines
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            assert_eq!(fields.len(), 11, "{line}");
-            let numbers = fields[..10].iter().map(|f| f.parse().unwrap()).collect();
-            (numbers, fields[10].to_string())
+            assert_eq!(fields.len(), 13, "{line}");
+            let numbers = fields[..12].iter().map(|f| f.parse().unwrap()).collect();
+            (numbers, fields[12].to_string())
         })
         .collect()
 }
@@ -111,7 +112,7 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
     assert_eq!(rows.len(), nodes(&outcome).len());
     assert!(rows
         .iter()
-        .all(|(r, s)| (r[7] - p).abs() < 1e-9 && s == "slip"));
+        .all(|(r, s)| (r[7] - p).abs() < 1e-9 && (r[8] - p).abs() < 1e-9 && s == "slip"));
     let summary = summary_json(&dir);
     assert_eq!(summary["contact"]["tangential_rows"], 0);
     assert_eq!(

@@ -70,10 +70,17 @@ pub struct InterfaceNode {
     pub normal_jump: f64,
     /// Nodal contact force `lambda_N >= 0` (compression), `= -sigma_nu l_x`.
     pub normal_force: f64,
-    /// Contact pressure `lambda_N / l_x`, approximating `-sigma_nu`.
+    /// Contact pressure `lambda_N / l_x` (the raw nodal value), approximating `-sigma_nu`.
     pub pressure: f64,
+    /// The consistent contact pressure: the node's value of the L2 projection of the nodal
+    /// normal forces onto the continuous piecewise-linear functions on the interface
+    /// ([`consistent_traction`]), approximating `-sigma_nu`.
+    pub consistent_pressure: f64,
     /// Nodal friction force on body A along `tau`, `= sigma_1tau l_x`; it opposes the slip.
     pub friction_force: f64,
+    /// The consistent friction traction: the node's value of the L2 projection of the nodal
+    /// friction forces ([`consistent_traction`]), approximating `sigma_1tau`.
+    pub consistent_friction_traction: f64,
     /// The slip `[u]_1tau = (u_A - u_B) . tau` (zero for frictionless laws: not modelled).
     pub slip: f64,
     /// Open, stick or slip.
@@ -82,6 +89,60 @@ pub struct InterfaceNode {
     pub vertex_a: usize,
     /// The partner vertex of body B's (enlarged) mesh; `None` against an obstacle.
     pub vertex_b: Option<usize>,
+}
+
+/// The L2 projection of nodal forces onto the continuous piecewise-linear functions on the
+/// polyline through `positions` (consecutive positions joined by straight edges): the values
+/// `p` with `M p = forces`, `M` the consistent mass matrix of the polyline (tridiagonal:
+/// `M_ii = (L_{i-1} + L_i) / 3`, `M_i,i+1 = L_i / 6`, `L_i` the length of edge `(i, i+1)`),
+/// solved by the Thomas algorithm (`M` is symmetric positive definite and diagonally
+/// dominant). The rows of `M` sum to the tributary lengths, so a uniform traction `p0` with
+/// forces `p0 l_i` is reproduced exactly, and so is every linear traction with its consistent
+/// forces. A polyline of fewer than two nodes, or with a node whose edges both have zero
+/// length, has no such projection: the forces are then divided by the `fallback` lengths
+/// (the raw nodal values, 0 where a length is 0).
+pub fn consistent_traction(positions: &[Point], forces: &[f64], fallback: &[f64]) -> Vec<f64> {
+    let raw = || {
+        forces
+            .iter()
+            .zip(fallback)
+            .map(|(f, l)| if *l > 0.0 { f / l } else { 0.0 })
+            .collect::<Vec<f64>>()
+    };
+    let n = positions.len().min(forces.len());
+    if n < 2 {
+        return raw();
+    }
+    let lengths: Vec<f64> = positions.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
+    let diag = |i: usize| {
+        let before = if i > 0 { lengths[i - 1] } else { 0.0 };
+        let after = if i + 1 < n { lengths[i] } else { 0.0 };
+        (before + after) / 3.0
+    };
+    // Thomas: forward elimination of the sub-diagonal, back substitution.
+    let mut upper = vec![0.0; n];
+    let mut rhs = vec![0.0; n];
+    let mut previous_upper = 0.0;
+    let mut previous_rhs = 0.0;
+    for i in 0..n {
+        let lower = if i > 0 { lengths[i - 1] / 6.0 } else { 0.0 };
+        let pivot = diag(i) - lower * previous_upper;
+        if !(pivot > 0.0) {
+            return raw();
+        }
+        upper[i] = if i + 1 < n { lengths[i] / 6.0 / pivot } else { 0.0 };
+        rhs[i] = (forces[i] - lower * previous_rhs) / pivot;
+        previous_upper = upper[i];
+        previous_rhs = rhs[i];
+    }
+    for i in (0..n - 1).rev() {
+        rhs[i] -= upper[i] * rhs[i + 1];
+    }
+    if rhs.iter().all(|v| v.is_finite()) {
+        rhs
+    } else {
+        raw()
+    }
 }
 
 /// One body after the solve: the body on its enlarged mesh, its assembled system and its
