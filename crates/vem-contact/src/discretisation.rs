@@ -104,6 +104,9 @@ pub struct ContactDiscretisation {
     law: ContactLaw,
     obstacle: bool,
     normal_choice: ContactNormal,
+    /// Vertices of each body's mesh before the interface insertion (the vertices of the
+    /// enlarged meshes below these are original).
+    original_vertices: Vec<usize>,
     bodies: Vec<ElasticBody>,
     systems: Vec<Arc<AssembledSystem>>,
     offsets: Vec<usize>,
@@ -135,6 +138,10 @@ impl ContactDiscretisation {
         let law = problem_ref.law().clone();
         let obstacle = matches!(problem_ref.counterpart(), Counterpart::Obstacle(_));
         let normal_choice = problem_ref.normal();
+        let mut original_vertices = vec![problem_ref.body().mesh().n_vertices()];
+        if let Counterpart::Body { body, .. } = problem_ref.counterpart() {
+            original_vertices.push(body.mesh().n_vertices());
+        }
         drop(problem);
         work.times.insertion = start.elapsed();
         let start = Instant::now();
@@ -157,6 +164,7 @@ impl ContactDiscretisation {
             law,
             obstacle,
             normal_choice,
+            original_vertices,
             bodies,
             systems,
             offsets,
@@ -622,8 +630,9 @@ impl ContactDiscretisation {
         let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_length).collect();
         let normal_forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
         let friction_forces: Vec<f64> = nodes.iter().map(|n| n.friction_force).collect();
-        let pressures = consistent_traction(&positions, &normal_forces, &lengths);
-        let tractions = consistent_traction(&positions, &friction_forces, &lengths);
+        let support = self.projection_support();
+        let pressures = consistent_traction(&positions, &normal_forces, &support, &lengths);
+        let tractions = consistent_traction(&positions, &friction_forces, &support, &lengths);
         for ((node, p), t) in nodes.iter_mut().zip(pressures).zip(tractions) {
             node.consistent_pressure = p;
             node.consistent_friction_traction = t;
@@ -666,6 +675,31 @@ impl ContactDiscretisation {
         let mut result = ContactResult::new(bodies, nodes, solution.report, fixed_point, model);
         result.warnings = warnings;
         Ok(result)
+    }
+
+    /// The nodes whose hats span the space of the consistent pressure: the original nodes
+    /// (not inserted) of the side with fewer of them on the interface (B on a tie); every
+    /// node against an obstacle.
+    fn projection_support(&self) -> Vec<bool> {
+        let original_a: Vec<bool> = self
+            .nodes
+            .iter()
+            .map(|n| n.vertex_a < self.original_vertices[0])
+            .collect();
+        let Some(&limit_b) = self.original_vertices.get(1) else {
+            return vec![true; self.nodes.len()];
+        };
+        let original_b: Vec<bool> = self
+            .nodes
+            .iter()
+            .map(|n| n.vertex_b.is_some_and(|v| v < limit_b))
+            .collect();
+        let count = |v: &[bool]| v.iter().filter(|&&b| b).count();
+        if count(&original_a) < count(&original_b) {
+            original_a
+        } else {
+            original_b
+        }
     }
 
     /// Warnings about the model behind a converged answer: elements far outside A1, a contact
