@@ -26,7 +26,7 @@ use vem_verify::report::write_text;
 /// Options of `cargo xtask hertz`.
 #[derive(Debug, Args)]
 pub struct HertzArgs {
-    /// Where hertz.md, hertz.json and the SVG plots are written.
+    /// Where results.md, results.json and the SVG plots are written.
     #[arg(long, default_value = "target/hertz")]
     out: PathBuf,
     /// The folder of the meshes `disc_hc<h>.msh` and `block_hc<h>.msh`.
@@ -132,10 +132,10 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         }
     }
     let md = markdown(&frictionless, &friction, args, start.elapsed().as_secs_f64());
-    write_text(args.out.join("hertz.md"), &md)?;
+    write_text(args.out.join("results.md"), &md)?;
     let json = serde_json::json!({ "frictionless": frictionless, "coulomb": friction });
     write_text(
-        args.out.join("hertz.json"),
+        args.out.join("results.json"),
         &serde_json::to_string_pretty(&json)?,
     )?;
     for h in &args.sizes {
@@ -155,7 +155,7 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
             &traction_svg(c)?,
         )?;
     }
-    println!("wrote {0}/hertz.md, hertz.json and the SVG plots", args.out.display());
+    println!("wrote {0}/results.md, results.json and the SVG plots", args.out.display());
     Ok(true)
 }
 

@@ -35,7 +35,7 @@ enum Task {
     Bench(bench::BenchArgs),
     /// The Hertz half-disc on a block at h_c = 0.08, 0.04, 0.02 with each contact normal
     /// choice (peak, profile, half-width, resultants) and Coulomb friction (Q/P at full slip,
-    /// Cattaneo-Mindlin's stick zone). Writes hertz.md, hertz.json and SVG plots.
+    /// Cattaneo-Mindlin's stick zone). Writes results.md, results.json and SVG plots.
     Hertz(hertz::HertzArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
