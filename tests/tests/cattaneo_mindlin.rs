@@ -77,7 +77,10 @@ fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f6
         last += 1;
     }
     let x = |i: usize| nodes[i].position.x;
-    let (start, stop) = (0.5 * (x(first) + x(first - 1)), 0.5 * (x(last) + x(last + 1)));
+    let (start, stop) = (
+        0.5 * (x(first) + x(first - 1)),
+        0.5 * (x(last) + x(last + 1)),
+    );
     let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
     (0.5 * (stop - start), spacing)
 }
@@ -93,7 +96,10 @@ fn partial_slip_leaves_the_stick_zone_of_cattaneo_mindlin() {
     let result = solve(0.004, ContactNormal::default());
     let (p, q) = loads(&result);
     let ratio = q / (COEFFICIENT * p);
-    assert!(ratio > 0.2 && ratio < 0.8, "Q/(F P) = {ratio}: partial slip");
+    assert!(
+        ratio > 0.2 && ratio < 0.8,
+        "Q/(F P) = {ratio}: partial slip"
+    );
     let (a, spacing_a) = zone(&result.nodes, |n| n.status != NodeStatus::Open);
     let (c, spacing_c) = zone(&result.nodes, |n| n.status == NodeStatus::Stick);
     // The contact half-width against Hertz's for the computed P (finite blocks: a few %).

@@ -131,7 +131,12 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
             friction.push(c);
         }
     }
-    let md = markdown(&frictionless, &friction, args, start.elapsed().as_secs_f64());
+    let md = markdown(
+        &frictionless,
+        &friction,
+        args,
+        start.elapsed().as_secs_f64(),
+    );
     write_text(args.out.join("results.md"), &md)?;
     let json = serde_json::json!({ "frictionless": frictionless, "coulomb": friction });
     write_text(
@@ -150,12 +155,12 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         .rev()
         .find(|c| c.normal == ContactNormal::default().name())
     {
-        write_text(
-            args.out.join("cattaneo_mindlin.svg"),
-            &traction_svg(c)?,
-        )?;
+        write_text(args.out.join("cattaneo_mindlin.svg"), &traction_svg(c)?)?;
     }
-    println!("wrote {0}/results.md, results.json and the SVG plots", args.out.display());
+    println!(
+        "wrote {0}/results.md, results.json and the SVG plots",
+        args.out.display()
+    );
     Ok(true)
 }
 
@@ -181,11 +186,9 @@ fn problem(
             Vector::zeros()
         }))
         .build()?;
-    Ok(
-        ContactProblem::two_bodies(disc, "arc", block, "top", law)
-            .with_interface_options(InterfaceOptions::builder().max_distance(0.05).build()?)
-            .with_normal(normal),
-    )
+    Ok(ContactProblem::two_bodies(disc, "arc", block, "top", law)
+        .with_interface_options(InterfaceOptions::builder().max_distance(0.05).build()?)
+        .with_normal(normal))
 }
 
 /// P (the vertical force on the disc) and Hertz's solution for it.
@@ -229,7 +232,13 @@ fn frictionless_run(
         profile_consistent: profile(|n| n.consistent_pressure),
         curve: nodes
             .iter()
-            .map(|n| (n.position.x / a, n.pressure / p0, n.consistent_pressure / p0))
+            .map(|n| {
+                (
+                    n.position.x / a,
+                    n.pressure / p0,
+                    n.consistent_pressure / p0,
+                )
+            })
             .collect(),
     })
 }
@@ -282,7 +291,13 @@ fn friction_run(
 fn zone_half_width(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
     let Some(centre) = (0..nodes.len())
         .filter(|&i| inside(&nodes[i]))
-        .min_by(|&i, &j| nodes[i].position.x.abs().total_cmp(&nodes[j].position.x.abs()))
+        .min_by(|&i, &j| {
+            nodes[i]
+                .position
+                .x
+                .abs()
+                .total_cmp(&nodes[j].position.x.abs())
+        })
     else {
         return (0.0, 0.0);
     };
@@ -294,11 +309,21 @@ fn zone_half_width(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> b
         last += 1;
     }
     let x = |i: usize| nodes[i].position.x;
-    let start = if first > 0 { 0.5 * (x(first) + x(first - 1)) } else { x(first) };
-    let stop = if last + 1 < nodes.len() { 0.5 * (x(last) + x(last + 1)) } else { x(last) };
+    let start = if first > 0 {
+        0.5 * (x(first) + x(first - 1))
+    } else {
+        x(first)
+    };
+    let stop = if last + 1 < nodes.len() {
+        0.5 * (x(last) + x(last + 1))
+    } else {
+        x(last)
+    };
     let spacing_at = |i: usize, j: Option<usize>| j.map_or(0.0, |j| (x(i) - x(j)).abs());
-    let spacing = spacing_at(first, first.checked_sub(1))
-        .max(spacing_at(last, (last + 1 < nodes.len()).then_some(last + 1)));
+    let spacing = spacing_at(first, first.checked_sub(1)).max(spacing_at(
+        last,
+        (last + 1 < nodes.len()).then_some(last + 1),
+    ));
     ((stop - start).abs() / 2.0, spacing)
 }
 

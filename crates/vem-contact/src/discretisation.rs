@@ -58,14 +58,15 @@ use vem_mesh::{Point, Vector};
 
 use crate::problem::{tangent, Counterpart, FrictionBound};
 use crate::result::{
-    classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
+    classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
+    InterfaceNode, ModelSummary,
 };
 use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
 use crate::warning::{Warning, ZoneLimit};
 use crate::{
-    ConstraintRows, ContactError, ContactLaw, ContactNormal, ContactProblem, ContactSolution, ContactSolver,
-    ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
+    ConstraintRows, ContactError, ContactLaw, ContactNormal, ContactProblem, ContactSolution,
+    ContactSolver, ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
 };
 
 /// The geometry of one interface node: a node pair of the two bodies (after insertion the

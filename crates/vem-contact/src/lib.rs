@@ -51,8 +51,8 @@ pub use problem::{
 };
 pub use registry::{RegistryError, SolverFactory, SolverOptions, SolverRegistry};
 pub use result::{
-    consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
-    NodeStatus,
+    consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode,
+    ModelSummary, NodeStatus,
 };
 
 pub use warning::{Warning, ZoneLimit};

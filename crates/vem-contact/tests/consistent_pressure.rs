@@ -7,7 +7,9 @@ use vem_mesh::{Point, Vector};
 
 /// Nodes on a polyline with uneven spacing (close pairs included), along a bent line.
 fn polyline() -> Vec<Point> {
-    let s = [0.0, 0.1, 0.1007, 0.23, 0.31, 0.3102, 0.45, 0.6, 0.62, 0.8, 1.0];
+    let s = [
+        0.0, 0.1, 0.1007, 0.23, 0.31, 0.3102, 0.45, 0.6, 0.62, 0.8, 1.0,
+    ];
     s.iter()
         .map(|&s| {
             if s <= 0.5 {

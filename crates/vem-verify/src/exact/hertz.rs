@@ -121,7 +121,9 @@ impl HertzContact {
         let slip = coefficient * self.pressure(x);
         if x.abs() < c {
             let s = x / c;
-            slip - coefficient * self.peak_pressure() * (c / self.half_width())
+            slip - coefficient
+                * self.peak_pressure()
+                * (c / self.half_width())
                 * (1.0 - s * s).max(0.0).sqrt()
         } else {
             slip
