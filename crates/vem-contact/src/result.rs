@@ -151,7 +151,7 @@ pub fn consistent_traction(
         }
     }
     let m = nodes.len();
-    if m < 2 || !(arc[n - 1] > 0.0) {
+    if m < 2 || arc[n - 1].is_nan() || arc[n - 1] <= 0.0 {
         return raw();
     }
     // Right-hand side: every force distributed to the hats of its support interval.
@@ -175,7 +175,7 @@ pub fn consistent_traction(
         let after = if k + 1 < m { lengths[k] } else { 0.0 };
         let lower = before / 6.0;
         let pivot = (before + after) / 3.0 - lower * previous_upper;
-        if !(pivot > 0.0) {
+        if pivot.is_nan() || pivot <= 0.0 {
             return raw();
         }
         upper[k] = after / 6.0 / pivot;
