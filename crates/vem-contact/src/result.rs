@@ -51,7 +51,8 @@ pub(crate) fn classify(
 }
 
 /// The result at one interface node (a node pair of the two bodies, or a body node facing an
-/// obstacle). Signs follow the spec: `nu` is the outward normal of body A (into the obstacle),
+/// obstacle). Signs follow the spec: `nu` points from body A to body B (the nodal normal of
+/// the side chosen by [`ContactNormal`](crate::ContactNormal); into the obstacle),
 /// `tau = (-nu_y, nu_x)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InterfaceNode {
