@@ -3,9 +3,12 @@
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
 //! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
 //!   `docs/benchmarks.md`).
+//! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
+//!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
 
 mod bench;
 mod convergence;
+mod hertz;
 
 use std::process::ExitCode;
 
@@ -30,6 +33,10 @@ enum Task {
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
     /// measurement in a child process. Writes bench.md, bench.json and bench.svg.
     Bench(bench::BenchArgs),
+    /// The Hertz half-disc on a block at h_c = 0.08, 0.04, 0.02 with each contact normal
+    /// choice (peak, profile, half-width, resultants) and Coulomb friction (Q/P at full slip,
+    /// Cattaneo-Mindlin's stick zone). Writes results.md, results.json and SVG plots.
+    Hertz(hertz::HertzArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
@@ -41,6 +48,7 @@ fn main() -> ExitCode {
         Task::Convergence(args) => convergence::run(&args),
         Task::Bench(args) => bench::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
+        Task::Hertz(args) => hertz::run(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,

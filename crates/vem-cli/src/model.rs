@@ -666,6 +666,9 @@ fn build_contact(
     };
     let options = interface_options(scene)?;
     let mut problem = problem.with_interface_options(options);
+    if let Some(normal) = &spec.normal {
+        problem = problem.with_normal(normal.get_ref().choice());
+    }
     if let Some(gap) = spec.imposed_gap.as_ref().map(|g| *g.get_ref()) {
         problem = problem.with_imposed_gap(move |_| gap);
     }

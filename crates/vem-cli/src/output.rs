@@ -22,7 +22,8 @@ use crate::{CliError, Outcome};
 
 /// The columns of `contact.csv`, in order.
 pub const CONTACT_COLUMNS: &str =
-    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,friction_force,slip,status";
+    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,friction_force,\
+     consistent_friction_traction,slip,status";
 
 /// Default width of pictures and plots, in pixels.
 pub const DEFAULT_WIDTH: f64 = 900.0;
@@ -59,7 +60,9 @@ impl Outcome {
             move |source| CliError::Mesh { context, source }
         };
         let mut written = Vec::new();
-        let contact_pressure = self.contact_pressure_at_vertices();
+        let raw = self.contact_pressure_at_vertices(|n| n.pressure);
+        let consistent = self.contact_pressure_at_vertices(|n| n.consistent_pressure);
+        let contact_pressure = raw.into_iter().zip(consistent).map(|(r, c)| r.zip(c));
         for (solved, pressure) in self.bodies.iter().zip(contact_pressure) {
             let path = dir.join(format!("{}.vtu", solved.body.name()));
             write_vtu(&path, solved.body.mesh(), &vtu_data(solved, pressure))
@@ -125,8 +128,12 @@ impl Outcome {
         }
     }
 
-    /// For each body, the contact pressure at its interface vertices (zero elsewhere).
-    fn contact_pressure_at_vertices(&self) -> Vec<Option<Vec<f64>>> {
+    /// For each body, a nodal value (`value` of each interface node) at its interface vertices
+    /// (zero elsewhere).
+    fn contact_pressure_at_vertices(
+        &self,
+        value: impl Fn(&InterfaceNode) -> f64,
+    ) -> Vec<Option<Vec<f64>>> {
         let mut pressure: Vec<Option<Vec<f64>>> = vec![None; self.bodies.len()];
         let (Some(contact), Some(indices)) = (&self.contact, &self.contact_bodies) else {
             return pressure;
@@ -140,7 +147,7 @@ impl Outcome {
                     node.vertex_b
                 };
                 if let Some(v) = vertex {
-                    values[v] = node.pressure;
+                    values[v] = value(node);
                 }
             }
             pressure[index] = Some(values);
@@ -381,9 +388,9 @@ fn round_down_to_nice(value: f64) -> f64 {
     nice * power
 }
 
-/// Point data (displacement, contact pressure) and cell data (stress, von Mises, A1 figures)
+/// Point data (displacement, raw and consistent contact pressure) and cell data (stress, von Mises, A1 figures)
 /// of one body.
-fn vtu_data(solved: &SolvedBody, contact_pressure: Option<Vec<f64>>) -> VtuData {
+fn vtu_data(solved: &SolvedBody, contact_pressure: Option<(Vec<f64>, Vec<f64>)>) -> VtuData {
     let fields = &solved.fields;
     let stress: Vec<f64> = fields
         .iter()
@@ -410,8 +417,10 @@ fn vtu_data(solved: &SolvedBody, contact_pressure: Option<Vec<f64>>) -> VtuData 
             "star_ratio",
             solved.qualities.iter().map(|q| q.star_ratio).collect(),
         );
-    if let Some(p) = contact_pressure {
-        data = data.with_point_scalars("contact_pressure", p);
+    if let Some((raw, consistent)) = contact_pressure {
+        data = data
+            .with_point_scalars("contact_pressure", raw)
+            .with_point_scalars("consistent_contact_pressure", consistent);
     }
     data
 }
@@ -436,7 +445,7 @@ fn write_contact_csv(
     for n in nodes {
         writeln!(
             w,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
             tidy(n.position.x),
             tidy(n.position.y),
             tidy(n.normal.x),
@@ -445,7 +454,9 @@ fn write_contact_csv(
             tidy(n.normal_jump),
             tidy(n.normal_force),
             tidy(n.pressure),
+            tidy(n.consistent_pressure),
             tidy(n.friction_force),
+            tidy(n.consistent_friction_traction),
             tidy(n.slip),
             status_label(n.status, frictionless)
         )?;

@@ -85,9 +85,10 @@ fn svg_file(
     })
 }
 
-/// `pressure.svg`: nodal contact pressure along the interface; with `hertz`, Hertz's
-/// elliptical distribution for the same load; with `friction_bound` (per node, per unit
-/// length), the friction traction `friction_force / l_x` and the bound `±g`.
+/// `pressure.svg`: the consistent contact pressure along the interface (line) and the raw
+/// nodal values `lambda_N / l_x` (dots); with `hertz`, Hertz's elliptical distribution for the
+/// same load; with `friction_bound` (per node, per unit length), the consistent friction
+/// traction (line), the raw `friction_force / l_x` (dots) and the bound `±g`.
 pub(crate) fn pressure(
     path: &Path,
     title: &str,
@@ -100,6 +101,10 @@ pub(crate) fn pressure(
     let name = ["x", "y"][c];
     let position = |n: &InterfaceNode| n.position[c];
     let pressure: Vec<(f64, f64)> = nodes.iter().map(|n| (position(n), n.pressure)).collect();
+    let consistent: Vec<(f64, f64)> = nodes
+        .iter()
+        .map(|n| (position(n), n.consistent_pressure))
+        .collect();
     let hertz_curve: Vec<(f64, f64)> = hertz
         .filter(|h| h.half_width > 0.0)
         .map(|h| {
@@ -115,26 +120,32 @@ pub(crate) fn pressure(
                 .collect()
         })
         .unwrap_or_default();
-    let friction: Option<(Curve, Curve)> = friction_bound.map(|bound| {
+    let friction: Option<(Curve, Curve, Curve)> = friction_bound.map(|bound| {
         let traction = nodes
             .iter()
             .map(|n| (position(n), n.friction_force / n.tributary_length))
+            .collect();
+        let consistent_traction = nodes
+            .iter()
+            .map(|n| (position(n), n.consistent_friction_traction))
             .collect();
         let bounds = nodes
             .iter()
             .zip(bound)
             .map(|(n, g)| (position(n), g))
             .collect();
-        (traction, bounds)
+        (traction, consistent_traction, bounds)
     });
     let x_range = padded(pressure.iter().chain(&hertz_curve).map(|p| p.0), 0.05);
     let y_range = padded(
         pressure
             .iter()
+            .chain(&consistent)
             .chain(&hertz_curve)
             .map(|p| p.1)
-            .chain(friction.iter().flat_map(|(t, b)| {
+            .chain(friction.iter().flat_map(|(t, c, b)| {
                 t.iter()
+                    .chain(c)
                     .map(|p| p.1)
                     .chain(b.iter().flat_map(|p| [p.1, -p.1]))
             }))
@@ -171,26 +182,37 @@ pub(crate) fn pressure(
         }
         chart
             .draw_series(LineSeries::new(
-                pressure.iter().copied(),
+                consistent.iter().copied(),
                 PRESSURE.stroke_width(2),
             ))?
-            .label("contact pressure p = normal force / tributary length")
+            .label("consistent pressure (L2 projection of the normal forces)")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PRESSURE.stroke_width(2)));
-        chart.draw_series(
-            pressure
-                .iter()
-                .map(|&p| Circle::new(p, 2, PRESSURE.filled())),
-        )?;
-        if let Some((traction, bounds)) = &friction {
+        chart
+            .draw_series(
+                pressure
+                    .iter()
+                    .map(|&p| Circle::new(p, 2, PRESSURE.mix(0.5).filled())),
+            )?
+            .label("nodal pressure (normal force / tributary length)")
+            .legend(|(x, y)| Circle::new((x + 10, y), 2, PRESSURE.mix(0.5).filled()));
+        if let Some((traction, consistent_traction, bounds)) = &friction {
             chart
                 .draw_series(LineSeries::new(
-                    traction.iter().copied(),
+                    consistent_traction.iter().copied(),
                     FRICTION.stroke_width(2),
                 ))?
-                .label("friction traction (tangential force / tributary length)")
+                .label("consistent friction traction (L2 projection)")
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], FRICTION.stroke_width(2))
                 });
+            chart
+                .draw_series(
+                    traction
+                        .iter()
+                        .map(|&p| Circle::new(p, 2, FRICTION.mix(0.5).filled())),
+                )?
+                .label("nodal friction traction (friction force / tributary length)")
+                .legend(|(x, y)| Circle::new((x + 10, y), 2, FRICTION.mix(0.5).filled()));
             chart
                 .draw_series(LineSeries::new(
                     bounds.iter().copied(),

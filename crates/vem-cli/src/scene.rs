@@ -222,6 +222,30 @@ pub enum LawKind {
     Coulomb,
 }
 
+/// Which side gives the contact normal of two bodies (`normal` key).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalKind {
+    /// Body A's outward normal.
+    BodyA,
+    /// Minus body B's outward normal (default).
+    #[default]
+    BodyB,
+    /// The bisector of the two.
+    Averaged,
+}
+
+impl NormalKind {
+    /// The library's choice.
+    pub fn choice(self) -> vem_contact::ContactNormal {
+        match self {
+            NormalKind::BodyA => vem_contact::ContactNormal::BodyA,
+            NormalKind::BodyB => vem_contact::ContactNormal::BodyB,
+            NormalKind::Averaged => vem_contact::ContactNormal::Averaged,
+        }
+    }
+}
+
 /// A penalty or augmentation parameter: `factor` (times the largest constrained diagonal
 /// entry of the stiffness) or an absolute `value`.
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -239,7 +263,7 @@ pub struct PenaltySpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// Body A (its outward normal is the contact normal).
+    /// Body A.
     pub body: Spanned<String>,
     /// Body A's contact part.
     pub part: Spanned<String>,
@@ -255,6 +279,10 @@ pub struct ContactSpec {
     /// "frictionless" (default), "tresca" or "coulomb".
     #[serde(default)]
     pub law: Option<Spanned<LawKind>>,
+    /// Which side gives the contact normal of two bodies: "body_b" (default), "body_a" or
+    /// "averaged" (not with an obstacle, whose own normal is used).
+    #[serde(default)]
+    pub normal: Option<Spanned<NormalKind>>,
     /// Tresca: the friction bound `g_F` (force per length).
     #[serde(default)]
     pub friction_bound: Option<Spanned<f64>>,
@@ -839,7 +867,15 @@ impl Scene {
                     ));
                 }
             }
-            (None, None, Some(obstacle)) => self.check_obstacle(obstacle)?,
+            (None, None, Some(obstacle)) => {
+                self.check_obstacle(obstacle)?;
+                if let Some(normal) = &contact.normal {
+                    return Err(self.error(
+                        Some(normal.span()),
+                        "`normal` does not apply to an obstacle (its own normal is used)",
+                    ));
+                }
+            }
             _ => {
                 return Err(self.error(
                     Some(contact.body.span()),

@@ -58,14 +58,15 @@ use vem_mesh::{Point, Vector};
 
 use crate::problem::{tangent, Counterpart, FrictionBound};
 use crate::result::{
-    classify, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
+    classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
+    InterfaceNode, ModelSummary,
 };
 use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
 use crate::warning::{Warning, ZoneLimit};
 use crate::{
-    ConstraintRows, ContactError, ContactLaw, ContactProblem, ContactSolution, ContactSolver,
-    ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
+    ConstraintRows, ContactError, ContactLaw, ContactNormal, ContactProblem, ContactSolution,
+    ContactSolver, ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
 };
 
 /// The geometry of one interface node: a node pair of the two bodies (after insertion the
@@ -78,7 +79,8 @@ pub struct ContactNode {
     pub vertex_b: Option<usize>,
     /// Position (on body A, reference configuration).
     pub position: Point,
-    /// The unit normal `nu`: outward of body A (into the obstacle).
+    /// The unit normal `nu` from A to B (of the side chosen by
+    /// [`ContactNormal`](crate::ContactNormal); into the obstacle).
     pub normal: Vector,
     /// The tributary length `l_x` (nodal quadrature weight on `Gamma_C`).
     pub tributary_length: f64,
@@ -102,6 +104,10 @@ pub struct ContactDiscretisation {
     stiffness_version: u64,
     law: ContactLaw,
     obstacle: bool,
+    normal_choice: ContactNormal,
+    /// Vertices of each body's mesh before the interface insertion (the vertices of the
+    /// enlarged meshes below these are original).
+    original_vertices: Vec<usize>,
     bodies: Vec<ElasticBody>,
     systems: Vec<Arc<AssembledSystem>>,
     offsets: Vec<usize>,
@@ -132,6 +138,11 @@ impl ContactDiscretisation {
         let (bodies, nodes, inserted_nodes, zone_ends) = interface(problem_ref)?;
         let law = problem_ref.law().clone();
         let obstacle = matches!(problem_ref.counterpart(), Counterpart::Obstacle(_));
+        let normal_choice = problem_ref.normal();
+        let mut original_vertices = vec![problem_ref.body().mesh().n_vertices()];
+        if let Counterpart::Body { body, .. } = problem_ref.counterpart() {
+            original_vertices.push(body.mesh().n_vertices());
+        }
         drop(problem);
         work.times.insertion = start.elapsed();
         let start = Instant::now();
@@ -153,6 +164,8 @@ impl ContactDiscretisation {
             stiffness_version: 0,
             law,
             obstacle,
+            normal_choice,
+            original_vertices,
             bodies,
             systems,
             offsets,
@@ -185,6 +198,12 @@ impl ContactDiscretisation {
     /// The contact law.
     pub fn law(&self) -> &ContactLaw {
         &self.law
+    }
+
+    /// Which side gives the contact normal of two bodies (against an obstacle its own normal
+    /// is used whatever this says).
+    pub fn normal_choice(&self) -> ContactNormal {
+        self.normal_choice
     }
 
     /// The bodies on their enlarged meshes: A first, then B (absent against an obstacle).
@@ -598,6 +617,8 @@ impl ContactDiscretisation {
                     normal_jump,
                     normal_force,
                     pressure: normal_force / node.tributary_length,
+                    consistent_pressure: 0.0,
+                    consistent_friction_traction: 0.0,
                     friction_force: friction,
                     slip,
                     status,
@@ -606,6 +627,18 @@ impl ContactDiscretisation {
                 }
             })
             .collect();
+        let mut nodes = nodes;
+        let positions: Vec<Point> = nodes.iter().map(|n| n.position).collect();
+        let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_length).collect();
+        let normal_forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
+        let friction_forces: Vec<f64> = nodes.iter().map(|n| n.friction_force).collect();
+        let support = self.projection_support();
+        let pressures = consistent_traction(&positions, &normal_forces, &support, &lengths);
+        let tractions = consistent_traction(&positions, &friction_forces, &support, &lengths);
+        for ((node, p), t) in nodes.iter_mut().zip(pressures).zip(tractions) {
+            node.consistent_pressure = p;
+            node.consistent_friction_traction = t;
+        }
         let mut warnings = solution.report.warnings.clone();
         warnings.extend(self.model_warnings(&nodes, bounds, forces.global()));
         let mut bodies = Vec::with_capacity(self.bodies.len());
@@ -644,6 +677,31 @@ impl ContactDiscretisation {
         let mut result = ContactResult::new(bodies, nodes, solution.report, fixed_point, model);
         result.warnings = warnings;
         Ok(result)
+    }
+
+    /// The nodes whose hats span the space of the consistent pressure: the original nodes
+    /// (not inserted) of the side with fewer of them on the interface (B on a tie); every
+    /// node against an obstacle.
+    fn projection_support(&self) -> Vec<bool> {
+        let original_a: Vec<bool> = self
+            .nodes
+            .iter()
+            .map(|n| n.vertex_a < self.original_vertices[0])
+            .collect();
+        let Some(&limit_b) = self.original_vertices.get(1) else {
+            return vec![true; self.nodes.len()];
+        };
+        let original_b: Vec<bool> = self
+            .nodes
+            .iter()
+            .map(|n| n.vertex_b.is_some_and(|v| v < limit_b))
+            .collect();
+        let count = |v: &[bool]| v.iter().filter(|&&b| b).count();
+        if count(&original_a) < count(&original_b) {
+            original_a
+        } else {
+            original_b
+        }
     }
 
     /// Warnings about the model behind a converged answer: elements far outside A1, a contact
@@ -783,21 +841,36 @@ fn interface(
                 beyond(interface.pairs.first().map(|p| p.node_a)),
                 beyond(interface.pairs.last().map(|p| p.node_a)),
             ];
-            let body_a = body.with_mesh(interface.mesh_a)?;
-            let body_b = other.with_mesh(interface.mesh_b)?;
+            // Body B's outward nodal normals on its enlarged chain, for the normal choice.
+            let chain_b = boundary_chain(&interface.mesh_b, other_part).map_err(|source| {
+                ContactError::Mesh {
+                    context: format!("contact part of body '{}'", other.name()),
+                    source,
+                }
+            })?;
+            let normal_b: std::collections::HashMap<usize, Vector> =
+                chain_b.iter().map(|c| (c.vertex, c.normal)).collect();
+            let choice = problem.normal();
             let nodes: Vec<ContactNode> = interface
                 .pairs
                 .iter()
-                .map(|pair| ContactNode {
-                    vertex_a: pair.node_a,
-                    vertex_b: Some(pair.node_b),
-                    position: pair.point_a,
-                    normal: pair.normal,
-                    tributary_length: pair.tributary_length,
-                    geometric_gap: pair.initial_gap,
-                    initial_gap: pair.initial_gap,
+                .map(|pair| {
+                    let n_b = normal_b.get(&pair.node_b).copied().unwrap_or(-pair.normal);
+                    let normal = choice.combine(pair.normal, n_b);
+                    let gap = (pair.point_b - pair.point_a).dot(&normal);
+                    ContactNode {
+                        vertex_a: pair.node_a,
+                        vertex_b: Some(pair.node_b),
+                        position: pair.point_a,
+                        normal,
+                        tributary_length: pair.tributary_length,
+                        geometric_gap: gap,
+                        initial_gap: gap,
+                    }
                 })
                 .collect();
+            let body_a = body.with_mesh(interface.mesh_a)?;
+            let body_b = other.with_mesh(interface.mesh_b)?;
             (vec![body_a, body_b], nodes, inserted, zone_ends)
         }
         Counterpart::Obstacle(obstacle) => {

@@ -46,13 +46,13 @@ pub use discretisation::{ContactDiscretisation, ContactNode};
 pub use error::ContactError;
 pub use obstacle::{Obstacle, ObstacleGap};
 pub use problem::{
-    tangent, ContactLaw, ContactProblem, Counterpart, FixedPointSettings,
+    tangent, ContactLaw, ContactNormal, ContactProblem, Counterpart, FixedPointSettings,
     FixedPointSettingsBuilder, FrictionBound, ScalarField,
 };
 pub use registry::{RegistryError, SolverFactory, SolverOptions, SolverRegistry};
 pub use result::{
-    BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode, ModelSummary,
-    NodeStatus,
+    consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode,
+    ModelSummary, NodeStatus,
 };
 
 pub use warning::{Warning, ZoneLimit};

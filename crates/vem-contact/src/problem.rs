@@ -8,8 +8,9 @@
 //!    node-to-node; a rigid obstacle: the nodes of the body's contact part, nothing meshed;
 //! 2. each body is assembled on its (enlarged) mesh with Dirichlet conditions eliminated; the
 //!    unknowns are the free degrees of freedom of body A followed by those of body B;
-//! 3. one normal row per interface node, `[u]_nu = (u_A - u_B) . nu` with `nu` the outward
-//!    normal of body A (for an obstacle: `u_A . nu`, `nu` into the obstacle), bounded by the
+//! 3. one normal row per interface node, `[u]_nu = (u_A - u_B) . nu` with `nu` pointing from A
+//!    to B, the nodal normal of the side chosen by [`ContactNormal`] (for an obstacle:
+//!    `u_A . nu`, `nu` into the obstacle), bounded by the
 //!    total initial gap `h0 = geometric gap + imposed gap`; prescribed (Dirichlet) values move
 //!    to the bound. Tangential rows `[u]_1tau = (u_A - u_B) . tau`, `tau = (-nu_y, nu_x)`, are
 //!    built only for Tresca and Coulomb, with nodal bounds `b = l_x g_F(x)` (nodal quadrature of
@@ -214,6 +215,61 @@ impl ContactLaw {
     }
 }
 
+/// Which side's geometry gives the contact normal `nu` at a node pair of two bodies (the
+/// tangent is always `tau = (-nu_y, nu_x)`, so the tangential rows follow the choice). Nodal
+/// normals are the normalised mean of the outward normals of the one or two interface edges
+/// next to the node, on each side's enlarged mesh. Against a rigid obstacle the normal is
+/// always the obstacle's own and this choice does not apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ContactNormal {
+    /// The outward nodal normal of body A.
+    BodyA,
+    /// Minus the outward nodal normal of body B (the default): a curved body A pressed on a
+    /// flat body B then carries forces along B's normal, so the forces of a frictionless
+    /// answer are normal to the flat side and `sum lambda_N` is the load.
+    #[default]
+    BodyB,
+    /// The normalised difference `n_A - n_B` of the two outward nodal normals (their
+    /// bisector).
+    Averaged,
+}
+
+impl ContactNormal {
+    /// The name used in scenes and reports: `"body_a"`, `"body_b"`, `"averaged"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactNormal::BodyA => "body_a",
+            ContactNormal::BodyB => "body_b",
+            ContactNormal::Averaged => "averaged",
+        }
+    }
+
+    /// Every choice, in the order of the enum.
+    pub const ALL: [ContactNormal; 3] = [
+        ContactNormal::BodyA,
+        ContactNormal::BodyB,
+        ContactNormal::Averaged,
+    ];
+
+    /// The unit normal `nu` at a pair from the outward unit nodal normals `n_a` and `n_b` of
+    /// the two sides (`n_b` opposes `n_a` where the sides fit).
+    pub fn combine(self, n_a: Vector, n_b: Vector) -> Vector {
+        match self {
+            ContactNormal::BodyA => n_a,
+            ContactNormal::BodyB => -n_b,
+            ContactNormal::Averaged => {
+                let sum = n_a - n_b;
+                let norm = sum.norm();
+                if norm > 0.0 {
+                    sum / norm
+                } else {
+                    n_a
+                }
+            }
+        }
+    }
+}
+
 /// What body A is in contact with.
 #[derive(Debug, Clone)]
 pub enum Counterpart {
@@ -276,6 +332,7 @@ pub struct ContactProblem {
     law: ContactLaw,
     imposed_gap: Option<ScalarField>,
     interface_options: InterfaceOptions,
+    normal: ContactNormal,
 }
 
 impl std::fmt::Debug for ContactProblem {
@@ -286,13 +343,15 @@ impl std::fmt::Debug for ContactProblem {
             .field("counterpart", &self.counterpart)
             .field("law", &self.law)
             .field("imposed_gap", &self.imposed_gap.is_some())
+            .field("normal", &self.normal)
             .finish()
     }
 }
 
 impl ContactProblem {
     /// Two elastic bodies in contact on `part_a` of `body_a` and `part_b` of `body_b`; the
-    /// normal `nu` is the outward normal of body A.
+    /// normal `nu` points from A to B, taken from the side chosen by
+    /// [`ContactProblem::with_normal`] (B's by default).
     pub fn two_bodies(
         body_a: ElasticBody,
         part_a: impl Into<String>,
@@ -310,6 +369,7 @@ impl ContactProblem {
             law,
             imposed_gap: None,
             interface_options: InterfaceOptions::default(),
+            normal: ContactNormal::default(),
         }
     }
 
@@ -327,6 +387,7 @@ impl ContactProblem {
             law,
             imposed_gap: None,
             interface_options: InterfaceOptions::default(),
+            normal: ContactNormal::default(),
         }
     }
 
@@ -341,6 +402,18 @@ impl ContactProblem {
     pub fn with_interface_options(mut self, options: InterfaceOptions) -> Self {
         self.interface_options = options;
         self
+    }
+
+    /// Sets which side gives the contact normal of two bodies ([`ContactNormal`]; ignored
+    /// against an obstacle, whose own normal is used).
+    pub fn with_normal(mut self, normal: ContactNormal) -> Self {
+        self.normal = normal;
+        self
+    }
+
+    /// Which side gives the contact normal.
+    pub fn normal(&self) -> ContactNormal {
+        self.normal
     }
 
     /// The contact law.

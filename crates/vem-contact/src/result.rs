@@ -51,7 +51,8 @@ pub(crate) fn classify(
 }
 
 /// The result at one interface node (a node pair of the two bodies, or a body node facing an
-/// obstacle). Signs follow the spec: `nu` is the outward normal of body A (into the obstacle),
+/// obstacle). Signs follow the spec: `nu` points from body A to body B (the nodal normal of
+/// the side chosen by [`ContactNormal`](crate::ContactNormal); into the obstacle),
 /// `tau = (-nu_y, nu_x)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InterfaceNode {
@@ -70,10 +71,18 @@ pub struct InterfaceNode {
     pub normal_jump: f64,
     /// Nodal contact force `lambda_N >= 0` (compression), `= -sigma_nu l_x`.
     pub normal_force: f64,
-    /// Contact pressure `lambda_N / l_x`, approximating `-sigma_nu`.
+    /// Contact pressure `lambda_N / l_x` (the raw nodal value), approximating `-sigma_nu`.
     pub pressure: f64,
+    /// The consistent contact pressure: the node's value of the L2 projection of the nodal
+    /// normal forces onto the continuous piecewise-linear functions on the interface spanned
+    /// by the original (not inserted) nodes of the side with fewer of them, B on a tie, every
+    /// node against an obstacle ([`consistent_traction`]); approximates `-sigma_nu`.
+    pub consistent_pressure: f64,
     /// Nodal friction force on body A along `tau`, `= sigma_1tau l_x`; it opposes the slip.
     pub friction_force: f64,
+    /// The consistent friction traction: the node's value of the L2 projection of the nodal
+    /// friction forces (as for `consistent_pressure`), approximating `sigma_1tau`.
+    pub consistent_friction_traction: f64,
     /// The slip `[u]_1tau = (u_A - u_B) . tau` (zero for frictionless laws: not modelled).
     pub slip: f64,
     /// Open, stick or slip.
@@ -82,6 +91,118 @@ pub struct InterfaceNode {
     pub vertex_a: usize,
     /// The partner vertex of body B's (enlarged) mesh; `None` against an obstacle.
     pub vertex_b: Option<usize>,
+}
+
+/// The L2 projection of nodal forces onto continuous piecewise-linear functions on the
+/// polyline through `positions` (consecutive positions joined by straight edges).
+///
+/// The functions are the hats of the nodes marked in `support` (the first and the last node
+/// are always in it), linear in arc length between them. With `s_i` the arc length of node
+/// `i` and `phi_k` the hat of support node `k`, the values `p_k` at the support nodes solve
+///
+/// ```text
+/// sum_l M_kl p_l = sum_i forces_i phi_k(s_i),    M_kl = int phi_k phi_l ds
+/// ```
+///
+/// (`M` the consistent mass matrix of the support, tridiagonal: `(L_{k-1} + L_k)/3` on the
+/// diagonal, `L_k/6` beside it, `L_k` the arc length between support nodes `k` and `k+1`;
+/// solved by the Thomas algorithm, `M` being symmetric positive definite and diagonally
+/// dominant), and the result is `p` at every node (interpolated between support nodes).
+/// Forces `f_i = sum_j M^h_ij p(s_j)` of a linear traction `p` with the consistent mass
+/// matrix `M^h` of all nodes are reproduced exactly, and so is a uniform traction with
+/// forces `p0 l_i` (tributary lengths). With every node in `support` this is `M^h p = f`;
+/// with fewer nodes (the nodes of the coarser side of a non-matching interface) the
+/// node-to-node oscillation that forces show where the two sides' nodes nearly coincide is
+/// averaged out. A polyline of fewer than two nodes, or of zero length, has no projection:
+/// the forces divided by the `fallback` lengths are returned (0 where a length is 0).
+pub fn consistent_traction(
+    positions: &[Point],
+    forces: &[f64],
+    support: &[bool],
+    fallback: &[f64],
+) -> Vec<f64> {
+    let raw = || {
+        forces
+            .iter()
+            .zip(fallback)
+            .map(|(f, l)| if *l > 0.0 { f / l } else { 0.0 })
+            .collect::<Vec<f64>>()
+    };
+    let n = positions.len();
+    if n < 2 || forces.len() != n || support.len() != n {
+        return raw();
+    }
+    let mut arc = Vec::with_capacity(n);
+    let mut s = 0.0;
+    arc.push(0.0);
+    for w in positions.windows(2) {
+        s += (w[1] - w[0]).norm();
+        arc.push(s);
+    }
+    // Support nodes (ends included) at strictly increasing arc length.
+    let mut nodes: Vec<usize> = Vec::new();
+    for i in 0..n {
+        let marked = support[i] || i == 0 || i + 1 == n;
+        if marked && nodes.last().is_none_or(|&k| arc[i] > arc[k]) {
+            nodes.push(i);
+        } else if i + 1 == n && nodes.len() > 1 {
+            // The last node at the arc length of the previous support node: replace it.
+            let last = nodes.len() - 1;
+            nodes[last] = i;
+        }
+    }
+    let m = nodes.len();
+    if m < 2 || arc[n - 1].is_nan() || arc[n - 1] <= 0.0 {
+        return raw();
+    }
+    // Right-hand side: every force distributed to the hats of its support interval.
+    let mut rhs = vec![0.0; m];
+    let mut k = 0;
+    for i in 0..n {
+        while k + 2 < m && arc[i] > arc[nodes[k + 1]] {
+            k += 1;
+        }
+        let (s0, s1) = (arc[nodes[k]], arc[nodes[k + 1]]);
+        let t = ((arc[i] - s0) / (s1 - s0)).clamp(0.0, 1.0);
+        rhs[k] += (1.0 - t) * forces[i];
+        rhs[k + 1] += t * forces[i];
+    }
+    let lengths: Vec<f64> = nodes.windows(2).map(|w| arc[w[1]] - arc[w[0]]).collect();
+    // Thomas: forward elimination of the sub-diagonal, back substitution.
+    let mut upper = vec![0.0; m];
+    let (mut previous_upper, mut previous_value) = (0.0, 0.0);
+    for k in 0..m {
+        let before = if k > 0 { lengths[k - 1] } else { 0.0 };
+        let after = if k + 1 < m { lengths[k] } else { 0.0 };
+        let lower = before / 6.0;
+        let pivot = (before + after) / 3.0 - lower * previous_upper;
+        if pivot.is_nan() || pivot <= 0.0 {
+            return raw();
+        }
+        upper[k] = after / 6.0 / pivot;
+        rhs[k] = (rhs[k] - lower * previous_value) / pivot;
+        previous_upper = upper[k];
+        previous_value = rhs[k];
+    }
+    for k in (0..m - 1).rev() {
+        rhs[k] -= upper[k] * rhs[k + 1];
+    }
+    // Values at every node.
+    let mut values = Vec::with_capacity(n);
+    let mut k = 0;
+    for i in 0..n {
+        while k + 2 < m && arc[i] > arc[nodes[k + 1]] {
+            k += 1;
+        }
+        let (s0, s1) = (arc[nodes[k]], arc[nodes[k + 1]]);
+        let t = ((arc[i] - s0) / (s1 - s0)).clamp(0.0, 1.0);
+        values.push((1.0 - t) * rhs[k] + t * rhs[k + 1]);
+    }
+    if values.iter().all(|v| v.is_finite()) {
+        values
+    } else {
+        raw()
+    }
 }
 
 /// One body after the solve: the body on its enlarged mesh, its assembled system and its

@@ -61,4 +61,14 @@ pub enum ExactError {
         /// Which condition fails.
         reason: &'static str,
     },
+    /// A parameter of an analytic contact solution (Hertz) that is out of range.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// The parameter's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// Which condition fails.
+        reason: &'static str,
+    },
 }

@@ -35,6 +35,7 @@ mod divergence_free;
 mod elasticity;
 mod error;
 mod family_a;
+mod hertz;
 mod jet;
 mod solution;
 
@@ -46,6 +47,7 @@ pub use family_a::{
     FamilyA, InterfaceData, TraceData, Traces, CONTACT_SWITCH_POINT, FAMILY_A_FRICTION_BOUND,
     STICK_SLIP_POINT,
 };
+pub use hertz::HertzContact;
 pub use jet::{Jet, SwitchPower, SwitchSide};
 pub use solution::{
     BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, InterfaceValues,

@@ -1,0 +1,141 @@
+//! Cattaneo-Mindlin: two blocks of the same material with a parabolic initial gap
+//! `h0 = x^2 / (2R)` (a cylinder of radius R on a flat, as Hertz's theory models it) pressed
+//! together and sheared with Coulomb friction. For identical materials the normal pressure does
+//! not depend on the tangential load, and a tangential load `Q < F P` leaves a central stick
+//! zone of half-width `c = a sqrt(1 - Q/(F P))`; at full slip `Q = F P`.
+
+use std::sync::Arc;
+
+use vem_contact::{
+    CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, InterfaceNode,
+    NodeStatus,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_mesh::generators::{structured_quads, Rectangle};
+use vem_mesh::{Point, Vector};
+use vem_space::LowestOrderVem;
+use vem_verify::exact::HertzContact;
+
+const RADIUS: f64 = 1.0;
+const COEFFICIENT: f64 = 0.3;
+const INDENTATION: f64 = 0.03;
+
+/// The upper block [-1, 1] x [0, 1] (64 x 32 quads) with its top moved by (shift, -0.03)
+/// on the lower block [-1, 1] x [-1, 0] (80 x 40 quads, bottom fixed): non-matching sides.
+fn solve(shift: f64, normal: ContactNormal) -> ContactResult {
+    let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain).unwrap();
+    let element = Arc::new(LowestOrderVem::default());
+    let rect = |y0: f64| Rectangle::new(Point::new(-1.0, y0), Point::new(1.0, y0 + 1.0));
+    let upper = ElasticBody::builder(
+        "upper",
+        structured_quads(&rect(0.0), 64, 32).unwrap(),
+        material,
+        element.clone(),
+    )
+    .dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+        Vector::new(shift, -INDENTATION)
+    }))
+    .build()
+    .unwrap();
+    let lower = ElasticBody::builder(
+        "lower",
+        structured_quads(&rect(-1.0), 80, 40).unwrap(),
+        material,
+        element,
+    )
+    .dirichlet(Dirichlet::prescribed("bottom", Component::Both, |_| {
+        Vector::zeros()
+    }))
+    .build()
+    .unwrap();
+    let law = ContactLaw::try_coulomb(COEFFICIENT).unwrap();
+    ContactProblem::two_bodies(upper, "bottom", lower, "top", law)
+        .with_imposed_gap(|x| x.x * x.x / (2.0 * RADIUS))
+        .with_normal(normal)
+        .solve(&mut CondensedSolver::default())
+        .unwrap()
+}
+
+/// Half-length of the run of nodes with `inside` around x = 0, its ends halfway to the next
+/// node outside, and the largest node spacing at its ends.
+fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
+    let centre = (0..nodes.len())
+        .filter(|&i| inside(&nodes[i]))
+        .min_by(|&i, &j| {
+            nodes[i]
+                .position
+                .x
+                .abs()
+                .total_cmp(&nodes[j].position.x.abs())
+        })
+        .expect("a node inside");
+    let (mut first, mut last) = (centre, centre);
+    while first > 0 && inside(&nodes[first - 1]) {
+        first -= 1;
+    }
+    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
+        last += 1;
+    }
+    let x = |i: usize| nodes[i].position.x;
+    let (start, stop) = (
+        0.5 * (x(first) + x(first - 1)),
+        0.5 * (x(last) + x(last + 1)),
+    );
+    let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
+    (0.5 * (stop - start), spacing)
+}
+
+/// (P, Q) from the force on the upper body.
+fn loads(result: &ContactResult) -> (f64, f64) {
+    let force = result.force_on_body_a();
+    (force.y, force.x.abs())
+}
+
+#[test]
+fn partial_slip_leaves_the_stick_zone_of_cattaneo_mindlin() {
+    let result = solve(0.004, ContactNormal::default());
+    let (p, q) = loads(&result);
+    let ratio = q / (COEFFICIENT * p);
+    assert!(
+        ratio > 0.2 && ratio < 0.8,
+        "Q/(F P) = {ratio}: partial slip"
+    );
+    let (a, spacing_a) = zone(&result.nodes, |n| n.status != NodeStatus::Open);
+    let (c, spacing_c) = zone(&result.nodes, |n| n.status == NodeStatus::Stick);
+    // The contact half-width against Hertz's for the computed P (finite blocks: a few %).
+    let e_star = HertzContact::plane_strain_modulus(100.0, 0.3, 100.0, 0.3);
+    let hertz = HertzContact::try_new(RADIUS, e_star, p).unwrap();
+    assert!(
+        (a - hertz.half_width()).abs() <= spacing_a,
+        "a = {a}, Hertz {}, spacing {spacing_a}",
+        hertz.half_width()
+    );
+    // Cattaneo-Mindlin's stick zone within one node spacing.
+    let expected = a * (1.0 - ratio).sqrt();
+    eprintln!(
+        "P = {p:.6}, Q/(F P) = {ratio:.4}, a = {a:.4} (Hertz {:.4}), c = {c:.4}, \
+         a sqrt(1 - Q/(F P)) = {expected:.4}, spacing {spacing_c:.4}",
+        hertz.half_width()
+    );
+    assert!(
+        (c - expected).abs() <= spacing_c,
+        "c = {c}, a sqrt(1 - Q/(F P)) = {expected}, spacing {spacing_c}, Q/(F P) = {ratio}"
+    );
+    // Friction below its bound everywhere, at the bound outside the stick zone.
+    for n in &result.nodes {
+        assert!(n.friction_force.abs() <= COEFFICIENT * n.normal_force * (1.0 + 1e-9) + 1e-12);
+    }
+}
+
+#[test]
+fn full_slip_carries_the_coulomb_force_and_the_same_pressure() {
+    let sheared = solve(0.05, ContactNormal::default());
+    let (p, q) = loads(&sheared);
+    assert_eq!(sheared.status_counts().1, 0, "no node sticks");
+    assert!((q / p - COEFFICIENT).abs() < 1e-6, "Q/P = {}", q / p);
+    // Identical materials: the normal load hardly depends on the tangential one (exactly
+    // for half-planes; the finite blocks couple them by 1e-4 here).
+    let pressed = solve(0.0, ContactNormal::default());
+    let (p0, _) = loads(&pressed);
+    assert!((p - p0).abs() < 1e-3 * p0, "P sheared {p}, pressed {p0}");
+}
