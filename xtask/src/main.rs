@@ -3,9 +3,12 @@
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
 //! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
 //!   `docs/benchmarks.md`).
+//! - `extremes`: stability at the extremes, every solver against independent answers (see
+//!   `docs/extremes.md`).
 
 mod bench;
 mod convergence;
+mod extremes;
 
 use std::process::ExitCode;
 
@@ -30,6 +33,11 @@ enum Task {
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
     /// measurement in a child process. Writes bench.md, bench.json and bench.svg.
     Bench(bench::BenchArgs),
+    /// Stability at the extremes: Poisson ratio up to 0.49999 for every element, stiffness
+    /// contrasts, units scaled, degenerate cells, penalty factors, gaps, friction bounds; every
+    /// solver against an independent expected answer. Writes docs/extremes.md; exits with
+    /// status 1 when a wrong answer came without an error or a warning.
+    Extremes(extremes::ExtremesArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
@@ -40,6 +48,7 @@ fn main() -> ExitCode {
     let outcome = match cli.task {
         Task::Convergence(args) => convergence::run(&args),
         Task::Bench(args) => bench::run(&args),
+        Task::Extremes(args) => extremes::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
     };
     match outcome {
