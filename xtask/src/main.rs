@@ -5,9 +5,12 @@
 //!   `docs/benchmarks.md`).
 //! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
 //!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
+//! - `extremes`: stability at the extremes, every solver against independent answers (see
+//!   `docs/extremes.md`).
 
 mod bench;
 mod convergence;
+mod extremes;
 mod hertz;
 
 use std::process::ExitCode;
@@ -37,6 +40,11 @@ enum Task {
     /// choice (peak, profile, half-width, resultants) and Coulomb friction (Q/P at full slip,
     /// Cattaneo-Mindlin's stick zone). Writes results.md, results.json and SVG plots.
     Hertz(hertz::HertzArgs),
+    /// Stability at the extremes: Poisson ratio up to 0.49999 for every element, stiffness
+    /// contrasts, units scaled, degenerate cells, penalty factors, gaps, friction bounds; every
+    /// solver against an independent expected answer. Writes docs/extremes.md; exits with
+    /// status 1 when a wrong answer came without an error or a warning.
+    Extremes(extremes::ExtremesArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
@@ -47,6 +55,7 @@ fn main() -> ExitCode {
     let outcome = match cli.task {
         Task::Convergence(args) => convergence::run(&args),
         Task::Bench(args) => bench::run(&args),
+        Task::Extremes(args) => extremes::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
         Task::Hertz(args) => hertz::run(&args),
     };

@@ -82,9 +82,12 @@ pub struct KktResiduals {
     /// every body relative to its own force scale.
     pub stationarity: f64,
     /// The round-off floor of [`KktResiduals::stationarity`]:
-    /// `max_b 8 eps ||(|K||u| + |f| + |B_N'||lambda_N| + |B_T'||lambda_T|)_b||_inf / F_b`. A
-    /// body with a large rigid displacement (held only by a soft body) cannot be checked
-    /// below it; the acceptance test takes the larger of its tolerance and this floor.
+    /// `max_b 8 eps ||(|K||u| + |f| + |B_N'||lambda_N| + |B_T'||lambda_T|)_b||_inf / F_b`, and
+    /// for a body that carries constraint rows at least `8 eps max_b F_b / F_b` (the forces it
+    /// receives through the interface are known to round-off of the largest force scale). A
+    /// body with a large rigid displacement (held only by a soft body), or one touching at zero
+    /// load, cannot be checked below it; the acceptance test takes the larger of its tolerance
+    /// and this floor.
     pub stationarity_floor: f64,
     /// `max_i (|lambda_T,i| - b_i)^+ / F_i`: violation of the friction bound (0 when
     /// frictionless).
@@ -166,7 +169,7 @@ impl ForceScales {
         let ranges = block_ranges(system);
         let mut blocks = Vec::with_capacity(ranges.len());
         let mut stationarity = 0.0f64;
-        let mut stationarity_floor = 0.0f64;
+        let mut floors = Vec::with_capacity(ranges.len());
         for range in &ranges {
             let r = range.clone();
             let scale = inf_norm(&load[r.clone()])
@@ -174,12 +177,40 @@ impl ForceScales {
                 .max(inf_norm(&reaction[r.clone()]));
             let residual = r.fold(0.0f64, |a, j| a.max((ku[j] - load[j] + reaction[j]).abs()));
             stationarity = stationarity.max(relative(residual, scale));
-            let floor = 8.0 * f64::EPSILON * inf_norm(&magnitude[range.clone()]);
-            stationarity_floor = stationarity_floor.max(relative(floor, scale));
+            floors.push(8.0 * f64::EPSILON * inf_norm(&magnitude[range.clone()]));
             blocks.push(scale);
         }
         let global = blocks.iter().fold(0.0f64, |a, &b| a.max(b));
         let block_of = |col: usize| ranges.iter().position(|r| r.contains(&col));
+        // The forces a block receives through constraint rows are computed with the whole
+        // problem, to round-off of its largest force scale: a block that carries constraint
+        // rows cannot be checked below 8 eps F / F_b (e.g. a body touching at zero load, whose
+        // only forces are the round-off of the other body's).
+        let mut coupled = vec![false; ranges.len()];
+        let mut mark = |rows_b: &super::ConstraintRows| {
+            for i in 0..rows_b.nrows() {
+                for &c in rows_b.row(i).0 {
+                    if let Some(b) = block_of(c) {
+                        coupled[b] = true;
+                    }
+                }
+            }
+        };
+        mark(system.normal_rows());
+        if let Some(friction) = system.friction() {
+            mark(friction.tangential_rows());
+        }
+        let stationarity_floor = floors.iter().zip(&blocks).zip(&coupled).fold(
+            0.0f64,
+            |a, ((&floor, &scale), &coupled)| {
+                let floor = if coupled {
+                    floor.max(8.0 * f64::EPSILON * global)
+                } else {
+                    floor
+                };
+                a.max(relative(floor, scale))
+            },
+        );
         let m = system.n_constraints();
         let mut rows = vec![f64::INFINITY; m];
         let mut touch = |rows_b: &super::ConstraintRows| {
@@ -529,5 +560,59 @@ impl AddAssign for WorkCounters {
         self.numeric_factorisations += other.numeric_factorisations;
         self.triangular_solves += other.triangular_solves;
         self.times += other.times;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::borrow::Cow;
+
+    use faer::sparse::{SparseColMat, Triplet};
+
+    use super::*;
+    use crate::solver::borrowed_block;
+    use crate::solver::{ConstraintRows, PatternId};
+
+    fn spring() -> SparseColMat<usize, f64> {
+        SparseColMat::<usize, f64>::try_new_from_triplets(1, 1, &[Triplet::new(0, 0, 1.0)])
+            .expect("valid triplets")
+    }
+
+    /// Two springs, the first loaded by 1 and touching the second (gap 1) at zero force: the
+    /// second's only forces are round-off of the first's (1e-19). Its stationarity relative to
+    /// its own scale is 0.1, but it is below the floor of the coupled problem, 8 eps.
+    #[test]
+    fn a_body_touching_at_zero_load_is_checked_to_the_round_off_of_the_coupled_problem() {
+        let k = spring();
+        let rows = ConstraintRows::try_from_triplets(1, 2, &[(0, 0, 1.0), (0, 1, -1.0)])
+            .expect("valid rows");
+        let system = ContactSystem::try_from_parts(
+            PatternId::fresh(),
+            0,
+            vec![borrowed_block(0, &k), borrowed_block(1, &k)],
+            Cow::Owned(vec![1.0, 0.0]),
+            Cow::Owned(rows),
+            Cow::Owned(vec![1.0]),
+            None,
+        )
+        .expect("a valid system");
+        let r = KktResiduals::evaluate(&system, &[1.0, 1e-19], &[0.9e-19], &[]);
+        assert!((r.stationarity - 0.1).abs() < 1e-6, "{r:?}");
+        assert!(r.stationarity_floor > r.stationarity, "{r:?}");
+        // Without the constraint row coupling them the second body is checked on its own.
+        let rows = ConstraintRows::try_from_triplets(1, 2, &[(0, 0, 1.0)]).expect("valid rows");
+        let system = ContactSystem::try_from_parts(
+            PatternId::fresh(),
+            0,
+            vec![borrowed_block(0, &k), borrowed_block(1, &k)],
+            Cow::Owned(vec![1.0, 0.9e-19]),
+            Cow::Owned(rows),
+            Cow::Owned(vec![2.0]),
+            None,
+        )
+        .expect("a valid system");
+        let r = KktResiduals::evaluate(&system, &[1.0, 1e-19], &[0.0], &[]);
+        assert!((r.stationarity - 0.1).abs() < 1e-6, "{r:?}");
+        assert!(r.stationarity_floor < 1e-10, "{r:?}");
     }
 }

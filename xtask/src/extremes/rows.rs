@@ -1,0 +1,1287 @@
+//! The rows of `cargo xtask extremes`: each extreme with its independent expected answer, solved
+//! by every registered contact solver and judged. Shared with the workspace test
+//! `tests/tests/extremes.rs`, which runs every group at a small size.
+//!
+//! Expected answers come from outside the solvers:
+//! - two-body linear patch tests (uniform stress in each body, any Lamé parameters per body):
+//!   the lowest-order VEM reproduces them exactly on any mesh, so the nodal displacements and
+//!   the normal resultant are known exactly;
+//! - invariances: a problem whose lengths are scaled by `s` and moduli by `m` has the
+//!   displacement `s u(x/s)` and nodal forces `m s` times those of the unscaled problem;
+//!   Tresca with `g_F = 0` is the frictionless problem;
+//! - the divergence-free solution E2 of `vem-verify` for the locking measure.
+
+use std::sync::Arc;
+
+use vem_contact::{
+    ContactError, ContactLaw, ContactProblem, ContactResult, FrictionBound, PenaltyParameter,
+    SolverOptions, SolverRegistry,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_mesh::generators::{MeshFamily, Rectangle};
+use vem_mesh::{Mesh, PartSpec, Point, Vector};
+use vem_space::{ElementRegistry, ElementSpace};
+use vem_verify::cases::{CaseRegistry, PATCH_TOLERANCE};
+use vem_verify::exact::{BodyId, ExactContact, ExactSolution, Lame, Side};
+use vem_verify::nalgebra::Matrix2;
+use vem_verify::norms::ErrorNorms;
+use vem_verify::problem::{DiscreteProblem, ProblemSettings};
+
+/// Relative change of an answer allowed under a change of units.
+pub const UNITS_TOLERANCE: f64 = 1e-10;
+/// Relative difference allowed between two solves of the same mathematical problem posed two
+/// ways (Tresca with a zero bound against frictionless): the solvers' tolerances.
+pub const SAME_PROBLEM_TOLERANCE: f64 = 1e-7;
+/// Largest ratio of the E2 errors at a Poisson ratio to those at nu = 0.3 (issue: locking-free
+/// means within 2x).
+pub const LOCKING_RATIO: f64 = 2.0;
+/// Poisson ratios of the locking sweep.
+pub const POISSON_RATIOS: [f64; 6] = [0.3, 0.4, 0.49, 0.499, 0.4999, 0.49999];
+
+/// How a row came out for one solver.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// The expected answer, within the row's tolerance.
+    Pass,
+    /// The solver (or the model building) refused with an error: no wrong answer was given.
+    Refused(String),
+    /// A wrong answer, but reported with a warning.
+    Warned(String),
+    /// A wrong answer reported as converged without a warning.
+    Wrong,
+}
+
+impl Verdict {
+    /// The word of the report.
+    pub fn word(&self) -> &'static str {
+        match self {
+            Verdict::Pass => "PASS",
+            Verdict::Refused(_) => "FAIL (refused: error)",
+            Verdict::Warned(_) => "FAIL (warned)",
+            Verdict::Wrong => "FAIL (wrong answer reported as converged)",
+        }
+    }
+
+    /// True unless a wrong answer came without an error or a warning.
+    #[allow(dead_code)] // used by tests/tests/extremes.rs
+    pub fn is_honest(&self) -> bool {
+        !matches!(self, Verdict::Wrong)
+    }
+}
+
+/// One solver's outcome of a row.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Solver name (registry name), or the linear solver for elasticity rows.
+    pub solver: String,
+    /// What was measured, in words and numbers.
+    pub measured: String,
+    /// The judgement.
+    pub verdict: Verdict,
+}
+
+/// One extreme: what is expected and what each solver gave.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// The extreme, e.g. "nu = 0.49999, vem1".
+    pub name: String,
+    /// The expected answer and its tolerance.
+    pub expected: String,
+    /// One per solver.
+    pub outcomes: Vec<Outcome>,
+}
+
+/// Sizes of a run.
+#[derive(Debug, Clone)]
+pub struct Size {
+    /// Cells across each body in the patch tests.
+    pub patch: usize,
+    /// Cells across each body in the manufactured problems (M1, M2).
+    pub manufactured: usize,
+    /// Cells across in the locking study (E2).
+    pub locking: usize,
+    /// Mesh families of the locking study.
+    pub locking_families: Vec<MeshFamily>,
+    /// Contact solvers (registry names).
+    pub solvers: Vec<String>,
+}
+
+impl Size {
+    /// Sizes for a run: `quick` for CI, otherwise the full report.
+    pub fn new(quick: bool) -> Self {
+        let all_families = vec![
+            MeshFamily::Quads,
+            MeshFamily::Voronoi,
+            MeshFamily::Hexagons,
+            MeshFamily::NonConvex,
+            MeshFamily::PerturbedQuads { distortion: 0.3 },
+            MeshFamily::Triangles,
+        ];
+        if quick {
+            Self {
+                patch: 6,
+                manufactured: 8,
+                locking: 16,
+                locking_families: vec![
+                    MeshFamily::Quads,
+                    MeshFamily::Voronoi,
+                    MeshFamily::Triangles,
+                ],
+                solvers: solver_names(),
+            }
+        } else {
+            Self {
+                patch: 12,
+                manufactured: 16,
+                locking: 32,
+                locking_families: all_families,
+                solvers: solver_names(),
+            }
+        }
+    }
+
+    /// The smallest sizes (for the workspace tests).
+    #[allow(dead_code)] // used by tests/tests/extremes.rs
+    pub fn test() -> Self {
+        Self {
+            patch: 4,
+            manufactured: 6,
+            locking: 8,
+            locking_families: vec![MeshFamily::Quads, MeshFamily::Triangles],
+            solvers: solver_names(),
+        }
+    }
+}
+
+/// Every solver of the registry.
+pub fn solver_names() -> Vec<String> {
+    SolverRegistry::builtin()
+        .names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+}
+
+/// A group of rows.
+pub type Group = fn(&Size) -> Vec<Row>;
+
+/// The groups, in the order of the report.
+pub fn groups() -> Vec<(&'static str, Group)> {
+    vec![
+        ("Poisson ratio up to 0.49999", poisson as Group),
+        ("Stiffness contrast between the bodies", contrast),
+        ("Units: lengths and moduli scaled", units),
+        ("Degenerate cells", cells),
+        ("Penalty factors", penalty),
+        ("Gaps", gaps),
+        ("Friction bound 0 and huge", friction),
+    ]
+}
+
+// ---------------------------------------------------------------------------------------------
+// Two-body linear patch tests
+
+/// A uniform stress state in each body and the matching linear displacement.
+#[derive(Debug, Clone, Copy)]
+struct LinearField {
+    /// Displacement gradient (i, j) = d_j u_i.
+    gradient: [[f64; 2]; 2],
+    /// Translation.
+    offset: [f64; 2],
+    /// Stress.
+    stress: [[f64; 2]; 2],
+}
+
+impl LinearField {
+    /// Plane strain, stress `[[sxx, q], [q, syy]]`, rotation chosen so that d_x u_y = 0
+    /// (the interface `y = 0` moves as a rigid translation of each body when d_x u_x = 0).
+    fn new(lambda: f64, mu: f64, sxx: f64, syy: f64, q: f64, offset: [f64; 2]) -> Self {
+        let det = 4.0 * mu * (lambda + mu);
+        let exx = ((lambda + 2.0 * mu) * sxx - lambda * syy) / det;
+        let eyy = ((lambda + 2.0 * mu) * syy - lambda * sxx) / det;
+        let exy = q / (2.0 * mu);
+        Self {
+            gradient: [[exx, 2.0 * exy], [0.0, eyy]],
+            offset,
+            stress: [[sxx, q], [q, syy]],
+        }
+    }
+
+    fn displacement(&self, x: Point) -> Vector {
+        let g = &self.gradient;
+        Vector::new(
+            g[0][0] * x.x + g[0][1] * x.y + self.offset[0],
+            g[1][0] * x.x + g[1][1] * x.y + self.offset[1],
+        )
+    }
+
+    fn traction(&self, normal: Vector) -> Vector {
+        let s = &self.stress;
+        Vector::new(
+            s[0][0] * normal.x + s[0][1] * normal.y,
+            s[1][0] * normal.x + s[1][1] * normal.y,
+        )
+    }
+}
+
+/// Mesh kinds of the patch tests (each body meshed on its own, interface at `y = 0`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cells {
+    /// Structured quads.
+    Quads,
+    /// Structured quads, each cut into two triangles.
+    Triangles,
+    /// Every cell an octagon with four edges `ratio` times the cell size (straight angles).
+    TinyEdges(f64),
+    /// A layer of cells `ratio` times thinner than wide along the interface.
+    Layer(f64),
+    /// A layer of flat triangles (height `ratio` times the base, apex over the middle) along
+    /// the interface, with needles between them.
+    Slivers(f64),
+    /// Every other row made of chevrons whose reflex vertex is `ratio` times the cell size
+    /// above the bottom edge (non-convex, close to degenerate).
+    Chevrons(f64),
+}
+
+impl Cells {
+    fn describe(self) -> String {
+        match self {
+            Cells::Quads => "quads".to_string(),
+            Cells::Triangles => "triangles".to_string(),
+            Cells::TinyEdges(r) => format!("edges {r:.0e} of the diameter"),
+            Cells::Layer(r) => format!("aspect ratio {:.0e}", 1.0 / r),
+            Cells::Slivers(r) => format!("slivers, height/base {r:.0e}"),
+            Cells::Chevrons(r) => format!("chevrons, reflex vertex {r:.0e} h off the edge"),
+        }
+    }
+}
+
+/// A mesh of `(0, width) x (0, height)` (interface at the bottom), then mirrored to
+/// `(0, width) x (-height, 0)` when `mirror` (interface at the top).
+fn patch_mesh(
+    cells: Cells,
+    width: f64,
+    height: f64,
+    n: usize,
+    mirror: bool,
+) -> Result<Mesh, String> {
+    let h = width / n as f64;
+    let xs: Vec<f64> = (0..=n).map(|i| width * i as f64 / n as f64).collect();
+    let mut points: Vec<Point> = Vec::new();
+    let mut polygons: Vec<Vec<usize>> = Vec::new();
+    let lattice = |ys: &[f64], points: &mut Vec<Point>| -> usize {
+        let start = points.len();
+        for &y in ys {
+            for &x in &xs {
+                points.push(Point::new(x, y));
+            }
+        }
+        start
+    };
+    let uniform = |from: f64, rows: usize| -> Vec<f64> {
+        (0..=rows)
+            .map(|j| from + (height - from) * j as f64 / rows as f64)
+            .collect()
+    };
+    let row = n + 1;
+    match cells {
+        Cells::Quads | Cells::Triangles | Cells::Layer(_) | Cells::Chevrons(_) => {
+            let ys = match cells {
+                Cells::Layer(r) => {
+                    let mut ys = vec![0.0];
+                    ys.extend(uniform(r * h, n.max(2) - 1));
+                    ys
+                }
+                _ => uniform(0.0, n),
+            };
+            let start = lattice(&ys, &mut points);
+            let v = |i: usize, j: usize| start + j * row + i;
+            let rows = ys.len() - 1;
+            for j in 0..rows {
+                for i in 0..n {
+                    match cells {
+                        Cells::Chevrons(r) if j % 2 == 0 && j + 1 < rows => {
+                            let c = points.len();
+                            points.push(Point::new(0.5 * (xs[i] + xs[i + 1]), ys[j] + r * h));
+                            polygons.push(vec![
+                                v(i, j),
+                                v(i + 1, j),
+                                v(i + 1, j + 1),
+                                c,
+                                v(i, j + 1),
+                            ]);
+                        }
+                        Cells::Chevrons(_) if j % 2 == 1 => {
+                            // The reflex vertex of the chevron below is on this cell's bottom.
+                            let c = start + ys.len() * row + (j / 2) * n + i;
+                            polygons.push(vec![
+                                v(i, j),
+                                c,
+                                v(i + 1, j),
+                                v(i + 1, j + 1),
+                                v(i, j + 1),
+                            ]);
+                        }
+                        Cells::Triangles => {
+                            polygons.push(vec![v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                            polygons.push(vec![v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+                        }
+                        _ => {
+                            polygons.push(vec![v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)])
+                        }
+                    }
+                }
+            }
+        }
+        Cells::TinyEdges(r) => {
+            let ys = uniform(0.0, n);
+            let start = lattice(&ys, &mut points);
+            let v = |i: usize, j: usize| start + j * row + i;
+            // Extra points on horizontal edges (i in 0..n, j in 0..=n), then vertical ones.
+            let horizontal = points.len();
+            for &y in &ys {
+                for &x in &xs[..n] {
+                    points.push(Point::new(x + r * h, y));
+                }
+            }
+            let vertical = points.len();
+            for &y in &ys[..n] {
+                for &x in &xs {
+                    points.push(Point::new(x, y + r * h));
+                }
+            }
+            let eh = |i: usize, j: usize| horizontal + j * n + i;
+            let ev = |i: usize, j: usize| vertical + j * row + i;
+            for j in 0..n {
+                for i in 0..n {
+                    polygons.push(vec![
+                        v(i, j),
+                        eh(i, j),
+                        v(i + 1, j),
+                        ev(i + 1, j),
+                        v(i + 1, j + 1),
+                        eh(i, j + 1),
+                        v(i, j + 1),
+                        ev(i, j),
+                    ]);
+                }
+            }
+        }
+        Cells::Slivers(r) => {
+            let t = r * h;
+            let mut ys = vec![t];
+            ys.extend(uniform(t, n.max(2) - 1).into_iter().skip(1));
+            let bottom = points.len();
+            for &x in &xs {
+                points.push(Point::new(x, 0.0));
+            }
+            let middle = points.len();
+            for i in 0..n {
+                points.push(Point::new(0.5 * (xs[i] + xs[i + 1]), t));
+            }
+            let start = lattice(&ys, &mut points);
+            let v = |i: usize, j: usize| start + j * row + i;
+            for i in 0..n {
+                let (b0, b1, m) = (bottom + i, bottom + i + 1, middle + i);
+                polygons.push(vec![b0, b1, m]);
+                polygons.push(vec![b0, m, v(i, 0)]);
+                polygons.push(vec![b1, v(i + 1, 0), m]);
+            }
+            for j in 0..ys.len() - 1 {
+                for i in 0..n {
+                    let mut polygon = vec![v(i, j)];
+                    if j == 0 {
+                        polygon.push(middle + i);
+                    }
+                    polygon.extend([v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
+                    polygons.push(polygon);
+                }
+            }
+        }
+    }
+    if mirror {
+        for p in &mut points {
+            p.y = -p.y;
+        }
+        for polygon in &mut polygons {
+            polygon.reverse();
+        }
+    }
+    let (ymin, ymax) = if mirror {
+        (-height, 0.0)
+    } else {
+        (0.0, height)
+    };
+    let tol = 1e-13 * width.max(height);
+    let on = |a: f64, b: f64| (a - b).abs() <= tol;
+    let mut parts: Vec<PartSpec> = ["left", "right", "bottom", "top"]
+        .iter()
+        .map(|name| PartSpec::new(*name, Vec::new()))
+        .collect();
+    for polygon in &polygons {
+        for k in 0..polygon.len() {
+            let (a, b) = (polygon[k], polygon[(k + 1) % polygon.len()]);
+            let (pa, pb) = (points[a], points[b]);
+            let side = if on(pa.x, 0.0) && on(pb.x, 0.0) {
+                0
+            } else if on(pa.x, width) && on(pb.x, width) {
+                1
+            } else if on(pa.y, ymin) && on(pb.y, ymin) {
+                2
+            } else if on(pa.y, ymax) && on(pb.y, ymax) {
+                3
+            } else {
+                continue;
+            };
+            parts[side].edges.push([a, b]);
+        }
+    }
+    Mesh::from_polygons(points, &polygons, parts).map_err(|e| format!("mesh: {}", chain(&e)))
+}
+
+/// A two-body linear patch test: body 1 = (0, W) x (0, H) above body 2 = (0, W) x (-H, 0),
+/// uniform stress `[[sxx_i, q], [q, -p]]` in body i, body 1's top and body 2's bottom
+/// prescribed, the lateral sides loaded by the exact tractions, the interface `y = 0` in
+/// contact with the imposed gap `h0 = [u]_nu + opening`.
+#[derive(Clone)]
+struct Patch {
+    length: f64,
+    lame: [(f64, f64); 2],
+    /// Compression `p = -sigma_yy` (both bodies).
+    pressure: f64,
+    /// Shear stress `sigma_xy` (both bodies).
+    shear: f64,
+    /// `sigma_xx` per body: `None` makes `d_x u_x = 0` (no tangential jump from the contrast).
+    lateral: Option<f64>,
+    /// Translation of body 1 (body 2 has none).
+    offset: [f64; 2],
+    /// The gap beyond the exact normal jump (0: in contact where pressed).
+    opening: f64,
+    law: ContactLaw,
+    cells: Cells,
+    /// Both bodies on the same number of cells across (no interface node insertion).
+    matching: bool,
+    element: Arc<dyn ElementSpace>,
+}
+
+impl Patch {
+    /// Frictionless, pressed (p = 1/100 of the modulus of body 2), unit square bodies.
+    fn pressed(lame: [(f64, f64); 2], n_cells: Cells) -> Self {
+        let modulus = lame[1].0 + 2.0 * lame[1].1;
+        Self {
+            length: 1.0,
+            lame,
+            pressure: 0.01 * modulus,
+            shear: 0.0,
+            lateral: None,
+            offset: [0.003, 0.0],
+            opening: 0.0,
+            law: ContactLaw::Frictionless,
+            cells: n_cells,
+            matching: false,
+            element: default_element(),
+        }
+    }
+
+    fn fields(&self) -> [LinearField; 2] {
+        let p = self.pressure;
+        let field = |k: usize, offset: [f64; 2]| {
+            let (lambda, mu) = self.lame[k];
+            let sxx = self.lateral.unwrap_or(-lambda * p / (lambda + 2.0 * mu));
+            LinearField::new(lambda, mu, sxx, -p, self.shear, offset)
+        };
+        let l = self.length;
+        [
+            field(0, [self.offset[0] * l, self.offset[1] * l]),
+            field(1, [0.0, 0.0]),
+        ]
+    }
+
+    /// The exact normal resultant (sum of compressive nodal forces).
+    fn resultant(&self) -> f64 {
+        self.pressure * self.length
+    }
+
+    fn problem(&self, n: usize) -> Result<ContactProblem, String> {
+        let fields = self.fields();
+        let l = self.length;
+        let mut bodies = Vec::new();
+        for (k, field) in fields.iter().enumerate() {
+            let across = if self.matching { n } else { n + k };
+            let mesh = patch_mesh(self.cells, l, l, across, k == 1)?;
+            let (lambda, mu) = self.lame[k];
+            let material = Material::from_lame(lambda, mu, Plane::Strain).map_err(|e| chain(&e))?;
+            let field = *field;
+            let held = if k == 0 { "top" } else { "bottom" };
+            let body = ElasticBody::builder(
+                format!("patch body {}", k + 1),
+                mesh,
+                material,
+                Arc::clone(&self.element),
+            )
+            .dirichlet(Dirichlet::prescribed(held, Component::Both, move |x| {
+                field.displacement(x)
+            }))
+            .traction("left", move |_| field.traction(Vector::new(-1.0, 0.0)))
+            .traction("right", move |_| field.traction(Vector::new(1.0, 0.0)))
+            .build()
+            .map_err(|e| chain(&e))?;
+            bodies.push(body);
+        }
+        let lower = bodies.pop().expect("two bodies");
+        let upper = bodies.pop().expect("two bodies");
+        // [u]_nu = u_1 . (0, -1) + u_2 . (0, 1) on y = 0: constant (d_x u_y = 0).
+        let origin = Point::new(0.0, 0.0);
+        let jump = -fields[0].displacement(origin).y + fields[1].displacement(origin).y;
+        let gap = jump + self.opening * l;
+        Ok(
+            ContactProblem::two_bodies(upper, "bottom", lower, "top", self.law.clone())
+                .with_imposed_gap(move |_| gap),
+        )
+    }
+
+    /// Largest nodal displacement error relative to the body's largest exact displacement,
+    /// over both bodies, and the normal resultant's error relative to the force scale.
+    fn errors(&self, result: &ContactResult) -> (f64, f64) {
+        let fields = self.fields();
+        let mut worst: f64 = 0.0;
+        for (body, field) in result.bodies.iter().zip(&fields) {
+            let mesh = body.body.mesh();
+            let u = body.solution.displacement();
+            let (mut error, mut scale): (f64, f64) = (0.0, 0.0);
+            for (v, &x) in mesh.vertices().iter().enumerate() {
+                let exact = field.displacement(x);
+                scale = scale.max(exact.x.abs()).max(exact.y.abs());
+                error = error
+                    .max((u[2 * v] - exact.x).abs())
+                    .max((u[2 * v + 1] - exact.y).abs());
+            }
+            worst = worst.max(if scale > 0.0 { error / scale } else { error });
+        }
+        let force_scale = fields
+            .iter()
+            .flat_map(|f| f.stress.iter().flatten())
+            .fold(0.0_f64, |m, s| m.max(s.abs()))
+            * self.length;
+        let resultant_error = (result.normal_resultant() - self.resultant()).abs();
+        let force = if force_scale > 0.0 {
+            resultant_error / force_scale
+        } else {
+            resultant_error
+        };
+        (worst, force)
+    }
+
+    /// Solves with `solver` (options `options`) and judges against the exact answer within
+    /// `tolerance`.
+    fn judge(&self, n: usize, solver: &str, options: &SolverOptions, tolerance: f64) -> Outcome {
+        let outcome = self
+            .problem(n)
+            .and_then(|problem| solve(&problem, solver, options));
+        let measured = |r: &ContactResult| {
+            let (u, f) = self.errors(r);
+            (
+                format!("max nodal error {u:.1e}, resultant error {f:.1e}"),
+                u <= tolerance && f <= tolerance,
+            )
+        };
+        judge(solver, outcome, measured)
+    }
+}
+
+fn default_element() -> Arc<dyn ElementSpace> {
+    ElementRegistry::builtin()
+        .make(ElementRegistry::DEFAULT)
+        .expect("the default element is registered")
+}
+
+/// An error and its sources, on one line.
+pub fn chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text
+}
+
+fn solve(
+    problem: &ContactProblem,
+    solver: &str,
+    options: &SolverOptions,
+) -> Result<ContactResult, String> {
+    let mut solver = SolverRegistry::builtin()
+        .make(solver, options)
+        .map_err(|e| chain(&e))?;
+    problem
+        .solve(solver.as_mut())
+        .map_err(|e: ContactError| chain(&e))
+}
+
+/// The verdict of one solve: `check` gives what was measured and whether it is the expected
+/// answer.
+fn judge(
+    solver: &str,
+    outcome: Result<ContactResult, String>,
+    check: impl Fn(&ContactResult) -> (String, bool),
+) -> Outcome {
+    match outcome {
+        Err(error) => Outcome {
+            solver: solver.to_string(),
+            measured: format!("error: {error}"),
+            verdict: Verdict::Refused(error),
+        },
+        Ok(result) => {
+            let (measured, ok) = check(&result);
+            let verdict = if ok {
+                Verdict::Pass
+            } else if let Some(w) = result.warnings.first() {
+                Verdict::Warned(w.to_string())
+            } else {
+                Verdict::Wrong
+            };
+            let measured = match result.warnings.first() {
+                Some(w) if !ok => format!("{measured}; warning: {w}"),
+                _ => measured,
+            };
+            Outcome {
+                solver: solver.to_string(),
+                measured,
+                verdict,
+            }
+        }
+    }
+}
+
+/// Patch tolerance of a solver: the penalty solver answers the penalised problem, whose
+/// error is `O(1 / factor)` (default factor 1e3).
+fn patch_tolerance(solver: &str) -> f64 {
+    if solver == "penalty" {
+        1e-3
+    } else {
+        PATCH_TOLERANCE
+    }
+}
+
+fn patch_row(name: String, patch: &Patch, size: &Size) -> Row {
+    let outcomes = size
+        .solvers
+        .iter()
+        .map(|s| patch.judge(size.patch, s, &SolverOptions::default(), patch_tolerance(s)))
+        .collect();
+    Row {
+        name,
+        expected: format!(
+            "exact linear field: nodal error and resultant error <= {PATCH_TOLERANCE:.0e} \
+             (penalty: <= 1e-3 = 1/factor)"
+        ),
+        outcomes,
+    }
+}
+
+fn lame_of(nu: f64) -> (f64, f64) {
+    // mu = 1, lambda = 2 mu nu / (1 - 2 nu).
+    (2.0 * nu / (1.0 - 2.0 * nu), 1.0)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Groups
+
+/// Poisson ratio sweep for every element of the registry: the contact patch test (exact, every
+/// solver) and the locking measure on E2 (errors at nu against nu = 0.3).
+pub fn poisson(size: &Size) -> Vec<Row> {
+    let elements = ElementRegistry::builtin();
+    let mut rows = Vec::new();
+    for name in elements.names() {
+        let element = elements.make(name).expect("a registered element");
+        for &nu in &POISSON_RATIOS[1..] {
+            let lame = lame_of(nu);
+            let mut patch = Patch::pressed([lame, lame], Cells::Quads);
+            patch.element = Arc::clone(&element);
+            let mut row = patch_row(
+                format!("{name}: contact patch test on quads, nu = {nu}"),
+                &patch,
+                size,
+            );
+            // Elements limited to triangles (p1) refuse the quads: run them on matching
+            // triangles (an inserted node would make a triangle a quadrilateral).
+            if row
+                .outcomes
+                .iter()
+                .all(|o| matches!(&o.verdict, Verdict::Refused(e) if e.contains("support")))
+            {
+                patch.cells = Cells::Triangles;
+                patch.matching = true;
+                row = patch_row(
+                    format!("{name}: contact patch test on matching triangles, nu = {nu}"),
+                    &patch,
+                    size,
+                );
+            }
+            rows.push(row);
+        }
+        rows.extend(locking(name, &element, size));
+    }
+    rows
+}
+
+/// E2 errors (E_grad, E_0 relative) at every nu against nu = 0.3 on each family.
+fn locking(name: &str, element: &Arc<dyn ElementSpace>, size: &Size) -> Vec<Row> {
+    let cases = CaseRegistry::builtin();
+    let settings = ProblemSettings::builder()
+        .element(Arc::clone(element))
+        .build()
+        .expect("valid settings");
+    let mut rows = Vec::new();
+    for family in &size.locking_families {
+        let errors = |nu: f64| -> Result<ErrorNorms, String> {
+            let (lambda, mu) = lame_of(nu);
+            let lame = Lame::try_new(lambda, mu).map_err(|e| chain(&e))?;
+            let exact = cases.make("E2", lame).map_err(|e| chain(&e))?;
+            let mesh = family
+                .generate(&exact.domain(BodyId::One), size.locking, 1)
+                .map_err(|e| chain(&e))?;
+            let problem = DiscreteProblem::try_new(Arc::clone(&exact), vec![mesh], &settings)
+                .map_err(|e| chain(&e))?;
+            let mut unused = vem_contact::CondensedSolver::default();
+            let solution = problem.solve(&mut unused).map_err(|e| chain(&e))?;
+            let parts = solution.errors(&*exact).map_err(|e| chain(&e))?;
+            Ok(ErrorNorms::combine(&parts))
+        };
+        let reference = match errors(0.3) {
+            Ok(e) => e,
+            Err(error) if error.contains("support") => continue,
+            Err(error) => {
+                rows.push(Row {
+                    name: format!("{name}: E2 on {}, nu = 0.3", family.name()),
+                    expected: "a solution".to_string(),
+                    outcomes: vec![Outcome {
+                        solver: "elasticity (Cholesky)".to_string(),
+                        measured: format!("error: {error}"),
+                        verdict: Verdict::Refused(error),
+                    }],
+                });
+                continue;
+            }
+        };
+        let mut outcomes = Vec::new();
+        let mut worst: (f64, f64, f64) = (0.0, 0.0, 0.3);
+        let mut refused = None;
+        for &nu in &POISSON_RATIOS[1..] {
+            match errors(nu) {
+                Ok(e) => {
+                    let g = e.relative_grad() / reference.relative_grad();
+                    let l = e.relative_l2() / reference.relative_l2();
+                    if g.max(l) > worst.0.max(worst.1) {
+                        worst = (g, l, nu);
+                    }
+                }
+                Err(error) => refused = Some(format!("nu = {nu}: {error}")),
+            }
+        }
+        let (g, l, nu) = worst;
+        let ok = g <= LOCKING_RATIO && l <= LOCKING_RATIO;
+        outcomes.push(Outcome {
+            solver: "elasticity (Cholesky)".to_string(),
+            measured: match &refused {
+                Some(e) => format!("error: {e}"),
+                None => format!(
+                    "worst at nu = {nu}: E_grad x{g:.2}, E_0 x{l:.2} (E_grad at 0.3: {:.2e})",
+                    reference.relative_grad()
+                ),
+            },
+            verdict: match refused {
+                Some(e) => Verdict::Refused(e),
+                // An element that locks answers what it computes: no solver claims anything.
+                None if ok => Verdict::Pass,
+                None => Verdict::Warned("locking: the element's error grows with lambda".into()),
+            },
+        });
+        rows.push(Row {
+            name: format!(
+                "{name}: locking on E2, {}, nu = 0.3 .. 0.49999",
+                family.name()
+            ),
+            expected: format!(
+                "relative E_grad and E_0 within {LOCKING_RATIO}x of those at nu = 0.3"
+            ),
+            outcomes,
+        });
+    }
+    rows
+}
+
+/// Stiffness contrasts: body 1 = c times body 2 (lambda = 2, mu = 1), frictionless pressed
+/// and Tresca tied (bound 10 times the shear stress).
+pub fn contrast(size: &Size) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for c in [1e4, 1e-4, 1e8, 1e-8] {
+        let lame = [(2.0 * c, c), (2.0, 1.0)];
+        let patch = Patch::pressed(lame, Cells::Quads);
+        rows.push(patch_row(
+            format!("E_1/E_2 = {c:.0e}, frictionless"),
+            &patch,
+            size,
+        ));
+        let mut tied = Patch::pressed(lame, Cells::Quads);
+        tied.shear = 0.5 * tied.pressure;
+        tied.offset = [0.0, 0.0];
+        tied.law = ContactLaw::try_tresca(10.0 * tied.shear).expect("valid bound");
+        rows.push(patch_row(
+            format!("E_1/E_2 = {c:.0e}, Tresca stick"),
+            &tied,
+            size,
+        ));
+    }
+    rows
+}
+
+/// Units: M1 (frictionless) and M2 (Tresca) with lengths scaled by 1e6 and 1e-6 and moduli by
+/// 1e-9: displacements scale with the lengths, forces with lengths times moduli.
+pub fn units(size: &Size) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for case in ["M1", "M2"] {
+        for (length, modulus) in [(1e6, 1.0), (1e-6, 1.0), (1.0, 1e-9), (1e-6, 1e-9)] {
+            let outcomes = size
+                .solvers
+                .iter()
+                .map(|solver| units_outcome(case, length, modulus, size.manufactured, solver))
+                .collect();
+            rows.push(Row {
+                name: format!("{case}: lengths x {length:.0e}, moduli x {modulus:.0e}"),
+                expected: format!(
+                    "displacements / s and nodal forces / (s m) equal the unscaled ones \
+                     (relative change <= {UNITS_TOLERANCE:.0e})"
+                ),
+                outcomes,
+            });
+        }
+    }
+    rows
+}
+
+fn units_outcome(case: &str, length: f64, modulus: f64, n: usize, solver: &str) -> Outcome {
+    let run = |s: f64, m: f64| -> Result<ContactResult, String> {
+        let inner = CaseRegistry::builtin()
+            .make(case, Lame::default())
+            .map_err(|e| chain(&e))?;
+        let exact: Arc<dyn ExactSolution> = Arc::new(Scaled {
+            inner,
+            length: s,
+            modulus: m,
+        });
+        let meshes = [(BodyId::One, n), (BodyId::Two, n + n / 2)]
+            .iter()
+            .map(|&(body, cells)| MeshFamily::Quads.generate(&exact.domain(body), cells, 1))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| chain(&e))?;
+        let problem = DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default())
+            .map_err(|e| chain(&e))?;
+        let contact = problem.contact_problem().ok_or("not a contact case")?;
+        solve(&contact, solver, &SolverOptions::default())
+    };
+    let reference = match run(1.0, 1.0) {
+        Ok(r) => r,
+        Err(e) => {
+            return Outcome {
+                solver: solver.to_string(),
+                measured: format!("error (unscaled run): {e}"),
+                verdict: Verdict::Refused(e),
+            }
+        }
+    };
+    let scaled = run(length, modulus);
+    judge(solver, scaled, |r| {
+        let change = answer_change(&reference, r, length, modulus);
+        (
+            format!("relative change {change:.1e}"),
+            change <= UNITS_TOLERANCE,
+        )
+    })
+}
+
+/// Largest relative change between `a` and `b` (b's displacements divided by `length`, its
+/// forces by `length * modulus`): displacements relative to the largest displacement, forces
+/// to the largest force.
+fn answer_change(a: &ContactResult, b: &ContactResult, length: f64, modulus: f64) -> f64 {
+    let ua: Vec<f64> = a
+        .bodies
+        .iter()
+        .flat_map(|r| r.solution.displacement().to_vec())
+        .collect();
+    let ub: Vec<f64> = b
+        .bodies
+        .iter()
+        .flat_map(|r| r.solution.displacement().to_vec())
+        .collect();
+    let fa: Vec<f64> = a
+        .nodes
+        .iter()
+        .flat_map(|n| [n.normal_force, n.friction_force])
+        .collect();
+    let fb: Vec<f64> = b
+        .nodes
+        .iter()
+        .flat_map(|n| [n.normal_force, n.friction_force])
+        .collect();
+    if ua.len() != ub.len() || fa.len() != fb.len() {
+        return f64::INFINITY;
+    }
+    let change = |x: &[f64], y: &[f64], unit: f64| {
+        let scale = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let diff = x
+            .iter()
+            .zip(y)
+            .fold(0.0_f64, |m, (p, q)| m.max((p - q / unit).abs()));
+        if scale > 0.0 {
+            diff / scale
+        } else {
+            diff
+        }
+    };
+    change(&ua, &ub, length).max(change(&fa, &fb, length * modulus))
+}
+
+/// Degenerate cells in both bodies (matching neither each other nor in size), pressed
+/// frictionless and Tresca full slip.
+pub fn cells(size: &Size) -> Vec<Row> {
+    let kinds = [
+        Cells::TinyEdges(1e-8),
+        Cells::Layer(1e-3),
+        Cells::Layer(1e-6),
+        Cells::Layer(1e-9),
+        Cells::Slivers(1e-3),
+        Cells::Slivers(1e-6),
+        Cells::Slivers(1e-9),
+        Cells::Chevrons(1e-3),
+        Cells::Chevrons(1e-6),
+        Cells::Chevrons(1e-9),
+    ];
+    let mut rows = Vec::new();
+    for kind in kinds {
+        if let Cells::TinyEdges(_) = kind {
+            // On matching meshes (no insertion); the non-matching rows below meet the
+            // interface insertion's own limit on inserted points.
+            let mut matching = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], kind);
+            matching.matching = true;
+            rows.push(patch_row(
+                format!("{}, matching interface, frictionless", kind.describe()),
+                &matching,
+                size,
+            ));
+        }
+        let patch = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], kind);
+        rows.push(patch_row(
+            format!("{}, frictionless", kind.describe()),
+            &patch,
+            size,
+        ));
+        let mut slip = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], kind);
+        let bound = 0.25 * slip.pressure;
+        slip.shear = bound;
+        slip.offset = [0.01, 0.0];
+        slip.law = ContactLaw::try_tresca(bound).expect("valid bound");
+        rows.push(patch_row(
+            format!("{}, Tresca full slip", kind.describe()),
+            &slip,
+            size,
+        ));
+    }
+    rows
+}
+
+/// The penalty solver at factors 1e0 .. 1e14 on the pressed patch test.
+pub fn penalty(size: &Size) -> Vec<Row> {
+    let patch = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
+    (0..=7)
+        .map(|k| {
+            let factor = 10f64.powi(2 * k);
+            let tolerance = 1.0 / factor + PATCH_TOLERANCE;
+            let options =
+                SolverOptions::default().penalty(PenaltyParameter::RelativeToStiffness(factor));
+            let outcome = patch.judge(size.patch, "penalty", &options, tolerance);
+            Row {
+                name: format!("penalty factor {factor:.0e}"),
+                expected: format!(
+                    "the penalised answer: nodal and resultant errors <= 1/factor + \
+                     {PATCH_TOLERANCE:.0e} = {tolerance:.1e}"
+                ),
+                outcomes: vec![outcome],
+            }
+        })
+        .chain((0..=7).map(|k| {
+            let factor = 10f64.powi(2 * k);
+            let tolerance = 1.0 / factor + PATCH_TOLERANCE;
+            Row {
+                name: format!("M1, penalty factor {factor:.0e}"),
+                expected: format!(
+                    "the condensed solver's answer up to the penalty: relative difference <= \
+                     1/factor + {PATCH_TOLERANCE:.0e} = {tolerance:.1e}"
+                ),
+                outcomes: vec![penalty_m1_outcome(size.manufactured, factor, tolerance)],
+            }
+        }))
+        .collect()
+}
+
+/// M1 on non-matching quads (`n` over `3n/2` cells), its contact problem and its exact
+/// solution.
+fn m1_problem(n: usize, law: Option<ContactLaw>) -> Result<ContactProblem, String> {
+    let exact = CaseRegistry::builtin()
+        .make("M1", Lame::default())
+        .map_err(|e| chain(&e))?;
+    let meshes = [(BodyId::One, n), (BodyId::Two, n + n / 2)]
+        .iter()
+        .map(|&(body, cells)| MeshFamily::Quads.generate(&exact.domain(body), cells, 1))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| chain(&e))?;
+    let problem = DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default())
+        .map_err(|e| chain(&e))?;
+    let contact = problem.contact_problem().ok_or("not a contact case")?;
+    let Some(law) = law else {
+        return Ok(contact);
+    };
+    let gap = contact.imposed_gap().cloned();
+    let bodies = problem.bodies();
+    let mut posed = ContactProblem::two_bodies(
+        bodies[0].clone(),
+        Side::Bottom.name(),
+        bodies[1].clone(),
+        Side::Top.name(),
+        law,
+    );
+    if let Some(gap) = gap {
+        posed = posed.with_imposed_gap(move |x| gap(x));
+    }
+    Ok(posed)
+}
+
+fn penalty_m1_outcome(n: usize, factor: f64, tolerance: f64) -> Outcome {
+    let reference = match m1_problem(n, None)
+        .and_then(|p| solve(&p, SolverRegistry::DEFAULT, &SolverOptions::default()))
+    {
+        Ok(r) => r,
+        Err(e) => {
+            return Outcome {
+                solver: "penalty".to_string(),
+                measured: format!("error (reference run): {e}"),
+                verdict: Verdict::Refused(e),
+            }
+        }
+    };
+    let options = SolverOptions::default().penalty(PenaltyParameter::RelativeToStiffness(factor));
+    let outcome = m1_problem(n, None).and_then(|p| solve(&p, "penalty", &options));
+    judge("penalty", outcome, |r| {
+        let change = answer_change(&reference, r, 1.0, 1.0);
+        (
+            format!("relative difference {change:.1e}"),
+            change <= tolerance,
+        )
+    })
+}
+
+/// Gaps: pressed at gap 0 and 1e-12, touching at zero load, and open (no contact, the bodies
+/// stretched sideways).
+pub fn gaps(size: &Size) -> Vec<Row> {
+    let base = || Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
+    let mut rows = Vec::new();
+    let pressed = base();
+    rows.push(patch_row("gap 0, pressed".to_string(), &pressed, size));
+    let mut tiny = base();
+    tiny.offset = [0.003, -1e-12];
+    rows.push(patch_row("gap 1e-12, pressed".to_string(), &tiny, size));
+    let mut touching = base();
+    touching.pressure = 0.0;
+    touching.lateral = Some(0.0);
+    touching.offset = [0.003, 0.0];
+    rows.push(patch_row(
+        "touching at zero load (forces 0)".to_string(),
+        &touching,
+        size,
+    ));
+    let mut open = base();
+    open.pressure = 0.0;
+    open.lateral = Some(0.01);
+    open.opening = 0.01;
+    rows.push(patch_row(
+        "no contact at all (gap 1e-2, bodies stretched sideways)".to_string(),
+        &open,
+        size,
+    ));
+    rows
+}
+
+/// Friction bound 0 against frictionless (on M1 and on the pressed patch test), and a huge
+/// bound against the tied exact solution (patch test with zero tangential jump).
+pub fn friction(size: &Size) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let outcomes = size
+        .solvers
+        .iter()
+        .map(|solver| bound_zero_outcome(size.manufactured, solver))
+        .collect();
+    rows.push(Row {
+        name: "M1: Tresca g_F = 0 against frictionless".to_string(),
+        expected: format!(
+            "the same displacements and normal forces (relative difference <= \
+             {SAME_PROBLEM_TOLERANCE:.0e}), zero friction forces"
+        ),
+        outcomes,
+    });
+    let mut zero = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
+    zero.law = ContactLaw::try_tresca(0.0).expect("valid bound");
+    rows.push(patch_row(
+        "patch test, Tresca g_F = 0 (the frictionless exact field)".to_string(),
+        &zero,
+        size,
+    ));
+    for bound in [1e3, 1e12] {
+        let mut tied = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
+        tied.shear = 0.5 * tied.pressure;
+        tied.offset = [0.0, 0.0];
+        tied.law = ContactLaw::Tresca {
+            friction_bound: FrictionBound::Constant(bound * tied.pressure),
+        };
+        rows.push(patch_row(
+            format!("patch test, Tresca g_F = {bound:.0e} p: the tied exact field"),
+            &tied,
+            size,
+        ));
+    }
+    rows
+}
+
+fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
+    let run = |law: ContactLaw| -> Result<ContactResult, String> {
+        solve(
+            &m1_problem(n, Some(law))?,
+            solver,
+            &SolverOptions::default(),
+        )
+    };
+    let reference = match run(ContactLaw::Frictionless) {
+        Ok(r) => r,
+        Err(e) => {
+            return Outcome {
+                solver: solver.to_string(),
+                measured: format!("error (frictionless run): {e}"),
+                verdict: Verdict::Refused(e),
+            }
+        }
+    };
+    let zero = run(ContactLaw::try_tresca(0.0).expect("valid bound"));
+    judge(solver, zero, |r| {
+        let change = answer_change(&reference, r, 1.0, 1.0);
+        (
+            format!("relative difference {change:.1e}"),
+            change <= SAME_PROBLEM_TOLERANCE,
+        )
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// An exact solution in other units
+
+/// `inner` with lengths multiplied by `length` and moduli by `modulus`: displacement
+/// `s u(x/s)`, stress `m sigma(x/s)`, body force `(m/s) f(x/s)`, gap `s h0(x/s)`, friction
+/// bound `m g_F`.
+struct Scaled {
+    inner: Arc<dyn ExactSolution>,
+    length: f64,
+    modulus: f64,
+}
+
+impl Scaled {
+    fn back(&self, x: Point) -> Point {
+        Point::new(x.x / self.length, x.y / self.length)
+    }
+}
+
+impl ExactSolution for Scaled {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    fn lame(&self) -> Lame {
+        let lame = self.inner.lame();
+        Lame::try_new(self.modulus * lame.lambda(), self.modulus * lame.mu())
+            .expect("positive moduli stay positive")
+    }
+
+    fn bodies(&self) -> &'static [BodyId] {
+        self.inner.bodies()
+    }
+
+    fn domain(&self, body: BodyId) -> Rectangle {
+        let r = self.inner.domain(body);
+        let s = self.length;
+        Rectangle::new(
+            Point::new(s * r.min.x, s * r.min.y),
+            Point::new(s * r.max.x, s * r.max.y),
+        )
+    }
+
+    fn displacement(&self, body: BodyId, x: Point) -> Vector {
+        self.inner.displacement(body, self.back(x)) * self.length
+    }
+
+    fn gradient(&self, body: BodyId, x: Point) -> Matrix2<f64> {
+        self.inner.gradient(body, self.back(x))
+    }
+
+    fn body_force(&self, body: BodyId, x: Point) -> Vector {
+        self.inner.body_force(body, self.back(x)) * (self.modulus / self.length)
+    }
+
+    fn dirichlet_sides(&self, body: BodyId) -> Vec<Side> {
+        self.inner.dirichlet_sides(body)
+    }
+
+    fn neumann_sides(&self, body: BodyId) -> Vec<Side> {
+        self.inner.neumann_sides(body)
+    }
+
+    fn traction(&self, body: BodyId, side: Side, x: Point) -> Vector {
+        self.inner.traction(body, side, self.back(x)) * self.modulus
+    }
+
+    fn contact(&self) -> Option<&dyn ExactContact> {
+        self.inner.contact().map(|_| self as &dyn ExactContact)
+    }
+}
+
+impl ExactContact for Scaled {
+    fn law(&self) -> ContactLaw {
+        let law = self
+            .inner
+            .contact()
+            .map_or(ContactLaw::Frictionless, |c| c.law());
+        match law {
+            ContactLaw::Tresca {
+                friction_bound: FrictionBound::Constant(g),
+            } => ContactLaw::Tresca {
+                friction_bound: FrictionBound::Constant(self.modulus * g),
+            },
+            ContactLaw::Tresca {
+                friction_bound: FrictionBound::Field(g),
+            } => {
+                let (s, m) = (self.length, self.modulus);
+                ContactLaw::Tresca {
+                    friction_bound: FrictionBound::Field(Arc::new(move |x: Point| {
+                        m * g(Point::new(x.x / s, x.y / s))
+                    })),
+                }
+            }
+            other => other,
+        }
+    }
+
+    fn initial_gap(&self, x: f64) -> f64 {
+        self.inner
+            .contact()
+            .map_or(0.0, |c| c.initial_gap(x / self.length))
+            * self.length
+    }
+}
