@@ -3,9 +3,12 @@
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
 //! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
 //!   `docs/benchmarks.md`).
+//! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
+//!   interface insertion (see `docs/fuzzing.md`).
 
 mod bench;
 mod convergence;
+mod fuzz;
 
 use std::process::ExitCode;
 
@@ -30,6 +33,10 @@ enum Task {
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
     /// measurement in a child process. Writes bench.md, bench.json and bench.svg.
     Bench(bench::BenchArgs),
+    /// Mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and interface
+    /// insertion: `--minutes N` or `--seconds N` in all, `--target NAME` for one. Failing
+    /// inputs are minimised and written to `--out`; exits with status 1 when any was found.
+    Fuzz(fuzz::FuzzArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
@@ -41,6 +48,7 @@ fn main() -> ExitCode {
         Task::Convergence(args) => convergence::run(&args),
         Task::Bench(args) => bench::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
+        Task::Fuzz(args) => fuzz::run(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,
