@@ -731,7 +731,8 @@ pub fn run(args: &FuzzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         (None, Some(s)) => s,
         (None, None) => 60.0,
     };
-    if !(total.is_finite() && total > 0.0) || !(args.timeout.is_finite() && args.timeout > 0.0) {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(total) || !positive(args.timeout) {
         return Err(format!(
             "the fuzzing time ({total} s) and --timeout ({} s) must be positive",
             args.timeout

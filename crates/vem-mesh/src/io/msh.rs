@@ -321,16 +321,17 @@ impl<'a> Parser<'a> {
         })
     }
 
-    /// The next token as a finite coordinate.
-    fn coordinate(&mut self, what: &str) -> Result<f64, MshError> {
-        let (token, start) = self.token(what)?;
+    /// The next token as coordinate `k` (0, 1, 2: x, y, z) of node `tag`, which must be finite.
+    fn coordinate(&mut self, tag: u64, k: usize) -> Result<f64, MshError> {
+        let (token, start) = self.token("a node coordinate")?;
         match token.parse::<f64>() {
             Ok(value) if value.is_finite() => Ok(value),
             _ => Err(self.error_at(
                 start,
                 false,
                 format!(
-                    "expected {what} (a finite number), found '{}'",
+                    "expected coordinate {} of node {tag} (a finite number), found '{}'",
+                    ["x", "y", "z"][k],
                     shorten(token)
                 ),
             )),
@@ -405,12 +406,19 @@ impl<'a> Parser<'a> {
         Ok(value)
     }
 
-    /// A binary coordinate, which must be finite.
-    fn binary_coordinate(&mut self, what: &str) -> Result<f64, MshError> {
-        let at = self.mark();
-        let value: f64 = self.binary(what)?;
+    /// Binary coordinate `k` (0, 1, 2: x, y, z) of node `tag`, which must be finite.
+    fn binary_coordinate(&mut self, tag: u64, k: usize) -> Result<f64, MshError> {
+        let at = self.pos;
+        let value: f64 = self.binary("a node coordinate")?;
         if !value.is_finite() {
-            return Err(self.error_at(at, true, format!("{what} is not finite ({value})")));
+            return Err(self.error_at(
+                at,
+                true,
+                format!(
+                    "coordinate {} of node {tag} is not finite ({value})",
+                    ["x", "y", "z"][k]
+                ),
+            ));
         }
         Ok(value)
     }
@@ -882,11 +890,10 @@ impl<'a> Parser<'a> {
             }
             for node in &mut nodes[first..] {
                 for (k, value) in node.xyz.iter_mut().enumerate() {
-                    let what = format!("coordinate {} of node {}", ["x", "y", "z"][k], node.tag);
                     *value = if self.binary {
-                        self.binary_coordinate(&what)?
+                        self.binary_coordinate(node.tag, k)?
                     } else {
-                        self.coordinate(&what)?
+                        self.coordinate(node.tag, k)?
                     };
                 }
                 for _ in 0..n_parametric {
@@ -1051,11 +1058,10 @@ impl<'a> Parser<'a> {
             }
             let mut xyz = [0.0; 3];
             for (k, value) in xyz.iter_mut().enumerate() {
-                let what = format!("coordinate {} of node {tag}", ["x", "y", "z"][k]);
                 *value = if self.binary {
-                    self.binary_coordinate(&what)?
+                    self.binary_coordinate(tag, k)?
                 } else {
-                    self.coordinate(&what)?
+                    self.coordinate(tag, k)?
                 };
             }
             nodes.push(MshNode { tag, xyz });
