@@ -200,7 +200,10 @@ fn boundary_parts(
                  $PhysicalNames; name it in the .geo file, e.g. Physical Curve(\"contact\", {tag})"
             )
         })?;
+        // MSH 2 writes an element once per physical group it is in (with a new tag each time),
+        // so the same edge can come several times: a part is a set of edges.
         let mut edges = Vec::new();
+        let mut seen = std::collections::HashSet::new();
         for curve in curves {
             for &(element_tag, [a, b]) in lines_of_curve.get(&curve).into_iter().flatten() {
                 let edge = match (compact.get(&a), compact.get(&b)) {
@@ -209,12 +212,15 @@ fn boundary_parts(
                     }
                     _ => None,
                 };
-                edges.push(edge.ok_or_else(|| {
+                let [a, b] = edge.ok_or_else(|| {
                     format!(
                         "line element {element_tag} (nodes {a} and {b}) of curve entity {curve} \
                          in physical curve group '{name}' is not a boundary edge of the 2D mesh"
                     )
-                })?);
+                })?;
+                if seen.insert((a.min(b), a.max(b))) {
+                    edges.push([a, b]);
+                }
             }
         }
         parts.push(PartSpec::new(name.clone(), edges));
