@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs Gmsh's Python API (the `gmsh` wheel from PyPI) into a virtual environment, by default
 # target/gmsh-venv, and checks that it imports. The wheel links against a few X11/OpenGL
-# libraries that a minimal Debian lacks; they are installed with apt-get when missing.
+# libraries that a minimal Debian lacks; they are installed with apt-get when missing. The version
+# is pinned: the committed reference JSON was generated with it.
 #
 # Usage: scripts/install-gmsh.sh [VENV_DIR]
 # Prints the path of the venv's python on its last line.
@@ -9,6 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 venv="${1:-target/gmsh-venv}"
 python="${PYTHON:-python3}"
+version=4.15.2
 
 if ! command -v "$python" >/dev/null; then
     echo "install-gmsh: $python not found; install Python 3 (apt-get install python3 python3-venv)" >&2
@@ -20,9 +22,10 @@ if [ ! -x "$venv/bin/python" ]; then
         exit 1
     }
 fi
-if ! "$venv/bin/python" -c "import gmsh" >/dev/null 2>&1; then
+# pip's metadata tells the installed version without loading the library.
+if [ "$("$venv/bin/python" -m pip show gmsh 2>/dev/null | sed -n 's/^Version: //p')" != "$version" ]; then
     if ! "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-        --timeout 60 --retries 2 "gmsh>=4.11,<5"; then
+        --timeout 60 --retries 2 "gmsh==$version"; then
         echo "install-gmsh: pip could not install the gmsh wheel (is PyPI reachable?)" >&2
         exit 1
     fi
