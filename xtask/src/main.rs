@@ -7,10 +7,13 @@
 //!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
 //! - `extremes`: stability at the extremes, every solver against independent answers (see
 //!   `docs/extremes.md`).
+//! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
+//!   interface insertion (see `docs/fuzzing.md`).
 
 mod bench;
 mod convergence;
 mod extremes;
+mod fuzz;
 mod hertz;
 
 use std::process::ExitCode;
@@ -45,6 +48,10 @@ enum Task {
     /// solver against an independent expected answer. Writes docs/extremes.md; exits with
     /// status 1 when a wrong answer came without an error or a warning.
     Extremes(extremes::ExtremesArgs),
+    /// Mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and interface
+    /// insertion: `--minutes N` or `--seconds N` in all, `--target NAME` for one. Failing
+    /// inputs are minimised and written to `--out`; exits with status 1 when any was found.
+    Fuzz(fuzz::FuzzArgs),
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
@@ -58,6 +65,7 @@ fn main() -> ExitCode {
         Task::Extremes(args) => extremes::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
         Task::Hertz(args) => hertz::run(&args),
+        Task::Fuzz(args) => fuzz::run(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,

@@ -25,7 +25,7 @@
 //! | feature | what it adds | extra dependencies |
 //! | --- | --- | --- |
 //! | `generators` | [`generators`]: structured, hexagonal, Voronoi, perturbed, ... meshes | `rand`, `rand_chacha` |
-//! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`: Gmsh `.msh` 4.1 input | `mshio` |
+//! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input | none |
 //! | `vtu` | `io::write_vtu`: VTK `.vtu` output | none |
 //! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes | none |
 #![deny(missing_docs)]

@@ -167,7 +167,7 @@ fn missing_and_garbled_files_name_the_file() {
     let err = read_gmsh_bytes(&bytes[..bytes.len() / 2], "truncated.msh").unwrap_err();
     let message = err.to_string();
     assert!(
-        message.starts_with("truncated.msh: cannot parse the file as MSH 4.1 at line"),
+        message.starts_with("truncated.msh: line 87 (in $Nodes): the file ends where"),
         "{message}"
     );
 }
@@ -518,4 +518,16 @@ fn svg_layers_draw_deformed_bodies_over_undeformed_ones() {
     );
     assert!(!dir.join("bad.svg").exists());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_msh2_line_in_two_physical_groups_is_one_edge_of_each_part() {
+    // Gmsh's MSH 2 writer repeats an element for each physical group it belongs to (element
+    // tags 1 and 2 are the same line, on curve 1, in groups "a" and "b").
+    let mesh = read_gmsh(data("two_groups_22.msh")).unwrap();
+    assert_eq!(mesh.part_names(), ["a", "b"]);
+    assert_eq!(mesh.part("a").unwrap().edges.len(), 1);
+    assert_eq!(mesh.part("b").unwrap().edges.len(), 2);
+    assert!((part_length(&mesh, "a") - 1.0).abs() < 1e-15);
+    assert!((part_length(&mesh, "b") - 2.0).abs() < 1e-15);
 }

@@ -1,5 +1,5 @@
 //! File input and output: atomic writes, and with the features of the same names Gmsh `.msh`
-//! 4.1 input (`gmsh`), VTK `.vtu` output (`vtu`) and SVG output (`svg`).
+//! 4.1 and 2.2 input (`gmsh`), VTK `.vtu` output (`vtu`) and SVG output (`svg`).
 //!
 //! Every writer goes through [`write_atomically`]: a file is written whole or not at all, so
 //! an interrupted run never leaves a truncated `.vtu` that a viewer half-reads.
@@ -22,6 +22,8 @@
 
 #[cfg(feature = "gmsh")]
 mod gmsh;
+#[cfg(feature = "gmsh")]
+mod msh;
 #[cfg(feature = "svg")]
 mod svg;
 #[cfg(feature = "vtu")]
@@ -29,6 +31,11 @@ mod vtu;
 
 #[cfg(feature = "gmsh")]
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
+#[cfg(feature = "gmsh")]
+pub use msh::{
+    element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,
+    MshNode, MshVersion,
+};
 #[cfg(feature = "svg")]
 pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
 #[cfg(feature = "vtu")]

@@ -1,0 +1,187 @@
+//! The Gmsh reader against Gmsh's own: every `.msh` file of `tests/data/gmsh-corpus` (MSH 4.1
+//! and 2.2, ASCII and binary, tags out of order and with gaps, blocks in any order, physical
+//! names) is read by `read_msh_bytes`, and its nodes, elements and physical groups must be
+//! those that Gmsh's Python API reads from the same file, committed beside it as JSON by
+//! `scripts/gmsh-reference.py`. Each file must also become a valid mesh.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+use vem_mesh::io::{read_gmsh_bytes, read_msh_bytes, MshFile};
+
+fn corpus() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/gmsh-corpus");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "msh"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// (nodes as tag -> xyz, elements as tag -> (type, dim, entity, nodes), physical groups as
+/// (dim, tag) -> (name, entities)).
+type Description = (
+    BTreeMap<u64, [f64; 3]>,
+    BTreeMap<u64, (i32, i32, i32, Vec<u64>)>,
+    BTreeMap<(i32, i32), (String, Vec<i32>)>,
+);
+
+fn ours(msh: &MshFile) -> Description {
+    let nodes = msh.nodes.iter().map(|n| (n.tag, n.xyz)).collect();
+    let elements = msh
+        .elements
+        .iter()
+        .map(|e| {
+            let value = (e.element_type, e.entity_dim, e.entity_tag, e.nodes.clone());
+            (e.tag, value)
+        })
+        .collect();
+    let groups = msh
+        .physical_groups()
+        .into_iter()
+        .map(|(key, entities)| {
+            let name = msh.physical_names.get(&key).cloned().unwrap_or_default();
+            (key, (name, entities))
+        })
+        .collect();
+    (nodes, elements, groups)
+}
+
+fn gmsh(json: &Value) -> Description {
+    let int = |v: &Value| v.as_i64().unwrap();
+    let nodes = json["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| {
+            let f = |k: usize| row[k].as_f64().unwrap();
+            (int(&row[0]) as u64, [f(1), f(2), f(3)])
+        })
+        .collect();
+    let elements = json["elements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| {
+            let nodes = row[4].as_array().unwrap().iter().map(|v| int(v) as u64);
+            let value = (
+                int(&row[1]) as i32,
+                int(&row[2]) as i32,
+                int(&row[3]) as i32,
+                nodes.collect(),
+            );
+            (int(&row[0]) as u64, value)
+        })
+        .collect();
+    let groups = json["physical_groups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| {
+            let entities = row[3].as_array().unwrap().iter().map(|v| int(v) as i32);
+            let key = (int(&row[0]) as i32, int(&row[1]) as i32);
+            (
+                key,
+                (row[2].as_str().unwrap().to_string(), entities.collect()),
+            )
+        })
+        .collect();
+    (nodes, elements, groups)
+}
+
+#[test]
+fn every_corpus_file_reads_as_gmsh_reads_it() {
+    let files = corpus();
+    assert!(files.len() >= 18, "{files:?}");
+    for file in &files {
+        let bytes = std::fs::read(file).unwrap();
+        let msh = read_msh_bytes(&bytes).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let json: Value =
+            serde_json::from_str(&std::fs::read_to_string(file.with_extension("json")).unwrap())
+                .unwrap();
+        let (our_nodes, our_elements, our_groups) = ours(&msh);
+        let (nodes, elements, groups) = gmsh(&json);
+        let name = file.file_name().unwrap().to_string_lossy();
+        assert_eq!(
+            our_nodes.keys().collect::<Vec<_>>(),
+            nodes.keys().collect::<Vec<_>>(),
+            "{name}: node tags"
+        );
+        for (tag, xyz) in &nodes {
+            let ours = our_nodes[tag];
+            for k in 0..3 {
+                // Both sides parse the same decimal or binary number; allow for a last-digit
+                // difference of the JSON float parser.
+                assert!(
+                    (ours[k] - xyz[k]).abs() <= 1e-15 * xyz[k].abs().max(1.0),
+                    "{name}: node {tag}: {ours:?} != {xyz:?}"
+                );
+            }
+        }
+        assert_eq!(our_elements, elements, "{name}: elements");
+        assert_eq!(our_groups, groups, "{name}: physical groups");
+    }
+}
+
+#[test]
+fn every_corpus_file_becomes_the_same_mesh_as_its_variants() {
+    // The area of the domain and the lengths of the parts do not depend on the version, the
+    // encoding or the numbering of a file.
+    let mut by_shape: BTreeMap<String, (f64, Vec<(String, f64)>)> = BTreeMap::new();
+    for file in corpus() {
+        let name = file.file_name().unwrap().to_string_lossy().to_string();
+        let mesh = read_gmsh_bytes(&std::fs::read(&file).unwrap(), &name)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
+        let parts: Vec<(String, f64)> = mesh
+            .parts()
+            .iter()
+            .map(|part| {
+                let length = part
+                    .edges
+                    .iter()
+                    .map(|&e| {
+                        let [a, b] = mesh.edge(e).vertices;
+                        (mesh.vertex(a) - mesh.vertex(b)).norm()
+                    })
+                    .sum();
+                (part.name.clone(), length)
+            })
+            .collect();
+        let shape = name.split('_').next().unwrap().to_string();
+        let expected_area = match shape.as_str() {
+            "square" | "mixed" => 1.0,
+            // A polygon inscribed in the unit disc.
+            _ => std::f64::consts::PI,
+        };
+        assert!(
+            (area - expected_area).abs() < 0.02 * expected_area,
+            "{name}: area {area}"
+        );
+        match by_shape.get(&shape) {
+            None => {
+                by_shape.insert(shape, (area, parts));
+            }
+            Some((first_area, first_parts)) => {
+                assert!((area - first_area).abs() < 1e-13, "{name}: area {area}");
+                assert_eq!(parts.len(), first_parts.len(), "{name}");
+                for ((n, l), (m, k)) in parts.iter().zip(first_parts) {
+                    assert_eq!(n, m, "{name}");
+                    assert!((l - k).abs() < 1e-13, "{name}: part {n}");
+                }
+            }
+        }
+    }
+    assert_eq!(by_shape.len(), 3);
+    assert_eq!(
+        by_shape["mixed"]
+            .1
+            .iter()
+            .map(|(n, _)| n.as_str())
+            .collect::<Vec<_>>(),
+        ["contact zone", "left side"]
+    );
+}
