@@ -3,9 +3,13 @@
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
 //! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
 //!   `docs/benchmarks.md`).
+//! - `tradeoff`: work-precision diagrams of every solver setting, the accuracy presets and the
+//!   error model (see `docs/tradeoff.md`).
 
 mod bench;
+mod common;
 mod convergence;
+mod tradeoff;
 
 use std::process::ExitCode;
 
@@ -33,6 +37,15 @@ enum Task {
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
+    /// The speed-accuracy trade: M1, M2, Hertz, Coulomb and E1 on several mesh pairings and
+    /// sizes, every solver with several settings, one discretisation per mesh for all of them;
+    /// errors, stage times, counters, peak memory, work-precision diagrams with the Pareto
+    /// front, the presets and the fitted error model. Writes tradeoff.md and tradeoff/.
+    Tradeoff(tradeoff::TradeoffArgs),
+    /// One group of `tradeoff`, one JSON line per setting (run by `tradeoff` in a child
+    /// process).
+    #[command(hide = true)]
+    TradeoffOne(tradeoff::TradeoffOneArgs),
 }
 
 fn main() -> ExitCode {
@@ -41,6 +54,8 @@ fn main() -> ExitCode {
         Task::Convergence(args) => convergence::run(&args),
         Task::Bench(args) => bench::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
+        Task::Tradeoff(args) => tradeoff::run(&args),
+        Task::TradeoffOne(args) => tradeoff::run_one(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,
