@@ -71,7 +71,7 @@ impl Problem {
     /// The error plotted against time.
     fn primary_error(self) -> &'static str {
         if self.manufactured() {
-            "E_grad / |u|_1"
+            "E_grad / \\|u\\|_1"
         } else {
             "pressure error against the reference (relative L2)"
         }
@@ -158,6 +158,10 @@ pub struct TradeoffArgs {
     /// many unknowns.
     #[arg(long, default_value_t = 20_000)]
     slow_max_unknowns: usize,
+    /// Measure nothing: rewrite tradeoff.md and the plots from the tradeoff/tradeoff.json of
+    /// an earlier run in the same `--out`.
+    #[arg(long)]
+    report_only: bool,
 }
 
 /// Options of the hidden `cargo xtask tradeoff-one` (one group, one JSON line per setting).
@@ -761,6 +765,15 @@ struct JsonReport<'a> {
     rows: &'a [Row],
 }
 
+/// What `--report-only` reads back of a [`JsonReport`].
+#[derive(Deserialize)]
+struct StoredReport {
+    quick: bool,
+    seconds: f64,
+    machine: String,
+    rows: Vec<Row>,
+}
+
 /// The error model of the library against the one fitted now.
 #[derive(Debug, Clone, Serialize)]
 struct FittedModel {
@@ -777,6 +790,37 @@ pub fn run(args: &TradeoffArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let started = Instant::now();
     let plan = plan(args);
     let folder = args.out.join("tradeoff");
+    if args.report_only {
+        let path = folder.join("tradeoff.json");
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let stored: StoredReport =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let model = fit_model(&stored.rows);
+        let quick = TradeoffArgs {
+            quick: stored.quick,
+            out: args.out.clone(),
+            slow_max_unknowns: args.slow_max_unknowns,
+            report_only: true,
+        };
+        let (markdown, plots) = report(
+            &stored.rows,
+            &model,
+            &quick,
+            stored.seconds,
+            &stored.machine,
+        )?;
+        for (name, svg) in &plots {
+            write_text(folder.join(name), svg)?;
+        }
+        write_text(args.out.join("tradeoff.md"), &markdown)?;
+        eprintln!(
+            "rewrote {}/tradeoff.md from {}",
+            args.out.display(),
+            path.display()
+        );
+        return Ok(true);
+    }
     std::fs::create_dir_all(&folder)
         .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
     let weight = |g: &Group| (g.n * g.n * g.settings.len()) as u64 / 16 + 1;
@@ -799,7 +843,7 @@ pub fn run(args: &TradeoffArgs) -> Result<bool, Box<dyn std::error::Error>> {
     bar.finish_with_message("done");
     let seconds = started.elapsed().as_secs_f64();
     let model = fit_model(&rows);
-    let (markdown, plots) = report(&rows, &model, args, seconds)?;
+    let (markdown, plots) = report(&rows, &model, args, seconds, &machine())?;
     for (name, svg) in &plots {
         write_text(folder.join(name), svg)?;
     }
@@ -954,6 +998,7 @@ fn report(
     model: &FittedModel,
     args: &TradeoffArgs,
     seconds: f64,
+    machine: &str,
 ) -> Result<(String, Vec<(String, String)>), Box<dyn std::error::Error>> {
     let mut out = String::from("# The speed-accuracy trade: work-precision diagrams\n\n");
     out.push_str(&format!(
@@ -971,7 +1016,7 @@ fn report(
             .map(|r| (&r.problem, &r.pairing, &r.element, r.n))
             .collect::<std::collections::HashSet<_>>()
             .len(),
-        machine()
+        machine
     ));
     out.push_str(INTRO);
     // Presets.
@@ -979,7 +1024,7 @@ fn report(
     out.push_str(
         "Measured on M1 and M2, matching quads, n = 32 (the presets test holds every preset \
          below its bound and checks the order):\n\n\
-         | preset | solver, tolerance | aims at (size chosen) | bound at n = 32 | problem | E_grad/|u|_1 | E_a/|u_I|_a | pressure L2 | resultant | iterations | factorisations | solve [s] |\n\
+         | preset | solver, tolerance | aims at (size chosen) | bound at n = 32 | problem | E_grad/\\|u\\|_1 | E_a/\\|u_I\\|_a | pressure L2 | resultant | iterations | factorisations | solve [s] |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for preset in AccuracyPreset::ALL {
