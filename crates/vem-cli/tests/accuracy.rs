@@ -86,7 +86,7 @@ fn a_target_error_sizes_the_meshes_without_n_and_picks_the_solver() {
 
 #[test]
 fn misuse_of_the_accuracy_keys_is_located() {
-    let message = |text: &str| build(text).err().expect("an error").to_string();
+    let message = |text: &str| build(text).expect_err("an error").to_string();
     let unknown = message(&format!("accuracy = \"fast\"\n{BLOCKS}"));
     assert!(unknown.contains("draft, balanced, reference"), "{unknown}");
     let both = message(&format!(
