@@ -11,11 +11,12 @@ use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use clap::{Args, ValueEnum};
+
+use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
 use indicatif::{ProgressBar, ProgressStyle};
-use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 use vem_contact::{ContactLaw, ContactProblem, SolverOptions, SolverRegistry};
 use vem_elastic::{
@@ -48,7 +49,7 @@ pub enum Case {
 impl Case {
     const ALL: [Case; 4] = [Case::Hertz, Case::Coulomb, Case::M1, Case::M2];
 
-    fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Case::Hertz => "hertz",
             Case::Coulomb => "coulomb",
@@ -205,25 +206,8 @@ impl Measurement {
     }
 }
 
-/// `VmHWM` of this process in bytes (0 where /proc is not available).
-fn peak_memory() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|status| {
-            status.lines().find_map(|line| {
-                let kb = line.strip_prefix("VmHWM:")?.trim().strip_suffix("kB")?;
-                kb.trim().parse::<u64>().ok()
-            })
-        })
-        .map_or(0, |kb| 1024 * kb)
-}
-
-fn seconds(d: Duration) -> f64 {
-    d.as_secs_f64()
-}
-
 /// The contact problem of `case` at size `n`.
-fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
+pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
     match case {
         Case::Hertz | Case::Coulomb => {
             let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain)?;
@@ -372,18 +356,6 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
     let mut stdout = std::io::stdout().lock();
     writeln!(stdout, "{}", serde_json::to_string(&m)?)?;
     Ok(true)
-}
-
-/// An error and its causes on one line.
-fn chain(error: &dyn std::error::Error) -> String {
-    let mut text = error.to_string();
-    let mut source = error.source();
-    while let Some(cause) = source {
-        text.push_str(": ");
-        text.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    text
 }
 
 /// One planned measurement.
@@ -603,38 +575,6 @@ fn row_line(m: &Measurement, exact: Option<f64>) -> String {
     )
 }
 
-/// The machine: CPU model and cores, memory, rustc.
-fn machine() -> String {
-    let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
-    let model = cpuinfo
-        .lines()
-        .find_map(|l| l.strip_prefix("model name"))
-        .map_or("unknown CPU", |l| l.trim_start_matches([' ', '\t', ':']));
-    let cores = cpuinfo
-        .lines()
-        .filter(|l| l.starts_with("processor"))
-        .count();
-    let memory = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|m| {
-            m.lines().find_map(|l| {
-                let kb = l.strip_prefix("MemTotal:")?.trim().strip_suffix("kB")?;
-                kb.trim().parse::<f64>().ok()
-            })
-        })
-        .map_or_else(
-            || "unknown memory".to_string(),
-            |kb| format!("{:.1} GiB", kb / 1024.0 / 1024.0),
-        );
-    let rustc = Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string()))
-        .arg("--version")
-        .output()
-        .ok()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default();
-    format!("{model}, {cores} logical cores, {memory}, {rustc}")
-}
-
 /// The Markdown report.
 fn markdown(rows: &[Measurement], args: &BenchArgs, seconds: f64) -> String {
     let mut out = String::from("# Benchmark: contact against one elastic solve\n\n");
@@ -708,80 +648,27 @@ fn options(args: &BenchArgs) -> String {
 /// Log-log plot of contact solve / elastic solve against unknowns, one series per case and
 /// solver.
 fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> {
-    let points: Vec<(&Measurement, f64)> = rows
-        .iter()
-        .filter_map(|m| m.ratio().map(|r| (m, r)))
-        .filter(|&(m, r)| r > 0.0 && m.unknowns > 0)
-        .collect();
     let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-    for (m, r) in &points {
+    for m in rows {
+        let Some(r) = m.ratio().filter(|&r| r > 0.0 && m.unknowns > 0) else {
+            continue;
+        };
         let label = format!("{} {}", m.case, m.solver);
-        let point = (m.unknowns as f64, *r);
+        let point = (m.unknowns as f64, r);
         match series.iter_mut().find(|(l, _)| *l == label) {
             Some((_, p)) => p.push(point),
             None => series.push((label, vec![point])),
         }
     }
-    let (x_lo, x_hi) = points
-        .iter()
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), (m, _)| {
-            (lo.min(m.unknowns as f64), hi.max(m.unknowns as f64))
-        });
-    let (y_lo, y_hi) = points
-        .iter()
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), (_, r)| {
-            (lo.min(*r), hi.max(*r))
-        });
-    let (x_lo, x_hi) = if x_lo.is_finite() {
-        (x_lo / 1.5, x_hi * 1.5)
-    } else {
-        (1e3, 1e7)
-    };
-    let (y_lo, y_hi) = if y_lo.is_finite() {
-        (y_lo / 1.5, y_hi * 1.5)
-    } else {
-        (0.1, 100.0)
-    };
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
-        let draw = |e: &dyn std::fmt::Display| format!("plot: {e}");
-        root.fill(&WHITE).map_err(|e| draw(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("contact solve / one elastic solve", ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())
-            .map_err(|e| draw(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("unknowns")
-            .y_desc("contact / elastic")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.2}"))
-            .draw()
-            .map_err(|e| draw(&e))?;
-        for (k, (label, mut pts)) in series.into_iter().enumerate() {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let colour = Palette99::pick(k).to_rgba();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
-                .map_err(|e| draw(&e))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-            chart
-                .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
-                .map_err(|e| draw(&e))?;
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| draw(&e))?;
-        root.present().map_err(|e| draw(&e))?;
-    }
-    Ok(svg)
+    loglog_svg(
+        &LogLogPlot {
+            caption: "contact solve / one elastic solve",
+            x_desc: "unknowns",
+            y_desc: "contact / elastic",
+            x_format: |x| format!("{x:.0e}"),
+            y_format: |y| format!("{y:.2}"),
+        },
+        &series,
+        None,
+    )
 }

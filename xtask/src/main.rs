@@ -9,12 +9,16 @@
 //!   `docs/extremes.md`).
 //! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
 //!   interface insertion (see `docs/fuzzing.md`).
+//! - `tradeoff`: work-precision diagrams of every solver setting, the accuracy presets and the
+//!   error model (see `docs/tradeoff.md`).
 
 mod bench;
+mod common;
 mod convergence;
 mod extremes;
 mod fuzz;
 mod hertz;
+mod tradeoff;
 
 use std::process::ExitCode;
 
@@ -55,6 +59,15 @@ enum Task {
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
+    /// The speed-accuracy trade: M1, M2, Hertz, Coulomb and E1 on several mesh pairings and
+    /// sizes, every solver with several settings, one discretisation per mesh for all of them;
+    /// errors, stage times, counters, peak memory, work-precision diagrams with the Pareto
+    /// front, the presets and the fitted error model. Writes tradeoff.md and tradeoff/.
+    Tradeoff(tradeoff::TradeoffArgs),
+    /// One group of `tradeoff`, one JSON line per setting (run by `tradeoff` in a child
+    /// process).
+    #[command(hide = true)]
+    TradeoffOne(tradeoff::TradeoffOneArgs),
 }
 
 fn main() -> ExitCode {
@@ -66,6 +79,8 @@ fn main() -> ExitCode {
         Task::BenchOne(args) => bench::run_one(&args),
         Task::Hertz(args) => hertz::run(&args),
         Task::Fuzz(args) => fuzz::run(&args),
+        Task::Tradeoff(args) => tradeoff::run(&args),
+        Task::TradeoffOne(args) => tradeoff::run_one(&args),
     };
     match outcome {
         Ok(true) => ExitCode::SUCCESS,

@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 
 use toml::Spanned;
 use vem_contact::{
-    ContactError, ContactLaw, ContactProblem, ContactSolver, FixedPointSettings, Obstacle,
-    PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry,
+    ContactError, ContactLaw, ContactProblem, ContactSolver, ErrorModel, FixedPointSettings,
+    Obstacle, PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
@@ -37,6 +37,9 @@ pub struct ModelBody {
     pub mesh_source: String,
     /// The element, in words ("vem1: dofi-dofi, trace(C), scale 1/8", "p1").
     pub element: String,
+    /// A generated mesh in a scene with `accuracy` or `target_error`: the relative energy
+    /// error `E_grad / |u|_1` the error model (`vem_contact::ErrorModel`) predicts for its size.
+    pub predicted_error: Option<f64>,
 }
 
 /// The names a scene may use for its solvers and elements: the built-in ones by default, or a
@@ -126,14 +129,10 @@ impl Model {
         let mesh_time = start.elapsed();
         check_memory_of_meshes(scene, &meshes)?;
         let mut bodies = Vec::with_capacity(meshes.len());
-        for (spec, (mesh, mesh_source)) in scene.file().bodies.iter().zip(meshes) {
-            bodies.push(build_body(
-                scene,
-                spec,
-                mesh,
-                mesh_source,
-                &registries.elements,
-            )?);
+        for (spec, (mesh, mesh_source, predicted_error)) in scene.file().bodies.iter().zip(meshes) {
+            let mut body = build_body(scene, spec, mesh, mesh_source, &registries.elements)?;
+            body.predicted_error = predicted_error;
+            bodies.push(body);
         }
         let contact = match scene.file().contacts.first() {
             Some(spec) => Some(build_contact(scene, spec.get_ref(), &bodies, registry)?),
@@ -375,11 +374,11 @@ fn check_planned_memory(scene: &Scene) -> Result<(), CliError> {
     let mut largest: Option<(f64, &BodySpec)> = None;
     for spec in &scene.file().bodies {
         let mesh = spec.mesh.get_ref();
-        let (Some(family), Some(rectangle), Some(n)) = (&mesh.family, &mesh.rectangle, &mesh.n)
-        else {
+        let (Some(family), Some(rectangle)) = (&mesh.family, &mesh.rectangle) else {
             continue; // a file: counted once read
         };
         let name = spec.name.get_ref();
+        let n = generated_size(scene, spec)?.n;
         let parsed: MeshFamily = family
             .get_ref()
             .parse()
@@ -387,7 +386,7 @@ fn check_planned_memory(scene: &Scene) -> Result<(), CliError> {
         let [[x0, y0], [x1, y1]] = *rectangle.get_ref();
         let rect = Rectangle::new(Point::new(x0, y0), Point::new(x1, y1));
         let size = parsed
-            .size(&rect, *n.get_ref())
+            .size(&rect, n)
             .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
         let footprint = Footprint::of_size(&size);
         limit
@@ -422,8 +421,11 @@ fn check_planned_memory(scene: &Scene) -> Result<(), CliError> {
 
 /// Refuses, before interface nodes are inserted and systems assembled, meshes (generated or
 /// read) whose run would not fit the memory limit.
-fn check_memory_of_meshes(scene: &Scene, meshes: &[(Mesh, String)]) -> Result<(), CliError> {
-    let total = meshes.iter().fold(Footprint::default(), |sum, (mesh, _)| {
+fn check_memory_of_meshes(
+    scene: &Scene,
+    meshes: &[(Mesh, String, Option<f64>)],
+) -> Result<(), CliError> {
+    let total = meshes.iter().fold(Footprint::default(), |sum, (mesh, _, _)| {
         sum + Footprint::of_mesh(mesh)
     });
     scene
@@ -438,20 +440,57 @@ fn check_memory_of_meshes(scene: &Scene, meshes: &[(Mesh, String)]) -> Result<()
         .map_err(|message| scene.error(None, message))
 }
 
-/// The mesh of one body and a description of where it came from.
-fn build_mesh(scene: &Scene, spec: &BodySpec) -> Result<(Mesh, String), CliError> {
+/// The size `n` of a generated mesh: the scene's, or the one the error model chooses for the
+/// scene's target error (then with the error it predicts and a note for the description).
+struct GeneratedSize {
+    n: usize,
+    note: String,
+    predicted_error: Option<f64>,
+}
+
+/// The size of the generated mesh of `spec` (checked by `Scene::check`: a generated mesh has
+/// `n` or the scene a target error).
+fn generated_size(scene: &Scene, spec: &BodySpec) -> Result<GeneratedSize, CliError> {
+    let name = spec.name.get_ref();
+    let model = ErrorModel::LOWEST_ORDER_VEM;
+    let target = scene.target_error();
+    let (n, note) = match (&spec.mesh.get_ref().n, target) {
+        (Some(n), _) => (*n.get_ref(), String::new()),
+        (None, Some(target)) => {
+            let n = model
+                .try_size_for(target)
+                .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
+            (n, format!(" (chosen for a relative energy error of {target})"))
+        }
+        (None, None) => return Err(scene.error(Some(spec.mesh.span()), "incomplete mesh")),
+    };
+    Ok(GeneratedSize {
+        n,
+        note,
+        predicted_error: target.map(|_| model.predicted_error(n)),
+    })
+}
+
+/// The mesh of one body, a description of where it came from and, in a scene with an
+/// accuracy, the error predicted for its size.
+fn build_mesh(scene: &Scene, spec: &BodySpec) -> Result<(Mesh, String, Option<f64>), CliError> {
     let name = spec.name.get_ref();
     let mesh = spec.mesh.get_ref();
     if let Some(file) = &mesh.file {
         let path = scene.resolve(file.get_ref());
         let read = vem_mesh::io::read_gmsh(&path)
             .map_err(|e| scene.error(Some(file.span()), format!("body '{name}': {e}")))?;
-        return Ok((read, format!("Gmsh file {}", file.get_ref())));
+        return Ok((read, format!("Gmsh file {}", file.get_ref()), None));
     }
-    // Checked by Scene::check: a generated mesh has family, rectangle and n.
-    let (Some(family), Some(rectangle), Some(n)) = (&mesh.family, &mesh.rectangle, &mesh.n) else {
+    // Checked by Scene::check: a generated mesh has family, rectangle and n or a target.
+    let (Some(family), Some(rectangle)) = (&mesh.family, &mesh.rectangle) else {
         return Err(scene.error(Some(spec.mesh.span()), "incomplete mesh"));
     };
+    let GeneratedSize {
+        n,
+        note: chosen,
+        predicted_error: predicted,
+    } = generated_size(scene, spec)?;
     let parsed: MeshFamily = family
         .get_ref()
         .parse()
@@ -460,7 +499,7 @@ fn build_mesh(scene: &Scene, spec: &BodySpec) -> Result<(Mesh, String), CliError
     let rect = Rectangle::new(Point::new(x0, y0), Point::new(x1, y1));
     let seed = mesh.seed.unwrap_or(1);
     let generated = parsed
-        .generate(&rect, *n.get_ref(), seed)
+        .generate(&rect, n, seed)
         .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
     let random = if parsed.is_random() {
         format!(", seed {seed}")
@@ -469,10 +508,8 @@ fn build_mesh(scene: &Scene, spec: &BodySpec) -> Result<(Mesh, String), CliError
     };
     Ok((
         generated,
-        format!(
-            "{parsed}, n = {}{random}, on [{x0}, {x1}] x [{y0}, {y1}]",
-            n.get_ref()
-        ),
+        format!("{parsed}, n = {n}{chosen}{random}, on [{x0}, {x1}] x [{y0}, {y1}]"),
+        predicted,
     ))
 }
 
@@ -615,6 +652,7 @@ fn build_body(
         body,
         mesh_source,
         element: description,
+        predicted_error: None,
     })
 }
 
@@ -745,6 +783,13 @@ fn build_solver(
     spec: &ContactSpec,
     registry: &SolverRegistry,
 ) -> Result<(String, SolverOptions), CliError> {
+    if let Some(preset) = scene.accuracy_preset() {
+        let (name, options) = (preset.solver().to_string(), preset.solver_options());
+        registry
+            .make(&name, &options)
+            .map_err(|e| locate_solver_error(scene, e))?;
+        return Ok((name, options));
+    }
     let mut options = SolverOptions::default();
     if let Some(t) = &spec.tolerance {
         options = options.tolerance(*t.get_ref());

@@ -202,6 +202,7 @@ impl Model {
                 BodySummary {
                     name: solved.body.name().to_string(),
                     mesh: built.mesh_source.clone(),
+                    predicted_error: built.predicted_error,
                     vertices: mesh.n_vertices(),
                     inserted_vertices: mesh.n_vertices() - built.body.mesh().n_vertices(),
                     polygons: mesh.n_polygons(),
@@ -394,6 +395,9 @@ pub struct BodySummary {
     pub material: String,
     /// Mesh size h (largest polygon diameter).
     pub mesh_size: f64,
+    /// In a scene with `accuracy` or `target_error`, a generated mesh: the relative energy
+    /// error `E_grad / |u|_1` the error model predicts for its size.
+    pub predicted_error: Option<f64>,
     /// Smallest A1 ratio of the mesh solved.
     pub gamma: f64,
     /// Discrete strain energy.
@@ -710,6 +714,14 @@ impl fmt::Display for RunSummary {
                 b.mesh_size,
                 b.gamma
             )?;
+            if let Some(e) = b.predicted_error {
+                writeln!(
+                    f,
+                    "    predicted relative energy error E_grad/|u|_1 = {:.2} % (error model \
+                     C/n of docs/tradeoff.md)",
+                    100.0 * e
+                )?;
+            }
             writeln!(
                 f,
                 "    {}; max |u| = {:.4e}, max von Mises = {:.4e}, strain energy = {:.4e}",

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use vem_contact::SolverRegistry;
+use vem_contact::{AccuracyPreset, ErrorModel, SolverRegistry};
 
 use crate::resources::{LimitOrigin, MemoryLimit};
 use crate::CliError;
@@ -46,6 +46,15 @@ pub struct SceneFile {
     /// Resource limits (`[limits]`).
     #[serde(default)]
     pub limits: LimitsSpec,
+    /// An accuracy preset ("draft", "balanced", "reference"): the contact solver's setting
+    /// and, for a generated mesh without `n`, the size for the preset's target error.
+    #[serde(default)]
+    pub accuracy: Option<Spanned<String>>,
+    /// A target relative energy error (`E_grad / |u|_1`, e.g. 0.05): generated meshes without
+    /// `n` take the size the error model predicts for it, and the contact solver (when the
+    /// scene names none) the setting of the matching preset.
+    #[serde(default)]
+    pub target_error: Option<Spanned<f64>>,
 }
 
 /// One elastic body (`[[body]]`).
@@ -91,7 +100,8 @@ pub struct MeshSpec {
     /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh.
     #[serde(default, deserialize_with = "exact::optional_spanned_rectangle")]
     pub rectangle: Option<Spanned<[[f64; 2]; 2]>>,
-    /// The size parameter of a generated mesh (about `n` cells across).
+    /// The size parameter of a generated mesh (about `n` cells across); may be left out when
+    /// the scene gives `accuracy` or `target_error`.
     #[serde(default)]
     pub n: Option<Spanned<usize>>,
     /// The seed of a random family (default 1).
@@ -553,6 +563,7 @@ impl Scene {
         if let Some(contact) = file.contacts.first() {
             self.check_contact(contact.get_ref())?;
         }
+        self.check_accuracy()?;
         let output = &file.output;
         if let Some(m) = &output.magnification {
             self.positive(m, "magnification")?;
@@ -751,10 +762,22 @@ impl Scene {
                 if let Err(e) = family.get_ref().parse::<vem_mesh::generators::MeshFamily>() {
                     return Err(self.error(Some(family.span()), e.to_string()));
                 }
-                if mesh.rectangle.is_none() || mesh.n.is_none() {
+                if mesh.rectangle.is_none() {
                     return Err(self.error(
                         Some(body.mesh.span()),
-                        format!("body '{name}': a generated mesh needs `rectangle` and `n`"),
+                        format!("body '{name}': a generated mesh needs `rectangle`"),
+                    ));
+                }
+                if mesh.n.is_none()
+                    && self.file.accuracy.is_none()
+                    && self.file.target_error.is_none()
+                {
+                    return Err(self.error(
+                        Some(body.mesh.span()),
+                        format!(
+                            "body '{name}': a generated mesh needs `n`, or the scene's \
+                             `accuracy` or `target_error` to choose it"
+                        ),
                     ));
                 }
             }
@@ -956,6 +979,87 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// `accuracy` names a preset and leaves the solver setting to it; `target_error` is
+    /// positive, reachable and used by some generated mesh without `n`.
+    fn check_accuracy(&self) -> Result<(), CliError> {
+        let file = &self.file;
+        if let Some(accuracy) = &file.accuracy {
+            if let Err(e) = accuracy.get_ref().parse::<AccuracyPreset>() {
+                return Err(self.error(Some(accuracy.span()), e.to_string()));
+            }
+            if let Some(contact) = file.contacts.first().map(|c| c.get_ref()) {
+                let spans = [
+                    ("solver", contact.solver.as_ref().map(|s| s.span())),
+                    ("tolerance", contact.tolerance.as_ref().map(|s| s.span())),
+                ];
+                if let Some((key, span)) = spans.into_iter().find(|(_, s)| s.is_some()) {
+                    return Err(self.error(
+                        span,
+                        format!(
+                            "`{key}` and the scene's `accuracy` both set the solver: \
+                             `accuracy` = \"{}\" chooses it; give one of the two",
+                            accuracy.get_ref()
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(target) = &file.target_error {
+            self.positive(target, "target_error")?;
+            if let Err(e) = ErrorModel::LOWEST_ORDER_VEM.try_size_for(*target.get_ref()) {
+                return Err(self.error(Some(target.span()), e.to_string()));
+            }
+            let chooses = file.bodies.iter().any(|b| {
+                let mesh = b.mesh.get_ref();
+                mesh.family.is_some() && mesh.n.is_none()
+            });
+            if !chooses {
+                return Err(self.error(
+                    Some(target.span()),
+                    "`target_error` chooses the size of generated meshes without `n`, and every \
+                     mesh here has `n` or is a file: drop `target_error` or an `n`",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The target error generated meshes without `n` are sized for: `target_error`, else the
+    /// preset's target (`None` without either).
+    pub fn target_error(&self) -> Option<f64> {
+        let file = &self.file;
+        file.target_error
+            .as_ref()
+            .map(|t| *t.get_ref())
+            .or_else(|| {
+                file.accuracy
+                    .as_ref()
+                    .and_then(|a| a.get_ref().parse::<AccuracyPreset>().ok())
+                    .map(AccuracyPreset::target_error)
+            })
+    }
+
+    /// The preset whose solver setting the scene asks for: `accuracy`, else the one matching
+    /// `target_error` when the contact pair names no `solver` or `tolerance`.
+    pub fn accuracy_preset(&self) -> Option<AccuracyPreset> {
+        let file = &self.file;
+        if let Some(preset) = file
+            .accuracy
+            .as_ref()
+            .and_then(|a| a.get_ref().parse::<AccuracyPreset>().ok())
+        {
+            return Some(preset);
+        }
+        let explicit = file
+            .contacts
+            .first()
+            .is_some_and(|c| c.get_ref().solver.is_some() || c.get_ref().tolerance.is_some());
+        match (&file.target_error, explicit) {
+            (Some(target), false) => Some(AccuracyPreset::for_target(*target.get_ref())),
+            _ => None,
+        }
     }
 
     fn check_obstacle(&self, obstacle: &Spanned<ObstacleSpec>) -> Result<(), CliError> {

@@ -33,6 +33,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod accuracy;
 mod discretisation;
 mod error;
 mod obstacle;
@@ -42,6 +43,7 @@ mod result;
 pub mod solver;
 mod warning;
 
+pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
 pub use discretisation::{ContactDiscretisation, ContactNode};
 pub use error::ContactError;
 pub use obstacle::{Obstacle, ObstacleGap};
