@@ -425,9 +425,11 @@ fn check_memory_of_meshes(
     scene: &Scene,
     meshes: &[(Mesh, String, Option<f64>)],
 ) -> Result<(), CliError> {
-    let total = meshes.iter().fold(Footprint::default(), |sum, (mesh, _, _)| {
-        sum + Footprint::of_mesh(mesh)
-    });
+    let total = meshes
+        .iter()
+        .fold(Footprint::default(), |sum, (mesh, _, _)| {
+            sum + Footprint::of_mesh(mesh)
+        });
     scene
         .memory_limit()
         .check(
@@ -460,7 +462,10 @@ fn generated_size(scene: &Scene, spec: &BodySpec) -> Result<GeneratedSize, CliEr
             let n = model
                 .try_size_for(target)
                 .map_err(|e| scene.error(Some(spec.mesh.span()), format!("body '{name}': {e}")))?;
-            (n, format!(" (chosen for a relative energy error of {target})"))
+            (
+                n,
+                format!(" (chosen for a relative energy error of {target})"),
+            )
         }
         (None, None) => return Err(scene.error(Some(spec.mesh.span()), "incomplete mesh")),
     };
