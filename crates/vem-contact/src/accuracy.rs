@@ -19,7 +19,7 @@
 //! let preset: AccuracyPreset = "balanced".parse()?;
 //! let solver = SolverRegistry::builtin().make(preset.solver(), &preset.solver_options());
 //! assert!(solver.is_ok());
-//! // The size for 2 % and the error predicted there (at most the target).
+//! // The size for 10 % and the error predicted there (at most the target).
 //! let model = ErrorModel::LOWEST_ORDER_VEM;
 //! let n = model.try_size_for(0.1)?;
 //! assert_eq!(n, 29);
