@@ -147,7 +147,14 @@ impl Size {
             patch: 4,
             manufactured: 6,
             locking: 8,
-            locking_families: vec![MeshFamily::Quads, MeshFamily::Triangles],
+            locking_families: vec![
+                MeshFamily::Quads,
+                MeshFamily::Voronoi,
+                MeshFamily::Hexagons,
+                MeshFamily::NonConvex,
+                MeshFamily::PerturbedQuads { distortion: 0.3 },
+                MeshFamily::Triangles,
+            ],
             solvers: solver_names(),
         }
     }
