@@ -802,6 +802,34 @@ impl<'a> Parser<'a> {
         Ok(entities)
     }
 
+    /// The header of a `$Nodes` or `$Elements` section of MSH 4.1 (`what` = "node" or
+    /// "element"): the number of blocks and of items, each bounded by the bytes left at the
+    /// least size of one (`block_bytes`, `item_bytes`), then the smallest and largest tags.
+    fn section_header_v4(
+        &mut self,
+        what: &str,
+        block_bytes: usize,
+        item_bytes: usize,
+    ) -> Result<(usize, usize), MshError> {
+        let blocks = format!("the number of {what} blocks");
+        let items = format!("the number of {what}s");
+        let smallest = format!("the smallest {what} tag");
+        let largest = format!("the largest {what} tag");
+        if self.binary {
+            let n_blocks = self.binary_count(&blocks, block_bytes)?;
+            let n_items = self.binary_count(&items, item_bytes)?;
+            let _: u64 = self.binary(&smallest)?;
+            let _: u64 = self.binary(&largest)?;
+            Ok((n_blocks, n_items))
+        } else {
+            let n_blocks = self.count(&blocks, block_bytes)?;
+            let n_items = self.count(&items, item_bytes)?;
+            self.number::<u64>(&smallest)?;
+            self.number::<u64>(&largest)?;
+            Ok((n_blocks, n_items))
+        }
+    }
+
     fn nodes_v4(&mut self) -> Result<Vec<MshNode>, MshError> {
         // Every node takes at least a tag and three coordinates.
         let node_bytes = if self.binary {
@@ -814,19 +842,7 @@ impl<'a> Parser<'a> {
         } else {
             4 * MIN_ASCII_ITEM
         };
-        let (n_blocks, n_nodes) = if self.binary {
-            let n_blocks = self.binary_count("the number of node blocks", block_bytes)?;
-            let n_nodes = self.binary_count("the number of nodes", node_bytes)?;
-            let _: u64 = self.binary("the smallest node tag")?;
-            let _: u64 = self.binary("the largest node tag")?;
-            (n_blocks, n_nodes)
-        } else {
-            let n_blocks = self.count("the number of node blocks", block_bytes)?;
-            let n_nodes = self.count("the number of nodes", node_bytes)?;
-            self.number::<u64>("the smallest node tag")?;
-            self.number::<u64>("the largest node tag")?;
-            (n_blocks, n_nodes)
-        };
+        let (n_blocks, n_nodes) = self.section_header_v4("node", block_bytes, node_bytes)?;
         let mut nodes = Vec::with_capacity(n_nodes);
         let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_nodes);
         for _ in 0..n_blocks {
@@ -926,19 +942,8 @@ impl<'a> Parser<'a> {
         } else {
             4 * MIN_ASCII_ITEM
         };
-        let (n_blocks, n_elements) = if self.binary {
-            let n_blocks = self.binary_count("the number of element blocks", block_bytes)?;
-            let n_elements = self.binary_count("the number of elements", element_bytes)?;
-            let _: u64 = self.binary("the smallest element tag")?;
-            let _: u64 = self.binary("the largest element tag")?;
-            (n_blocks, n_elements)
-        } else {
-            let n_blocks = self.count("the number of element blocks", block_bytes)?;
-            let n_elements = self.count("the number of elements", element_bytes)?;
-            self.number::<u64>("the smallest element tag")?;
-            self.number::<u64>("the largest element tag")?;
-            (n_blocks, n_elements)
-        };
+        let (n_blocks, n_elements) =
+            self.section_header_v4("element", block_bytes, element_bytes)?;
         let mut elements = Vec::with_capacity(n_elements);
         let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_elements);
         for _ in 0..n_blocks {
