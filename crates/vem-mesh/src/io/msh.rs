@@ -11,7 +11,7 @@
 //! `$PhysicalNames`, `$Entities`, `$Nodes` and `$Elements` are skipped up to their end marker,
 //! as Gmsh does; partitioned meshes (`$PartitionedEntities`) are refused.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashSet};
 use std::fmt;
 
 /// The format version of a `.msh` file.
@@ -375,6 +375,15 @@ impl<'a> Parser<'a> {
         })
     }
 
+    /// The next number of type `T`: binary or text, as the file is.
+    fn value<T: Binary + std::str::FromStr>(&mut self, what: &str) -> Result<T, MshError> {
+        if self.binary {
+            self.binary(what)
+        } else {
+            self.number(what)
+        }
+    }
+
     /// One binary number.
     fn binary<T: Binary>(&mut self, what: &str) -> Result<T, MshError> {
         if self.remaining() < T::SIZE {
@@ -727,11 +736,7 @@ impl<'a> Parser<'a> {
         };
         let mut tags = Vec::with_capacity(count);
         for _ in 0..count {
-            let tag: i32 = if self.binary {
-                self.binary("a physical tag")?
-            } else {
-                self.number("a physical tag")?
-            };
+            let tag: i32 = self.value("a physical tag")?;
             // Gmsh writes a negative tag for a group that uses the entity reversed.
             tags.push(tag.checked_abs().unwrap_or(i32::MAX));
         }
@@ -751,25 +756,17 @@ impl<'a> Parser<'a> {
             };
         }
         let mut entities = Vec::with_capacity(counts.iter().sum());
-        let mut seen = HashMap::new();
+        let mut seen = HashSet::new();
         for (dim, &count) in counts.iter().enumerate() {
             let dim = dim as i32;
             for _ in 0..count {
                 let at = self.mark();
-                let tag: i32 = if self.binary {
-                    self.binary("an entity tag")?
-                } else {
-                    self.number("an entity tag")?
-                };
+                let tag: i32 = self.value("an entity tag")?;
                 let what = format!("entity ({dim}, {tag})");
                 // A point has its coordinates, other entities their bounding box.
                 let n_reals = if dim == 0 { 3 } else { 6 };
                 for _ in 0..n_reals {
-                    if self.binary {
-                        let _: f64 = self.binary("a coordinate of the entity")?;
-                    } else {
-                        self.number::<f64>("a coordinate of the entity")?;
-                    }
+                    self.value::<f64>("a coordinate of the entity")?;
                 }
                 let physical_tags = self.physical_tag_list(&what)?;
                 if dim > 0 {
@@ -782,14 +779,10 @@ impl<'a> Parser<'a> {
                         )?
                     };
                     for _ in 0..n_bounding {
-                        if self.binary {
-                            let _: i32 = self.binary("a bounding entity tag")?;
-                        } else {
-                            self.number::<i32>("a bounding entity tag")?;
-                        }
+                        self.value::<i32>("a bounding entity tag")?;
                     }
                 }
-                if seen.insert((dim, tag), ()).is_some() {
+                if !seen.insert((dim, tag)) {
                     return Err(self.error_at(at, self.binary, format!("{what} is defined twice")));
                 }
                 entities.push(MshEntity {
@@ -815,19 +808,20 @@ impl<'a> Parser<'a> {
         let items = format!("the number of {what}s");
         let smallest = format!("the smallest {what} tag");
         let largest = format!("the largest {what} tag");
-        if self.binary {
-            let n_blocks = self.binary_count(&blocks, block_bytes)?;
-            let n_items = self.binary_count(&items, item_bytes)?;
-            let _: u64 = self.binary(&smallest)?;
-            let _: u64 = self.binary(&largest)?;
-            Ok((n_blocks, n_items))
+        let (n_blocks, n_items) = if self.binary {
+            (
+                self.binary_count(&blocks, block_bytes)?,
+                self.binary_count(&items, item_bytes)?,
+            )
         } else {
-            let n_blocks = self.count(&blocks, block_bytes)?;
-            let n_items = self.count(&items, item_bytes)?;
-            self.number::<u64>(&smallest)?;
-            self.number::<u64>(&largest)?;
-            Ok((n_blocks, n_items))
-        }
+            (
+                self.count(&blocks, block_bytes)?,
+                self.count(&items, item_bytes)?,
+            )
+        };
+        self.value::<u64>(&smallest)?;
+        self.value::<u64>(&largest)?;
+        Ok((n_blocks, n_items))
     }
 
     fn nodes_v4(&mut self) -> Result<Vec<MshNode>, MshError> {
@@ -844,7 +838,7 @@ impl<'a> Parser<'a> {
         };
         let (n_blocks, n_nodes) = self.section_header_v4("node", block_bytes, node_bytes)?;
         let mut nodes = Vec::with_capacity(n_nodes);
-        let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_nodes);
+        let mut seen: HashSet<u64> = HashSet::with_capacity(n_nodes);
         for _ in 0..n_blocks {
             let block_start = self.mark();
             let (dim, tag, parametric, count) = if self.binary {
@@ -890,12 +884,8 @@ impl<'a> Parser<'a> {
             let first = nodes.len();
             for _ in 0..count {
                 let at = self.mark();
-                let tag: u64 = if self.binary {
-                    self.binary("a node tag")?
-                } else {
-                    self.number("a node tag")?
-                };
-                if seen.insert(tag, ()).is_some() {
+                let tag: u64 = self.value("a node tag")?;
+                if !seen.insert(tag) {
                     return Err(self.error_at(
                         at,
                         self.binary,
@@ -913,11 +903,7 @@ impl<'a> Parser<'a> {
                     };
                 }
                 for _ in 0..n_parametric {
-                    if self.binary {
-                        let _: f64 = self.binary("a parametric coordinate")?;
-                    } else {
-                        self.number::<f64>("a parametric coordinate")?;
-                    }
+                    self.value::<f64>("a parametric coordinate")?;
                 }
             }
         }
@@ -945,7 +931,7 @@ impl<'a> Parser<'a> {
         let (n_blocks, n_elements) =
             self.section_header_v4("element", block_bytes, element_bytes)?;
         let mut elements = Vec::with_capacity(n_elements);
-        let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_elements);
+        let mut seen: HashSet<u64> = HashSet::with_capacity(n_elements);
         for _ in 0..n_blocks {
             let block_start = self.mark();
             let (dim, entity_tag, element_type) = if self.binary {
@@ -995,12 +981,8 @@ impl<'a> Parser<'a> {
             }
             for _ in 0..count {
                 let at = self.mark();
-                let tag: u64 = if self.binary {
-                    self.binary("an element tag")?
-                } else {
-                    self.number("an element tag")?
-                };
-                if seen.insert(tag, ()).is_some() {
+                let tag: u64 = self.value("an element tag")?;
+                if !seen.insert(tag) {
                     return Err(self.error_at(
                         at,
                         self.binary,
@@ -1009,11 +991,7 @@ impl<'a> Parser<'a> {
                 }
                 let mut nodes = Vec::with_capacity(n_nodes);
                 for _ in 0..n_nodes {
-                    nodes.push(if self.binary {
-                        self.binary("a node tag of an element")?
-                    } else {
-                        self.number("a node tag of an element")?
-                    });
+                    nodes.push(self.value("a node tag of an element")?);
                 }
                 elements.push(MshElement {
                     tag,
@@ -1046,7 +1024,7 @@ impl<'a> Parser<'a> {
             self.line();
         }
         let mut nodes = Vec::with_capacity(n_nodes);
-        let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_nodes);
+        let mut seen: HashSet<u64> = HashSet::with_capacity(n_nodes);
         for _ in 0..n_nodes {
             let at = self.mark();
             let tag: u64 = if self.binary {
@@ -1054,7 +1032,7 @@ impl<'a> Parser<'a> {
             } else {
                 self.number("a node tag")?
             };
-            if seen.insert(tag, ()).is_some() {
+            if !seen.insert(tag) {
                 return Err(self.error_at(
                     at,
                     self.binary,
@@ -1089,7 +1067,7 @@ impl<'a> Parser<'a> {
             self.line();
         }
         let mut elements = Vec::with_capacity(n_elements);
-        let mut seen: HashMap<u64, ()> = HashMap::with_capacity(n_elements);
+        let mut seen: HashSet<u64> = HashSet::with_capacity(n_elements);
         // Binary files group elements under headers (type, count, number of tags).
         let mut group: (i32, usize, usize) = (0, 0, 0);
         while elements.len() < n_elements {
@@ -1156,7 +1134,7 @@ impl<'a> Parser<'a> {
                     self.number("a node tag of an element")?
                 });
             }
-            if seen.insert(tag, ()).is_some() {
+            if !seen.insert(tag) {
                 return Err(self.error_at(
                     at,
                     self.binary,
