@@ -4,6 +4,8 @@
 //! those that Gmsh's Python API reads from the same file, committed beside it as JSON by
 //! `scripts/gmsh-reference.py`. Each file must also become a valid mesh.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -135,22 +137,7 @@ fn every_corpus_file_becomes_the_same_mesh_as_its_variants() {
         let name = file.file_name().unwrap().to_string_lossy().to_string();
         let mesh = read_gmsh_bytes(&std::fs::read(&file).unwrap(), &name)
             .unwrap_or_else(|e| panic!("{e}"));
-        let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
-        let parts: Vec<(String, f64)> = mesh
-            .parts()
-            .iter()
-            .map(|part| {
-                let length = part
-                    .edges
-                    .iter()
-                    .map(|&e| {
-                        let [a, b] = mesh.edge(e).vertices;
-                        (mesh.vertex(a) - mesh.vertex(b)).norm()
-                    })
-                    .sum();
-                (part.name.clone(), length)
-            })
-            .collect();
+        let (area, parts) = common::area_and_part_lengths(&mesh);
         let shape = name.split('_').next().unwrap().to_string();
         let expected_area = match shape.as_str() {
             "square" | "mixed" => 1.0,

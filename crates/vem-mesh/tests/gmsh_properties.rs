@@ -2,6 +2,8 @@
 //! with gaps, split into blocks in any order) and any element order reads back as the same
 //! mesh, in MSH 2.2 and 4.1; and no input, however mangled, makes the reader panic.
 
+mod common;
+
 use proptest::prelude::*;
 use vem_mesh::generators::{structured_quads, structured_triangles, Rectangle};
 use vem_mesh::io::{read_gmsh_bytes, read_msh_bytes};
@@ -117,24 +119,9 @@ fn msh41(mesh: &Mesh, tags: &[u64], node_order: &[usize], n_blocks: usize) -> St
     text + "$EndElements\n"
 }
 
-/// Area, and length of every part by name: what a renumbering must not change.
+/// Area, and length of every part by name, and the counts: what a renumbering must not change.
 fn invariants(mesh: &Mesh) -> (f64, Vec<(String, f64)>, usize, usize) {
-    let area = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
-    let parts = mesh
-        .parts()
-        .iter()
-        .map(|part| {
-            let length = part
-                .edges
-                .iter()
-                .map(|&e| {
-                    let [a, b] = mesh.edge(e).vertices;
-                    (mesh.vertex(a) - mesh.vertex(b)).norm()
-                })
-                .sum();
-            (part.name.clone(), length)
-        })
-        .collect();
+    let (area, parts) = common::area_and_part_lengths(mesh);
     (area, parts, mesh.n_vertices(), mesh.n_polygons())
 }
 
