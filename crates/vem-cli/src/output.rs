@@ -6,13 +6,12 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
 use vem_mesh::io::{
-    remove_stale_temporaries, write_atomically, write_svg_layers, write_vtu, SvgLayer, SvgOptions,
-    VtuData,
+    remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers, write_vtu,
+    SvgLayer, SvgOptions, VtuData,
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -251,15 +250,12 @@ impl Staging {
                 source,
             }
         };
-        let name = target
-            .file_name()
-            .filter(|n| *n != "." && *n != "..")
-            .ok_or_else(|| {
-                CliError::Usage(format!(
-                    "output folder '{}': name a folder (not '.' or '..'), e.g. out/run",
-                    target.display()
-                ))
-            })?;
+        if target.file_name().is_none_or(|n| n == "." || n == "..") {
+            return Err(CliError::Usage(format!(
+                "output folder '{}': name a folder (not '.' or '..'), e.g. out/run",
+                target.display()
+            )));
+        }
         let parent = match target.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
@@ -293,16 +289,9 @@ impl Staging {
                 target.display()
             )));
         }
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
         loop {
-            let mut temporary_name = std::ffi::OsString::from(".");
-            temporary_name.push(name);
-            temporary_name.push(format!(
-                ".{}.{}.tmp",
-                std::process::id(),
-                COUNTER.fetch_add(1, Ordering::Relaxed)
-            ));
-            let temporary = parent.join(temporary_name);
+            let temporary =
+                temporary_sibling(target).map_err(io("name a folder beside", target))?;
             match std::fs::create_dir(&temporary) {
                 Ok(()) => {
                     return Ok(Self {

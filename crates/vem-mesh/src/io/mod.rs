@@ -98,23 +98,8 @@ where
 
 /// Creates a new, empty temporary file in the directory of `path`, named after it.
 fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let directory = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let name = path.file_name().ok_or_else(|| {
-        io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
-    })?;
     loop {
-        let mut temporary_name = std::ffi::OsString::from(".");
-        temporary_name.push(name);
-        temporary_name.push(format!(
-            ".{}.{}.tmp",
-            std::process::id(),
-            COUNTER.fetch_add(1, Ordering::Relaxed)
-        ));
-        let temporary = directory.join(temporary_name);
+        let temporary = temporary_sibling(path)?;
         match OpenOptions::new()
             .write(true)
             .create_new(true)
@@ -126,6 +111,30 @@ fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
             Err(e) => return Err(e),
         }
     }
+}
+
+/// A fresh name `.NAME.PID.N.tmp` beside `path` (in its directory, `.` for a bare name) for a
+/// temporary file or folder that is renamed onto `path` once complete: the pattern
+/// [`remove_stale_temporaries`] recognises. `N` counts up within the process; a name may still
+/// exist (left by a crashed process with the same id), so create it with `create_new` and ask
+/// again on `AlreadyExists`.
+pub fn temporary_sibling(path: &Path) -> io::Result<PathBuf> {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let directory = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file")
+    })?;
+    let mut temporary_name = std::ffi::OsString::from(".");
+    temporary_name.push(name);
+    temporary_name.push(format!(
+        ".{}.{}.tmp",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    Ok(directory.join(temporary_name))
 }
 
 /// Removes from `directory` the temporaries that processes no longer running left behind:
