@@ -32,7 +32,7 @@ fn solve(shift: f64, normal: ContactNormal) -> ContactResult {
         material,
         element.clone(),
     )
-    .dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+    .dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
         Vector::new(shift, -INDENTATION)
     }))
     .build()
@@ -43,7 +43,7 @@ fn solve(shift: f64, normal: ContactNormal) -> ContactResult {
         material,
         element,
     )
-    .dirichlet(Dirichlet::prescribed("bottom", Component::Both, |_| {
+    .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
         Vector::zeros()
     }))
     .build()

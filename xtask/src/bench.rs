@@ -222,13 +222,13 @@ pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn st
                 material,
                 element.clone(),
             )
-            .dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+            .dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
                 Vector::new(shift, -0.02)
             }))
             .build()?;
             let block =
                 ElasticBody::builder("block", structured_quads(&lower, m, m)?, material, element)
-                    .dirichlet(Dirichlet::prescribed("bottom", Component::Both, |_| {
+                    .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
                         Vector::zeros()
                     }))
                     .build()?;

@@ -177,12 +177,12 @@ fn problem(
     let disc = read_gmsh(meshes.join(format!("disc_hc{h}.msh")))?;
     let block = read_gmsh(meshes.join(format!("block_hc{h}.msh")))?;
     let disc = ElasticBody::builder("disc", disc, material, element.clone())
-        .dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+        .dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
             Vector::new(shift, -INDENTATION)
         }))
         .build()?;
     let block = ElasticBody::builder("block", block, material, element)
-        .dirichlet(Dirichlet::prescribed("bottom", Component::Both, |_| {
+        .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
             Vector::zeros()
         }))
         .build()?;

@@ -602,7 +602,7 @@ fn build_body(
         let d = d.get_ref();
         check_part(scene, &mesh, &name, &d.part)?;
         let component = match (d.x, d.y) {
-            (Some(_), Some(_)) => Component::Both,
+            (Some(_), Some(_)) => Component::All,
             (Some(_), None) => Component::X,
             _ => Component::Y,
         };
@@ -618,7 +618,7 @@ fn build_body(
         let r = r.get_ref();
         check_part(scene, &mesh, &name, &r.part)?;
         let component = match (r.resultant_x, r.resultant_y) {
-            (Some(_), Some(_)) => Component::Both,
+            (Some(_), Some(_)) => Component::All,
             (Some(_), None) => Component::X,
             _ => Component::Y,
         };

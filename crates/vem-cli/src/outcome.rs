@@ -237,7 +237,7 @@ impl Model {
                             components: match r.component {
                                 Component::X => "x",
                                 Component::Y => "y",
-                                Component::Both => "x, y",
+                                Component::All => "x, y",
                             },
                             force: [tidy(r.force.x), tidy(r.force.y)],
                         })

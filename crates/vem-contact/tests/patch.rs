@@ -109,7 +109,7 @@ impl Patch {
         };
         let (lb, g) = (LAMBDA * p.beta, MU * p.gamma);
         ElasticBody::builder(name, mesh, material, element)
-            .dirichlet(Dirichlet::prescribed(clamped, Component::Both, move |x| {
+            .dirichlet(Dirichlet::prescribed(clamped, Component::All, move |x| {
                 field(&p, x)
             }))
             .traction("left", move |_| Vector::new(lb, -g))

@@ -67,7 +67,7 @@ fn blocks(
                 .dirichlet(Dirichlet::fixed("left", Component::X)),
         ),
         Loading::Shear => (
-            upper.dirichlet(Dirichlet::prescribed("top", Component::Both, move |_| {
+            upper.dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
                 Vector::new(0.01 * l, -0.02 * l)
             })),
             lower.clamp("bottom"),
@@ -466,7 +466,7 @@ fn wedge(
     });
     let lower_mesh = grid(&lines(13, 0.0, 1.0), &lines(4, -1.0, 0.0), Point::new);
     let upper = ElasticBody::builder("upper", upper_mesh, material, element.clone())
-        .dirichlet(Dirichlet::prescribed("top", Component::Both, |_| {
+        .dirichlet(Dirichlet::prescribed("top", Component::All, |_| {
             Vector::new(0.0, -0.03)
         }))
         .build()

@@ -39,7 +39,9 @@ use std::ops::Range;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
-use vem_mesh::Mesh;
+use vem_mesh::BodyMesh;
+
+use vem_mesh::VectorD;
 
 use crate::{DofMap, DofStatus, ElasticError};
 
@@ -79,7 +81,11 @@ pub(crate) struct ElementContribution {
 
 impl AssembledSystem {
     /// An all-zero system with the pattern of `mesh` and the split of `dofs`.
-    pub(crate) fn with_pattern(body: &str, mesh: &Mesh, dofs: DofMap) -> Self {
+    pub(crate) fn with_pattern<const D: usize>(
+        body: &str,
+        mesh: &dyn BodyMesh<D>,
+        dofs: DofMap,
+    ) -> Self {
         // The adjacency is dropped before the values are allocated: it never lives beside a
         // whole copy of `K`.
         let (ff, fp, pp) = block_patterns(&vertex_adjacency(mesh), &dofs);
@@ -91,7 +97,7 @@ impl AssembledSystem {
         Self {
             body: body.to_string(),
             n_vertices: mesh.n_vertices(),
-            n_polygons: mesh.n_polygons(),
+            n_polygons: mesh.n_cells(),
             load: vec![0.0; dofs.n_dofs()],
             rhs: vec![0.0; dofs.n_unknowns()],
             bordered: bordered.map(zeros),
@@ -104,9 +110,9 @@ impl AssembledSystem {
     }
 
     /// True when this system was built for a mesh of this size and this dof split.
-    pub(crate) fn matches(&self, mesh: &Mesh, dofs: &DofMap) -> bool {
+    pub(crate) fn matches<const D: usize>(&self, mesh: &dyn BodyMesh<D>, dofs: &DofMap) -> bool {
         self.n_vertices == mesh.n_vertices()
-            && self.n_polygons == mesh.n_polygons()
+            && self.n_polygons == mesh.n_cells()
             && &self.dofs == dofs
     }
 
@@ -390,51 +396,61 @@ fn transpose_matvec_add(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) 
     }
 }
 
-/// The polygons sorted along a Morton (Z-order) curve of their vertex means (16 bits per
-/// coordinate in the bounding box; ties keep the mesh order).
-fn morton_order(mesh: &Mesh) -> Vec<usize> {
-    let (mut min, mut max) = (mesh.vertex(0), mesh.vertex(0));
-    for x in mesh.vertices() {
+/// The cells sorted along a Morton (Z-order) curve of their vertex means (16 bits per
+/// coordinate in the bounding box, x in the lowest bit; ties keep the mesh order).
+fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
+    let points = mesh.points();
+    let Some(&first) = points.first() else {
+        return Vec::new();
+    };
+    let (mut min, mut max) = (first, first);
+    for x in points {
         min = min.inf(x);
         max = max.sup(x);
     }
     let extent = (max - min).map(|e| if e > 0.0 { e } else { 1.0 });
-    let spread = |mut bits: u64| {
-        // Inserts a zero bit above each of the 16 low bits.
-        bits &= 0xffff;
-        bits = (bits | (bits << 8)) & 0x00ff_00ff;
-        bits = (bits | (bits << 4)) & 0x0f0f_0f0f;
-        bits = (bits | (bits << 2)) & 0x3333_3333;
-        (bits | (bits << 1)) & 0x5555_5555
-    };
-    let mut keyed: Vec<(u64, usize)> = (0..mesh.n_polygons())
-        .map(|p| {
-            let mean = vem_mesh::geometry::vertex_mean(&mesh.polygon_points(p));
-            let scaled = (mean - min).component_div(&extent) * 65535.0;
-            let key = spread(scaled.x as u64) | (spread(scaled.y as u64) << 1);
-            (key, p)
+    const BITS: usize = 16;
+    let cells = ((1u64 << BITS) - 1) as f64;
+    let mut keyed: Vec<(u64, usize)> = (0..mesh.n_cells())
+        .map(|c| {
+            let vertices = mesh.cell_vertices(c);
+            let sum = vertices
+                .iter()
+                .fold(VectorD::<D>::zeros(), |acc, &v| acc + points[v].coords);
+            let mean = sum / vertices.len().max(1) as f64;
+            let scaled = (mean - min.coords).component_div(&extent) * cells;
+            // Interleave the bits of the D coordinates, the most significant first.
+            let mut key = 0u64;
+            for b in (0..BITS).rev() {
+                for k in (0..D).rev() {
+                    key = (key << 1) | ((scaled[k] as u64 >> b) & 1);
+                }
+            }
+            (key, c)
         })
         .collect();
     keyed.sort_unstable();
-    keyed.into_iter().map(|(_, p)| p).collect()
+    keyed.into_iter().map(|(_, c)| c).collect()
 }
 
-/// For each vertex, the sorted distinct vertices that share a polygon with it (itself included).
-fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
-    // Vertex -> polygons incidence in compressed form.
+/// For each vertex, the sorted distinct vertices that share a cell with it (itself included).
+fn vertex_adjacency<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<Vec<usize>> {
+    // Vertex -> cells incidence in compressed form.
     let n = mesh.n_vertices();
     let mut offsets = vec![0usize; n + 1];
-    for &v in mesh.polygon_vertex_indices() {
-        offsets[v + 1] += 1;
+    for c in 0..mesh.n_cells() {
+        for &v in mesh.cell_vertices(c) {
+            offsets[v + 1] += 1;
+        }
     }
     for v in 0..n {
         offsets[v + 1] += offsets[v];
     }
     let mut next = offsets.clone();
     let mut incident = vec![0usize; offsets[n]];
-    for (p, polygon) in mesh.polygons().enumerate() {
-        for &v in polygon {
-            incident[next[v]] = p;
+    for c in 0..mesh.n_cells() {
+        for &v in mesh.cell_vertices(c) {
+            incident[next[v]] = c;
             next[v] += 1;
         }
     }
@@ -443,7 +459,7 @@ fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
         .map(|v| {
             let mut neighbours: Vec<usize> = incident[offsets[v]..offsets[v + 1]]
                 .iter()
-                .flat_map(|&p| mesh.polygon(p).iter().copied())
+                .flat_map(|&c| mesh.cell_vertices(c).iter().copied())
                 .collect();
             neighbours.sort_unstable();
             neighbours.dedup();
@@ -454,8 +470,8 @@ fn vertex_adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
         .collect()
 }
 
-/// The patterns of `K_ff`, `K_fp` and `K_pp`: global column `2v + c` couples to the rows
-/// `2w, 2w + 1` of every neighbour `w` of `v`.
+/// The patterns of `K_ff`, `K_fp` and `K_pp`: every degree of freedom of vertex `v` couples to
+/// every degree of freedom of each neighbour `w` of `v`.
 fn block_patterns(
     adjacency: &[Vec<usize>],
     dofs: &DofMap,
@@ -465,16 +481,17 @@ fn block_patterns(
     SymbolicSparseColMat<usize>,
 ) {
     let (n_f, n_p) = (dofs.n_free(), dofs.n_prescribed());
-    let nnz_estimate = 4 * adjacency.iter().map(Vec::len).sum::<usize>();
+    let d = dofs.components();
+    let nnz_estimate = d * d * adjacency.iter().map(Vec::len).sum::<usize>();
     let mut ff = CscBuilder::new(n_f, nnz_estimate);
     let mut fp = CscBuilder::new(n_p, 0);
     let mut pp = CscBuilder::new(n_p, 0);
     for (v, neighbours) in adjacency.iter().enumerate() {
-        for c in 0..2 {
-            let column = dofs.status(2 * v + c);
+        for column in dofs.vertex_dofs(v) {
+            let column = dofs.status(column);
             for &w in neighbours {
-                for k in 0..2 {
-                    match (column, dofs.status(2 * w + k)) {
+                for row in dofs.vertex_dofs(w) {
+                    match (column, dofs.status(row)) {
                         (DofStatus::Free(_), DofStatus::Free(i)) => ff.row_idx.push(i),
                         (DofStatus::Prescribed(_), DofStatus::Free(i)) => fp.row_idx.push(i),
                         (DofStatus::Prescribed(_), DofStatus::Prescribed(i)) => pp.row_idx.push(i),

@@ -1,12 +1,13 @@
-//! One elastic body: mesh, material, element, boundary conditions; assembly and solve.
+//! One elastic body: mesh, material, element, boundary conditions; assembly and solve, in two
+//! or three dimensions.
 
 use std::fmt;
 use std::sync::Arc;
 
 use nalgebra::DVector;
-use vem_mesh::{Mesh, Point, Vector};
+use vem_mesh::{BodyMesh, Mesh, PointD, VectorD};
 use vem_space::quadrature::GaussLegendre;
-use vem_space::{edge_traction_load, ElasticityTensor, ElementSpace};
+use vem_space::{ElasticityTensor, ElementSpace, MeshElement, PlanarElement};
 
 use crate::assembly::ElementContribution;
 use crate::boundary::VectorField;
@@ -16,92 +17,99 @@ use crate::{
     LinearSolver, Material, SolveError, Traction,
 };
 
-/// A linear elastic body discretised by an [`ElementSpace`] on a polygonal mesh, with its
-/// boundary conditions (by boundary-part name) and body force. Built and validated by
-/// [`ElasticBody::builder`].
+/// A linear elastic body in `R^D` (`D = 2` by default) discretised by an element
+/// ([`MeshElement`]) on a mesh ([`BodyMesh`]), with its boundary conditions (by boundary-part
+/// name) and body force. Built and validated by [`ElasticBody::builder`] (2D, from a polygonal
+/// [`Mesh`] and an [`ElementSpace`]) or [`ElasticBody::builder_on`] (any dimension).
 #[derive(Clone)]
-pub struct ElasticBody {
+pub struct ElasticBody<const D: usize = 2> {
     name: String,
-    mesh: Arc<Mesh>,
+    mesh: Arc<dyn BodyMesh<D>>,
     material: Material,
-    tensor: ElasticityTensor,
-    element: Arc<dyn ElementSpace>,
-    dirichlet: Vec<Dirichlet>,
-    tractions: Vec<Traction>,
-    body_force: Option<VectorField>,
+    tensor: ElasticityTensor<D>,
+    element: Arc<dyn MeshElement<D>>,
+    dirichlet: Vec<Dirichlet<D>>,
+    tractions: Vec<Traction<D>>,
+    body_force: Option<VectorField<D>>,
     traction_points: usize,
     dofs: DofMap,
 }
 
 /// Builder of an [`ElasticBody`]; [`ElasticBodyBuilder::build`] checks everything.
 #[derive(Clone)]
-pub struct ElasticBodyBuilder {
+pub struct ElasticBodyBuilder<const D: usize = 2> {
     name: String,
-    mesh: Arc<Mesh>,
+    mesh: Arc<dyn BodyMesh<D>>,
     material: Material,
-    element: Arc<dyn ElementSpace>,
-    dirichlet: Vec<Dirichlet>,
-    tractions: Vec<Traction>,
-    body_force: Option<VectorField>,
+    element: Arc<dyn MeshElement<D>>,
+    dirichlet: Vec<Dirichlet<D>>,
+    tractions: Vec<Traction<D>>,
+    body_force: Option<VectorField<D>>,
     traction_points: usize,
 }
 
-impl ElasticBodyBuilder {
-    /// The default number of Gauss points per edge for tractions: 2, exact for tractions
-    /// quadratic along the edge (the integrand, traction times the linear trace, is cubic).
+impl<const D: usize> ElasticBodyBuilder<D> {
+    /// The default number of Gauss points per facet direction for tractions: 2, exact for
+    /// tractions quadratic along an edge (the integrand, traction times the linear trace, is
+    /// cubic).
     pub const DEFAULT_TRACTION_POINTS: usize = 2;
 
     /// Adds a Dirichlet condition.
-    pub fn dirichlet(mut self, condition: Dirichlet) -> Self {
+    pub fn dirichlet(mut self, condition: Dirichlet<D>) -> Self {
         self.dirichlet.push(condition);
         self
     }
 
-    /// Clamps `part`: zero displacement in both components.
+    /// Clamps `part`: zero displacement in every component.
     pub fn clamp(self, part: impl Into<String>) -> Self {
-        self.dirichlet(Dirichlet::fixed(part, Component::Both))
+        self.dirichlet(Dirichlet::fixed(part, Component::All))
     }
 
     /// Adds a traction `g(x)` on `part`.
     pub fn traction(
         mut self,
         part: impl Into<String>,
-        traction: impl Fn(Point) -> Vector + Send + Sync + 'static,
+        traction: impl Fn(PointD<D>) -> VectorD<D> + Send + Sync + 'static,
     ) -> Self {
-        self.tractions.push(Traction::new(part, traction));
+        self.tractions.push(Traction::field(part, traction));
         self
     }
 
-    /// Sets the body force `f(x)` (per unit area).
-    pub fn body_force(mut self, force: impl Fn(Point) -> Vector + Send + Sync + 'static) -> Self {
+    /// Adds a traction condition (e.g. a normal pressure, [`Traction::try_normal_pressure`]).
+    pub fn traction_condition(mut self, traction: Traction<D>) -> Self {
+        self.tractions.push(traction);
+        self
+    }
+
+    /// Sets the body force `f(x)` (per unit area in 2D, per unit volume in 3D).
+    pub fn body_force(
+        mut self,
+        force: impl Fn(PointD<D>) -> VectorD<D> + Send + Sync + 'static,
+    ) -> Self {
         self.body_force = Some(Arc::new(force));
         self
     }
 
-    /// Sets the number of Gauss–Legendre points per edge for tractions (exact for tractions
-    /// of degree `2 points - 2` along the edge).
+    /// Sets the number of Gauss–Legendre points per facet direction for tractions (exact for
+    /// tractions of degree `2 points - 2` along an edge).
     pub fn traction_points(mut self, points: usize) -> Self {
         self.traction_points = points;
         self
     }
 
-    /// Checks the material, that the element supports every polygon of the mesh
-    /// ([`ElementSpace::supports`]), the quadrature setting, that every named part exists and
+    /// Checks the material, that the element supports every cell of the mesh
+    /// ([`MeshElement::supports`]), the quadrature setting, that every named part exists and
     /// that the Dirichlet data are finite and consistent, and builds the body.
-    pub fn build(self) -> Result<ElasticBody, ElasticError> {
-        let tensor = self.material.tensor()?;
-        if let Some((polygon, vertices)) = self
-            .mesh
-            .polygons()
-            .map(<[usize]>::len)
-            .enumerate()
-            .find(|&(_, n)| !self.element.supports(n))
+    pub fn build(self) -> Result<ElasticBody<D>, ElasticError> {
+        let tensor = self.material.elasticity_tensor::<D>()?;
+        if let Some(cell) =
+            (0..self.mesh.n_cells()).find(|&c| !self.element.supports(&*self.mesh, c))
         {
             return Err(ElasticError::UnsupportedPolygon {
                 body: self.name,
                 element: self.element.name().to_string(),
-                polygon,
-                vertices,
+                polygon: cell,
+                vertices: self.mesh.cell_vertices(cell).len(),
             });
         }
         GaussLegendre::try_new(self.traction_points).map_err(|e| ElasticError::InvalidSetting {
@@ -109,13 +117,18 @@ impl ElasticBodyBuilder {
         })?;
         for traction in &self.tractions {
             self.mesh
-                .part(traction.part())
+                .part_facets(traction.part())
                 .map_err(|source| ElasticError::Mesh {
                     body: self.name.clone(),
                     source,
                 })?;
         }
-        let dofs = DofMap::new(&self.mesh, &self.dirichlet, &self.name)?;
+        let dofs = DofMap::with_layout(
+            &*self.mesh,
+            self.element.dof_layout(),
+            &self.dirichlet,
+            &self.name,
+        )?;
         Ok(ElasticBody {
             name: self.name,
             mesh: self.mesh,
@@ -131,35 +144,63 @@ impl ElasticBodyBuilder {
     }
 }
 
-impl ElasticBody {
-    /// Starts a body named `name` (used in every error and report) on `mesh`.
+impl ElasticBody<2> {
+    /// Starts a planar body named `name` (used in every error and report) on the polygonal
+    /// mesh `mesh`, discretised by the element `element`.
     pub fn builder(
         name: impl Into<String>,
         mesh: impl Into<Arc<Mesh>>,
         material: Material,
         element: Arc<dyn ElementSpace>,
-    ) -> ElasticBodyBuilder {
+    ) -> ElasticBodyBuilder<2> {
+        let mesh: Arc<Mesh> = mesh.into();
+        Self::builder_on(name, mesh, material, Arc::new(PlanarElement::new(element)))
+    }
+
+    /// The polygonal mesh.
+    pub fn mesh(&self) -> &Mesh {
+        self.mesh
+            .as_planar()
+            .expect("vem_mesh::Mesh is the only planar BodyMesh")
+    }
+
+    /// The same body (material, element, conditions) on another polygonal mesh that has the
+    /// same boundary-part names, e.g. the mesh enlarged by interface node insertion. The degrees
+    /// of freedom are rebuilt and everything is checked again on the new mesh (as by
+    /// [`ElasticBodyBuilder::build`]: an element that does not support a polygon that gained
+    /// vertices is [`ElasticError::UnsupportedPolygon`]).
+    pub fn with_mesh(&self, mesh: impl Into<Arc<Mesh>>) -> Result<Self, ElasticError> {
+        let mesh: Arc<Mesh> = mesh.into();
+        self.on_mesh(mesh)
+    }
+}
+
+impl<const D: usize> ElasticBody<D> {
+    /// Starts a body named `name` on `mesh` in any dimension, discretised by `element`.
+    pub fn builder_on(
+        name: impl Into<String>,
+        mesh: Arc<dyn BodyMesh<D>>,
+        material: Material,
+        element: Arc<dyn MeshElement<D>>,
+    ) -> ElasticBodyBuilder<D> {
         ElasticBodyBuilder {
             name: name.into(),
-            mesh: mesh.into(),
+            mesh,
             material,
             element,
             dirichlet: Vec::new(),
             tractions: Vec::new(),
             body_force: None,
-            traction_points: ElasticBodyBuilder::DEFAULT_TRACTION_POINTS,
+            traction_points: ElasticBodyBuilder::<D>::DEFAULT_TRACTION_POINTS,
         }
     }
 
-    /// The same body (material, element, conditions) on another mesh that has the same
-    /// boundary-part names, e.g. the mesh enlarged by interface node insertion. The degrees of
-    /// freedom are rebuilt and everything is checked again on the new mesh (as by
-    /// [`ElasticBodyBuilder::build`]: an element that does not support a polygon that gained
-    /// vertices is [`ElasticError::UnsupportedPolygon`]).
-    pub fn with_mesh(&self, mesh: impl Into<Arc<Mesh>>) -> Result<Self, ElasticError> {
+    /// The same body (material, element, conditions) on another mesh with the same part names
+    /// (see [`ElasticBody::with_mesh`]).
+    pub fn on_mesh(&self, mesh: Arc<dyn BodyMesh<D>>) -> Result<Self, ElasticError> {
         ElasticBodyBuilder {
             name: self.name.clone(),
-            mesh: mesh.into(),
+            mesh,
             material: self.material,
             element: Arc::clone(&self.element),
             dirichlet: self.dirichlet.clone(),
@@ -173,7 +214,7 @@ impl ElasticBody {
     /// The same body with another material (same mesh, conditions and degrees of freedom:
     /// its systems can be refilled with [`ElasticBody::reassemble`]).
     pub fn with_material(&self, material: Material) -> Result<Self, ElasticError> {
-        let tensor = material.tensor()?;
+        let tensor = material.elasticity_tensor::<D>()?;
         Ok(Self {
             material,
             tensor,
@@ -186,13 +227,13 @@ impl ElasticBody {
         &self.name
     }
 
-    /// The mesh.
-    pub fn mesh(&self) -> &Mesh {
-        &self.mesh
+    /// The mesh, as the layers above see it in any dimension.
+    pub fn body_mesh(&self) -> &dyn BodyMesh<D> {
+        &*self.mesh
     }
 
     /// The shared mesh.
-    pub fn mesh_arc(&self) -> &Arc<Mesh> {
+    pub fn mesh_arc(&self) -> &Arc<dyn BodyMesh<D>> {
         &self.mesh
     }
 
@@ -202,38 +243,38 @@ impl ElasticBody {
     }
 
     /// The element's elasticity tensor.
-    pub fn tensor(&self) -> &ElasticityTensor {
+    pub fn tensor(&self) -> &ElasticityTensor<D> {
         &self.tensor
     }
 
-    /// The element space.
-    pub fn element(&self) -> &dyn ElementSpace {
+    /// The element.
+    pub fn element(&self) -> &dyn MeshElement<D> {
         &*self.element
     }
 
     /// The Dirichlet conditions, in the order given.
-    pub fn dirichlet(&self) -> &[Dirichlet] {
+    pub fn dirichlet(&self) -> &[Dirichlet<D>] {
         &self.dirichlet
     }
 
     /// The tractions, in the order given.
-    pub fn tractions(&self) -> &[Traction] {
+    pub fn tractions(&self) -> &[Traction<D>] {
         &self.tractions
     }
 
-    /// The number of Gauss points per edge for tractions.
+    /// The number of Gauss points per facet direction for tractions.
     pub fn traction_points(&self) -> usize {
         self.traction_points
     }
 
-    /// The split into free and prescribed degrees of freedom.
+    /// The numbering of the degrees of freedom and their split into free and prescribed ones.
     pub fn dofs(&self) -> &DofMap {
         &self.dofs
     }
 
     /// Builds the pattern and assembles stiffness, load and Dirichlet lifting (in parallel).
     pub fn assemble(&self) -> Result<AssembledSystem, ElasticError> {
-        let mut system = AssembledSystem::with_pattern(&self.name, &self.mesh, self.dofs.clone());
+        let mut system = AssembledSystem::with_pattern(&self.name, &*self.mesh, self.dofs.clone());
         self.fill(&mut system)?;
         Ok(system)
     }
@@ -242,7 +283,7 @@ impl ElasticBody {
     /// these Dirichlet conditions) on its existing pattern. If an element fails, the error is
     /// returned and the values of `system` are incomplete until the next successful call.
     pub fn reassemble(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
-        if !system.matches(&self.mesh, &self.dofs) {
+        if !system.matches(&*self.mesh, &self.dofs) {
             return Err(ElasticError::ForeignSystem {
                 body: self.name.clone(),
             });
@@ -252,57 +293,57 @@ impl ElasticBody {
 
     fn fill(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
         system.clear_values();
-        system.scatter_elements(|p| self.element_contribution(p))?;
+        system.scatter_elements(|c| self.element_contribution(c))?;
+        let points = self.mesh.points();
+        let mut facet_dofs = Vec::new();
         for traction in &self.tractions {
-            let part = self
+            let facets = self
                 .mesh
-                .part(traction.part())
+                .part_facets(traction.part())
                 .map_err(|source| ElasticError::Mesh {
                     body: self.name.clone(),
                     source,
                 })?;
-            for &e in &part.edges {
-                let [a, b] = self.mesh.edge(e).vertices;
-                let load = edge_traction_load(
-                    self.mesh.vertex(a),
-                    self.mesh.vertex(b),
-                    &|x| traction.value_at(x),
-                    self.traction_points,
-                )
-                .map_err(|source| ElasticError::Traction {
-                    body: self.name.clone(),
-                    part: traction.part().to_string(),
-                    a,
-                    b,
-                    source,
-                })?;
-                system.add_load(&[2 * a, 2 * a + 1, 2 * b, 2 * b + 1], &load);
+            for facet in facets {
+                let corners: Vec<PointD<D>> = facet.iter().map(|&v| points[v]).collect();
+                let load = self
+                    .element
+                    .facet_load(&corners, &|x| traction.value_at(x), self.traction_points)
+                    .map_err(|source| ElasticError::Traction {
+                        body: self.name.clone(),
+                        part: traction.part().to_string(),
+                        facet: facet.to_vec(),
+                        source,
+                    })?;
+                facet_dofs.clear();
+                self.dofs.cell_dofs(facet, &mut facet_dofs);
+                system.add_load(&facet_dofs, load.as_slice());
             }
         }
         system.finish_rhs();
         Ok(())
     }
 
-    /// The local matrix `consistency + stabilisation` and body load of polygon `p`.
-    fn element_contribution(&self, p: usize) -> Result<ElementContribution, ElasticError> {
-        let points = self.mesh.polygon_points(p);
+    /// The local matrix `consistency + stabilisation` and body load of cell `c`.
+    fn element_contribution(&self, c: usize) -> Result<ElementContribution, ElasticError> {
         let element_error = |source| ElasticError::Element {
             body: self.name.clone(),
-            polygon: p,
+            polygon: c,
             source,
         };
-        let expected = 2 * points.len();
+        let vertices = self.mesh.cell_vertices(c);
+        let expected = self.dofs.layout().cell_dofs(vertices.len());
         let size_error = |what, found| ElasticError::ElementSize {
             body: self.name.clone(),
-            polygon: p,
-            vertices: points.len(),
+            polygon: c,
+            vertices: vertices.len(),
             what,
             found,
             expected,
         };
         let matrix = self
             .element
-            .stiffness(&points, &self.tensor)
+            .stiffness(&*self.mesh, c, &self.tensor)
             .map_err(element_error)?
             .total();
         if matrix.nrows() != expected || matrix.ncols() != expected {
@@ -312,7 +353,7 @@ impl ElasticBody {
             Some(force) => {
                 let load = self
                     .element
-                    .body_load(&points, &**force)
+                    .body_load(&*self.mesh, c, &**force)
                     .map_err(element_error)?;
                 if load.len() != expected {
                     return Err(size_error("a load vector", load.len()));
@@ -321,22 +362,18 @@ impl ElasticBody {
             }
             None => None,
         };
-        let dofs = self
-            .mesh
-            .polygon(p)
-            .iter()
-            .flat_map(|&v| [2 * v, 2 * v + 1])
-            .collect();
+        let mut dofs = Vec::with_capacity(expected);
+        self.dofs.cell_dofs(vertices, &mut dofs);
         Ok(ElementContribution { dofs, matrix, load })
     }
 
     /// Assembles and solves with the default sparse Cholesky solver.
-    pub fn solve(&self) -> Result<Solution, ElasticError> {
+    pub fn solve(&self) -> Result<Solution<D>, ElasticError> {
         self.solve_with(&mut CholeskySolver::default())
     }
 
     /// Assembles and solves with `solver` (analyse, factorise, solve).
-    pub fn solve_with(&self, solver: &mut dyn LinearSolver) -> Result<Solution, ElasticError> {
+    pub fn solve_with(&self, solver: &mut dyn LinearSolver) -> Result<Solution<D>, ElasticError> {
         let system = self.assemble()?;
         self.solve_system(&system, solver)
     }
@@ -352,7 +389,7 @@ impl ElasticBody {
         &self,
         system: &AssembledSystem,
         solver: &mut dyn LinearSolver,
-    ) -> Result<Solution, ElasticError> {
+    ) -> Result<Solution<D>, ElasticError> {
         let u_free = if system.dofs().n_unknowns() == 0 {
             Vec::new()
         } else {
@@ -370,56 +407,73 @@ impl ElasticBody {
         self.solution(system, displacement)
     }
 
-    /// True when the Dirichlet conditions fix the three rigid motions (rigid plates do not
-    /// count: their translations are unknowns; the translations and
-    /// the rotation about the centroid of the prescribed vertices): the prescribed components
-    /// of the rigid motions, as columns, have rank 3 (their correlation matrix has a
-    /// determinant above `1e-12`). A body that is not held has a singular stiffness whatever
-    /// its mesh; a held body's stiffness is positive definite in exact arithmetic.
+    /// True when the Dirichlet conditions fix every rigid motion (`D` translations and
+    /// `D (D - 1) / 2` rotations about the centroid of the prescribed vertices; rigid plates do
+    /// not count: their translations are unknowns): the prescribed components of the rigid
+    /// motions, as columns, have full rank (their correlation matrix has a determinant above
+    /// `1e-12`). A body that is not held has a singular stiffness whatever its mesh; a held
+    /// body's stiffness is positive definite in exact arithmetic.
     pub fn holds_rigid_motions(&self) -> bool {
         let dofs = self.dofs();
+        let points = self.mesh.points();
         // A rigid plate (force control) holds nothing: its translation is an unknown.
-        let points: Vec<(Point, usize)> = dofs
+        let held: Vec<(PointD<D>, usize)> = dofs
             .prescribed_dofs()
             .iter()
             .zip(dofs.plate_of_prescribed())
             .filter(|(_, plate)| plate.is_none())
-            .map(|(&dof, _)| (self.mesh.vertex(dof / 2), dof % 2))
+            .map(|(&dof, _)| {
+                let (vertex, component) = dofs.vertex_of(dof);
+                (points[vertex], component)
+            })
             .collect();
-        if points.is_empty() {
+        if held.is_empty() {
             return false;
         }
-        let n = points.len() as f64;
-        let centre = points
+        let n = held.len() as f64;
+        let centre = held
             .iter()
-            .fold(Vector::zeros(), |c, (p, _)| c + p.coords)
+            .fold(VectorD::<D>::zeros(), |c, (p, _)| c + p.coords)
             / n;
-        let extent = points
+        let extent = held
             .iter()
             .fold(0.0f64, |e, (p, _)| e.max((p.coords - centre).norm()));
-        // Rows of the rigid motions (t_x, t_y, rotation) at each prescribed component.
-        let mut gram = [[0.0f64; 3]; 3];
-        for (p, component) in &points {
-            let r = (p.coords - centre) / if extent > 0.0 { extent } else { 1.0 };
-            let row = if *component == 0 {
-                [1.0, 0.0, -r.y]
-            } else {
-                [0.0, 1.0, r.x]
-            };
-            for a in 0..3 {
-                for b in 0..3 {
-                    gram[a][b] += row[a] * row[b];
+        let scale = if extent > 0.0 { extent } else { 1.0 };
+        // The rigid motions: D translations, then the rotations in the planes (a, b), a < b,
+        // whose component c at r is r_a delta_cb - r_b delta_ca.
+        let rotations: Vec<(usize, usize)> = (0..D)
+            .flat_map(|a| (a + 1..D).map(move |b| (a, b)))
+            .collect();
+        let modes = D + rotations.len();
+        let mut gram = nalgebra::DMatrix::<f64>::zeros(modes, modes);
+        let mut row = vec![0.0; modes];
+        for (p, component) in &held {
+            let r = (p.coords - centre) / scale;
+            row.iter_mut().for_each(|x| *x = 0.0);
+            row[*component] = 1.0;
+            for (k, &(a, b)) in rotations.iter().enumerate() {
+                row[D + k] = if *component == b {
+                    r[a]
+                } else if *component == a {
+                    -r[b]
+                } else {
+                    0.0
+                };
+            }
+            for a in 0..modes {
+                for b in 0..modes {
+                    gram[(a, b)] += row[a] * row[b];
                 }
             }
         }
-        if (0..3).any(|a| gram[a][a] <= 0.0) {
+        if (0..modes).any(|a| gram[(a, a)] <= 0.0) {
             return false;
         }
-        let c = |a: usize, b: usize| gram[a][b] / (gram[a][a] * gram[b][b]).sqrt();
-        let det = c(0, 0) * (c(1, 1) * c(2, 2) - c(1, 2) * c(2, 1))
-            - c(0, 1) * (c(1, 0) * c(2, 2) - c(1, 2) * c(2, 0))
-            + c(0, 2) * (c(1, 0) * c(2, 1) - c(1, 1) * c(2, 0));
-        det > 1e-12
+        let correlation =
+            nalgebra::DMatrix::from_fn(modes, modes, |a, b| {
+                gram[(a, b)] / (gram[(a, a)] * gram[(b, b)]).sqrt()
+            });
+        correlation.determinant() > 1e-12
     }
 
     /// A held body whose factorisation was refused for a tiny pivot (badly shaped elements):
@@ -428,10 +482,10 @@ impl ElasticBody {
     /// element).
     fn solve_ill_conditioned(&self, system: &AssembledSystem) -> Result<Vec<f64>, ElasticError> {
         let ill = |reason: String| {
-            let (element, quality) = (0..self.mesh.n_polygons())
-                .map(|p| (p, self.mesh.element_quality(p)))
+            let (element, quality) = (0..self.mesh.n_cells())
+                .map(|c| (c, self.mesh.cell_quality(c)))
                 .min_by(|a, b| a.1.gamma().total_cmp(&b.1.gamma()))
-                .map_or((0, None), |(p, q)| (p, Some(q)));
+                .map_or((0, None), |(c, q)| (c, Some(q)));
             ElasticError::IllConditioned {
                 body: self.name.clone(),
                 reason,
@@ -482,7 +536,7 @@ impl ElasticBody {
         &self,
         system: &AssembledSystem,
         displacement: Vec<f64>,
-    ) -> Result<Solution, ElasticError> {
+    ) -> Result<Solution<D>, ElasticError> {
         self.solution_scaled(system, displacement, 1.0)
     }
 
@@ -493,8 +547,8 @@ impl ElasticBody {
         system: &AssembledSystem,
         displacement: Vec<f64>,
         load_factor: f64,
-    ) -> Result<Solution, ElasticError> {
-        if !system.matches(&self.mesh, &self.dofs) {
+    ) -> Result<Solution<D>, ElasticError> {
+        if !system.matches(&*self.mesh, &self.dofs) {
             return Err(ElasticError::ForeignSystem {
                 body: self.name.clone(),
             });
@@ -513,13 +567,13 @@ impl ElasticBody {
         &self,
         system: &AssembledSystem,
         displacement: &[f64],
-    ) -> Result<Vec<PartReaction>, ElasticError> {
+    ) -> Result<Vec<PartReaction<D>>, ElasticError> {
         let nodal = system.reactions(displacement)?;
         Ok(self.gather_reactions(system, nodal))
     }
 
-    fn gather_reactions(&self, system: &AssembledSystem, nodal: Vec<f64>) -> Vec<PartReaction> {
-        let mut forces = vec![Vector::zeros(); self.dirichlet.len()];
+    fn gather_reactions(&self, system: &AssembledSystem, nodal: Vec<f64>) -> Vec<PartReaction<D>> {
+        let mut forces = vec![VectorD::<D>::zeros(); self.dirichlet.len()];
         let dofs = system.dofs();
         for ((&g, &owner), r) in dofs
             .prescribed_dofs()
@@ -527,7 +581,7 @@ impl ElasticBody {
             .zip(dofs.prescribed_owners())
             .zip(nodal)
         {
-            forces[owner][g % 2] += r;
+            forces[owner][dofs.vertex_of(g).1] += r;
         }
         self.dirichlet
             .iter()
@@ -538,6 +592,13 @@ impl ElasticBody {
                 force,
             })
             .collect()
+    }
+
+    /// The local degrees of freedom of cell `c` taken from the full displacement `displacement`.
+    pub fn local_values(&self, c: usize, displacement: &[f64]) -> DVector<f64> {
+        let mut dofs = Vec::new();
+        self.dofs.cell_dofs(self.mesh.cell_vertices(c), &mut dofs);
+        DVector::from_iterator(dofs.len(), dofs.iter().map(|&g| displacement[g]))
     }
 
     /// Strain, stress and von Mises stress of every element from the energy projection of
@@ -552,26 +613,20 @@ impl ElasticBody {
                 expected: self.dofs.n_dofs(),
             });
         }
-        (0..self.mesh.n_polygons())
+        (0..self.mesh.n_cells())
             .into_par_iter()
-            .map(|p| {
-                let projection = self
+            .map(|c| {
+                let local = self.local_values(c, displacement);
+                let strain = self
                     .element
-                    .projection(&self.mesh.polygon_points(p))
+                    .strain(&*self.mesh, c, &local)
                     .map_err(|source| ElasticError::Element {
                         body: self.name.clone(),
-                        polygon: p,
+                        polygon: c,
                         source,
                     })?;
-                let local = DVector::from_iterator(
-                    2 * self.mesh.polygon(p).len(),
-                    self.mesh
-                        .polygon(p)
-                        .iter()
-                        .flat_map(|&v| [displacement[2 * v], displacement[2 * v + 1]]),
-                );
                 Ok(ElementField::from_strain(
-                    projection.strain(&local),
+                    &strain,
                     &self.tensor,
                     &self.material,
                 ))
@@ -580,12 +635,12 @@ impl ElasticBody {
     }
 }
 
-impl fmt::Debug for ElasticBody {
+impl<const D: usize> fmt::Debug for ElasticBody<D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("ElasticBody")
             .field("name", &self.name)
             .field("vertices", &self.mesh.n_vertices())
-            .field("polygons", &self.mesh.n_polygons())
+            .field("cells", &self.mesh.n_cells())
             .field("material", &self.material)
             .field("element", &self.element.name())
             .field("dirichlet", &self.dirichlet)
@@ -596,7 +651,7 @@ impl fmt::Debug for ElasticBody {
     }
 }
 
-impl fmt::Debug for ElasticBodyBuilder {
+impl<const D: usize> fmt::Debug for ElasticBodyBuilder<D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("ElasticBodyBuilder")
             .field("name", &self.name)

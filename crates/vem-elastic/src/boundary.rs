@@ -4,29 +4,42 @@
 use std::fmt;
 use std::sync::Arc;
 
-use vem_mesh::{Mesh, MeshError, Point, Vector};
+use vem_mesh::{Mesh, MeshError, Point, PointD, Vector, VectorD};
 
-/// A vector field of position: body force, traction or prescribed displacement.
-pub type VectorField = Arc<dyn Fn(Point) -> Vector + Send + Sync>;
+/// A vector field of position in `R^D`: body force, traction or prescribed displacement.
+pub type VectorField<const D: usize = 2> = Arc<dyn Fn(PointD<D>) -> VectorD<D> + Send + Sync>;
 
 /// Which displacement components a Dirichlet condition prescribes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Component {
-    /// `u_x` only (the part may slide in y).
+    /// `u_x` only (the part may slide in the other directions).
     X,
-    /// `u_y` only (the part may slide in x).
+    /// `u_y` only.
     Y,
-    /// Both components (clamped or fully prescribed).
-    Both,
+    /// `u_z` only (three dimensions).
+    Z,
+    /// Every component (clamped or fully prescribed).
+    All,
 }
 
 impl Component {
-    /// The component indices (0 = x, 1 = y) this selects.
-    pub fn indices(self) -> &'static [usize] {
+    /// The component indices (0 = x, 1 = y, 2 = z) this selects in dimension `dimension`.
+    pub fn indices(self, dimension: usize) -> &'static [usize] {
         match self {
             Component::X => &[0],
             Component::Y => &[1],
-            Component::Both => &[0, 1],
+            Component::Z => &[2],
+            Component::All => &[0, 1, 2][..dimension.min(3)],
+        }
+    }
+
+    /// The axis letters this selects ("x", "y", "z", or "all").
+    pub fn name(self) -> &'static str {
+        match self {
+            Component::X => "x",
+            Component::Y => "y",
+            Component::Z => "z",
+            Component::All => "all",
         }
     }
 }
@@ -40,7 +53,7 @@ impl Component {
 /// ```
 /// use vem_elastic::{Component, Dirichlet};
 /// use vem_mesh::Vector;
-/// let clamp = Dirichlet::fixed("left", Component::Both);
+/// let clamp: Dirichlet = Dirichlet::fixed("left", Component::All); // a planar body's
 /// let pull = Dirichlet::prescribed("right", Component::X, |_p| Vector::new(0.01, 0.0));
 /// assert_eq!(clamp.part(), "left");
 /// assert!(clamp.is_homogeneous() && !pull.is_homogeneous());
@@ -66,14 +79,14 @@ impl Component {
 /// assert!(push.is_rigid_plate());
 /// ```
 #[derive(Clone)]
-pub struct Dirichlet {
+pub struct Dirichlet<const D: usize = 2> {
     part: String,
     component: Component,
-    values: Option<VectorField>,
-    resultant: Option<Vector>,
+    values: Option<VectorField<D>>,
+    resultant: Option<VectorD<D>>,
 }
 
-impl Dirichlet {
+impl<const D: usize> Dirichlet<D> {
     /// Zero displacement of the selected components on `part`.
     pub fn fixed(part: impl Into<String>, component: Component) -> Self {
         Self {
@@ -88,7 +101,11 @@ impl Dirichlet {
     /// common unknown translation, and the total force the plate applies to the body in those
     /// components is `resultant` (only the selected components are used). See the section on
     /// rigid plates above.
-    pub fn rigid_plate(part: impl Into<String>, component: Component, resultant: Vector) -> Self {
+    pub fn rigid_plate(
+        part: impl Into<String>,
+        component: Component,
+        resultant: VectorD<D>,
+    ) -> Self {
         Self {
             part: part.into(),
             component,
@@ -97,11 +114,12 @@ impl Dirichlet {
         }
     }
 
-    /// Displacement `values(x)` (only the selected components are used) on `part`.
-    pub fn prescribed(
+    /// Displacement `values(x)` (only the selected components are used) on `part`, in any
+    /// dimension ([`Dirichlet::prescribed`] in 2D).
+    pub fn with_values(
         part: impl Into<String>,
         component: Component,
-        values: impl Fn(Point) -> Vector + Send + Sync + 'static,
+        values: impl Fn(PointD<D>) -> VectorD<D> + Send + Sync + 'static,
     ) -> Self {
         Self {
             part: part.into(),
@@ -133,18 +151,30 @@ impl Dirichlet {
     }
 
     /// The prescribed resultant of a rigid plate (`None` for a prescribed displacement).
-    pub fn resultant(&self) -> Option<Vector> {
+    pub fn resultant(&self) -> Option<VectorD<D>> {
         self.resultant
     }
 
     /// The prescribed displacement at `x` (zero for a homogeneous condition and for a rigid
     /// plate, whose displacement is an unknown).
-    pub fn value_at(&self, x: Point) -> Vector {
-        self.values.as_ref().map_or_else(Vector::zeros, |g| g(x))
+    pub fn value_at(&self, x: PointD<D>) -> VectorD<D> {
+        self.values.as_ref().map_or_else(VectorD::zeros, |g| g(x))
     }
 }
 
-impl fmt::Debug for Dirichlet {
+impl Dirichlet<2> {
+    /// Displacement `values(x)` (only the selected components are used) on `part` of a planar
+    /// body.
+    pub fn prescribed(
+        part: impl Into<String>,
+        component: Component,
+        values: impl Fn(Point) -> Vector + Send + Sync + 'static,
+    ) -> Self {
+        Self::with_values(part, component, values)
+    }
+}
+
+impl<const D: usize> fmt::Debug for Dirichlet<D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Dirichlet")
             .field("part", &self.part)
@@ -156,24 +186,46 @@ impl fmt::Debug for Dirichlet {
 }
 
 /// A surface traction `g = sigma nu` on a boundary part, a function of position, integrated
-/// edge by edge against the linear trace of the test functions (spec section 2).
+/// facet by facet (edge by edge in 2D) against the trace of the test functions (spec
+/// section 2).
 #[derive(Clone)]
-pub struct Traction {
+pub struct Traction<const D: usize = 2> {
     part: String,
-    traction: VectorField,
+    traction: VectorField<D>,
 }
 
-impl Traction {
-    /// The traction `g(x)` on `part`.
-    pub fn new(
+impl<const D: usize> Traction<D> {
+    /// The traction `g(x)` on `part`, in any dimension ([`Traction::new`] in 2D).
+    pub fn field(
         part: impl Into<String>,
-        traction: impl Fn(Point) -> Vector + Send + Sync + 'static,
+        traction: impl Fn(PointD<D>) -> VectorD<D> + Send + Sync + 'static,
     ) -> Self {
         Self {
             part: part.into(),
             traction: Arc::new(traction),
         }
     }
+
+    /// The boundary part's name.
+    pub fn part(&self) -> &str {
+        &self.part
+    }
+
+    /// The traction at `x`.
+    pub fn value_at(&self, x: PointD<D>) -> VectorD<D> {
+        (self.traction)(x)
+    }
+}
+
+impl Traction<2> {
+    /// The traction `g(x)` on `part` of a planar body.
+    pub fn new(
+        part: impl Into<String>,
+        traction: impl Fn(Point) -> Vector + Send + Sync + 'static,
+    ) -> Self {
+        Self::field(part, traction)
+    }
+
 
     /// A normal pressure `pressure` on the boundary part `part` of `mesh`: the traction
     /// `g = -p nu` with `nu` the outward unit normal of the part, so that `p > 0` pushes into
@@ -230,15 +282,6 @@ impl Traction {
         }))
     }
 
-    /// The boundary part's name.
-    pub fn part(&self) -> &str {
-        &self.part
-    }
-
-    /// The traction at `x`.
-    pub fn value_at(&self, x: Point) -> Vector {
-        (self.traction)(x)
-    }
 }
 
 /// Squared distance from `x` to the segment from `start` to `start + tangent`.
@@ -247,7 +290,7 @@ fn distance_squared(x: Point, start: Point, tangent: Vector) -> f64 {
     (x - (start + s * tangent)).norm_squared()
 }
 
-impl fmt::Debug for Traction {
+impl<const D: usize> fmt::Debug for Traction<D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Traction")
             .field("part", &self.part)

@@ -1,16 +1,13 @@
-//! Degrees of freedom: global numbering `dof = 2 * vertex + component` and the split into free
-//! and prescribed (Dirichlet) degrees of freedom used by elimination, plus the translations of
-//! rigid plates (force control) as extra unknowns.
+//! Degrees of freedom: the global numbering of what the element declares
+//! ([`DofLayout`]) and the split into free and prescribed (Dirichlet) degrees of freedom used
+//! by elimination, plus the translations of rigid plates (force control) as extra unknowns.
 
-use vem_mesh::Mesh;
+use std::ops::Range;
+
+use vem_mesh::BodyMesh;
+use vem_space::DofLayout;
 
 use crate::{Dirichlet, ElasticError};
-
-/// The global degree of freedom of `component` (0 = x, 1 = y) at `vertex`.
-#[inline]
-pub fn dof(vertex: usize, component: usize) -> usize {
-    2 * vertex + component
-}
 
 /// The status of one global degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,7 +18,12 @@ pub enum DofStatus {
     Prescribed(usize),
 }
 
-/// The split of the global degrees of freedom into free and prescribed ones.
+/// The global numbering of the degrees of freedom and their split into free and prescribed
+/// ones.
+///
+/// The numbering follows the element's [`DofLayout`]: the `components` values of vertex `v` are
+/// the global degrees of freedom `components * v + c` ([`DofMap::vertex_dof`]); nothing outside
+/// this type computes a global index.
 ///
 /// Both numberings keep the global order: free index `i < j` implies global `free[i] < free[j]`
 /// (and likewise for prescribed ones), so a contiguous global range maps to contiguous free and
@@ -31,11 +33,11 @@ pub enum DofStatus {
 /// use vem_elastic::{Component, Dirichlet, DofMap, DofStatus};
 /// use vem_mesh::generators::{structured_quads, Rectangle};
 /// let mesh = structured_quads(&Rectangle::unit_square(), 2, 2)?;
-/// let dofs = DofMap::new(&mesh, &[Dirichlet::fixed("left", Component::Both)], "plate").unwrap();
+/// let dofs = DofMap::new(&mesh, &[Dirichlet::fixed("left", Component::All)], "plate").unwrap();
 /// assert_eq!(dofs.n_dofs(), 18);
 /// assert_eq!(dofs.n_prescribed(), 6); // 3 vertices on the left, 2 components each
-/// assert_eq!(dofs.status(0), DofStatus::Prescribed(0)); // vertex 0 = (0, 0)
-/// assert_eq!(dofs.status(2), DofStatus::Free(0));       // vertex 1 = (1/2, 0), x
+/// assert_eq!(dofs.status(dofs.vertex_dof(0, 0)), DofStatus::Prescribed(0)); // vertex 0 = (0, 0)
+/// assert_eq!(dofs.status(dofs.vertex_dof(1, 0)), DofStatus::Free(0));       // (1/2, 0), x
 /// # Ok::<(), vem_mesh::MeshError>(())
 /// ```
 ///
@@ -49,6 +51,7 @@ pub enum DofStatus {
 /// ([`DofMap::n_unknowns`], [`DofMap::unknown_index`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DofMap {
+    layout: DofLayout,
     status: Vec<DofStatus>,
     free: Vec<usize>,
     prescribed: Vec<usize>,
@@ -64,7 +67,7 @@ pub struct DofMap {
 pub struct PlateUnknown {
     /// The index of the condition (in the body's list of Dirichlet conditions).
     pub condition: usize,
-    /// The component (0 = x, 1 = y).
+    /// The component (0 = x, 1 = y, 2 = z).
     pub component: usize,
     /// The prescribed resultant in this component.
     pub resultant: f64,
@@ -73,12 +76,37 @@ pub struct PlateUnknown {
 }
 
 impl DofMap {
-    /// Builds the map for `mesh` and the Dirichlet conditions `dirichlet` (evaluated at the
-    /// part's vertices). A degree of freedom prescribed by several conditions (a corner shared
-    /// by two parts) belongs to the first one; their values must agree (to 1e-12 relative).
-    /// `body` names the body in errors.
-    pub fn new(mesh: &Mesh, dirichlet: &[Dirichlet], body: &str) -> Result<Self, ElasticError> {
-        let n_dofs = 2 * mesh.n_vertices();
+    /// Builds the map of an elasticity element (the `D` displacement values at every vertex)
+    /// for `mesh` and the Dirichlet conditions `dirichlet`; see [`DofMap::with_layout`].
+    pub fn new<const D: usize, M: BodyMesh<D> + ?Sized>(
+        mesh: &M,
+        dirichlet: &[Dirichlet<D>],
+        body: &str,
+    ) -> Result<Self, ElasticError> {
+        Self::with_layout(mesh, DofLayout::vertex_values(D), dirichlet, body)
+    }
+
+    /// Builds the map for the degrees of freedom `layout` declares on `mesh` and the Dirichlet
+    /// conditions `dirichlet` (evaluated at the part's vertices). A degree of freedom
+    /// prescribed by several conditions (a corner shared by two parts) belongs to the first
+    /// one; their values must agree (to 1e-12 relative). `body` names the body in errors.
+    pub fn with_layout<const D: usize, M: BodyMesh<D> + ?Sized>(
+        mesh: &M,
+        layout: DofLayout,
+        dirichlet: &[Dirichlet<D>],
+        body: &str,
+    ) -> Result<Self, ElasticError> {
+        if layout.vertex_components() != D {
+            return Err(ElasticError::InvalidSetting {
+                reason: format!(
+                    "body '{body}': the element declares {} values per vertex; elasticity in {D}D \
+                     needs {D}",
+                    layout.vertex_components()
+                ),
+            });
+        }
+        let dof = |v: usize, c: usize| D * v + c;
+        let n_dofs = D * mesh.n_vertices();
         // (owner condition, value) of every prescribed global dof.
         let mut prescribed_by: Vec<Option<(usize, f64)>> = vec![None; n_dofs];
         // The plate unknown of every tied global dof.
@@ -92,7 +120,7 @@ impl DofMap {
                             body: body.to_string(),
                             source,
                         })?;
-                for &k in condition.component().indices() {
+                for &k in condition.component().indices(D) {
                     if !resultant[k].is_finite() {
                         return Err(ElasticError::NonFiniteResultant {
                             body: body.to_string(),
@@ -130,8 +158,8 @@ impl DofMap {
                         source,
                     })?;
             for v in vertices {
-                let value = condition.value_at(mesh.vertex(v));
-                for &k in condition.component().indices() {
+                let value = condition.value_at(mesh.points()[v]);
+                for &k in condition.component().indices(D) {
                     let g = value[k];
                     if !g.is_finite() {
                         return Err(ElasticError::NonFiniteDirichlet {
@@ -172,6 +200,7 @@ impl DofMap {
             }
         }
         let mut map = DofMap {
+            layout,
             status: Vec::with_capacity(n_dofs),
             free: Vec::new(),
             prescribed: Vec::new(),
@@ -201,9 +230,44 @@ impl DofMap {
         Ok(map)
     }
 
-    /// Number of global degrees of freedom (`2 * n_vertices`).
+    /// Number of global degrees of freedom.
     pub fn n_dofs(&self) -> usize {
         self.status.len()
+    }
+
+    /// The local degrees of freedom the element declares, which this map numbers.
+    pub fn layout(&self) -> DofLayout {
+        self.layout
+    }
+
+    /// The number of displacement components per vertex (the dimension).
+    pub fn components(&self) -> usize {
+        self.layout.vertex_components()
+    }
+
+    /// The global degree of freedom of `component` at `vertex`.
+    #[inline]
+    pub fn vertex_dof(&self, vertex: usize, component: usize) -> usize {
+        self.components() * vertex + component
+    }
+
+    /// The global degrees of freedom of every component at `vertex`.
+    #[inline]
+    pub fn vertex_dofs(&self, vertex: usize) -> Range<usize> {
+        let d = self.components();
+        d * vertex..d * (vertex + 1)
+    }
+
+    /// The vertex and component of the global degree of freedom `dof`.
+    #[inline]
+    pub fn vertex_of(&self, dof: usize) -> (usize, usize) {
+        (dof / self.components(), dof % self.components())
+    }
+
+    /// Appends the global degrees of freedom of a cell with vertices `cell_vertices`, in the
+    /// element's local order, to `out`.
+    pub fn cell_dofs(&self, cell_vertices: &[usize], out: &mut Vec<usize>) {
+        out.extend(cell_vertices.iter().flat_map(|&v| self.vertex_dofs(v)));
     }
 
     /// Number of free degrees of freedom (the size of the reduced system).

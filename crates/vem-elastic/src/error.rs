@@ -67,7 +67,7 @@ pub enum ElasticError {
         #[source]
         source: MeshError,
     },
-    /// The element layer failed on one polygon.
+    /// The element layer failed on one cell (a polygon in 2D).
     #[error("body '{body}', polygon {polygon}: the element failed")]
     Element {
         /// The body's name.
@@ -105,20 +105,18 @@ pub enum ElasticError {
         what: &'static str,
         /// Its size as returned (rows or length).
         found: usize,
-        /// The expected size (2 per vertex).
+        /// The expected size (the element's degrees of freedom on the cell).
         expected: usize,
     },
-    /// A traction failed on one boundary edge.
-    #[error("body '{body}', traction on part '{part}', edge ({a}, {b}): the edge load failed")]
+    /// A traction failed on one boundary facet (an edge in 2D, a face in 3D).
+    #[error("body '{body}', traction on part '{part}', facet {facet:?}: the facet load failed")]
     Traction {
         /// The body's name.
         body: String,
         /// The boundary part.
         part: String,
-        /// First vertex of the edge.
-        a: usize,
-        /// Second vertex of the edge.
-        b: usize,
+        /// The vertices of the facet.
+        facet: Vec<usize>,
         /// The element error.
         #[source]
         source: SpaceError,
@@ -143,7 +141,7 @@ pub enum ElasticError {
         body: String,
         /// The vertex.
         vertex: usize,
-        /// The component (0 = x, 1 = y).
+        /// The component (0 = x, 1 = y, 2 = z).
         component: usize,
         /// The part that prescribed it first.
         first: String,
@@ -166,7 +164,7 @@ pub enum ElasticError {
         other: String,
         /// The vertex.
         vertex: usize,
-        /// The component (0 = x, 1 = y).
+        /// The component (0 = x, 1 = y, 2 = z).
         component: usize,
     },
     /// A rigid plate's prescribed resultant is not finite.
@@ -176,7 +174,7 @@ pub enum ElasticError {
         body: String,
         /// The rigid plate's part.
         part: String,
-        /// The component (0 = x, 1 = y).
+        /// The component (0 = x, 1 = y, 2 = z).
         component: usize,
         /// The value.
         value: f64,

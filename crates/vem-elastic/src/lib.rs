@@ -90,7 +90,7 @@ mod solver;
 pub use assembly::AssembledSystem;
 pub use body::{ElasticBody, ElasticBodyBuilder};
 pub use boundary::{Component, Dirichlet, Traction, VectorField};
-pub use dofs::{dof, DofMap, DofStatus, PlateUnknown};
+pub use dofs::{DofMap, DofStatus, PlateUnknown};
 pub use error::{ElasticError, SolveError};
 pub use material::{von_mises, Material, Plane};
 pub use post::{ElementField, PartReaction, Solution};

@@ -140,6 +140,77 @@ impl Material {
         tensor.map_err(space_invalid)
     }
 
+    /// The elasticity tensor of a body in `D` dimensions: the in-plane tensor of
+    /// [`Material::tensor`] in 2D; in 3D the isotropic tensor of the Lame parameters (a general
+    /// tensor is a two-dimensional law and is refused).
+    pub fn elasticity_tensor<const D: usize>(&self) -> Result<ElasticityTensor<D>, ElasticError> {
+        let voigt = match (D, self.kind) {
+            (2, _) => self.tensor()?.voigt_matrix(),
+            (3, Kind::Isotropic { lambda, mu, .. }) => {
+                let mut c = nalgebra::DMatrix::zeros(6, 6);
+                for i in 0..3 {
+                    for j in 0..3 {
+                        c[(i, j)] = lambda + if i == j { 2.0 * mu } else { 0.0 };
+                    }
+                    c[(i + 3, i + 3)] = mu;
+                }
+                c
+            }
+            _ => {
+                return Err(invalid(format!(
+                    "a general 2D Voigt tensor cannot describe a body in {D} dimensions"
+                )))
+            }
+        };
+        ElasticityTensor::<D>::try_from_voigt_matrix(&voigt).map_err(space_invalid)
+    }
+
+    /// The three-dimensional stress tensor of a body in `D` dimensions whose strain tensor is
+    /// `strain`, with its elasticity tensor `tensor`: in 2D the in-plane stress completed by
+    /// the out-of-plane stress ([`Material::out_of_plane_stress`]); in 3D `C eps`.
+    pub fn stress_state<const D: usize>(
+        &self,
+        tensor: &ElasticityTensor<D>,
+        strain: &nalgebra::SMatrix<f64, D, D>,
+    ) -> Matrix3<f64> {
+        let stress = tensor.stress_tensor(strain);
+        let mut full = Matrix3::zeros();
+        for i in 0..D.min(3) {
+            for j in 0..D.min(3) {
+                full[(i, j)] = stress[(i, j)];
+            }
+        }
+        if D == 2 {
+            let voigt = Vector3::new(strain[(0, 0)], strain[(1, 1)], 2.0 * strain[(0, 1)]);
+            full[(2, 2)] = self.out_of_plane_stress(&voigt);
+        }
+        full
+    }
+
+    /// The three-dimensional strain tensor of a body in `D` dimensions whose strain tensor is
+    /// `strain`: in 2D the in-plane strain completed by `eps_zz` (zero in plane strain and for
+    /// a general tensor, `-lambda / (lambda + 2 mu) (eps_xx + eps_yy)` in plane stress).
+    pub fn strain_state<const D: usize>(&self, strain: &nalgebra::SMatrix<f64, D, D>) -> Matrix3<f64> {
+        let mut full = Matrix3::zeros();
+        for i in 0..D.min(3) {
+            for j in 0..D.min(3) {
+                full[(i, j)] = strain[(i, j)];
+            }
+        }
+        if let (
+            2,
+            Kind::Isotropic {
+                lambda,
+                mu,
+                plane: Plane::Stress,
+            },
+        ) = (D, self.kind)
+        {
+            full[(2, 2)] = -lambda / (lambda + 2.0 * mu) * (full[(0, 0)] + full[(1, 1)]);
+        }
+        full
+    }
+
     /// The out-of-plane stress `sigma_zz` for an in-plane strain `eps` (Voigt): `lambda tr(eps)`
     /// in plane strain, zero in plane stress and for a general tensor.
     pub fn out_of_plane_stress(&self, strain: &Vector3<f64>) -> f64 {
@@ -175,14 +246,11 @@ fn space_invalid(error: vem_space::SpaceError) -> ElasticError {
     }
 }
 
-/// The von Mises equivalent stress of the stress state `(sigma_xx, sigma_yy, sigma_xy)` with
-/// out-of-plane stress `sigma_zz`:
-/// `sqrt(((sxx - syy)^2 + (syy - szz)^2 + (szz - sxx)^2) / 2 + 3 sxy^2)`.
-pub fn von_mises(stress: &Vector3<f64>, sigma_zz: f64) -> f64 {
-    let (sxx, syy, sxy) = (stress[0], stress[1], stress[2]);
-    (0.5 * ((sxx - syy).powi(2) + (syy - sigma_zz).powi(2) + (sigma_zz - sxx).powi(2))
-        + 3.0 * sxy * sxy)
-        .sqrt()
+/// The von Mises equivalent stress `sqrt(3/2 s : s)` of a three-dimensional stress tensor
+/// `stress` (`s` its deviatoric part).
+pub fn von_mises(stress: &Matrix3<f64>) -> f64 {
+    let deviatoric = stress - Matrix3::identity() * (stress.trace() / 3.0);
+    (1.5 * deviatoric.component_mul(&deviatoric).sum()).sqrt()
 }
 
 #[cfg(test)]
@@ -269,13 +337,18 @@ mod tests {
 
     #[test]
     fn von_mises_of_uniaxial_and_pure_shear() {
-        assert_relative_eq!(von_mises(&Vector3::new(2.0, 0.0, 0.0), 0.0), 2.0);
-        assert_relative_eq!(
-            von_mises(&Vector3::new(0.0, 0.0, 1.0), 0.0),
-            3f64.sqrt(),
-            max_relative = 1e-15
-        );
+        let uniaxial = Matrix3::new(2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        assert_relative_eq!(von_mises(&uniaxial), 2.0, max_relative = 1e-15);
+        let shear = Matrix3::new(0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        assert_relative_eq!(von_mises(&shear), 3f64.sqrt(), max_relative = 1e-15);
         // A hydrostatic state has no deviatoric part.
-        assert_relative_eq!(von_mises(&Vector3::new(-3.0, -3.0, 0.0), -3.0), 0.0);
+        assert!(von_mises(&(Matrix3::identity() * -3.0)).abs() < 1e-15);
+        // The plane formula sqrt(((sxx - syy)^2 + (syy - szz)^2 + (szz - sxx)^2) / 2 + 3 sxy^2).
+        let (sxx, syy, szz, sxy): (f64, f64, f64, f64) = (1.5, -0.5, 0.3, 0.7);
+        let state = Matrix3::new(sxx, sxy, 0.0, sxy, syy, 0.0, 0.0, 0.0, szz);
+        let plane = (0.5 * ((sxx - syy).powi(2) + (syy - szz).powi(2) + (szz - sxx).powi(2))
+            + 3.0 * sxy * sxy)
+            .sqrt();
+        assert_relative_eq!(von_mises(&state), plane, max_relative = 1e-14);
     }
 }

@@ -1,43 +1,39 @@
 //! Post-processing: displacements, per-element strain and stress, reactions, strain energy.
 
-use nalgebra::Vector3;
-use vem_mesh::Vector;
+use nalgebra::{Matrix3, SMatrix};
+use vem_mesh::VectorD;
 use vem_space::ElasticityTensor;
 
 use crate::material::von_mises;
 use crate::{Component, Material};
 
 /// Strain and stress of one element, from the energy projection `Pi u_h` (constant per
-/// element). Voigt order `[xx, yy, xy]`; the strain carries the engineering shear
-/// `gamma_xy = 2 eps_xy`, the stress `sigma_xy`.
+/// element), as three-dimensional symmetric tensors: in 2D the in-plane state completed by the
+/// out-of-plane strain and stress of the material's plane reduction
+/// ([`Material::strain_state`], [`Material::stress_state`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElementField {
-    /// `[eps_xx, eps_yy, 2 eps_xy]` of `Pi u_h`.
-    pub strain: Vector3<f64>,
-    /// `[sigma_xx, sigma_yy, sigma_xy] = C strain`.
-    pub stress: Vector3<f64>,
-    /// The out-of-plane stress: `lambda (eps_xx + eps_yy)` in plane strain, zero in plane
-    /// stress and for a general tensor (see [`Material::out_of_plane_stress`]).
-    pub sigma_zz: f64,
-    /// The von Mises stress of the three-dimensional state `(sigma_xx, sigma_yy, sigma_zz,
-    /// sigma_xy)`; in plane strain it includes `sigma_zz`.
+    /// The strain tensor of `Pi u_h`.
+    pub strain: Matrix3<f64>,
+    /// The stress tensor `C eps` (in plane strain with `sigma_zz = lambda tr(eps)`).
+    pub stress: Matrix3<f64>,
+    /// The von Mises stress of [`ElementField::stress`].
     pub von_mises: f64,
 }
 
 impl ElementField {
-    /// The fields of the strain `strain` for the tensor `tensor` of `material`.
-    pub fn from_strain(
-        strain: Vector3<f64>,
-        tensor: &ElasticityTensor,
+    /// The fields of the strain tensor `strain` of a body in `D` dimensions, for the tensor
+    /// `tensor` of `material`.
+    pub fn from_strain<const D: usize>(
+        strain: &SMatrix<f64, D, D>,
+        tensor: &ElasticityTensor<D>,
         material: &Material,
     ) -> Self {
-        let stress = tensor.voigt() * strain;
-        let sigma_zz = material.out_of_plane_stress(&strain);
+        let stress = material.stress_state(tensor, strain);
         Self {
-            strain,
+            strain: material.strain_state(strain),
             stress,
-            sigma_zz,
-            von_mises: von_mises(&stress, sigma_zz),
+            von_mises: von_mises(&stress),
         }
     }
 }
@@ -45,28 +41,29 @@ impl ElementField {
 /// The reaction force of one Dirichlet condition: the force the support exerts on the body,
 /// summed over the prescribed degrees of freedom the condition owns.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PartReaction {
+pub struct PartReaction<const D: usize = 2> {
     /// The boundary part.
     pub part: String,
     /// The prescribed components.
     pub component: Component,
-    /// The resultant force `(R_x, R_y)` (zero in a component the condition does not prescribe).
-    pub force: Vector,
+    /// The resultant force (zero in a component the condition does not prescribe).
+    pub force: VectorD<D>,
 }
 
-/// The solution of one elastic body: full displacement (global numbering
-/// `dof = 2 * vertex + component`), reactions, strain energy.
+/// The solution of one elastic body: full displacement (in the global numbering of the
+/// body's [`DofMap`](crate::DofMap): the `D` components of vertex `v` are entries
+/// `D v .. D v + D`), reactions, strain energy.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Solution {
+pub struct Solution<const D: usize = 2> {
     displacement: Vec<f64>,
-    reactions: Vec<PartReaction>,
+    reactions: Vec<PartReaction<D>>,
     strain_energy: f64,
 }
 
-impl Solution {
+impl<const D: usize> Solution<D> {
     pub(crate) fn new(
         displacement: Vec<f64>,
-        reactions: Vec<PartReaction>,
+        reactions: Vec<PartReaction<D>>,
         strain_energy: f64,
     ) -> Self {
         Self {
@@ -76,21 +73,21 @@ impl Solution {
         }
     }
 
-    /// The full displacement vector `[u_x(v0), u_y(v0), u_x(v1), ...]`.
+    /// The full displacement vector `[u_x(v0), u_y(v0), (u_z(v0),) u_x(v1), ...]`.
     pub fn displacement(&self) -> &[f64] {
         &self.displacement
     }
 
     /// The displacement of vertex `v`.
-    pub fn vertex_displacement(&self, v: usize) -> Vector {
-        Vector::new(self.displacement[2 * v], self.displacement[2 * v + 1])
+    pub fn vertex_displacement(&self, v: usize) -> VectorD<D> {
+        VectorD::<D>::from_column_slice(&self.displacement[D * v..D * (v + 1)])
     }
 
     /// The displacements of all vertices.
-    pub fn vertex_displacements(&self) -> Vec<Vector> {
+    pub fn vertex_displacements(&self) -> Vec<VectorD<D>> {
         self.displacement
-            .chunks_exact(2)
-            .map(|u| Vector::new(u[0], u[1]))
+            .chunks_exact(D)
+            .map(VectorD::<D>::from_column_slice)
             .collect()
     }
 
@@ -100,27 +97,27 @@ impl Solution {
     }
 
     /// The reactions of the Dirichlet conditions, in the order they were given.
-    pub fn reactions(&self) -> &[PartReaction] {
+    pub fn reactions(&self) -> &[PartReaction<D>] {
         &self.reactions
     }
 
     /// The total reaction on boundary part `part` (summed over the conditions on it); `None`
     /// if no Dirichlet condition names it.
-    pub fn reaction(&self, part: &str) -> Option<Vector> {
+    pub fn reaction(&self, part: &str) -> Option<VectorD<D>> {
         let mut found = false;
         let total = self
             .reactions
             .iter()
             .filter(|r| r.part == part)
             .inspect(|_| found = true)
-            .fold(Vector::zeros(), |acc, r| acc + r.force);
+            .fold(VectorD::zeros(), |acc, r| acc + r.force);
         found.then_some(total)
     }
 
     /// The sum of all reactions.
-    pub fn total_reaction(&self) -> Vector {
+    pub fn total_reaction(&self) -> VectorD<D> {
         self.reactions
             .iter()
-            .fold(Vector::zeros(), |acc, r| acc + r.force)
+            .fold(VectorD::zeros(), |acc, r| acc + r.force)
     }
 }

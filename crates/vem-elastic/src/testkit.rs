@@ -77,7 +77,7 @@ pub fn global_patch_test(
     for side in ["left", "right", "bottom", "top"] {
         builder = builder.dirichlet(Dirichlet::prescribed(
             side,
-            Component::Both,
+            Component::All,
             linear_displacement,
         ));
     }

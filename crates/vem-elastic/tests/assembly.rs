@@ -47,6 +47,8 @@ fn dense_reference(body: &ElasticBody) -> DMatrix<f64> {
         let points = mesh.polygon_points(p);
         let local = body
             .element()
+            .as_planar()
+            .unwrap()
             .stiffness(&points, body.tensor())
             .unwrap()
             .total();

@@ -96,8 +96,8 @@ fn force_control_equals_displacement_control_at_the_translation_found() {
         let by_force = body(
             &mesh,
             vec![
-                Dirichlet::fixed("bottom", Component::Both),
-                Dirichlet::rigid_plate("top", Component::Both, force),
+                Dirichlet::fixed("bottom", Component::All),
+                Dirichlet::rigid_plate("top", Component::All, force),
             ],
         )
         .unwrap();
@@ -112,8 +112,8 @@ fn force_control_equals_displacement_control_at_the_translation_found() {
         let by_displacement = body(
             &mesh,
             vec![
-                Dirichlet::fixed("bottom", Component::Both),
-                Dirichlet::prescribed("top", Component::Both, move |_| w),
+                Dirichlet::fixed("bottom", Component::All),
+                Dirichlet::prescribed("top", Component::All, move |_| w),
             ],
         )
         .unwrap();

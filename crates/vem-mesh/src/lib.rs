@@ -30,6 +30,7 @@
 //! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes | none |
 #![deny(missing_docs)]
 
+mod body_mesh;
 mod error;
 #[cfg(feature = "generators")]
 pub mod generators;
@@ -40,6 +41,7 @@ mod mesh;
 pub mod quality;
 pub mod validate;
 
+pub use body_mesh::{BodyMesh, PointD, VectorD};
 pub use error::MeshError;
 pub use interface::{
     boundary_chain, insert_interface_nodes, ChainNode, Interface, InterfaceOptions, InterfacePair,

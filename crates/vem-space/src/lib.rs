@@ -44,6 +44,7 @@
 mod error;
 mod load;
 mod material;
+mod mesh_element;
 mod p1;
 mod polygon;
 pub mod quadrature;
@@ -55,7 +56,8 @@ mod vem;
 
 pub use error::SpaceError;
 pub use load::edge_traction_load;
-pub use material::ElasticityTensor;
+pub use material::{voigt_len, voigt_pairs, ElasticityTensor};
+pub use mesh_element::{DofLayout, FieldOf, MeshElement, PlanarElement};
 pub use p1::LinearTriangle;
 pub use polygon::PolygonGeometry;
 pub use registry::{ElementFactory, ElementRegistry, RegistryError};
@@ -63,7 +65,7 @@ pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationSca
 pub use vem::LowestOrderVem;
 
 use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};
-pub use vem_mesh::{Point, Vector};
+pub use vem_mesh::{Point, PointD, Vector, VectorD};
 
 /// The local stiffness of one polygon, split into its two parts
 /// `K_T = consistency + stabilisation` (spec section 2).
@@ -143,6 +145,12 @@ pub trait ElementSpace: Send + Sync {
 
     /// The energy projection of the polygon, for post-processing (strain, stress, errors).
     fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError>;
+
+    /// The local degrees of freedom on a polygon (default: the two displacement values at each
+    /// vertex, interleaved by component).
+    fn dof_layout(&self) -> DofLayout {
+        DofLayout::vertex_values(2)
+    }
 
     /// The local load vector `l_T^h(v)` of a body force `f` (assumption A3), length 2n.
     fn body_load(

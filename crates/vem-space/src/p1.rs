@@ -89,7 +89,7 @@ impl ElementSpace for LinearTriangle {
     ) -> Result<LocalStiffness, SpaceError> {
         let triangle = Triangle::new(polygon)?;
         let b = triangle.strain_matrix();
-        let c: &Matrix3<f64> = material.voigt();
+        let c: Matrix3<f64> = material.voigt();
         let k = b.transpose() * c * b * triangle.area;
         let k = (k + k.transpose()) * 0.5;
         Ok(LocalStiffness {

@@ -165,7 +165,7 @@ pub fn elastic_body(
         let exact = Arc::clone(exact);
         builder = builder.dirichlet(Dirichlet::prescribed(
             side.name(),
-            Component::Both,
+            Component::All,
             move |x| exact.displacement(body, x),
         ));
     }

@@ -104,7 +104,7 @@ fn body(name: &str, mesh: Mesh, upper: bool) -> ElasticBody {
     };
     let lb = LAMBDA * BETA;
     ElasticBody::builder(name, mesh, material, Arc::new(LowestOrderVem::default()))
-        .dirichlet(Dirichlet::prescribed(clamped, Component::Both, field))
+        .dirichlet(Dirichlet::prescribed(clamped, Component::All, field))
         .traction("left", move |_| Vector::new(lb, 0.0))
         .traction("right", move |_| Vector::new(-lb, 0.0))
         .build()

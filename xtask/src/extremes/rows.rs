@@ -526,7 +526,7 @@ impl Patch {
                 material,
                 Arc::clone(&self.element),
             )
-            .dirichlet(Dirichlet::prescribed(held, Component::Both, move |x| {
+            .dirichlet(Dirichlet::prescribed(held, Component::All, move |x| {
                 field.displacement(x)
             }))
             .traction("left", move |_| field.traction(Vector::new(-1.0, 0.0)))
