@@ -3,11 +3,12 @@
 //! A [`ContactDiscretisation`] owns everything that depends only on geometry and topology:
 //! the meshes enlarged by interface node insertion, the bodies on them with their degrees of
 //! freedom, the assembled stiffness blocks (patterns built once, values refillable), the offsets
-//! of the bodies in the combined numbering, the node geometry of the interface (normals,
-//! tangents, tributary lengths, gaps) and the constraint rows `B_N` (and `B_T` when the law has
-//! friction). Every [`ContactSystem`] it hands out borrows these (no copy of `K`) and carries the
-//! discretisation's [`PatternId`], so a solver keeps its symbolic work from one solve to the next:
-//! a Coulomb fixed point of `k` Tresca steps costs one assembly and one symbolic analysis.
+//! of the bodies in the combined numbering, the node geometry of every pair's interface
+//! (normals, tangents, tributary measures, gaps) and the constraint rows `B_N` (and `B_T` when a
+//! law has friction). Every [`ContactSystem`] it hands out borrows these (no copy of `K`) and
+//! carries the discretisation's [`PatternId`], so a solver keeps its symbolic work from one
+//! solve to the next: a Coulomb fixed point of `k` Tresca steps costs one assembly and one
+//! symbolic analysis.
 //!
 //! Values are refilled without rebuilding anything: [`ContactDiscretisation::set_material`]
 //! (stiffness and load), [`ContactDiscretisation::set_law`] (friction bound, coefficient),
@@ -16,7 +17,7 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use vem_contact::{ActiveSetSolver, ContactLaw, ContactProblem};
+//! use vem_contact::{ActiveSetSolver, ContactProblem, Frictionless};
 //! use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 //! use vem_mesh::generators::{structured_quads, Rectangle};
 //! use vem_mesh::{Point, Vector};
@@ -35,7 +36,7 @@
 //!     .dirichlet(Dirichlet::prescribed("bottom", Component::Y, |_| Vector::zeros()))
 //!     .dirichlet(Dirichlet::prescribed("left", Component::X, |_| Vector::zeros()))
 //!     .build()?;
-//! let problem = ContactProblem::two_bodies(upper, "bottom", lower, "top", ContactLaw::Frictionless);
+//! let problem = ContactProblem::two_bodies(upper, "bottom", lower, "top", Frictionless);
 //! let discretisation = problem.discretise()?;
 //! let mut solver = ActiveSetSolver::default();
 //! // Load steps: the contact force grows linearly with the prescribed displacement (the
@@ -48,102 +49,110 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use std::borrow::{Borrow, Cow};
+use std::borrow::Cow;
+use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use vem_elastic::{AssembledSystem, DofStatus, ElasticBody, Material};
-use vem_mesh::interface::{boundary_chain, insert_interface_nodes};
-use vem_mesh::{Point, Vector};
+use vem_mesh::{Point, VectorD};
 
-use crate::problem::{tangent, Counterpart, FrictionBound};
+use crate::law::LawState;
+use crate::pairing::pair_geometry;
+use crate::problem::Counterpart;
 use crate::result::{
     classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
-    InterfaceNode, ModelSummary,
+    InterfaceNode, ModelSummary, PairSummary,
 };
 use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
 use crate::warning::{Warning, ZoneLimit};
 use crate::{
-    ConstraintRows, ContactError, ContactLaw, ContactNormal, ContactProblem, ContactSolution,
-    ContactSolver, ContactSystem, FixedPointSettings, Friction, PatternId, WorkCounters,
+    ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
+    ContactSolver, ContactSystem, FixedPointSettings, Friction, Location, NodeStatus, PatternId,
+    WorkCounters,
 };
 
-/// The geometry of one interface node: a node pair of the two bodies (after insertion the
-/// interface is node-to-node) or a body node facing a rigid obstacle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactNode {
-    /// The vertex of body A's (enlarged) mesh.
-    pub vertex_a: usize,
-    /// The partner vertex of body B's (enlarged) mesh; `None` against an obstacle.
-    pub vertex_b: Option<usize>,
-    /// Position (on body A, reference configuration).
-    pub position: Point,
-    /// The unit normal `nu` from A to B (of the side chosen by
-    /// [`ContactNormal`](crate::ContactNormal); into the obstacle).
-    pub normal: Vector,
-    /// The tributary length `l_x` (nodal quadrature weight on `Gamma_C`).
-    pub tributary_length: f64,
-    /// The gap the geometry gives along `nu` (zero where the two sides coincide).
-    pub geometric_gap: f64,
-    /// The initial gap `h0 = geometric gap + imposed gap`.
-    pub initial_gap: f64,
-}
-
-impl ContactNode {
-    /// The tangent `tau = (-nu_y, nu_x)`.
-    pub fn tangent(&self) -> Vector {
-        tangent(self.normal)
-    }
+/// One contact pair as discretised: its law, its nodes in the discretisation's list, and what
+/// the reports need.
+#[derive(Debug, Clone)]
+struct PairData<const D: usize> {
+    law: Arc<dyn ContactLaw<D>>,
+    nodes: Range<usize>,
+    obstacle: bool,
+    description: String,
+    inserted: usize,
+    /// Nodes (within the pair) at a limit of the modelled interface, with what lies beyond.
+    zone_ends: Vec<(usize, ZoneLimit)>,
+    /// Whether the nodes form a chain (2D), along which the consistent traction is projected.
+    chain: bool,
 }
 
 /// The discretised contact problem (see the module docs).
 #[derive(Debug, Clone)]
-pub struct ContactDiscretisation {
+pub struct ContactDiscretisation<const D: usize = 2> {
     pattern: PatternId,
     stiffness_version: u64,
-    law: ContactLaw,
-    obstacle: bool,
-    normal_choice: ContactNormal,
-    /// Vertices of each body's mesh before the interface insertion (the vertices of the
+    /// Vertices of each body's mesh before the interface insertions (the vertices of the
     /// enlarged meshes below these are original).
     original_vertices: Vec<usize>,
-    bodies: Vec<ElasticBody>,
+    bodies: Vec<ElasticBody<D>>,
     systems: Vec<Arc<AssembledSystem>>,
     offsets: Vec<usize>,
-    nodes: Vec<ContactNode>,
-    inserted_nodes: usize,
+    pairs: Vec<PairData<D>>,
+    nodes: Vec<ContactNode<D>>,
     normal_rows: ConstraintRows,
     /// The part of `[u]_nu` carried by prescribed degrees of freedom, at full load.
     normal_lifting: Vec<f64>,
+    /// `D - 1` rows per node (node after node), when some law has friction.
     tangential_rows: Option<ConstraintRows>,
-    /// Tresca: `b_i = l_i g_F(x_i)`.
-    friction_bounds: Option<Vec<f64>>,
+    /// The nodal friction bounds of the first solve (every pair's law without a state); the
+    /// bounds of every solve when no law iterates.
+    start_bounds: Option<Vec<f64>>,
     load: Vec<f64>,
-    /// What lies beyond the first and the last interface node.
-    zone_ends: [ZoneLimit; 2],
     work: WorkCounters,
 }
 
-impl ContactDiscretisation {
-    /// Inserts the interface nodes (two bodies) or extracts the contact chain (obstacle),
-    /// assembles every body on its enlarged mesh and builds the constraint rows. A problem
-    /// given by value is dropped once the interface is inserted, before the assembly: the
+impl<const D: usize> ContactDiscretisation<D> {
+    /// Inserts the interface nodes of every pair (one after the other) or extracts the contact
+    /// nodes (obstacle), assembles every body on its enlarged mesh and builds the constraint
+    /// rows. The problem is dropped once the interfaces are inserted, before the assembly: the
     /// original meshes and the stiffness are never held together.
-    pub(crate) fn try_new(problem: impl Borrow<ContactProblem>) -> Result<Self, ContactError> {
-        let problem_ref = problem.borrow();
-        problem_ref.law().validate()?;
+    pub(crate) fn try_new(problem: ContactProblem<D>) -> Result<Self, ContactError> {
         let mut work = WorkCounters::default();
         let start = Instant::now();
-        let (bodies, nodes, inserted_nodes, zone_ends) = interface(problem_ref)?;
-        let law = problem_ref.law().clone();
-        let obstacle = matches!(problem_ref.counterpart(), Counterpart::Obstacle(_));
-        let normal_choice = problem_ref.normal();
-        let mut original_vertices = vec![problem_ref.body().mesh().n_vertices()];
-        if let Counterpart::Body { body, .. } = problem_ref.counterpart() {
-            original_vertices.push(body.mesh().n_vertices());
+        let (mut bodies, pairs) = problem.into_parts();
+        let original_vertices: Vec<usize> =
+            bodies.iter().map(|b| b.body_mesh().n_vertices()).collect();
+        check_disjoint_parts(&bodies, &pairs)?;
+        let mut nodes = Vec::new();
+        let mut pair_data = Vec::with_capacity(pairs.len());
+        for (index, pair) in pairs.iter().enumerate() {
+            let geometry = pair_geometry(&mut bodies, pair, index)?;
+            let first = nodes.len();
+            nodes.extend(geometry.nodes);
+            let a = bodies[pair.body()].name();
+            let description = match pair.counterpart() {
+                Counterpart::Body { body, part } => format!(
+                    "body '{a}' part '{}' against body '{}' part '{part}'",
+                    pair.part(),
+                    bodies[*body].name()
+                ),
+                Counterpart::Obstacle(o) => {
+                    format!("body '{a}' part '{}' against a rigid {}", pair.part(), o.name())
+                }
+            };
+            pair_data.push(PairData {
+                law: Arc::clone(pair.law()),
+                nodes: first..nodes.len(),
+                obstacle: matches!(pair.counterpart(), Counterpart::Obstacle(_)),
+                description,
+                inserted: geometry.inserted,
+                zone_ends: geometry.zone_ends,
+                chain: geometry.chain,
+            });
         }
-        drop(problem);
+        drop(pairs);
         work.times.insertion = start.elapsed();
         let start = Instant::now();
         let systems = bodies
@@ -162,30 +171,34 @@ impl ContactDiscretisation {
         let mut discretisation = Self {
             pattern: PatternId::fresh(),
             stiffness_version: 0,
-            law,
-            obstacle,
-            normal_choice,
             original_vertices,
             bodies,
             systems,
             offsets,
+            pairs: pair_data,
             nodes,
-            inserted_nodes,
             normal_rows: ConstraintRows::try_from_triplets(0, 0, &[])?,
             normal_lifting: Vec::new(),
             tangential_rows: None,
-            friction_bounds: None,
+            start_bounds: None,
             load,
-            zone_ends,
             work,
         };
-        let (normal_rows, normal_lifting) = discretisation.jump_rows(|node| node.normal)?;
+        let (normal_rows, normal_lifting) = discretisation.jump_rows(0)?;
         discretisation.normal_rows = normal_rows;
         discretisation.normal_lifting = normal_lifting;
-        if discretisation.law.has_friction() {
+        if discretisation.pairs.iter().any(|p| p.law.has_friction()) {
+            if D != 2 {
+                return Err(ContactError::Unsupported {
+                    what: format!(
+                        "friction in {D}D: the friction bound is a disk of the tangent plane, \
+                         which the contact solvers do not take yet"
+                    ),
+                });
+            }
             discretisation.tangential_rows = Some(discretisation.tangential_rows_checked()?);
         }
-        discretisation.friction_bounds = discretisation.tresca_bounds()?;
+        discretisation.start_bounds = discretisation.bounds(None)?;
         discretisation.work.times.assembly = start.elapsed();
         Ok(discretisation)
     }
@@ -195,19 +208,23 @@ impl ContactDiscretisation {
         self.pattern
     }
 
-    /// The contact law.
-    pub fn law(&self) -> &ContactLaw {
-        &self.law
+    /// The law of pair `pair`.
+    pub fn law(&self, pair: usize) -> Option<&Arc<dyn ContactLaw<D>>> {
+        self.pairs.get(pair).map(|p| &p.law)
     }
 
-    /// Which side gives the contact normal of two bodies (against an obstacle its own normal
-    /// is used whatever this says).
-    pub fn normal_choice(&self) -> ContactNormal {
-        self.normal_choice
+    /// The number of contact pairs.
+    pub fn n_pairs(&self) -> usize {
+        self.pairs.len()
     }
 
-    /// The bodies on their enlarged meshes: A first, then B (absent against an obstacle).
-    pub fn bodies(&self) -> &[ElasticBody] {
+    /// The nodes of pair `pair` in [`ContactDiscretisation::nodes`].
+    pub fn pair_nodes(&self, pair: usize) -> Range<usize> {
+        self.pairs.get(pair).map_or(0..0, |p| p.nodes.clone())
+    }
+
+    /// The bodies on their enlarged meshes, in the order of the problem.
+    pub fn bodies(&self) -> &[ElasticBody<D>] {
         &self.bodies
     }
 
@@ -226,14 +243,15 @@ impl ContactDiscretisation {
         *self.offsets.last().unwrap_or(&0)
     }
 
-    /// The interface nodes, ordered along body A's contact part.
-    pub fn nodes(&self) -> &[ContactNode] {
+    /// The interface nodes, pair after pair (each pair's ordered along body A's contact part in
+    /// 2D).
+    pub fn nodes(&self) -> &[ContactNode<D>] {
         &self.nodes
     }
 
-    /// Vertices inserted by the interface node insertion (both sides).
+    /// Vertices inserted by the interface node insertions (all pairs, both sides).
     pub fn inserted_nodes(&self) -> usize {
-        self.inserted_nodes
+        self.pairs.iter().map(|p| p.inserted).sum()
     }
 
     /// The normal rows `B_N` (`(B_N u)_i = [u]_nu` over the free unknowns at node `i`).
@@ -241,7 +259,7 @@ impl ContactDiscretisation {
         &self.normal_rows
     }
 
-    /// The tangential rows `B_T` (only for laws with friction).
+    /// The tangential rows `B_T` (`D - 1` per node; only when some law has friction).
     pub fn tangential_rows(&self) -> Option<&ConstraintRows> {
         self.tangential_rows.as_ref()
     }
@@ -261,16 +279,15 @@ impl ContactDiscretisation {
         self.work
     }
 
-    /// The contact system at full load with the law's friction bounds (Tresca), zero bounds
-    /// (the first step of a Coulomb fixed point) or no friction (frictionless).
+    /// The contact system at full load with the laws' friction bounds of a first solve
+    /// (Tresca's bounds, zero for the first step of a Coulomb fixed point) or no friction.
     pub fn system(&self) -> ContactSystem<'_> {
-        let bounds = self.friction_bounds.as_deref().map(Cow::Borrowed);
-        self.system_with(1.0, bounds)
+        self.system_with(1.0, self.start_bounds.as_deref().map(Cow::Borrowed))
     }
 
     /// The contact system with the loads and prescribed displacements scaled by `load_factor`
     /// and the friction bounds `bounds` (ignored without tangential rows; zero bounds when
-    /// `None` and the law has friction).
+    /// `None` and there are tangential rows).
     fn system_with<'s>(
         &'s self,
         load_factor: f64,
@@ -288,7 +305,7 @@ impl ContactDiscretisation {
             Cow::Owned(self.load.iter().map(|f| load_factor * f).collect())
         };
         let friction = self.tangential_rows.as_ref().map(|rows| {
-            let bounds = bounds.unwrap_or_else(|| Cow::Owned(vec![0.0; rows.nrows()]));
+            let bounds = bounds.unwrap_or_else(|| Cow::Owned(vec![0.0; self.nodes.len()]));
             Friction::try_new(rows, bounds).expect("bounds checked when they were made")
         });
         ContactSystem::try_from_parts(
@@ -311,20 +328,50 @@ impl ContactDiscretisation {
             .collect()
     }
 
+    /// The nodal friction bounds of every node from each pair's law (given the last solve's
+    /// `state`, `None` before any), or `None` without tangential rows.
+    fn bounds(
+        &self,
+        state: Option<(&ContactSolution, &[f64], &[f64])>,
+    ) -> Result<Option<Vec<f64>>, ContactError> {
+        if self.tangential_rows.is_none() {
+            return Ok(None);
+        }
+        let t = D - 1;
+        let mut bounds = Vec::with_capacity(self.nodes.len());
+        for pair in &self.pairs {
+            let r = pair.nodes.clone();
+            let tangential = t * r.start..t * r.end;
+            let law_state = state.map(|(solution, jumps, slips)| LawState {
+                normal_forces: &solution.normal_force[r.clone()],
+                tangential_forces: &solution.tangential_force[tangential.clone()],
+                normal_jumps: &jumps[r.clone()],
+                slips: &slips[tangential.clone()],
+            });
+            let values = pair
+                .law
+                .friction_bounds(&self.nodes[r.clone()], law_state.as_ref())?;
+            let values = crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound")?;
+            bounds.extend(values);
+        }
+        Ok(Some(bounds))
+    }
+
     /// Solves with `solver` at full load (see [`ContactDiscretisation::solve_scaled`]).
     ///
     /// # Errors
-    /// The solver's failure (with its report), a Coulomb fixed point that does not settle,
+    /// The solver's failure (with its report), a fixed point that does not settle,
     /// post-processing failures.
-    pub fn solve(&self, solver: &mut dyn ContactSolver) -> Result<ContactResult, ContactError> {
+    pub fn solve(&self, solver: &mut dyn ContactSolver) -> Result<ContactResult<D>, ContactError> {
         self.solve_scaled(solver, 1.0)
     }
 
     /// Solves with every load (body forces, tractions) and every prescribed displacement
-    /// scaled by `load_factor` (a load step; the gaps are not scaled). Coulomb friction runs
-    /// Tresca solves with `g_F = F |sigma_nu|` frozen from the previous step (the first step
-    /// has no friction) until the normal forces settle. The result's
-    /// [`work`](ContactResult::work) counts this solve only (no assembly).
+    /// scaled by `load_factor` (a load step; the gaps are not scaled). A law whose bounds
+    /// depend on the state (Coulomb) is iterated: Tresca solves with the bounds frozen from the
+    /// previous step (the first step with the laws' starting bounds) until the normal forces
+    /// settle. The result's [`work`](ContactResult::work) counts this solve only (no
+    /// assembly).
     ///
     /// # Errors
     /// As [`ContactDiscretisation::solve`]; a non-finite `load_factor` is an
@@ -333,39 +380,41 @@ impl ContactDiscretisation {
         &self,
         solver: &mut dyn ContactSolver,
         load_factor: f64,
-    ) -> Result<ContactResult, ContactError> {
+    ) -> Result<ContactResult<D>, ContactError> {
         if !load_factor.is_finite() {
             return Err(ContactError::InvalidSetting {
                 reason: format!("load factor {load_factor} is not finite"),
             });
         }
         let start = Instant::now();
-        let (solution, fixed_point, mut work) = match &self.law {
-            ContactLaw::Coulomb {
-                coefficient,
-                fixed_point,
-            } => self.coulomb_fixed_point(solver, load_factor, *coefficient, fixed_point)?,
-            _ => {
-                let system = self.system_with(
-                    load_factor,
-                    self.friction_bounds.as_deref().map(Cow::Borrowed),
-                );
+        let iterated =
+            FixedPointSettings::strictest(self.pairs.iter().filter_map(|p| p.law.fixed_point()));
+        let (solution, fixed_point, mut work, bounds) = match iterated {
+            Some(settings) => self.fixed_point(solver, load_factor, &settings)?,
+            None => {
+                let system = self
+                    .system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed));
                 let solution = solver.solve(&system)?;
                 let work = solution.report.work;
-                (solution, None, work)
+                (solution, None, work, self.start_bounds.clone())
             }
         };
         let post = Instant::now();
-        let mut result =
-            self.collect(load_factor, solution, fixed_point, solver.force_accuracy())?;
+        let mut result = self.collect(
+            load_factor,
+            solution,
+            fixed_point,
+            bounds.as_deref(),
+            solver.force_accuracy(),
+        )?;
         work.times.post = post.elapsed();
         result.work = work;
         result.model.total_time = start.elapsed();
         Ok(result)
     }
 
-    /// Replaces the material of body `body` (0: A, 1: B) and refills the stiffness and load
-    /// values on the existing patterns (nothing is rebuilt; solvers keep their symbolic work).
+    /// Replaces the material of body `body` and refills the stiffness and load values on the
+    /// existing patterns (nothing is rebuilt; solvers keep their symbolic work).
     ///
     /// # Errors
     /// A body index out of range, an invalid material, an element failure.
@@ -383,139 +432,152 @@ impl ContactDiscretisation {
         updated.reassemble(Arc::make_mut(&mut self.systems[body]))?;
         self.bodies[body] = updated;
         self.load = concatenated_load(&self.systems);
-        self.normal_lifting = self.jump_rows(|node| node.normal)?.1;
+        self.normal_lifting = self.jump_rows(0)?.1;
         self.stiffness_version += 1;
         self.work.assemblies += 1;
         self.work.times.assembly += start.elapsed();
         Ok(())
     }
 
-    /// Replaces the contact law by one of the same kind of rows: a law with friction needs a
-    /// discretisation built with friction (tangential rows), a frictionless law one without.
+    /// Replaces the law of pair `pair`. A law with friction needs tangential rows: a
+    /// discretisation built with friction on some pair.
     ///
     /// # Errors
-    /// An invalid law, or one that needs other rows than those built.
-    pub fn set_law(&mut self, law: ContactLaw) -> Result<(), ContactError> {
-        law.validate()?;
-        if law.has_friction() != self.tangential_rows.is_some() {
+    /// A pair out of range, a law whose data are invalid at the pair's nodes, a law with
+    /// friction on a discretisation built without tangential rows.
+    pub fn set_law(
+        &mut self,
+        pair: usize,
+        law: Arc<dyn ContactLaw<D>>,
+    ) -> Result<(), ContactError> {
+        let n_pairs = self.pairs.len();
+        let Some(data) = self.pairs.get_mut(pair) else {
+            return Err(ContactError::InvalidSetting {
+                reason: format!("pair index {pair}: the discretisation has {n_pairs} pairs"),
+            });
+        };
+        if law.has_friction() && self.tangential_rows.is_none() {
             return Err(ContactError::InvalidSetting {
                 reason: format!(
-                    "the law '{}' needs {} tangential rows; this discretisation was built for '{}'",
-                    law.name(),
-                    if law.has_friction() { "" } else { "no" },
-                    self.law.name()
+                    "the law '{}' needs tangential rows; this discretisation was built without \
+                     friction",
+                    law.name()
                 ),
             });
         }
-        self.law = law;
-        self.friction_bounds = self.tresca_bounds()?;
-        Ok(())
+        let previous = std::mem::replace(&mut data.law, law);
+        match self.bounds(None) {
+            Ok(bounds) => {
+                self.start_bounds = bounds;
+                Ok(())
+            }
+            Err(e) => {
+                self.pairs[pair].law = previous;
+                Err(e)
+            }
+        }
     }
 
-    /// Tresca: the nodal bounds `b_i = l_i g_F(x_i)`, checked.
-    fn tresca_bounds(&self) -> Result<Option<Vec<f64>>, ContactError> {
-        let ContactLaw::Tresca { friction_bound } = &self.law else {
-            return Ok(None);
-        };
-        self.nodes
-            .iter()
-            .map(|node| {
-                let g = match friction_bound {
-                    FrictionBound::Constant(g) => *g,
-                    FrictionBound::Field(g) => g(node.position),
-                };
-                if g.is_finite() && g >= 0.0 {
-                    Ok(node.tributary_length * g)
-                } else {
-                    Err(ContactError::InvalidSetting {
-                        reason: format!(
-                            "friction bound g_F = {g} at ({}, {}) must be finite and >= 0",
-                            node.position.x, node.position.y
-                        ),
-                    })
-                }
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .map(Some)
+    /// Rows `d_k . (u_A - u_B)` at every node for the `k`-th column `d_k` of the node's frame
+    /// (0: the normal, `1..D`: the tangents), and the part carried by prescribed degrees of
+    /// freedom.
+    fn jump_rows(&self, k: usize) -> Result<(ConstraintRows, Vec<f64>), ContactError> {
+        self.frame_rows(k..k + 1)
     }
 
-    /// Rows `d . (u_A - u_B)` at every node for the node direction `direction(node)`, and the
-    /// part of `d . (u_A - u_B)` carried by prescribed degrees of freedom.
-    fn jump_rows(
+    /// Rows for the frame columns `columns` at every node (node after node, the columns of a
+    /// node consecutive), and their prescribed parts.
+    fn frame_rows(
         &self,
-        direction: impl Fn(&ContactNode) -> Vector,
+        columns: Range<usize>,
     ) -> Result<(ConstraintRows, Vec<f64>), ContactError> {
-        let mut triplets = Vec::with_capacity(4 * self.nodes.len());
-        let mut prescribed_jump = vec![0.0; self.nodes.len()];
-        for (row, node) in self.nodes.iter().enumerate() {
-            let d = direction(node);
-            let sides = [(0, node.vertex_a, 1.0)]
+        let per_node = columns.len();
+        let mut triplets = Vec::with_capacity(2 * D * per_node * self.nodes.len());
+        let mut prescribed_jump = vec![0.0; per_node * self.nodes.len()];
+        for (i, node) in self.nodes.iter().enumerate() {
+            let frame = node.frame();
+            let sides = [(node.body_a, node.vertex_a, 1.0)]
                 .into_iter()
-                .chain(node.vertex_b.map(|v| (1, v, -1.0)));
+                .chain(node.body_b.zip(node.vertex_b).map(|(b, v)| (b, v, -1.0)));
             for (body, vertex, sign) in sides {
                 let dofs = self.systems[body].dofs();
-                for component in 0..2 {
-                    let coefficient = sign * d[component];
-                    let global = 2 * vertex + component;
-                    match (dofs.unknown_index(global), dofs.status(global)) {
-                        // A free value or a rigid plate's translation.
-                        (Some(i), _) => triplets.push((row, self.offsets[body] + i, coefficient)),
-                        (None, DofStatus::Prescribed(k)) => {
-                            prescribed_jump[row] += coefficient * dofs.prescribed_values()[k]
+                for (c, global) in dofs.vertex_dofs(vertex).enumerate() {
+                    for (j, k) in columns.clone().enumerate() {
+                        let row = per_node * i + j;
+                        let coefficient = sign * frame[(c, k)];
+                        match (dofs.unknown_index(global), dofs.status(global)) {
+                            // A free value or a rigid plate's translation.
+                            (Some(u), _) => {
+                                triplets.push((row, self.offsets[body] + u, coefficient))
+                            }
+                            (None, DofStatus::Prescribed(p)) => {
+                                prescribed_jump[row] += coefficient * dofs.prescribed_values()[p]
+                            }
+                            (None, DofStatus::Free(_)) => {}
                         }
-                        (None, DofStatus::Free(_)) => {}
                     }
                 }
             }
         }
-        let rows = ConstraintRows::try_from_triplets(self.nodes.len(), self.n_dofs(), &triplets)?;
+        let rows = ConstraintRows::try_from_triplets(
+            per_node * self.nodes.len(),
+            self.n_dofs(),
+            &triplets,
+        )?;
         Ok((rows, prescribed_jump))
     }
 
-    /// Tangential rows `[u]_1tau` of the free unknowns. The prescribed part of the slip is not
+    /// Tangential rows `[u]_tau` of the free unknowns. The prescribed part of the slip is not
     /// representable in `j_h(B_T u)`: it is rejected unless it vanishes.
     fn tangential_rows_checked(&self) -> Result<ConstraintRows, ContactError> {
-        let (rows, prescribed) = self.jump_rows(|node| node.tangent())?;
-        if let Some((node, p)) = self
-            .nodes
-            .iter()
-            .zip(&prescribed)
-            .find(|(_, p)| p.abs() > 0.0)
-        {
+        let (rows, prescribed) = self.frame_rows(1..D)?;
+        if let Some((row, p)) = prescribed.iter().enumerate().find(|(_, p)| p.abs() > 0.0) {
+            let node = &self.nodes[row / (D - 1)];
             return Err(ContactError::InvalidSetting {
                 reason: format!(
-                    "the tangential jump at the interface node ({}, {}) is prescribed by Dirichlet \
+                    "the tangential jump at the interface node {} is prescribed by Dirichlet \
                      data ({p:e}); friction needs a free tangential motion at every contact node",
-                    node.position.x, node.position.y
+                    Location::of(&node.position)
                 ),
             });
         }
         Ok(rows)
     }
 
-    /// Coulomb's law by a fixed point of Tresca problems: `b_i = F lambda_N,i` from the
-    /// previous step (the nodal form of `g_F = F |sigma_nu|` times the tributary length),
-    /// starting from zero bounds (the frictionless solution). Every step solves a system of
-    /// the same structure: the solver keeps its symbolic work.
-    fn coulomb_fixed_point(
+    /// The fixed point of Tresca problems of the laws whose bounds depend on the state
+    /// (Coulomb: `b_i = F lambda_N,i` from the previous step), starting from the laws' starting
+    /// bounds. Every step solves a system of the same structure: the solver keeps its symbolic
+    /// work.
+    #[allow(clippy::type_complexity)]
+    fn fixed_point(
         &self,
         solver: &mut dyn ContactSolver,
         load_factor: f64,
-        coefficient: f64,
         settings: &FixedPointSettings,
-    ) -> Result<(ContactSolution, Option<FixedPointReport>, WorkCounters), ContactError> {
+    ) -> Result<
+        (
+            ContactSolution,
+            Option<FixedPointReport>,
+            WorkCounters,
+            Option<Vec<f64>>,
+        ),
+        ContactError,
+    > {
         let tolerance = settings.tolerance().max(solver.force_accuracy());
-        let mut solution = solver.solve(&self.system_with(load_factor, None))?;
+        let mut solution = solver.solve(
+            &self.system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed)),
+        )?;
         let mut work = solution.report.work;
         let mut iterations = solution.report.iterations;
         let mut history = Vec::with_capacity(settings.max_iterations());
         for step in 1..=settings.max_iterations() {
-            let bounds: Vec<f64> = solution
-                .normal_force
-                .iter()
-                .map(|&f| coefficient * f.max(0.0))
-                .collect();
-            let system = self.system_with(load_factor, Some(Cow::Borrowed(&bounds)));
+            let jumps = self.normal_rows.apply(&solution.displacement);
+            let slips = self
+                .tangential_rows
+                .as_ref()
+                .map_or_else(Vec::new, |rows| rows.apply(&solution.displacement));
+            let bounds = self.bounds(Some((&solution, &jumps, &slips)))?;
+            let system = self.system_with(load_factor, bounds.as_deref().map(Cow::Borrowed));
             let next = solver.solve(&system)?;
             work += next.report.work;
             iterations += next.report.iterations;
@@ -550,9 +612,9 @@ impl ContactDiscretisation {
                     tolerance,
                     history,
                     solver_iterations: iterations,
-                    final_bounds: bounds,
+                    final_bounds: bounds.clone().unwrap_or_default(),
                 };
-                return Ok((solution, Some(report), work));
+                return Ok((solution, Some(report), work, bounds));
             }
         }
         Err(ContactError::FixedPointNotConverged {
@@ -573,15 +635,13 @@ impl ContactDiscretisation {
         load_factor: f64,
         solution: ContactSolution,
         fixed_point: Option<FixedPointReport>,
+        bounds: Option<&[f64]>,
         force_accuracy: f64,
-    ) -> Result<ContactResult, ContactError> {
+    ) -> Result<ContactResult<D>, ContactError> {
+        let t = D - 1;
         let u = &solution.displacement;
         let normal_jump_free = self.normal_rows.apply(u);
         let slip_free = self.tangential_rows.as_ref().map(|rows| rows.apply(u));
-        let bounds = fixed_point
-            .as_ref()
-            .map(|fp| fp.final_bounds.as_slice())
-            .or(self.friction_bounds.as_deref());
         let system = self.system_with(load_factor, bounds.map(Cow::Borrowed));
         let forces = ForceScales::of(
             &system,
@@ -591,53 +651,52 @@ impl ContactDiscretisation {
             &solution.tangential_force,
         );
         let theta = force_accuracy.max(1e-8);
-        let nodes: Vec<InterfaceNode> = self
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(i, node)| {
-                // [u]_nu = B_N u_free + prescribed part.
-                let normal_jump = normal_jump_free[i] + load_factor * self.normal_lifting[i];
-                let slip = slip_free.as_ref().map_or(0.0, |s| s[i]);
-                let normal_force = solution.normal_force[i];
-                let friction = -solution.tangential_force[i];
-                let status = classify(
-                    normal_force,
-                    theta * forces.rows[i],
-                    friction,
-                    bounds.map(|b| b[i]),
-                    self.law.has_friction(),
-                );
-                InterfaceNode {
-                    position: node.position,
-                    normal: node.normal,
-                    tangent: node.tangent(),
-                    tributary_length: node.tributary_length,
-                    initial_gap: node.initial_gap,
-                    normal_jump,
-                    normal_force,
-                    pressure: normal_force / node.tributary_length,
-                    consistent_pressure: 0.0,
-                    consistent_friction_traction: 0.0,
-                    friction_force: friction,
-                    slip,
-                    status,
-                    vertex_a: node.vertex_a,
-                    vertex_b: node.vertex_b,
+        let mut nodes: Vec<InterfaceNode<D>> = Vec::with_capacity(self.nodes.len());
+        for (i, node) in self.nodes.iter().enumerate() {
+            let frame = node.frame();
+            // [u]_nu = B_N u_free + prescribed part.
+            let normal_jump = normal_jump_free[i] + load_factor * self.normal_lifting[i];
+            let normal_force = solution.normal_force[i];
+            let (mut slip, mut friction) = (VectorD::<D>::zeros(), VectorD::<D>::zeros());
+            if let Some(slips) = &slip_free {
+                for k in 0..t {
+                    let tangent = frame.column(k + 1).into_owned();
+                    slip += tangent * slips[t * i + k];
+                    // The friction force on body A opposes the multiplier's slip sign.
+                    friction -= tangent * solution.tangential_force[t * i + k];
                 }
-            })
-            .collect();
-        let mut nodes = nodes;
-        let positions: Vec<Point> = nodes.iter().map(|n| n.position).collect();
-        let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_length).collect();
-        let normal_forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
-        let friction_forces: Vec<f64> = nodes.iter().map(|n| n.friction_force).collect();
-        let support = self.projection_support();
-        let pressures = consistent_traction(&positions, &normal_forces, &support, &lengths);
-        let tractions = consistent_traction(&positions, &friction_forces, &support, &lengths);
-        for ((node, p), t) in nodes.iter_mut().zip(pressures).zip(tractions) {
-            node.consistent_pressure = p;
-            node.consistent_friction_traction = t;
+            }
+            let status = classify(
+                normal_force,
+                theta * forces.rows[i],
+                friction.norm(),
+                bounds.map(|b| b[i]),
+                self.pairs[node.pair].law.has_friction(),
+            );
+            nodes.push(InterfaceNode {
+                pair: node.pair,
+                position: node.position,
+                normal: node.normal,
+                tributary_measure: node.tributary_measure,
+                initial_gap: node.initial_gap,
+                normal_jump,
+                normal_force,
+                pressure: normal_force / node.tributary_measure,
+                consistent_pressure: normal_force / node.tributary_measure,
+                friction_force: friction,
+                consistent_friction_traction: friction / node.tributary_measure,
+                slip,
+                status,
+                body_a: node.body_a,
+                vertex_a: node.vertex_a,
+                body_b: node.body_b,
+                vertex_b: node.vertex_b,
+            });
+        }
+        for pair in &self.pairs {
+            if pair.chain {
+                self.project_tractions(&mut nodes[pair.nodes.clone()]);
+            }
         }
         let mut warnings = solution.report.warnings.clone();
         warnings.extend(self.model_warnings(&nodes, bounds, forces.global()));
@@ -653,25 +712,35 @@ impl ContactDiscretisation {
             });
         }
         let model = ModelSummary {
-            law: self.law.name(),
             solver: solution.report.solver,
             bodies: bodies
                 .iter()
                 .map(|b| BodySummary {
                     name: b.body.name().to_string(),
-                    vertices: b.body.mesh().n_vertices(),
-                    polygons: b.body.mesh().n_polygons(),
+                    vertices: b.body.body_mesh().n_vertices(),
+                    polygons: b.body.body_mesh().n_cells(),
                     free_dofs: b.system.dofs().n_free(),
                     prescribed_dofs: b.system.dofs().n_prescribed(),
                 })
                 .collect(),
-            obstacle: self.obstacle,
+            pairs: self
+                .pairs
+                .iter()
+                .map(|p| PairSummary {
+                    law: p.law.describe(),
+                    law_name: p.law.name().to_string(),
+                    description: p.description.clone(),
+                    obstacle: p.obstacle,
+                    nodes: p.nodes.clone(),
+                    inserted_nodes: p.inserted,
+                })
+                .collect(),
             normal_rows: self.normal_rows.nrows(),
             tangential_rows: self
                 .tangential_rows
                 .as_ref()
                 .map_or(0, ConstraintRows::nrows),
-            inserted_nodes: self.inserted_nodes,
+            inserted_nodes: self.inserted_nodes(),
             total_time: Duration::ZERO,
         };
         let mut result = ContactResult::new(bodies, nodes, solution.report, fixed_point, model);
@@ -679,22 +748,56 @@ impl ContactDiscretisation {
         Ok(result)
     }
 
-    /// The nodes whose hats span the space of the consistent pressure: the original nodes
-    /// (not inserted) of the side with fewer of them on the interface (B on a tie); every
-    /// node against an obstacle.
-    fn projection_support(&self) -> Vec<bool> {
-        let original_a: Vec<bool> = self
-            .nodes
+    /// The consistent pressure and friction traction of the nodes of one planar pair, projected
+    /// along their chain ([`consistent_traction`]).
+    fn project_tractions(&self, nodes: &mut [InterfaceNode<D>]) {
+        if D != 2 {
+            return;
+        }
+        let positions: Vec<Point> = nodes
             .iter()
-            .map(|n| n.vertex_a < self.original_vertices[0])
+            .map(|n| Point::new(n.position[0], n.position[1]))
             .collect();
-        let Some(&limit_b) = self.original_vertices.get(1) else {
-            return vec![true; self.nodes.len()];
+        let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_measure).collect();
+        let normal_forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
+        // The friction force along the tangent tau = (-nu_y, nu_x).
+        let tangent = |n: &InterfaceNode<D>| {
+            let mut tau = VectorD::<D>::zeros();
+            tau[0] = -n.normal[1];
+            tau[1] = n.normal[0];
+            tau
         };
-        let original_b: Vec<bool> = self
-            .nodes
+        let friction_forces: Vec<f64> = nodes
             .iter()
-            .map(|n| n.vertex_b.is_some_and(|v| v < limit_b))
+            .map(|n| n.friction_force.dot(&tangent(n)))
+            .collect();
+        let support = self.projection_support(nodes);
+        let pressures = consistent_traction(&positions, &normal_forces, &support, &lengths);
+        let tractions = consistent_traction(&positions, &friction_forces, &support, &lengths);
+        for ((node, p), t) in nodes.iter_mut().zip(pressures).zip(tractions) {
+            node.consistent_pressure = p;
+            node.consistent_friction_traction = tangent(node) * t;
+        }
+    }
+
+    /// The nodes whose hats span the space of the consistent pressure of one pair: the
+    /// original nodes (not inserted) of the side with fewer of them on the interface (B on a
+    /// tie); every node against an obstacle.
+    fn projection_support(&self, nodes: &[InterfaceNode<D>]) -> Vec<bool> {
+        let original_a: Vec<bool> = nodes
+            .iter()
+            .map(|n| n.vertex_a < self.original_vertices[n.body_a])
+            .collect();
+        if nodes.iter().any(|n| n.body_b.is_none()) {
+            return vec![true; nodes.len()];
+        }
+        let original_b: Vec<bool> = nodes
+            .iter()
+            .map(|n| {
+                n.body_b
+                    .zip(n.vertex_b)
+                    .is_some_and(|(b, v)| v < self.original_vertices[b])
+            })
             .collect();
         let count = |v: &[bool]| v.iter().filter(|&&b| b).count();
         if count(&original_a) < count(&original_b) {
@@ -709,15 +812,15 @@ impl ContactDiscretisation {
     /// bound.
     fn model_warnings(
         &self,
-        nodes: &[InterfaceNode],
+        nodes: &[InterfaceNode<D>],
         bounds: Option<&[f64]>,
         force_scale: f64,
     ) -> Vec<Warning> {
         let mut warnings = Vec::new();
         for body in &self.bodies {
-            let mesh = body.mesh();
-            let mut poor: Vec<(usize, vem_mesh::quality::ElementQuality)> = (0..mesh.n_polygons())
-                .map(|p| (p, mesh.element_quality(p)))
+            let mesh = body.body_mesh();
+            let mut poor: Vec<(usize, vem_mesh::quality::ElementQuality)> = (0..mesh.n_cells())
+                .map(|c| (c, mesh.cell_quality(c)))
                 .filter(|(_, q)| q.gamma() < ELEMENT_GAMMA_FLOOR || q.gamma().is_nan())
                 .collect();
             poor.sort_by(|a, b| a.1.gamma().total_cmp(&b.1.gamma()));
@@ -732,41 +835,40 @@ impl ContactDiscretisation {
                 });
             }
         }
-        let ends = [nodes.first(), nodes.last()];
-        for (k, (node, limit)) in ends.iter().zip(self.zone_ends).enumerate() {
-            if k == 1 && nodes.len() == 1 {
-                break;
-            }
-            if let Some(node) = node {
-                if node.status != crate::NodeStatus::Open {
+        for pair in &self.pairs {
+            let pair_nodes = &nodes[pair.nodes.clone()];
+            for &(k, limit) in &pair.zone_ends {
+                let node = &pair_nodes[k];
+                if node.status != NodeStatus::Open {
                     warnings.push(Warning::ContactZoneAtLimit {
                         limit,
-                        x: node.position.x,
-                        y: node.position.y,
+                        at: Location::of(&node.position),
                         normal_force: node.normal_force,
                     });
                 }
             }
-        }
-        warnings.extend(Warning::initial_overlap(
-            nodes.iter().map(|n| (n.position, n.normal, n.initial_gap)),
-        ));
-        if let (Some(bounds), ContactLaw::Tresca { .. }) = (bounds, &self.law) {
-            // The smallest bound among the nodes in contact: if even it exceeds every force
-            // by far, no node can slip.
-            let tied = nodes
-                .iter()
-                .zip(bounds)
-                .filter(|(n, _)| n.status != crate::NodeStatus::Open)
-                .min_by(|a, b| a.1.total_cmp(b.1));
-            if let Some((node, &bound)) = tied {
-                if bound > TIED_RATIO * force_scale && force_scale > 0.0 {
-                    warnings.push(Warning::EffectivelyTied {
-                        x: node.position.x,
-                        y: node.position.y,
-                        bound,
-                        ratio: bound / force_scale,
-                    });
+            warnings.extend(Warning::initial_overlap(
+                pair_nodes
+                    .iter()
+                    .map(|n| (n.position, n.normal, n.initial_gap)),
+            ));
+            let tresca_like = pair.law.has_friction() && pair.law.fixed_point().is_none();
+            if let (Some(bounds), true) = (bounds, tresca_like) {
+                // The smallest bound among the nodes in contact: if even it exceeds every
+                // force by far, no node can slip.
+                let tied = pair_nodes
+                    .iter()
+                    .zip(&bounds[pair.nodes.clone()])
+                    .filter(|(n, _)| n.status != NodeStatus::Open)
+                    .min_by(|a, b| a.1.total_cmp(b.1));
+                if let Some((node, &bound)) = tied {
+                    if bound > TIED_RATIO * force_scale && force_scale > 0.0 {
+                        warnings.push(Warning::EffectivelyTied {
+                            at: Location::of(&node.position),
+                            bound,
+                            ratio: bound / force_scale,
+                        });
+                    }
                 }
             }
         }
@@ -789,132 +891,43 @@ fn concatenated_load(systems: &[Arc<AssembledSystem>]) -> Vec<f64> {
         .collect()
 }
 
-/// Interface insertion (two bodies) or chain extraction (obstacle): the bodies on their
-/// (enlarged) meshes, the node geometry with the imposed gap added, the inserted node count.
-#[allow(clippy::type_complexity)]
-fn interface(
-    problem: &ContactProblem,
-) -> Result<(Vec<ElasticBody>, Vec<ContactNode>, usize, [ZoneLimit; 2]), ContactError> {
-    let (body, part) = (problem.body(), problem.part());
-    let (bodies, mut nodes, inserted, zone_ends) = match problem.counterpart() {
-        Counterpart::Body {
-            body: other,
-            part: other_part,
-        } => {
-            let interface = insert_interface_nodes(
-                body.mesh(),
-                part,
-                other.mesh(),
-                other_part,
-                problem.interface_options(),
-            )
-            .map_err(|source| ContactError::Mesh {
-                context: format!(
-                    "interface between '{part}' of body '{}' and '{other_part}' of body '{}'",
-                    body.name(),
-                    other.name()
-                ),
-                source,
-            })?;
-            let inserted = interface.inserted_a + interface.inserted_b;
-            // A paired end that is not an end of body A's chain: the nodes beyond were left
-            // unpaired (beyond the pairing limit, or beyond the end of the other part).
-            let chain =
-                boundary_chain(&interface.mesh_a, part).map_err(|source| ContactError::Mesh {
-                    context: format!("contact part of body '{}'", body.name()),
-                    source,
-                })?;
-            let chain_ends = [
-                chain.first().map(|c| c.vertex),
-                chain.last().map(|c| c.vertex),
-            ];
-            let beyond = |vertex: Option<usize>| {
-                if vertex.is_some() && chain_ends.contains(&vertex) {
-                    ZoneLimit::EndOfPart
-                } else if problem.interface_options().max_distance().is_some() {
-                    ZoneLimit::PairingLimit
-                } else {
-                    ZoneLimit::EndOfPart
-                }
+/// Two pairs may share a body but not a vertex of their contact parts on it (a later insertion
+/// would change the earlier pair's geometry).
+fn check_disjoint_parts<const D: usize>(
+    bodies: &[ElasticBody<D>],
+    pairs: &[crate::ContactPair<D>],
+) -> Result<(), ContactError> {
+    let mut sides: Vec<(usize, &str, usize)> = Vec::new();
+    for (k, pair) in pairs.iter().enumerate() {
+        sides.push((pair.body(), pair.part(), k));
+        if let Counterpart::Body { body, part } = pair.counterpart() {
+            sides.push((*body, part, k));
+        }
+    }
+    for (i, &(body, part, k)) in sides.iter().enumerate() {
+        let Some(mesh) = bodies.get(body).map(|b| b.body_mesh()) else {
+            continue; // reported by the pairing
+        };
+        let Ok(first) = mesh.part_vertices(part) else {
+            continue; // reported by the pairing, with the parts listed
+        };
+        for &(other_body, other_part, l) in &sides[i + 1..] {
+            if other_body != body || l == k {
+                continue;
+            }
+            let Ok(second) = mesh.part_vertices(other_part) else {
+                continue;
             };
-            let zone_ends = [
-                beyond(interface.pairs.first().map(|p| p.node_a)),
-                beyond(interface.pairs.last().map(|p| p.node_a)),
-            ];
-            // Body B's outward nodal normals on its enlarged chain, for the normal choice.
-            let chain_b = boundary_chain(&interface.mesh_b, other_part).map_err(|source| {
-                ContactError::Mesh {
-                    context: format!("contact part of body '{}'", other.name()),
-                    source,
-                }
-            })?;
-            let normal_b: std::collections::HashMap<usize, Vector> =
-                chain_b.iter().map(|c| (c.vertex, c.normal)).collect();
-            let choice = problem.normal();
-            let nodes: Vec<ContactNode> = interface
-                .pairs
-                .iter()
-                .map(|pair| {
-                    let n_b = normal_b.get(&pair.node_b).copied().unwrap_or(-pair.normal);
-                    let normal = choice.combine(pair.normal, n_b);
-                    let gap = (pair.point_b - pair.point_a).dot(&normal);
-                    ContactNode {
-                        vertex_a: pair.node_a,
-                        vertex_b: Some(pair.node_b),
-                        position: pair.point_a,
-                        normal,
-                        tributary_length: pair.tributary_length,
-                        geometric_gap: gap,
-                        initial_gap: gap,
-                    }
-                })
-                .collect();
-            let body_a = body.with_mesh(interface.mesh_a)?;
-            let body_b = other.with_mesh(interface.mesh_b)?;
-            (vec![body_a, body_b], nodes, inserted, zone_ends)
-        }
-        Counterpart::Obstacle(obstacle) => {
-            obstacle.validate()?;
-            let chain = boundary_chain(body.mesh(), part).map_err(|source| ContactError::Mesh {
-                context: format!("contact part of body '{}'", body.name()),
-                source,
-            })?;
-            let nodes: Vec<ContactNode> = chain
-                .iter()
-                .map(|node| {
-                    let contact = obstacle.gap_at(node.point);
-                    ContactNode {
-                        vertex_a: node.vertex,
-                        vertex_b: None,
-                        position: node.point,
-                        normal: contact.normal,
-                        tributary_length: node.tributary_length,
-                        geometric_gap: contact.gap,
-                        initial_gap: contact.gap,
-                    }
-                })
-                .collect();
-            (
-                vec![body.clone()],
-                nodes,
-                0,
-                [ZoneLimit::EndOfPart, ZoneLimit::EndOfPart],
-            )
-        }
-    };
-    if let Some(imposed) = problem.imposed_gap() {
-        for node in &mut nodes {
-            let h0: f64 = imposed(node.position);
-            if !h0.is_finite() {
+            if let Some(v) = first.iter().find(|v| second.binary_search(v).is_ok()) {
                 return Err(ContactError::InvalidSetting {
                     reason: format!(
-                        "imposed gap {h0} at ({}, {}) is not finite",
-                        node.position.x, node.position.y
+                        "contact pairs {k} and {l} share vertex {v} of body '{}' (parts \
+                         '{part}' and '{other_part}'): contact parts of one body must not touch",
+                        bodies[body].name()
                     ),
                 });
             }
-            node.initial_gap += h0;
         }
     }
-    Ok((bodies, nodes, inserted, zone_ends))
+    Ok(())
 }

@@ -42,7 +42,13 @@ pub enum ContactError {
         /// What is wrong, and where.
         reason: String,
     },
-    /// The Coulomb fixed point of Tresca problems did not converge.
+    /// What the problem asks for is not available (yet) in this dimension or configuration.
+    #[error("not supported: {what}")]
+    Unsupported {
+        /// What, and where.
+        what: String,
+    },
+    /// The fixed point of Tresca problems (Coulomb) did not converge.
     #[error(
         "Coulomb fixed point did not converge in {steps} steps: relative change of the normal \
          forces {residual:e} > tolerance {tolerance:e}"

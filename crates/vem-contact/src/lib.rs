@@ -1,4 +1,11 @@
-//! Two-body contact with the lowest-order virtual element method: the contact solvers.
+//! Contact of elastic bodies with the lowest-order virtual element method: contact pairs,
+//! laws, the discretisation built once, and the contact solvers.
+//!
+//! A [`ContactProblem`] holds any number of bodies ([`vem_elastic::ElasticBody`], in `R^D`,
+//! `D = 2` by default) and contact pairs ([`ContactPair`]: two bodies, or a body and a
+//! [`RigidObstacle`]), each with its [`ContactLaw`] ([`Frictionless`], [`Tresca`],
+//! [`Coulomb`], or one's own: the [`law`] module). It is discretised once
+//! ([`ContactDiscretisation`]) and solved as often as needed.
 //!
 //! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
 //! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction
@@ -36,7 +43,10 @@
 pub mod accuracy;
 mod discretisation;
 mod error;
+pub mod law;
+mod node;
 mod obstacle;
+mod pairing;
 mod problem;
 pub mod registry;
 mod result;
@@ -44,17 +54,19 @@ pub mod solver;
 mod warning;
 
 pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
-pub use discretisation::{ContactDiscretisation, ContactNode};
+pub use discretisation::ContactDiscretisation;
 pub use error::ContactError;
-pub use obstacle::{Obstacle, ObstacleGap};
-pub use problem::{
-    tangent, ContactLaw, ContactNormal, ContactProblem, Counterpart, FixedPointSettings,
-    FixedPointSettingsBuilder, FrictionBound, ScalarField,
+pub use law::{
+    ContactLaw, Coulomb, FixedPointSettings, FixedPointSettingsBuilder, FrictionBound,
+    Frictionless, LawState, ScalarField, Tresca,
 };
+pub use node::{frame, tangent, ContactNode, Location};
+pub use obstacle::{Obstacle, ObstacleGap, RigidObstacle};
+pub use problem::{ContactNormal, ContactPair, ContactProblem, Counterpart};
 pub use registry::{RegistryError, SolverFactory, SolverOptions, SolverRegistry};
 pub use result::{
     consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode,
-    ModelSummary, NodeStatus,
+    ModelSummary, NodeStatus, PairSummary,
 };
 
 pub use warning::{Warning, ZoneLimit};

@@ -5,10 +5,32 @@
 //! contact direction `nu` (unit, pointing from the body into the obstacle) and the gap `g(x)`
 //! along it; the nodal constraint is `u(x) . nu <= g(x)` (the linearised non-penetration
 //! condition, exact for a straight obstacle).
+//!
+//! An obstacle is anything that implements [`RigidObstacle`]; [`Obstacle`] holds the planar
+//! ones built in (a line, a disc, a polyline).
 
-use vem_mesh::{Point, Vector};
+use std::fmt;
+
+use vem_mesh::{Point, PointD, Vector, VectorD};
 
 use crate::ContactError;
+
+/// A rigid obstacle in `R^D`: at every point of a body's contact part, the direction from the
+/// body into the obstacle and the gap along it.
+pub trait RigidObstacle<const D: usize = 2>: Send + Sync + fmt::Debug {
+    /// A short name for reports ("line", "circle", ...).
+    fn name(&self) -> &str;
+
+    /// Checks the obstacle's data.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidObstacle`] naming what is wrong.
+    fn validate(&self) -> Result<(), ContactError>;
+
+    /// The unit contact direction `nu` (from the body into the obstacle) and the signed gap
+    /// along it at the body point `x` (negative: `x` starts inside the obstacle).
+    fn gap_at(&self, x: PointD<D>) -> ObstacleGap<D>;
+}
 
 /// A rigid obstacle.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,16 +57,24 @@ pub enum Obstacle {
 
 /// What an obstacle says at one body node: the contact direction and the gap along it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ObstacleGap {
+pub struct ObstacleGap<const D: usize = 2> {
     /// Unit contact direction `nu`, from the body into the obstacle.
-    pub normal: Vector,
+    pub normal: VectorD<D>,
     /// Signed gap along `nu` (negative: the node starts inside the obstacle).
     pub gap: f64,
 }
 
-impl Obstacle {
+impl RigidObstacle<2> for Obstacle {
+    fn name(&self) -> &str {
+        match self {
+            Obstacle::Line { .. } => "line",
+            Obstacle::Circle { .. } => "circle",
+            Obstacle::Polyline(_) => "polyline",
+        }
+    }
+
     /// Checks the obstacle's data (finite values, positive radius, non-degenerate line).
-    pub fn validate(&self) -> Result<(), ContactError> {
+    fn validate(&self) -> Result<(), ContactError> {
         let bad = |reason: String| Err(ContactError::InvalidObstacle { reason });
         match self {
             Obstacle::Line { point, normal } => {
@@ -95,7 +125,7 @@ impl Obstacle {
     }
 
     /// Contact direction and gap at the body point `x` (see the module docs).
-    pub fn gap_at(&self, x: Point) -> ObstacleGap {
+    fn gap_at(&self, x: Point) -> ObstacleGap {
         match self {
             Obstacle::Line { point, normal } => {
                 let n = normal / normal.norm();

@@ -1,13 +1,15 @@
 //! What a contact solve returns: per-body solutions, per-node interface results, resultants,
 //! the solver's report and a summary of what was modelled.
 
+use std::ops::Range;
 use std::sync::Arc;
 use std::time::Duration;
 
+use nalgebra::SMatrix;
 use vem_elastic::{AssembledSystem, ElasticBody, Solution};
-use vem_mesh::{Point, Vector};
+use vem_mesh::{Point, PointD, Vector, VectorD};
 
-use crate::{SolveReport, Warning, WorkCounters};
+use crate::{frame, SolveReport, Warning, WorkCounters};
 
 /// The contact state of an interface node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,8 +34,8 @@ impl NodeStatus {
 }
 
 /// Classifies a node from its forces: open when the normal force is at most `force_tolerance`;
-/// with friction, stick when the friction force is below its bound by more than
-/// `force_tolerance`, else slip; frictionless contact nodes slide freely (slip).
+/// with friction, stick when the magnitude of the friction force is below its bound by more
+/// than `force_tolerance`, else slip; frictionless contact nodes slide freely (slip).
 pub(crate) fn classify(
     normal_force: f64,
     force_tolerance: f64,
@@ -50,20 +52,22 @@ pub(crate) fn classify(
     }
 }
 
-/// The result at one interface node (a node pair of the two bodies, or a body node facing an
-/// obstacle). Signs follow the spec: `nu` points from body A to body B (the nodal normal of
-/// the side chosen by [`ContactNormal`](crate::ContactNormal); into the obstacle),
-/// `tau = (-nu_y, nu_x)`.
+/// The result at one interface node (a node pair of two bodies, or a body node facing an
+/// obstacle) of a body in `R^D`. Signs follow the spec: `nu` points from body A to body B (the
+/// nodal normal of the side chosen by [`ContactNormal`](crate::ContactNormal); into the
+/// obstacle); the tangential quantities are vectors of the tangent plane (`D - 1` dimensional)
+/// in global coordinates. In 2D, `tau = (-nu_y, nu_x)` and [`InterfaceNode::friction_t`],
+/// [`InterfaceNode::slip_t`] give their components along `tau`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InterfaceNode {
+pub struct InterfaceNode<const D: usize = 2> {
+    /// The contact pair the node belongs to.
+    pub pair: usize,
     /// Position (on body A, reference configuration).
-    pub position: Point,
+    pub position: PointD<D>,
     /// The normal `nu`.
-    pub normal: Vector,
-    /// The tangent `tau`.
-    pub tangent: Vector,
-    /// Tributary length `l_x` of the node.
-    pub tributary_length: f64,
+    pub normal: VectorD<D>,
+    /// Tributary measure `l_x` of the node (length in 2D, area in 3D).
+    pub tributary_measure: f64,
     /// Total initial gap `h0` (geometric gap plus the imposed gap).
     pub initial_gap: f64,
     /// The normal jump `[u]_nu = (u_A - u_B) . nu` (`u_A . nu` against an obstacle);
@@ -73,24 +77,60 @@ pub struct InterfaceNode {
     pub normal_force: f64,
     /// Contact pressure `lambda_N / l_x` (the raw nodal value), approximating `-sigma_nu`.
     pub pressure: f64,
-    /// The consistent contact pressure: the node's value of the L2 projection of the nodal
-    /// normal forces onto the continuous piecewise-linear functions on the interface spanned
-    /// by the original (not inserted) nodes of the side with fewer of them, B on a tie, every
-    /// node against an obstacle ([`consistent_traction`]); approximates `-sigma_nu`.
+    /// The consistent contact pressure, approximating `-sigma_nu`: in 2D the node's value of
+    /// the L2 projection of the nodal normal forces onto the continuous piecewise-linear
+    /// functions on the interface spanned by the original (not inserted) nodes of the side
+    /// with fewer of them, B on a tie, every node against an obstacle
+    /// ([`consistent_traction`]); in 3D the nodal pressure.
     pub consistent_pressure: f64,
-    /// Nodal friction force on body A along `tau`, `= sigma_1tau l_x`; it opposes the slip.
-    pub friction_force: f64,
-    /// The consistent friction traction: the node's value of the L2 projection of the nodal
-    /// friction forces (as for `consistent_pressure`), approximating `sigma_1tau`.
-    pub consistent_friction_traction: f64,
-    /// The slip `[u]_1tau = (u_A - u_B) . tau` (zero for frictionless laws: not modelled).
-    pub slip: f64,
+    /// Nodal friction force on body A (tangential, `= sigma_1tau l_x`); it opposes the slip.
+    pub friction_force: VectorD<D>,
+    /// The consistent friction traction, approximating `sigma_1tau` (as for
+    /// `consistent_pressure`).
+    pub consistent_friction_traction: VectorD<D>,
+    /// The slip: the tangential part of `u_A - u_B` (zero for frictionless laws: not
+    /// modelled).
+    pub slip: VectorD<D>,
     /// Open, stick or slip.
     pub status: NodeStatus,
+    /// Body A of the pair (index in the problem's bodies).
+    pub body_a: usize,
     /// The vertex of body A's (enlarged) mesh.
     pub vertex_a: usize,
+    /// Body B of the pair; `None` against an obstacle.
+    pub body_b: Option<usize>,
     /// The partner vertex of body B's (enlarged) mesh; `None` against an obstacle.
     pub vertex_b: Option<usize>,
+}
+
+impl<const D: usize> InterfaceNode<D> {
+    /// The orthonormal frame of the node: column 0 the normal, then the tangents
+    /// ([`frame`]).
+    pub fn frame(&self) -> SMatrix<f64, D, D> {
+        frame(&self.normal)
+    }
+}
+
+impl InterfaceNode<2> {
+    /// The tangent `tau = (-nu_y, nu_x)`.
+    pub fn tangent(&self) -> Vector {
+        crate::tangent(self.normal)
+    }
+
+    /// The friction force on body A along `tau`.
+    pub fn friction_t(&self) -> f64 {
+        self.friction_force.dot(&self.tangent())
+    }
+
+    /// The consistent friction traction along `tau`.
+    pub fn consistent_friction_t(&self) -> f64 {
+        self.consistent_friction_traction.dot(&self.tangent())
+    }
+
+    /// The slip `[u]_1tau = (u_A - u_B) . tau`.
+    pub fn slip_t(&self) -> f64 {
+        self.slip.dot(&self.tangent())
+    }
 }
 
 /// The L2 projection of nodal forces onto continuous piecewise-linear functions on the
@@ -208,13 +248,13 @@ pub fn consistent_traction(
 /// One body after the solve: the body on its enlarged mesh, its assembled system and its
 /// solution (displacement, reactions, strain energy).
 #[derive(Debug, Clone)]
-pub struct BodyResult {
+pub struct BodyResult<const D: usize = 2> {
     /// The body, on the mesh with the inserted interface nodes.
-    pub body: ElasticBody,
+    pub body: ElasticBody<D>,
     /// Its assembled (reduced) system, shared with the discretisation it was solved on.
     pub system: Arc<AssembledSystem>,
     /// Its solution.
-    pub solution: Solution,
+    pub solution: Solution<D>,
 }
 
 /// Size and content of one modelled body.
@@ -224,7 +264,7 @@ pub struct BodySummary {
     pub name: String,
     /// Vertices of its enlarged mesh.
     pub vertices: usize,
-    /// Polygons.
+    /// Cells (polygons in 2D).
     pub polygons: usize,
     /// Unknowns.
     pub free_dofs: usize,
@@ -232,36 +272,51 @@ pub struct BodySummary {
     pub prescribed_dofs: usize,
 }
 
-/// What was built for the solve: only what the scene requires.
+/// One contact pair as modelled.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ModelSummary {
-    /// The contact law ("frictionless", "tresca", "coulomb").
-    pub law: &'static str,
-    /// The contact solver.
-    pub solver: &'static str,
-    /// The bodies (one against an obstacle).
-    pub bodies: Vec<BodySummary>,
+pub struct PairSummary {
+    /// The law with its parameters ([`ContactLaw::describe`](crate::ContactLaw::describe)).
+    pub law: String,
+    /// The law's name ("frictionless", "tresca", "coulomb", ...).
+    pub law_name: String,
+    /// Which parts face what ("body 'disc' part 'arc' against body 'block' part 'top'").
+    pub description: String,
     /// True when the counterpart is a rigid obstacle (nothing meshed for it).
     pub obstacle: bool,
+    /// The pair's interface nodes in [`ContactResult::nodes`].
+    pub nodes: Range<usize>,
+    /// Vertices inserted by the pair's interface node insertion (both sides).
+    pub inserted_nodes: usize,
+}
+
+/// What was built for the solve: only what the problem requires.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSummary {
+    /// The contact solver.
+    pub solver: &'static str,
+    /// The bodies.
+    pub bodies: Vec<BodySummary>,
+    /// The contact pairs.
+    pub pairs: Vec<PairSummary>,
     /// Normal constraint rows (one per interface node).
     pub normal_rows: usize,
-    /// Tangential rows (zero for frictionless contact).
+    /// Tangential rows (`D - 1` per interface node; zero when no pair carries friction).
     pub tangential_rows: usize,
-    /// Vertices inserted by the interface node insertion (both sides).
+    /// Vertices inserted by the interface node insertions (all pairs, both sides).
     pub inserted_nodes: usize,
     /// Wall-clock time of the whole call (the stages are in [`ContactResult::work`]).
     pub total_time: Duration,
 }
 
-/// How the Coulomb fixed point went.
+/// How the fixed point of Tresca problems (Coulomb) went.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FixedPointReport {
-    /// Tresca solves after the initial frictionless one.
+    /// Tresca solves after the initial one.
     pub steps: usize,
     /// The last relative change of the normal forces.
     pub residual: f64,
-    /// The stopping tolerance used: the larger of [`FixedPointSettings::tolerance`] and the
-    /// inner solver's force accuracy.
+    /// The stopping tolerance used: the larger of the laws' [`FixedPointSettings::tolerance`]
+    /// and the inner solver's force accuracy.
     ///
     /// [`FixedPointSettings::tolerance`]: crate::FixedPointSettings::tolerance
     pub tolerance: f64,
@@ -269,20 +324,21 @@ pub struct FixedPointReport {
     pub history: Vec<f64>,
     /// Solver iterations summed over all solves.
     pub solver_iterations: usize,
-    /// Nodal friction bounds `F lambda_N` of the last Tresca step.
+    /// Nodal friction bounds of the last Tresca step.
     pub final_bounds: Vec<f64>,
 }
 
 /// The result of a contact solve.
 #[derive(Debug, Clone)]
-pub struct ContactResult {
-    /// The bodies: A first, then B (absent against an obstacle).
-    pub bodies: Vec<BodyResult>,
-    /// The interface nodes, ordered along the contact part of body A.
-    pub nodes: Vec<InterfaceNode>,
+pub struct ContactResult<const D: usize = 2> {
+    /// The bodies, in the order of the problem.
+    pub bodies: Vec<BodyResult<D>>,
+    /// The interface nodes of every pair, pair after pair, each pair's ordered along the
+    /// contact part of its body A (2D).
+    pub nodes: Vec<InterfaceNode<D>>,
     /// The report of the (last) contact solve.
     pub report: SolveReport,
-    /// Coulomb only: the fixed-point report.
+    /// Laws with a fixed point (Coulomb): its report.
     pub fixed_point: Option<FixedPointReport>,
     /// What was modelled.
     pub model: ModelSummary,
@@ -295,10 +351,10 @@ pub struct ContactResult {
     pub warnings: Vec<Warning>,
 }
 
-impl ContactResult {
+impl<const D: usize> ContactResult<D> {
     pub(crate) fn new(
-        bodies: Vec<BodyResult>,
-        nodes: Vec<InterfaceNode>,
+        bodies: Vec<BodyResult<D>>,
+        nodes: Vec<InterfaceNode<D>>,
         report: SolveReport,
         fixed_point: Option<FixedPointReport>,
         model: ModelSummary,
@@ -314,22 +370,47 @@ impl ContactResult {
         }
     }
 
-    /// Sum of the nodal contact forces `sum lambda_N` (= `-int sigma_nu ds` in the limit).
+    /// The interface nodes of pair `pair`.
+    pub fn pair_nodes(&self, pair: usize) -> &[InterfaceNode<D>] {
+        self.model
+            .pairs
+            .get(pair)
+            .map_or(&[][..], |p| &self.nodes[p.nodes.clone()])
+    }
+
+    /// Sum of the nodal contact forces `sum lambda_N` over every pair (= `-int sigma_nu` in
+    /// the limit).
     pub fn normal_resultant(&self) -> f64 {
         self.nodes.iter().map(|n| n.normal_force).sum()
     }
 
-    /// Sum of the nodal friction forces on body A along `tau` (= `int sigma_1tau ds`).
-    pub fn tangential_resultant(&self) -> f64 {
-        self.nodes.iter().map(|n| n.friction_force).sum()
-    }
-
-    /// The total contact force exerted on body A, `sum (-lambda_N nu + t tau)`.
-    pub fn force_on_body_a(&self) -> Vector {
+    /// Sum of the nodal friction forces on the bodies A.
+    pub fn friction_resultant(&self) -> VectorD<D> {
         self.nodes
             .iter()
-            .map(|n| -n.normal_force * n.normal + n.friction_force * n.tangent)
-            .sum()
+            .fold(VectorD::zeros(), |acc, n| acc + n.friction_force)
+    }
+
+    /// The total contact force exerted on body `body` by every pair it belongs to
+    /// (`sum (-lambda_N nu + t)` over its nodes as body A, the opposite as body B).
+    pub fn force_on_body(&self, body: usize) -> VectorD<D> {
+        self.nodes.iter().fold(VectorD::zeros(), |acc, n| {
+            let on_a = n.friction_force - n.normal * n.normal_force;
+            if n.body_a == body {
+                acc + on_a
+            } else if n.body_b == Some(body) {
+                acc - on_a
+            } else {
+                acc
+            }
+        })
+    }
+
+    /// The total contact force exerted on body A of the first pair.
+    pub fn force_on_body_a(&self) -> VectorD<D> {
+        self.nodes
+            .first()
+            .map_or(VectorD::zeros(), |n| self.force_on_body(n.body_a))
     }
 
     /// Number of nodes with each status: (open, stick, slip).
@@ -341,5 +422,13 @@ impl ContactResult {
                 NodeStatus::Stick => (o, st + 1, sl),
                 NodeStatus::Slip => (o, st, sl + 1),
             })
+    }
+}
+
+impl ContactResult<2> {
+    /// Sum of the nodal friction forces on the bodies A along their tangents
+    /// (`= int sigma_1tau ds`).
+    pub fn tangential_resultant(&self) -> f64 {
+        self.nodes.iter().map(InterfaceNode::friction_t).sum()
     }
 }

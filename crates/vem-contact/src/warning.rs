@@ -1,6 +1,10 @@
 //! Warnings that travel with a converged answer: what its user should know about the model or
 //! the solve although every check passed.
 
+use vem_mesh::{PointD, VectorD};
+
+use crate::Location;
+
 /// Why a limit of the contact zone was reached (see [`Warning::ContactZoneAtLimit`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ZoneLimit {
@@ -51,14 +55,12 @@ pub enum Warning {
     /// A friction bound exceeds every force of the problem by far: friction never reaches it,
     /// the interface is effectively tied (bonded) wherever it is in contact.
     #[error(
-        "friction bound b = {bound:.3e} at ({x}, {y}) is {ratio:.1e} times the largest force of \
+        "friction bound b = {bound:.3e} at {at} is {ratio:.1e} times the largest force of \
          the problem: the contact is effectively tied (no node can slip)"
     )]
     EffectivelyTied {
         /// Position of the node with the largest bound.
-        x: f64,
-        /// See `x`.
-        y: f64,
+        at: Location,
         /// Its nodal bound `b_i = l_i g_F(x_i)`.
         bound: f64,
         /// `b_i / F` with `F` the force scale of the answer.
@@ -90,7 +92,7 @@ pub enum Warning {
     /// The contact zone reaches a limit of the modelled interface: the zone (and the pressure
     /// near it) may be clipped.
     #[error(
-        "the contact zone reaches {} at the node ({x}, {y}) (normal force {normal_force:.3e}): \
+        "the contact zone reaches {} at the node {at} (normal force {normal_force:.3e}): \
          it may be clipped",
         limit.describe()
     )]
@@ -98,9 +100,7 @@ pub enum Warning {
         /// Which limit.
         limit: ZoneLimit,
         /// Position of the node in contact at the limit.
-        x: f64,
-        /// See `x`.
-        y: f64,
+        at: Location,
         /// Its normal force.
         normal_force: f64,
     },
@@ -109,7 +109,7 @@ pub enum Warning {
     /// from its counterpart, whose gaps are measured through the body).
     #[error(
         "initial overlap: {nodes} of {total} interface nodes have a negative initial gap, down \
-         to {gap:.3e} at ({x}, {y}) (outward normal ({normal_x}, {normal_y})); solved as an \
+         to {gap:.3e} at {at} (outward normal {normal}); solved as an \
          interference fit; if the contact part faces away from its counterpart, choose the \
          part that faces it"
     )]
@@ -121,13 +121,9 @@ pub enum Warning {
         /// The most negative initial gap.
         gap: f64,
         /// Position of its node.
-        x: f64,
-        /// See `x`.
-        y: f64,
-        /// Body A's outward normal at that node, x component.
-        normal_x: f64,
-        /// See `normal_x`.
-        normal_y: f64,
+        at: Location,
+        /// The contact normal at that node.
+        normal: Location,
     },
     /// The Coulomb fixed point stopped at the inner solver's force accuracy, above the
     /// requested tolerance: the friction bounds are settled only to that accuracy.
@@ -148,26 +144,26 @@ pub enum Warning {
 }
 
 impl Warning {
-    /// [`Warning::InitialOverlap`] of the interface nodes `(position, outward normal of body
-    /// A, initial gap)`, if any initial gap is negative.
+    /// [`Warning::InitialOverlap`] of the interface nodes `(position, normal, initial gap)`, if
+    /// any initial gap is negative.
     ///
     /// ```
-    /// use vem_contact::Warning;
+    /// use vem_contact::{Location, Warning};
     /// use vem_mesh::{Point, Vector};
     /// let up = Vector::new(0.0, 1.0);
     /// let nodes = [(Point::new(0.0, 0.0), up, 0.1), (Point::new(1.0, 0.0), up, -0.2)];
-    /// let Some(Warning::InitialOverlap { nodes, total, gap, x, .. }) = Warning::initial_overlap(nodes) else {
+    /// let Some(Warning::InitialOverlap { nodes, total, gap, at, .. }) = Warning::initial_overlap(nodes) else {
     ///     panic!("an overlap")
     /// };
-    /// assert_eq!((nodes, total, gap, x), (1, 2, -0.2, 1.0));
+    /// assert_eq!((nodes, total, gap, at), (1, 2, -0.2, Location(vec![1.0, 0.0])));
     /// assert!(Warning::initial_overlap([(Point::new(0.0, 0.0), up, 0.0)]).is_none());
     /// ```
-    pub fn initial_overlap(
-        nodes: impl IntoIterator<Item = (vem_mesh::Point, vem_mesh::Vector, f64)>,
+    pub fn initial_overlap<const D: usize>(
+        nodes: impl IntoIterator<Item = (PointD<D>, VectorD<D>, f64)>,
     ) -> Option<Self> {
         let mut total = 0;
         let mut count = 0;
-        let mut deepest: Option<(f64, vem_mesh::Point, vem_mesh::Vector)> = None;
+        let mut deepest: Option<(f64, PointD<D>, VectorD<D>)> = None;
         for (position, normal, gap) in nodes {
             total += 1;
             if gap < 0.0 {
@@ -181,11 +177,8 @@ impl Warning {
             nodes: count,
             total,
             gap,
-            x: position.x,
-            y: position.y,
-            // `+ 0.0` writes a negative zero as 0.
-            normal_x: normal.x + 0.0,
-            normal_y: normal.y + 0.0,
+            at: Location::of(&position),
+            normal: Location::of_vector(&normal),
         })
     }
 }

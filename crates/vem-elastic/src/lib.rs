@@ -1,14 +1,17 @@
-//! Linear elasticity of one body with the lowest-order virtual element method: materials,
+//! Linear elasticity of one body in `R^D` (`D = 2` or 3, written once for both; `D = 2` is the
+//! default of every generic type) with the lowest-order virtual element method: materials,
 //! boundary conditions by part name, parallel assembly on a fixed sparsity pattern, Dirichlet
 //! conditions by elimination, sparse Cholesky solve, post-processing.
 //!
 //! The discrete problem (spec sections 1–2): find `u_h` in `V_h` with `u_h = g` on `Gamma_D`
 //! and `a_h(u_h, v) = l_h(v)` for every `v` in `V_h` vanishing on `Gamma_D`, where
-//! `a_h = sum_T a_T^h` (consistency + stabilisation, from [`vem_space::ElementSpace`]) and
+//! `a_h = sum_T a_T^h` (consistency + stabilisation, from the element's
+//! [`vem_space::MeshElement`]; in 2D every [`vem_space::ElementSpace`]) and
 //! `l_h(v) = sum_T l_T^h(v) + int_{Gamma_N} g . v ds`.
 //!
-//! - Degrees of freedom: `dof = 2 * vertex + component` ([`dof`]); [`DofMap`] splits them
-//!   into free and prescribed ones.
+//! - Degrees of freedom: [`DofMap`] numbers what the element declares
+//!   ([`vem_space::DofLayout`]: the `D` displacement values at each vertex) and splits them
+//!   into free and prescribed ones; nothing else computes a global index.
 //! - Assembly ([`ElasticBody::assemble`] -> [`AssembledSystem`]): the pattern of the reduced
 //!   stiffness `K_ff`, of the lifting block `K_fp` and of `K_pp` is built once from the mesh
 //!   connectivity; element matrices are computed in parallel (rayon) in chunks and their values

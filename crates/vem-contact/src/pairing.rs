@@ -1,0 +1,295 @@
+//! The geometry of a contact pair: interface node insertion between two bodies, or the nodes
+//! of a body's contact part facing an obstacle. The only place of the contact layer where the
+//! dimension changes the code: in 2D the parts are chains of edges
+//! ([`vem_mesh::interface`]); in 3D the pair of two bodies needs the surface overlay, which is
+//! not available yet.
+
+use std::any::Any;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use vem_elastic::ElasticBody;
+use vem_mesh::interface::{boundary_chain, insert_interface_nodes};
+use vem_mesh::{BodyMesh, Mesh, PointD, VectorD};
+
+use crate::problem::{ContactPair, Counterpart};
+use crate::warning::ZoneLimit;
+use crate::{ContactError, ContactNode, Location};
+
+/// What the geometry of one pair gives: its nodes (ordered along body A's part in 2D), the
+/// vertices inserted, the nodes at a limit of the modelled interface with what lies beyond,
+/// and whether the nodes form a chain (2D) along which the consistent traction is projected.
+pub(crate) struct PairGeometry<const D: usize> {
+    pub(crate) nodes: Vec<ContactNode<D>>,
+    pub(crate) inserted: usize,
+    pub(crate) zone_ends: Vec<(usize, ZoneLimit)>,
+    pub(crate) chain: bool,
+}
+
+/// `value` as a `U` when `T` and `U` are the same type (the same dimension).
+fn same<T: 'static, U: 'static>(value: T) -> Option<U> {
+    let boxed: Box<dyn Any> = Box::new(value);
+    boxed.downcast::<U>().ok().map(|b| *b)
+}
+
+fn point<const D: usize>(coords: &[f64]) -> PointD<D> {
+    PointD::<D>::from_slice(coords)
+}
+
+fn vector<const D: usize>(coords: &[f64]) -> VectorD<D> {
+    VectorD::<D>::from_column_slice(coords)
+}
+
+/// The planar mesh of a body in `D = 2`.
+fn planar<const D: usize>(body: &ElasticBody<D>) -> Option<&Mesh> {
+    body.body_mesh().as_planar()
+}
+
+/// The geometry of pair `index` of `bodies`; a pair of two bodies replaces both bodies by
+/// themselves on their meshes enlarged by the insertion.
+pub(crate) fn pair_geometry<const D: usize>(
+    bodies: &mut [ElasticBody<D>],
+    pair: &ContactPair<D>,
+    index: usize,
+) -> Result<PairGeometry<D>, ContactError> {
+    let n_bodies = bodies.len();
+    let check = |b: usize| {
+        if b < n_bodies {
+            Ok(())
+        } else {
+            Err(ContactError::InvalidSetting {
+                reason: format!(
+                    "contact pair {index} names body {b}, but the problem has {n_bodies} bodies"
+                ),
+            })
+        }
+    };
+    let a = pair.body();
+    check(a)?;
+    let part = pair.part();
+    let mut geometry = match pair.counterpart() {
+        Counterpart::Body { body: b, part: other_part } => {
+            check(*b)?;
+            if *b == a {
+                return Err(ContactError::InvalidSetting {
+                    reason: format!(
+                        "contact pair {index}: body '{}' against itself is not supported",
+                        bodies[a].name()
+                    ),
+                });
+            }
+            two_bodies(bodies, pair, index, a, *b, other_part)?
+        }
+        Counterpart::Obstacle(obstacle) => {
+            obstacle.validate()?;
+            obstacle_nodes(&bodies[a], a, part, index, &**obstacle)?
+        }
+    };
+    if let Some(imposed) = pair.imposed_gap() {
+        for node in &mut geometry.nodes {
+            let h0: f64 = imposed(node.position);
+            if !h0.is_finite() {
+                return Err(ContactError::InvalidSetting {
+                    reason: format!(
+                        "imposed gap {h0} at {} is not finite",
+                        Location::of(&node.position)
+                    ),
+                });
+            }
+            node.initial_gap += h0;
+        }
+    }
+    Ok(geometry)
+}
+
+fn two_bodies<const D: usize>(
+    bodies: &mut [ElasticBody<D>],
+    pair: &ContactPair<D>,
+    index: usize,
+    a: usize,
+    b: usize,
+    other_part: &str,
+) -> Result<PairGeometry<D>, ContactError> {
+    let part = pair.part();
+    let (Some(mesh_a), Some(mesh_b)) = (planar(&bodies[a]), planar(&bodies[b])) else {
+        return Err(ContactError::Unsupported {
+            what: format!(
+                "contact pair {index}: interface insertion between two bodies in {D}D (the \
+                 surface overlay) is not available yet; a rigid obstacle is"
+            ),
+        });
+    };
+    let (name_a, name_b) = (bodies[a].name().to_string(), bodies[b].name().to_string());
+    let interface = insert_interface_nodes(
+        mesh_a,
+        part,
+        mesh_b,
+        other_part,
+        pair.interface_options(),
+    )
+    .map_err(|source| ContactError::Mesh {
+        context: format!(
+            "interface between '{part}' of body '{name_a}' and '{other_part}' of body '{name_b}'"
+        ),
+        source,
+    })?;
+    let inserted = interface.inserted_a + interface.inserted_b;
+    // A paired end that is not an end of body A's chain: the nodes beyond were left unpaired
+    // (beyond the pairing limit, or beyond the end of the other part).
+    let chain = boundary_chain(&interface.mesh_a, part).map_err(|source| ContactError::Mesh {
+        context: format!("contact part of body '{name_a}'"),
+        source,
+    })?;
+    let chain_ends = [
+        chain.first().map(|c| c.vertex),
+        chain.last().map(|c| c.vertex),
+    ];
+    let beyond = |vertex: Option<usize>| {
+        if vertex.is_some() && chain_ends.contains(&vertex) {
+            ZoneLimit::EndOfPart
+        } else if pair.interface_options().max_distance().is_some() {
+            ZoneLimit::PairingLimit
+        } else {
+            ZoneLimit::EndOfPart
+        }
+    };
+    let n = interface.pairs.len();
+    let mut zone_ends = Vec::new();
+    if n > 0 {
+        zone_ends.push((0, beyond(interface.pairs.first().map(|p| p.node_a))));
+    }
+    if n > 1 {
+        zone_ends.push((n - 1, beyond(interface.pairs.last().map(|p| p.node_a))));
+    }
+    // Body B's outward nodal normals on its enlarged chain, for the normal choice.
+    let chain_b =
+        boundary_chain(&interface.mesh_b, other_part).map_err(|source| ContactError::Mesh {
+            context: format!("contact part of body '{name_b}'"),
+            source,
+        })?;
+    let normal_b: HashMap<usize, vem_mesh::Vector> =
+        chain_b.iter().map(|c| (c.vertex, c.normal)).collect();
+    let choice = pair.normal();
+    let nodes: Vec<ContactNode<D>> = interface
+        .pairs
+        .iter()
+        .map(|p| {
+            let n_b = normal_b.get(&p.node_b).copied().unwrap_or(-p.normal);
+            let normal = choice.combine(p.normal, n_b);
+            let gap = (p.point_b - p.point_a).dot(&normal);
+            ContactNode {
+                pair: index,
+                body_a: a,
+                vertex_a: p.node_a,
+                body_b: Some(b),
+                vertex_b: Some(p.node_b),
+                position: point(p.point_a.coords.as_slice()),
+                normal: vector(normal.as_slice()),
+                tributary_measure: p.tributary_length,
+                geometric_gap: gap,
+                initial_gap: gap,
+            }
+        })
+        .collect();
+    let enlarged = |mesh: Mesh| {
+        same::<Arc<dyn BodyMesh<2>>, Arc<dyn BodyMesh<D>>>(Arc::new(mesh))
+            .expect("a planar mesh is a body mesh of dimension 2")
+    };
+    bodies[a] = bodies[a].on_mesh(enlarged(interface.mesh_a))?;
+    bodies[b] = bodies[b].on_mesh(enlarged(interface.mesh_b))?;
+    Ok(PairGeometry {
+        nodes,
+        inserted,
+        zone_ends,
+        chain: true,
+    })
+}
+
+/// The nodes of `part` of `body` facing `obstacle`: in 2D along the part's chain (tributary
+/// lengths of the trapezoidal rule), in 3D the part's vertices with the tributary areas of
+/// their faces (each face's area shared equally by its vertices).
+fn obstacle_nodes<const D: usize>(
+    body: &ElasticBody<D>,
+    body_index: usize,
+    part: &str,
+    index: usize,
+    obstacle: &dyn crate::RigidObstacle<D>,
+) -> Result<PairGeometry<D>, ContactError> {
+    let mesh_error = |source| ContactError::Mesh {
+        context: format!("contact part of body '{}'", body.name()),
+        source,
+    };
+    let node = |vertex: usize, position: PointD<D>, measure: f64| {
+        let contact = obstacle.gap_at(position);
+        ContactNode {
+            pair: index,
+            body_a: body_index,
+            vertex_a: vertex,
+            body_b: None,
+            vertex_b: None,
+            position,
+            normal: contact.normal,
+            tributary_measure: measure,
+            geometric_gap: contact.gap,
+            initial_gap: contact.gap,
+        }
+    };
+    if let Some(mesh) = planar(body) {
+        let chain = boundary_chain(mesh, part).map_err(mesh_error)?;
+        let nodes: Vec<ContactNode<D>> = chain
+            .iter()
+            .map(|c| node(c.vertex, point(c.point.coords.as_slice()), c.tributary_length))
+            .collect();
+        let n = nodes.len();
+        let mut zone_ends = vec![(0, ZoneLimit::EndOfPart)];
+        if n > 1 {
+            zone_ends.push((n - 1, ZoneLimit::EndOfPart));
+        }
+        if n == 0 {
+            zone_ends.clear();
+        }
+        return Ok(PairGeometry {
+            nodes,
+            inserted: 0,
+            zone_ends,
+            chain: true,
+        });
+    }
+    let mesh = body.body_mesh();
+    let points = mesh.points();
+    let mut measure: HashMap<usize, f64> = HashMap::new();
+    for facet in mesh.part_facets(part).map_err(mesh_error)? {
+        let area = facet_measure::<D>(&facet.iter().map(|&v| points[v]).collect::<Vec<_>>());
+        for &v in facet {
+            *measure.entry(v).or_default() += area / facet.len() as f64;
+        }
+    }
+    let mut vertices: Vec<usize> = measure.keys().copied().collect();
+    vertices.sort_unstable();
+    Ok(PairGeometry {
+        nodes: vertices
+            .into_iter()
+            .map(|v| node(v, points[v], measure[&v]))
+            .collect(),
+        inserted: 0,
+        zone_ends: Vec::new(),
+        chain: false,
+    })
+}
+
+/// The measure of a boundary facet: the length of an edge in 2D, the area of a (fan
+/// triangulated) polygon in 3D.
+fn facet_measure<const D: usize>(corners: &[PointD<D>]) -> f64 {
+    match (D, corners) {
+        (2, [a, b]) => (b - a).norm(),
+        (3, _) if corners.len() >= 3 => {
+            let at = |p: &PointD<D>| nalgebra::Vector3::new(p[0], p[1], p[2]);
+            let mut area = nalgebra::Vector3::zeros();
+            for k in 0..corners.len() {
+                area += at(&corners[k]).cross(&at(&corners[(k + 1) % corners.len()]));
+            }
+            0.5 * area.norm()
+        }
+        _ => 0.0,
+    }
+}
