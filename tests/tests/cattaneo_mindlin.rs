@@ -6,10 +6,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{
-    CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, InterfaceNode,
-    NodeStatus,
-};
+use vem_contact::{CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb, InterfaceNode, NodeStatus};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -48,7 +45,7 @@ fn solve(shift: f64, normal: ContactNormal) -> ContactResult {
     }))
     .build()
     .unwrap();
-    let law = ContactLaw::try_coulomb(COEFFICIENT).unwrap();
+    let law = Coulomb::try_new(COEFFICIENT).unwrap();
     ContactProblem::two_bodies(upper, "bottom", lower, "top", law)
         .with_imposed_gap(|x| x.x * x.x / (2.0 * RADIUS))
         .with_normal(normal)
@@ -123,7 +120,7 @@ fn partial_slip_leaves_the_stick_zone_of_cattaneo_mindlin() {
     );
     // Friction below its bound everywhere, at the bound outside the stick zone.
     for n in &result.nodes {
-        assert!(n.friction_force.abs() <= COEFFICIENT * n.normal_force * (1.0 + 1e-9) + 1e-12);
+        assert!(n.friction_t().abs() <= COEFFICIENT * n.normal_force * (1.0 + 1e-9) + 1e-12);
     }
 }
 

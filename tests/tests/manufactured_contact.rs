@@ -151,14 +151,14 @@ fn m2_stick_and_slip_sets_and_the_friction_law_node_by_node() {
         if x >= STICK_SLIP_POINT + 0.2 {
             assert_eq!(n.status, NodeStatus::Slip, "x = {x}");
             // |friction force| = g_F l on slipping nodes, opposing the slip ([u]_1tau > 0).
-            let bound = friction_bound * n.tributary_length;
+            let bound = friction_bound * n.tributary_measure;
             assert!(
-                (n.friction_force.abs() - bound).abs() < 1e-6 * bound,
+                (n.friction_t().abs() - bound).abs() < 1e-6 * bound,
                 "{n:?}"
             );
-            assert!(n.friction_force < 0.0 && n.slip > 0.0, "{n:?}");
+            assert!(n.friction_t() < 0.0 && n.slip_t() > 0.0, "{n:?}");
         }
-        assert!(n.friction_force.abs() <= friction_bound * n.tributary_length * (1.0 + 1e-6));
+        assert!(n.friction_t().abs() <= friction_bound * n.tributary_measure * (1.0 + 1e-6));
     }
     // Resultants: -int sigma_nu = 13/12, int sigma_1tau = -g_F (1 - x_s / 5).
     let tangential = -0.25 * (1.0 - STICK_SLIP_POINT / 5.0);

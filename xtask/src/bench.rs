@@ -18,7 +18,7 @@ use clap::{Args, ValueEnum};
 use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactLaw, ContactProblem, SolverOptions, SolverRegistry};
+use vem_contact::{ContactLaw, ContactProblem, Coulomb, Frictionless, SolverOptions, SolverRegistry};
 use vem_elastic::{
     CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
     Plane,
@@ -233,9 +233,9 @@ pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn st
                     }))
                     .build()?;
             let law = if case == Case::Coulomb {
-                ContactLaw::try_coulomb(0.3)?
+                Coulomb::try_new(0.3)?
             } else {
-                ContactLaw::Frictionless
+                Frictionless
             };
             // A parabolic indenter of radius 1 over x = 1/2.
             Ok(

@@ -11,10 +11,7 @@ use std::time::Instant;
 use clap::Args;
 use plotters::prelude::*;
 use serde::Serialize;
-use vem_contact::{
-    CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, InterfaceNode,
-    NodeStatus,
-};
+use vem_contact::{CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb, Frictionless, InterfaceNode, NodeStatus};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::io::read_gmsh;
@@ -203,7 +200,7 @@ fn frictionless_run(
     h: &str,
     normal: ContactNormal,
 ) -> Result<Frictionless, Box<dyn std::error::Error>> {
-    let result = problem(meshes, h, normal, ContactLaw::Frictionless, 0.0)?
+    let result = problem(meshes, h, normal, Frictionless, 0.0)?
         .solve(&mut CondensedSolver::default())?;
     let (load, hertz) = hertz_for(&result)?;
     let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
@@ -248,7 +245,7 @@ fn friction_run(
     h: &str,
     normal: ContactNormal,
 ) -> Result<Friction, Box<dyn std::error::Error>> {
-    let law = ContactLaw::try_coulomb(COEFFICIENT)?;
+    let law = Coulomb::try_new(COEFFICIENT)?;
     let mut solver = CondensedSolver::default();
     let full = problem(meshes, h, normal, law.clone(), FULL_SLIP_SHIFT)?.solve(&mut solver)?;
     let force = full.force_on_body_a();
@@ -277,8 +274,8 @@ fn friction_run(
             .map(|n| {
                 (
                     n.position.x / a,
-                    (n.friction_force / n.tributary_length).abs() / (COEFFICIENT * p0),
-                    n.consistent_friction_traction.abs() / (COEFFICIENT * p0),
+                    (n.friction_t() / n.tributary_measure).abs() / (COEFFICIENT * p0),
+                    n.consistent_friction_t().abs() / (COEFFICIENT * p0),
                 )
             })
             .collect(),

@@ -460,8 +460,8 @@ fn pressure_errors(result: &ContactResult, exact: impl Fn(f64) -> f64) -> (f64, 
     let (mut err2, mut norm2, mut err_max, mut norm_max) = (0.0, 0.0, 0.0_f64, 0.0_f64);
     for node in &result.nodes {
         let p = exact(node.position.x);
-        err2 += node.tributary_length * (node.pressure - p).powi(2);
-        norm2 += node.tributary_length * p * p;
+        err2 += node.tributary_measure * (node.pressure - p).powi(2);
+        norm2 += node.tributary_measure * p * p;
         err_max = err_max.max((node.pressure - p).abs());
         norm_max = norm_max.max(p.abs());
     }

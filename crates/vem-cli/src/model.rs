@@ -7,10 +7,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use toml::Spanned;
-use vem_contact::{
-    ContactError, ContactLaw, ContactProblem, ContactSolver, ErrorModel, FixedPointSettings,
-    Obstacle, PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry,
-};
+use vem_contact::{ContactError, ContactLaw, ContactProblem, ContactSolver, Coulomb, ErrorModel, FixedPointSettings, Frictionless, Obstacle, PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry, Tresca};
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
@@ -757,8 +754,8 @@ fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<ContactLaw, CliError> 
     let value_of = |value: &Option<Spanned<f64>>| value.as_ref().map_or(0.0, |v| *v.get_ref());
     let located = |span, e: SettingsError| scene.error(span, e.to_string());
     Ok(match spec.law() {
-        LawKind::Frictionless => ContactLaw::Frictionless,
-        LawKind::Tresca => ContactLaw::try_tresca(value_of(&spec.friction_bound))
+        LawKind::Frictionless => Frictionless,
+        LawKind::Tresca => Tresca::try_new(value_of(&spec.friction_bound))
             .map_err(|e| located(span_of(&spec.friction_bound), e))?,
         LawKind::Coulomb => {
             let mut builder = FixedPointSettings::builder();
@@ -775,7 +772,7 @@ fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<ContactLaw, CliError> 
                 };
                 located(span, e)
             })?;
-            ContactLaw::try_coulomb_with(value_of(&spec.coefficient), fixed_point)
+            Coulomb::try_with(value_of(&spec.coefficient), fixed_point)
                 .map_err(|e| located(span_of(&spec.coefficient), e))?
         }
     })

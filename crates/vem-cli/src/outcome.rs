@@ -633,7 +633,7 @@ impl HertzComparison {
         let effective_modulus = 1.0 / (compliance(a) + b.map_or(0.0, compliance));
         let load = nodes
             .iter()
-            .map(|n| -n.normal_force * n.normal + n.friction_force * n.tangent)
+            .map(|n| -n.normal_force * n.normal + n.friction_t() * n.tangent)
             .sum::<vem_mesh::Vector>()
             .norm();
         let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();

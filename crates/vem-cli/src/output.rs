@@ -444,9 +444,9 @@ fn write_contact_csv(
             tidy(n.normal_force),
             tidy(n.pressure),
             tidy(n.consistent_pressure),
-            tidy(n.friction_force),
-            tidy(n.consistent_friction_traction),
-            tidy(n.slip),
+            tidy(n.friction_t()),
+            tidy(n.consistent_friction_t()),
+            tidy(n.slip_t()),
             status_label(n.status, frictionless)
         )?;
     }

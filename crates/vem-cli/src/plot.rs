@@ -123,11 +123,11 @@ pub(crate) fn pressure(
     let friction: Option<(Curve, Curve, Curve)> = friction_bound.map(|bound| {
         let traction = nodes
             .iter()
-            .map(|n| (position(n), n.friction_force / n.tributary_length))
+            .map(|n| (position(n), n.friction_t() / n.tributary_measure))
             .collect();
         let consistent_traction = nodes
             .iter()
-            .map(|n| (position(n), n.consistent_friction_traction))
+            .map(|n| (position(n), n.consistent_friction_t()))
             .collect();
         let bounds = nodes
             .iter()
@@ -243,7 +243,7 @@ pub(crate) fn slip(
     width: f64,
 ) -> Result<(), CliError> {
     let c = axis(nodes);
-    let points: Vec<(f64, f64)> = nodes.iter().map(|n| (n.position[c], n.slip)).collect();
+    let points: Vec<(f64, f64)> = nodes.iter().map(|n| (n.position[c], n.slip_t())).collect();
     let x_range = padded(points.iter().map(|p| p.0), 0.05);
     let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), LEGEND_ROOM);
     svg_file(path, width, |root| {

@@ -202,22 +202,22 @@ fn tresca_stick_and_slip_zones_and_equilibrium() {
     let (_, stick, slip) = contact.status_counts();
     assert!(stick > 0 && slip > 0, "stick {stick}, slip {slip}");
     for n in nodes(&outcome) {
-        let bound = g * n.tributary_length;
+        let bound = g * n.tributary_measure;
         match n.status {
             NodeStatus::Slip => {
                 assert!(
-                    (n.friction_force.abs() - bound).abs() < 1e-6 * bound,
+                    (n.friction_t().abs() - bound).abs() < 1e-6 * bound,
                     "{n:?}"
                 )
             }
             NodeStatus::Stick => {
-                assert!(n.friction_force.abs() < bound * (1.0 + 1e-9), "{n:?}");
-                assert!(n.slip.abs() < 1e-8, "{n:?}");
+                assert!(n.friction_t().abs() < bound * (1.0 + 1e-9), "{n:?}");
+                assert!(n.slip_t().abs() < 1e-8, "{n:?}");
             }
             NodeStatus::Open => assert!(n.normal_force.abs() < 1e-7),
         }
         // Friction opposes the slip.
-        assert!(n.friction_force * n.slip <= 1e-14, "{n:?}");
+        assert!(n.friction_t() * n.slip_t() <= 1e-14, "{n:?}");
     }
     // Equilibrium of the block: contact force + reaction of the top + applied pressure = 0.
     let force = contact.force_on_body_a();
@@ -298,12 +298,12 @@ fn coulomb_fixed_point_with_slip_at_the_edges() {
     let slack = 2.0 * fixed_point.residual * largest + 1e-10 * largest;
     for n in nodes {
         assert!(
-            n.friction_force.abs() <= f * n.normal_force + slack,
+            n.friction_t().abs() <= f * n.normal_force + slack,
             "{n:?}"
         );
         if n.status == NodeStatus::Slip {
             assert!(
-                (n.friction_force.abs() - f * n.normal_force).abs()
+                (n.friction_t().abs() - f * n.normal_force).abs()
                     <= slack + 1e-6 * f * n.normal_force,
                 "{n:?}"
             );

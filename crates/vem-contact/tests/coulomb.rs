@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ContactLaw, ContactProblem, ContactSolver, ExactSolver, NodeStatus, Obstacle};
+use vem_contact::{ContactProblem, ContactSolver, Coulomb, ExactSolver, NodeStatus, Obstacle};
 use vem_elastic::{ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -34,7 +34,7 @@ fn coulomb_converges_with_the_exact_solver_and_respects_the_cone() {
         body,
         "bottom",
         obstacle,
-        ContactLaw::try_coulomb(COEFFICIENT).unwrap(),
+        Coulomb::try_new(COEFFICIENT).unwrap(),
     )
     .solve(&mut solver)
     .expect("Coulomb converges with the interior-point solver");
@@ -52,12 +52,12 @@ fn coulomb_converges_with_the_exact_solver_and_respects_the_cone() {
     assert!(max_force > 0.0);
     for node in &result.nodes {
         // |lambda_T| <= F lambda_N up to the fixed-point and interior-point accuracy.
-        let excess = node.friction_force.abs() - COEFFICIENT * node.normal_force.max(0.0);
+        let excess = node.friction_t().abs() - COEFFICIENT * node.normal_force.max(0.0);
         assert!(
             excess <= 10.0 * fixed_point.tolerance * max_force,
             "node at {}: |friction| {:e} > F * normal {:e}",
             node.position,
-            node.friction_force.abs(),
+            node.friction_t().abs(),
             COEFFICIENT * node.normal_force
         );
     }
@@ -65,7 +65,7 @@ fn coulomb_converges_with_the_exact_solver_and_respects_the_cone() {
     assert!(count(NodeStatus::Stick) > 0, "no stick node");
     assert!(count(NodeStatus::Slip) > 0, "no slip node");
     // Symmetry about x = 1/2: the friction resultant vanishes.
-    let friction: f64 = result.nodes.iter().map(|n| n.friction_force).sum();
+    let friction: f64 = result.nodes.iter().map(|n| n.friction_t()).sum();
     assert!(
         friction.abs() <= 1e-6 * max_force * result.nodes.len() as f64,
         "{friction:e}"

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{CondensedSolver, ContactLaw, ContactProblem, ContactResult, ExactSolver};
+use vem_contact::{CondensedSolver, ContactProblem, ContactResult, ExactSolver, Frictionless};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{perturbed_quads, voronoi, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -40,7 +40,7 @@ fn punch(top_y: Dirichlet) -> ContactProblem {
         .clamp("bottom")
         .build()
         .unwrap();
-    ContactProblem::two_bodies(punch, "bottom", block, "top", ContactLaw::Frictionless)
+    ContactProblem::two_bodies(punch, "bottom", block, "top", Frictionless)
 }
 
 /// The vertical contact force on the punch (body A): up, it balances the plate's push.

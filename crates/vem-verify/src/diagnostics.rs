@@ -98,12 +98,12 @@ pub fn contact_diagnostics(
         .reference_resultants()
         .unwrap_or_else(|| integrated_resultants(exact));
     let normal_resultant: f64 = nodes.iter().map(|n| n.normal_force).sum();
-    let tangential_resultant: f64 = nodes.iter().map(|n| n.friction_force).sum();
+    let tangential_resultant: f64 = nodes.iter().map(|n| n.friction_t()).sum();
     let pressure_error = nodes
         .iter()
         .map(|n| {
             let sigma_nu = exact.interface_values(n.position.x).sigma_nu;
-            n.tributary_length * (n.pressure + sigma_nu).powi(2)
+            n.tributary_measure * (n.pressure + sigma_nu).powi(2)
         })
         .sum::<f64>()
         .sqrt();

@@ -7,7 +7,7 @@
 use nalgebra::Matrix2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use vem_contact::{ContactLaw, FrictionBound};
+use vem_contact::{ContactLaw, FrictionBound, Frictionless};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 use vem_verify::exact::{
@@ -866,7 +866,7 @@ fn contact_sign_conditions_and_complementarity() {
                     v.sigma_nu * v.gap()
                 );
                 match contact.law() {
-                    ContactLaw::Frictionless => {
+                    Frictionless => {
                         assert!(
                             v.sigma_1tau.abs() <= tol,
                             "{here}: sigma_1tau = {:e}",

@@ -159,14 +159,14 @@ fn the_field_bound_is_applied_at_every_node() {
         .solve(&mut solver as &mut dyn ContactSolver)
         .unwrap();
     for node in &result.nodes {
-        let bound = node.tributary_length * variable_bound(node.position.x);
+        let bound = node.tributary_measure * variable_bound(node.position.x);
         assert!(
-            node.friction_force.abs() <= bound * (1.0 + 1e-6),
+            node.friction_t().abs() <= bound * (1.0 + 1e-6),
             "{node:?}"
         );
         if node.position.x < STICK_SLIP_POINT - 0.35 {
             // The exact margin here is at least 2 (x_s - x)^2 > 0.24: far from the bound.
-            assert!(node.friction_force.abs() < 0.5 * bound, "{node:?}");
+            assert!(node.friction_t().abs() < 0.5 * bound, "{node:?}");
         }
     }
 }

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{CondensedSolver, ContactLaw, ContactProblem};
+use vem_contact::{CondensedSolver, ContactLaw, ContactProblem, Frictionless};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::InterfaceOptions;
@@ -133,7 +133,7 @@ pub fn run(pairing: &Pairing, options: InterfaceOptions) -> Result<Outcome, Stri
         "bottom",
         body("lower", lower, false),
         "top",
-        ContactLaw::Frictionless,
+        Frictionless,
     )
     .with_imposed_gap(move |_| h0)
     .with_interface_options(options);
@@ -160,7 +160,7 @@ pub fn run(pairing: &Pairing, options: InterfaceOptions) -> Result<Outcome, Stri
         .map(|n| n.normal_force.abs())
         .fold(0.0, f64::max);
     for node in &result.nodes {
-        let expected = -sigma_nu * node.tributary_length;
+        let expected = -sigma_nu * node.tributary_measure;
         error = error.max((node.normal_force - expected).abs() / largest);
     }
     let after = shortest_fraction(result.bodies[0].body.mesh(), "bottom")

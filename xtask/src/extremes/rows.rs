@@ -13,10 +13,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{
-    ContactError, ContactLaw, ContactProblem, ContactResult, FrictionBound, PenaltyParameter,
-    SolverOptions, SolverRegistry,
-};
+use vem_contact::{ContactError, ContactLaw, ContactProblem, ContactResult, FrictionBound, Frictionless, PenaltyParameter, SolverOptions, SolverRegistry, Tresca};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
@@ -483,7 +480,7 @@ impl Patch {
             lateral: None,
             offset: [0.003, 0.0],
             opening: 0.0,
-            law: ContactLaw::Frictionless,
+            law: Frictionless,
             cells: n_cells,
             matching: false,
             element: default_element(),
@@ -835,7 +832,7 @@ pub fn contrast(size: &Size) -> Vec<Row> {
         let mut tied = Patch::pressed(lame, Cells::Quads);
         tied.shear = 0.5 * tied.pressure;
         tied.offset = [0.0, 0.0];
-        tied.law = ContactLaw::try_tresca(10.0 * tied.shear).expect("valid bound");
+        tied.law = Tresca::try_new(10.0 * tied.shear).expect("valid bound");
         rows.push(patch_row(
             format!("E_1/E_2 = {c:.0e}, Tresca stick"),
             &tied,
@@ -926,12 +923,12 @@ fn answer_change(a: &ContactResult, b: &ContactResult, length: f64, modulus: f64
     let fa: Vec<f64> = a
         .nodes
         .iter()
-        .flat_map(|n| [n.normal_force, n.friction_force])
+        .flat_map(|n| [n.normal_force, n.friction_t()])
         .collect();
     let fb: Vec<f64> = b
         .nodes
         .iter()
-        .flat_map(|n| [n.normal_force, n.friction_force])
+        .flat_map(|n| [n.normal_force, n.friction_t()])
         .collect();
     if ua.len() != ub.len() || fa.len() != fb.len() {
         return f64::INFINITY;
@@ -989,7 +986,7 @@ pub fn cells(size: &Size) -> Vec<Row> {
         let bound = 0.25 * slip.pressure;
         slip.shear = bound;
         slip.offset = [0.01, 0.0];
-        slip.law = ContactLaw::try_tresca(bound).expect("valid bound");
+        slip.law = Tresca::try_new(bound).expect("valid bound");
         rows.push(patch_row(
             format!("{}, Tresca full slip", kind.describe()),
             &slip,
@@ -1138,7 +1135,7 @@ pub fn friction(size: &Size) -> Vec<Row> {
         outcomes,
     });
     let mut zero = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
-    zero.law = ContactLaw::try_tresca(0.0).expect("valid bound");
+    zero.law = Tresca::try_new(0.0).expect("valid bound");
     rows.push(patch_row(
         "patch test, Tresca g_F = 0 (the frictionless exact field)".to_string(),
         &zero,
@@ -1168,7 +1165,7 @@ fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
             &SolverOptions::default(),
         )
     };
-    let reference = match run(ContactLaw::Frictionless) {
+    let reference = match run(Frictionless) {
         Ok(r) => r,
         Err(e) => {
             return Outcome {
@@ -1178,7 +1175,7 @@ fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
             }
         }
     };
-    let zero = run(ContactLaw::try_tresca(0.0).expect("valid bound"));
+    let zero = run(Tresca::try_new(0.0).expect("valid bound"));
     judge(solver, zero, |r| {
         let change = answer_change(&reference, r, 1.0, 1.0);
         (
@@ -1264,7 +1261,7 @@ impl ExactContact for Scaled {
         let law = self
             .inner
             .contact()
-            .map_or(ContactLaw::Frictionless, |c| c.law());
+            .map_or(Frictionless, |c| c.law());
         match law {
             ContactLaw::Tresca {
                 friction_bound: FrictionBound::Constant(g),

@@ -28,7 +28,7 @@
 //! // Then F times the nodal normal force of the last solve.
 //! let state = LawState { normal_forces: &[2.0], tangential_forces: &[0.1], normal_jumps: &[0.0], slips: &[0.0] };
 //! assert_eq!(coulomb.friction_bounds(&[node], Some(&state))?, vec![0.6]);
-//! assert!(coulomb.fixed_point().is_some());
+//! assert!(ContactLaw::<2>::fixed_point(&coulomb).is_some());
 //! # Ok::<(), vem_contact::ContactError>(())
 //! ```
 

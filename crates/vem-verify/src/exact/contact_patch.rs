@@ -3,7 +3,7 @@
 //! VEM contact discretisation reproduces exactly on matching and non-matching meshes.
 
 use nalgebra::Matrix2;
-use vem_contact::{ContactLaw, FrictionBound};
+use vem_contact::{ContactLaw, FrictionBound, Frictionless};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -153,7 +153,7 @@ impl ExactSolution for ContactPatch {
 impl ExactContact for ContactPatch {
     fn law(&self) -> ContactLaw {
         match self.friction_bound {
-            None => ContactLaw::Frictionless,
+            None => Frictionless,
             Some(g) => ContactLaw::Tresca {
                 friction_bound: FrictionBound::Constant(g),
             },

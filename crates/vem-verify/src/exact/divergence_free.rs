@@ -3,7 +3,7 @@
 //! contact pressure do not depend on `lambda`.
 
 use nalgebra::Matrix2;
-use vem_contact::ContactLaw;
+use vem_contact::{ContactLaw, Frictionless};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -172,7 +172,7 @@ impl ExactSolution for DivergenceFreeContact {
 
 impl ExactContact for DivergenceFreeContact {
     fn law(&self) -> ContactLaw {
-        ContactLaw::Frictionless
+        Frictionless
     }
 
     fn initial_gap(&self, _x: f64) -> f64 {

@@ -7,7 +7,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
 use nalgebra::Matrix2;
-use vem_contact::{ContactLaw, FrictionBound};
+use vem_contact::{ContactLaw, FrictionBound, Frictionless};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -348,7 +348,7 @@ impl ExactContact for FamilyA {
             Case::M2 => ContactLaw::Tresca {
                 friction_bound: FrictionBound::Constant(FAMILY_A_FRICTION_BOUND),
             },
-            Case::M1 | Case::M3 | Case::M4 => ContactLaw::Frictionless,
+            Case::M1 | Case::M3 | Case::M4 => Frictionless,
         }
     }
 
@@ -436,7 +436,7 @@ pub type TraceData = dyn Fn(BodyId, f64) -> Traces + Send + Sync;
 ///         pressure: Jet::polynomial(&[1.0, 0.5, -0.5], x),
 ///     }
 /// };
-/// let mine = InterfaceData::new("my M3", Lame::default(), ContactLaw::Frictionless,
+/// let mine = InterfaceData::new("my M3", Lame::default(), Frictionless,
 ///     |x| (2.0 + x + x * x) / 40.0, data);
 /// let m3 = FamilyA::m3(Lame::default());
 /// let p = Point::new(0.3, -0.6);
