@@ -624,10 +624,10 @@ impl Study {
         )
     }
 
-    fn law(&self) -> &'static str {
+    fn law(&self) -> String {
         self.exact
             .contact()
-            .map_or("elasticity", |c| c.law().name())
+            .map_or_else(|| "elasticity".to_string(), |c| c.law().name().to_string())
     }
 
     /// Checks the settings: at least one size, sizes positive and increasing, at least two

@@ -13,7 +13,7 @@
 use std::sync::Arc;
 
 use vem_contact::{
-    ContactLaw, ContactSolver, ExactSettings, ExactSolver, FixedPointSettings, FrictionBound,
+    ContactLaw, ContactSolver, ExactSettings, ExactSolver, FixedPointSettings, Coulomb, Tresca,
 };
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -31,7 +31,7 @@ use vem_verify::study::{Expectation, MeshPairing, Study};
 struct SameFields<C> {
     name: &'static str,
     inner: C,
-    law: ContactLaw,
+    law: Arc<dyn ContactLaw>,
 }
 
 impl<C: ExactContact> ExactSolution for SameFields<C> {
@@ -68,8 +68,8 @@ impl<C: ExactContact> ExactSolution for SameFields<C> {
 }
 
 impl<C: ExactContact> ExactContact for SameFields<C> {
-    fn law(&self) -> ContactLaw {
-        self.law.clone()
+    fn law(&self) -> Arc<dyn ContactLaw> {
+        Arc::clone(&self.law)
     }
     fn initial_gap(&self, x: f64) -> f64 {
         self.inner.initial_gap(x)
@@ -94,9 +94,7 @@ fn m2_with_variable_bound() -> Arc<dyn ExactSolution> {
     Arc::new(SameFields {
         name: "M2-variable-gF",
         inner: FamilyA::m2(Lame::default()),
-        law: ContactLaw::Tresca {
-            friction_bound: FrictionBound::Field(Arc::new(|x: Point| variable_bound(x.x))),
-        },
+        law: Arc::new(Tresca::with_field(|x: Point| variable_bound(x.x))),
     })
 }
 
@@ -249,11 +247,8 @@ impl ExactSolution for CoulombPatch {
 }
 
 impl ExactContact for CoulombPatch {
-    fn law(&self) -> ContactLaw {
-        ContactLaw::Coulomb {
-            coefficient: self.coefficient(),
-            fixed_point: FixedPointSettings::default(),
-        }
+    fn law(&self) -> Arc<dyn ContactLaw> {
+        Arc::new(Coulomb::try_with(self.coefficient(), FixedPointSettings::default()).expect("law"))
     }
     fn initial_gap(&self, _x: f64) -> f64 {
         2.0 * (self.d - self.beta)

@@ -3,7 +3,9 @@
 //! VEM contact discretisation reproduces exactly on matching and non-matching meshes.
 
 use nalgebra::Matrix2;
-use vem_contact::{ContactLaw, FrictionBound, Frictionless};
+use std::sync::Arc;
+
+use vem_contact::{ContactLaw, Frictionless, Tresca};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -151,12 +153,10 @@ impl ExactSolution for ContactPatch {
 }
 
 impl ExactContact for ContactPatch {
-    fn law(&self) -> ContactLaw {
+    fn law(&self) -> Arc<dyn ContactLaw> {
         match self.friction_bound {
-            None => Frictionless,
-            Some(g) => ContactLaw::Tresca {
-                friction_bound: FrictionBound::Constant(g),
-            },
+            None => Arc::new(Frictionless),
+            Some(g) => Arc::new(Tresca::try_new(g).expect("a patch test's bound is positive")),
         }
     }
 

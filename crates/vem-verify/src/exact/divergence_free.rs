@@ -3,6 +3,8 @@
 //! contact pressure do not depend on `lambda`.
 
 use nalgebra::Matrix2;
+use std::sync::Arc;
+
 use vem_contact::{ContactLaw, Frictionless};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
@@ -171,8 +173,8 @@ impl ExactSolution for DivergenceFreeContact {
 }
 
 impl ExactContact for DivergenceFreeContact {
-    fn law(&self) -> ContactLaw {
-        Frictionless
+    fn law(&self) -> Arc<dyn ContactLaw> {
+        Arc::new(Frictionless)
     }
 
     fn initial_gap(&self, _x: f64) -> f64 {

@@ -7,7 +7,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
 use nalgebra::Matrix2;
-use vem_contact::{ContactLaw, FrictionBound, Frictionless};
+use vem_contact::{ContactLaw, Frictionless, Tresca};
 use vem_mesh::generators::Rectangle;
 use vem_mesh::{Point, Vector};
 
@@ -343,12 +343,12 @@ fn body_force(d: &Derived, lame: Lame, x: Point) -> Vector {
 }
 
 impl ExactContact for FamilyA {
-    fn law(&self) -> ContactLaw {
+    fn law(&self) -> Arc<dyn ContactLaw> {
         match self.case {
-            Case::M2 => ContactLaw::Tresca {
-                friction_bound: FrictionBound::Constant(FAMILY_A_FRICTION_BOUND),
-            },
-            Case::M1 | Case::M3 | Case::M4 => Frictionless,
+            Case::M2 => Arc::new(
+                Tresca::try_new(FAMILY_A_FRICTION_BOUND).expect("the bound is positive"),
+            ),
+            Case::M1 | Case::M3 | Case::M4 => Arc::new(Frictionless),
         }
     }
 
@@ -417,7 +417,7 @@ pub type TraceData = dyn Fn(BodyId, f64) -> Traces + Send + Sync;
 ///
 /// ```
 /// use std::sync::Arc;
-/// use vem_contact::ContactLaw;
+/// use vem_contact::Frictionless;
 /// use vem_verify::exact::{
 ///     BodyId, ExactContact, ExactSolution, FamilyA, InterfaceData, Jet, Lame, Traces,
 /// };
@@ -448,7 +448,7 @@ pub type TraceData = dyn Fn(BodyId, f64) -> Traces + Send + Sync;
 pub struct InterfaceData {
     name: String,
     lame: Lame,
-    law: ContactLaw,
+    law: Arc<dyn ContactLaw>,
     initial_gap: Arc<dyn Fn(f64) -> f64 + Send + Sync>,
     traces: Arc<TraceData>,
     expected_sets: Option<ExpectedSets>,
@@ -460,7 +460,7 @@ impl std::fmt::Debug for InterfaceData {
         f.debug_struct("InterfaceData")
             .field("name", &self.name)
             .field("lame", &self.lame)
-            .field("law", &self.law)
+            .field("law", &self.law.describe())
             .field("expected_sets", &self.expected_sets)
             .field("reference_resultants", &self.reference_resultants)
             .finish()
@@ -474,14 +474,14 @@ impl InterfaceData {
     pub fn new(
         name: impl Into<String>,
         lame: Lame,
-        law: ContactLaw,
+        law: impl ContactLaw + 'static,
         initial_gap: impl Fn(f64) -> f64 + Send + Sync + 'static,
         traces: impl Fn(BodyId, f64) -> Traces + Send + Sync + 'static,
     ) -> Self {
         Self {
             name: name.into(),
             lame,
-            law,
+            law: Arc::new(law),
             initial_gap: Arc::new(initial_gap),
             traces: Arc::new(traces),
             expected_sets: None,
@@ -549,8 +549,8 @@ impl ExactSolution for InterfaceData {
 }
 
 impl ExactContact for InterfaceData {
-    fn law(&self) -> ContactLaw {
-        self.law.clone()
+    fn law(&self) -> Arc<dyn ContactLaw> {
+        Arc::clone(&self.law)
     }
 
     fn initial_gap(&self, x: f64) -> f64 {

@@ -383,7 +383,7 @@ pub trait ExactSolution: Send + Sync {
 /// An implementation returns `Some(self)` from [`ExactSolution::contact`].
 pub trait ExactContact: ExactSolution {
     /// The contact law the exact solution satisfies (the discrete problem is solved with it).
-    fn law(&self) -> ContactLaw;
+    fn law(&self) -> std::sync::Arc<dyn ContactLaw>;
 
     /// The initial gap `h0(x)` on `Gamma_C`.
     fn initial_gap(&self, x: f64) -> f64;
