@@ -6,7 +6,10 @@
 
 use std::sync::Arc;
 
-use vem_contact::{CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb, InterfaceNode, NodeStatus};
+use vem_contact::{
+    CondensedSolver, ContactNormal, ContactProblem, ContactResult, Coulomb, InterfaceNode,
+    NodeStatus,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
 use vem_mesh::{Point, Vector};

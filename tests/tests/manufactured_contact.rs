@@ -152,10 +152,7 @@ fn m2_stick_and_slip_sets_and_the_friction_law_node_by_node() {
             assert_eq!(n.status, NodeStatus::Slip, "x = {x}");
             // |friction force| = g_F l on slipping nodes, opposing the slip ([u]_1tau > 0).
             let bound = friction_bound * n.tributary_measure;
-            assert!(
-                (n.friction_t().abs() - bound).abs() < 1e-6 * bound,
-                "{n:?}"
-            );
+            assert!((n.friction_t().abs() - bound).abs() < 1e-6 * bound, "{n:?}");
             assert!(n.friction_t() < 0.0 && n.slip_t() > 0.0, "{n:?}");
         }
         assert!(n.friction_t().abs() <= friction_bound * n.tributary_measure * (1.0 + 1e-6));

@@ -18,7 +18,9 @@ use clap::{Args, ValueEnum};
 use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactLaw, ContactProblem, Coulomb, Frictionless, SolverOptions, SolverRegistry};
+use vem_contact::{
+    ContactLaw, ContactProblem, Coulomb, Frictionless, SolverOptions, SolverRegistry,
+};
 use vem_elastic::{
     CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
     Plane,
@@ -232,10 +234,10 @@ pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn st
                         Vector::zeros()
                     }))
                     .build()?;
-            let law = if case == Case::Coulomb {
-                Coulomb::try_new(0.3)?
+            let law: std::sync::Arc<dyn ContactLaw> = if case == Case::Coulomb {
+                std::sync::Arc::new(Coulomb::try_new(0.3)?)
             } else {
-                Frictionless
+                std::sync::Arc::new(Frictionless)
             };
             // A parabolic indenter of radius 1 over x = 1/2.
             Ok(

@@ -202,7 +202,7 @@ fn run_interface(input: &[u8]) -> Verdict {
                     pair.point_b.y,
                     pair.normal.x,
                     pair.normal.y,
-                    pair.tributary_measure,
+                    pair.tributary_length,
                 ];
                 if values.iter().any(|v| !v.is_finite()) {
                     return Verdict::NonFinite(format!("pair {k}: {pair:?}"));

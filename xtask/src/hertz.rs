@@ -11,7 +11,10 @@ use std::time::Instant;
 use clap::Args;
 use plotters::prelude::*;
 use serde::Serialize;
-use vem_contact::{CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb, Frictionless, InterfaceNode, NodeStatus};
+use vem_contact::{
+    CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb,
+    InterfaceNode, NodeStatus,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::io::read_gmsh;
@@ -166,7 +169,7 @@ fn problem(
     meshes: &Path,
     h: &str,
     normal: ContactNormal,
-    law: ContactLaw,
+    law: impl ContactLaw + 'static,
     shift: f64,
 ) -> Result<ContactProblem, Box<dyn std::error::Error>> {
     let material = Material::from_young_poisson(YOUNG, POISSON, Plane::Strain)?;
@@ -200,7 +203,7 @@ fn frictionless_run(
     h: &str,
     normal: ContactNormal,
 ) -> Result<Frictionless, Box<dyn std::error::Error>> {
-    let result = problem(meshes, h, normal, Frictionless, 0.0)?
+    let result = problem(meshes, h, normal, vem_contact::Frictionless, 0.0)?
         .solve(&mut CondensedSolver::default())?;
     let (load, hertz) = hertz_for(&result)?;
     let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
@@ -247,7 +250,7 @@ fn friction_run(
 ) -> Result<Friction, Box<dyn std::error::Error>> {
     let law = Coulomb::try_new(COEFFICIENT)?;
     let mut solver = CondensedSolver::default();
-    let full = problem(meshes, h, normal, law.clone(), FULL_SLIP_SHIFT)?.solve(&mut solver)?;
+    let full = problem(meshes, h, normal, law, FULL_SLIP_SHIFT)?.solve(&mut solver)?;
     let force = full.force_on_body_a();
     let full_slip_ratio = force.x.abs() / force.y;
     let full_slip_stick_nodes = full.status_counts().1;

@@ -7,7 +7,11 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use toml::Spanned;
-use vem_contact::{ContactError, ContactLaw, ContactProblem, ContactSolver, Coulomb, ErrorModel, FixedPointSettings, Frictionless, Obstacle, PenaltyParameter, RegistryError, SettingsError, SolverOptions, SolverRegistry, Tresca};
+use vem_contact::{
+    ContactError, ContactLaw, ContactProblem, ContactSolver, Coulomb, ErrorModel,
+    FixedPointSettings, Frictionless, Obstacle, PenaltyParameter, RegistryError, SettingsError,
+    SolverOptions, SolverRegistry, Tresca,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, InterfaceOptions};
@@ -234,8 +238,8 @@ impl Model {
                 };
                 Some(CheckedContact {
                     description: self.describe_contact(c),
-                    law: c.problem.law().name(),
-                    friction: c.problem.law().has_friction(),
+                    law: c.problem.pairs()[0].law().name().to_string(),
+                    friction: c.problem.pairs()[0].law().has_friction(),
                     interface_nodes,
                     solver: c.solver.clone(),
                 })
@@ -689,8 +693,7 @@ fn build_contact(
         }
         (_, _, Some(obstacle)) => {
             let built = build_obstacle(obstacle.get_ref());
-            built
-                .validate()
+            vem_contact::RigidObstacle::validate(&built)
                 .map_err(|e| scene.error(Some(obstacle.span()), e.to_string()))?;
             (
                 ModelCounterpart::Obstacle(built.clone()),
@@ -749,14 +752,16 @@ fn penalty_parameter(spec: &PenaltySpec) -> PenaltyParameter {
 }
 
 /// The contact law; the library checks the values, the scene locates them.
-fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<ContactLaw, CliError> {
+fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<Arc<dyn ContactLaw>, CliError> {
     let span_of = |value: &Option<Spanned<f64>>| value.as_ref().map(|v| v.span());
     let value_of = |value: &Option<Spanned<f64>>| value.as_ref().map_or(0.0, |v| *v.get_ref());
     let located = |span, e: SettingsError| scene.error(span, e.to_string());
     Ok(match spec.law() {
-        LawKind::Frictionless => Frictionless,
-        LawKind::Tresca => Tresca::try_new(value_of(&spec.friction_bound))
-            .map_err(|e| located(span_of(&spec.friction_bound), e))?,
+        LawKind::Frictionless => Arc::new(Frictionless),
+        LawKind::Tresca => Arc::new(
+            Tresca::try_new(value_of(&spec.friction_bound))
+                .map_err(|e| located(span_of(&spec.friction_bound), e))?,
+        ),
         LawKind::Coulomb => {
             let mut builder = FixedPointSettings::builder();
             if let Some(n) = &spec.fixed_point_max_iterations {
@@ -772,8 +777,10 @@ fn build_law(scene: &Scene, spec: &ContactSpec) -> Result<ContactLaw, CliError> 
                 };
                 located(span, e)
             })?;
-            Coulomb::try_with(value_of(&spec.coefficient), fixed_point)
-                .map_err(|e| located(span_of(&spec.coefficient), e))?
+            Arc::new(
+                Coulomb::try_with(value_of(&spec.coefficient), fixed_point)
+                    .map_err(|e| located(span_of(&spec.coefficient), e))?,
+            )
         }
     })
 }
@@ -973,7 +980,7 @@ pub struct CheckedContact {
     /// Which parts face what.
     pub description: String,
     /// The law's name.
-    pub law: &'static str,
+    pub law: String,
     /// True when tangential rows will be built.
     pub friction: bool,
     /// Interface nodes (node pairs, or body nodes facing the obstacle): one normal row each.

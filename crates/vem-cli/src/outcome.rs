@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 use vem_contact::{
-    ContactError, ContactLaw, ContactNode, ContactResult, ContactSolverError, FrictionBound,
-    InterfaceNode, NodeStatus, Obstacle,
+    ContactError, ContactNode, ContactResult, ContactSolverError, InterfaceNode, NodeStatus,
+    Obstacle,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::quality::ElementQuality;
@@ -235,9 +235,8 @@ impl Model {
                             rigid_plate: condition.is_rigid_plate(),
                             part: r.part.clone(),
                             components: match r.component {
-                                Component::X => "x",
-                                Component::Y => "y",
                                 Component::All => "x, y",
+                                other => other.name(),
                             },
                             force: [tidy(r.force.x), tidy(r.force.y)],
                         })
@@ -251,16 +250,15 @@ impl Model {
                 let report = &result.report;
                 let r = &report.residuals;
                 let force = result.force_on_body_a();
-                let (friction_bound, coefficient) = match c.problem.law() {
-                    ContactLaw::Tresca {
-                        friction_bound: FrictionBound::Constant(g),
-                    } => (Some(*g), None),
-                    ContactLaw::Coulomb { coefficient, .. } => (None, Some(*coefficient)),
-                    _ => (None, None),
-                };
+                let spec = self.scene().file().contacts.first().map(|c| c.get_ref());
+                let value = |v: Option<&toml::Spanned<f64>>| v.map(|v| *v.get_ref());
+                let (friction_bound, coefficient) = (
+                    value(spec.and_then(|s| s.friction_bound.as_ref())),
+                    value(spec.and_then(|s| s.coefficient.as_ref())),
+                );
                 Some(ContactSummary {
                     pair: self.describe_contact(c),
-                    law: result.model.law,
+                    law: result.model.pairs[0].law_name.clone(),
                     friction_bound,
                     coefficient,
                     obstacle_meshed: false,
@@ -429,7 +427,7 @@ pub struct ContactSummary {
     /// Which parts face what.
     pub pair: String,
     /// The law.
-    pub law: &'static str,
+    pub law: String,
     /// Tresca: the friction bound.
     pub friction_bound: Option<f64>,
     /// Coulomb: the friction coefficient.
@@ -633,7 +631,7 @@ impl HertzComparison {
         let effective_modulus = 1.0 / (compliance(a) + b.map_or(0.0, compliance));
         let load = nodes
             .iter()
-            .map(|n| -n.normal_force * n.normal + n.friction_t() * n.tangent)
+            .map(|n| -n.normal_force * n.normal + n.friction_force)
             .sum::<vem_mesh::Vector>()
             .norm();
         let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();

@@ -383,12 +383,15 @@ fn vtu_data(solved: &SolvedBody, contact_pressure: Option<(Vec<f64>, Vec<f64>)>)
     let fields = &solved.fields;
     let stress: Vec<f64> = fields
         .iter()
-        .flat_map(|f| [f.stress[0], f.stress[1], f.stress[2]])
+        .flat_map(|f| [f.stress[(0, 0)], f.stress[(1, 1)], f.stress[(0, 1)]])
         .collect();
     let mut data = VtuData::new()
         .with_point_vectors("displacement", &solved.solution.vertex_displacements())
         .with_cell_data(vem_mesh::io::DataArray::new("stress_xx_yy_xy", 3, stress))
-        .with_cell_scalars("sigma_zz", fields.iter().map(|f| f.sigma_zz).collect())
+        .with_cell_scalars(
+            "sigma_zz",
+            fields.iter().map(|f| f.stress[(2, 2)]).collect(),
+        )
         .with_cell_scalars("von_mises", fields.iter().map(|f| f.von_mises).collect())
         .with_cell_scalars(
             "quality_gamma",

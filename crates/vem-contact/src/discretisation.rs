@@ -139,7 +139,11 @@ impl<const D: usize> ContactDiscretisation<D> {
                     bodies[*body].name()
                 ),
                 Counterpart::Obstacle(o) => {
-                    format!("body '{a}' part '{}' against a rigid {}", pair.part(), o.name())
+                    format!(
+                        "body '{a}' part '{}' against a rigid {}",
+                        pair.part(),
+                        o.name()
+                    )
                 }
             };
             pair_data.push(PairData {
@@ -351,7 +355,8 @@ impl<const D: usize> ContactDiscretisation<D> {
             let values = pair
                 .law
                 .friction_bounds(&self.nodes[r.clone()], law_state.as_ref())?;
-            let values = crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound")?;
+            let values =
+                crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound")?;
             bounds.extend(values);
         }
         Ok(Some(bounds))
@@ -392,8 +397,8 @@ impl<const D: usize> ContactDiscretisation<D> {
         let (solution, fixed_point, mut work, bounds) = match iterated {
             Some(settings) => self.fixed_point(solver, load_factor, &settings)?,
             None => {
-                let system = self
-                    .system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed));
+                let system =
+                    self.system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed));
                 let solution = solver.solve(&system)?;
                 let work = solution.report.work;
                 (solution, None, work, self.start_bounds.clone())

@@ -68,7 +68,10 @@ pub(crate) fn pair_geometry<const D: usize>(
     check(a)?;
     let part = pair.part();
     let mut geometry = match pair.counterpart() {
-        Counterpart::Body { body: b, part: other_part } => {
+        Counterpart::Body {
+            body: b,
+            part: other_part,
+        } => {
             check(*b)?;
             if *b == a {
                 return Err(ContactError::InvalidSetting {
@@ -120,19 +123,14 @@ fn two_bodies<const D: usize>(
         });
     };
     let (name_a, name_b) = (bodies[a].name().to_string(), bodies[b].name().to_string());
-    let interface = insert_interface_nodes(
-        mesh_a,
-        part,
-        mesh_b,
-        other_part,
-        pair.interface_options(),
-    )
-    .map_err(|source| ContactError::Mesh {
-        context: format!(
+    let interface =
+        insert_interface_nodes(mesh_a, part, mesh_b, other_part, pair.interface_options())
+            .map_err(|source| ContactError::Mesh {
+                context: format!(
             "interface between '{part}' of body '{name_a}' and '{other_part}' of body '{name_b}'"
         ),
-        source,
-    })?;
+                source,
+            })?;
     let inserted = interface.inserted_a + interface.inserted_b;
     // A paired end that is not an end of body A's chain: the nodes beyond were left unpaired
     // (beyond the pairing limit, or beyond the end of the other part).
@@ -238,7 +236,13 @@ fn obstacle_nodes<const D: usize>(
         let chain = boundary_chain(mesh, part).map_err(mesh_error)?;
         let nodes: Vec<ContactNode<D>> = chain
             .iter()
-            .map(|c| node(c.vertex, point(c.point.coords.as_slice()), c.tributary_length))
+            .map(|c| {
+                node(
+                    c.vertex,
+                    point(c.point.coords.as_slice()),
+                    c.tributary_length,
+                )
+            })
             .collect();
         let n = nodes.len();
         let mut zone_ends = vec![(0, ZoneLimit::EndOfPart)];

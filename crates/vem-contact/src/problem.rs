@@ -181,7 +181,10 @@ impl<const D: usize> ContactPair<D> {
 
     /// Adds a user initial gap `h0(x)` to the geometric gap (e.g. the paper's setting, where
     /// the two contact parts coincide and the physical gap is a given function).
-    pub fn with_imposed_gap(mut self, gap: impl Fn(PointD<D>) -> f64 + Send + Sync + 'static) -> Self {
+    pub fn with_imposed_gap(
+        mut self,
+        gap: impl Fn(PointD<D>) -> f64 + Send + Sync + 'static,
+    ) -> Self {
         self.imposed_gap = Some(Arc::new(gap));
         self
     }
@@ -403,4 +406,3 @@ impl<const D: usize> ContactProblem<D> {
         Ok(result)
     }
 }
-

@@ -3,7 +3,10 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ActiveSetSolver, CondensedSolver, ContactLaw, ContactProblem, ContactSolver, Coulomb, ExactSettings, ExactSolver, Frictionless, PenaltySolver, Tresca};
+use vem_contact::{
+    ActiveSetSolver, CondensedSolver, ContactLaw, ContactProblem, ContactSolver, Coulomb,
+    ExactSettings, ExactSolver, Frictionless, PenaltySolver, Tresca,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
 use vem_mesh::{Point, Vector};

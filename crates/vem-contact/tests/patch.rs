@@ -5,7 +5,11 @@
 
 use std::sync::Arc;
 
-use vem_contact::{CondensedSolver, ContactLaw, ContactProblem, ContactResult, ContactSolver, Coulomb, ExactSettings, ExactSolver, Frictionless, NodeStatus, Obstacle, PenaltyParameter, PenaltySettings, PenaltySolver, Tresca};
+use vem_contact::{
+    CondensedSolver, ContactLaw, ContactProblem, ContactResult, ContactSolver, Coulomb,
+    ExactSettings, ExactSolver, Frictionless, NodeStatus, Obstacle, PenaltyParameter,
+    PenaltySettings, PenaltySolver, Tresca,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, Point, Vector};
@@ -375,10 +379,9 @@ fn block_on_a_rigid_line_is_compressed_uniformly() {
         point: Point::new(0.0, compression),
         normal: Vector::new(0.0, 1.0),
     };
-    let result =
-        ContactProblem::against_obstacle(body, "bottom", obstacle, Frictionless)
-            .solve(&mut tight_exact())
-            .unwrap();
+    let result = ContactProblem::against_obstacle(body, "bottom", obstacle, Frictionless)
+        .solve(&mut tight_exact())
+        .unwrap();
     assert_eq!(result.bodies.len(), 1);
     assert!(result.model.pairs[0].obstacle);
     let mesh = result.bodies[0].body.mesh();

@@ -5,7 +5,11 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ActiveSetSolver, CondensedSolver, ContactError, ContactLaw, ContactProblem, ContactResult, ContactSolver, ContactSolverError, Coulomb, ExactSolver, Frictionless, NodeStatus, PenaltyParameter, PenaltySettings, PenaltySolver, SolveStatus, Tresca, Warning};
+use vem_contact::{
+    ActiveSetSolver, CondensedSolver, ContactError, ContactLaw, ContactProblem, ContactResult,
+    ContactSolver, ContactSolverError, Coulomb, ExactSolver, Frictionless, NodeStatus,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SolveStatus, Tresca, Warning,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -174,10 +178,7 @@ fn shared_law(bound: Option<f64>) -> std::sync::Arc<dyn ContactLaw> {
 
 #[test]
 fn answers_do_not_depend_on_the_units() {
-    let laws = [
-        (Loading::Tilted, None),
-        (Loading::Shear, Some(0.0015)),
-    ];
+    let laws = [(Loading::Tilted, None), (Loading::Shear, Some(0.0015))];
     let scalings = [
         (1e-6, 1.0),
         (1e6, 1.0),
@@ -223,13 +224,7 @@ fn a_stiffness_contrast_keeps_the_contact_pressure_and_the_statuses() {
     // length, whatever the materials (equilibrium of the upper block gives sum = p).
     let p = 0.01;
     for contrast in [1e8, 1e-8] {
-        let problem = blocks(
-            1.0,
-            1.0,
-            contrast,
-            Loading::Pressure(p),
-            Frictionless,
-        );
+        let problem = blocks(1.0, 1.0, contrast, Loading::Pressure(p), Frictionless);
         for (k, mut solver) in solvers().into_iter().enumerate() {
             let Some(result) = solved_or_refused(&problem, solver.as_mut(), k == 0) else {
                 continue;
@@ -474,8 +469,7 @@ fn wedge(
         .clamp("bottom")
         .build()
         .expect("body");
-    let problem =
-        ContactProblem::two_bodies(upper, "bottom", lower, "top", Frictionless);
+    let problem = ContactProblem::two_bodies(upper, "bottom", lower, "top", Frictionless);
     match options {
         Some(options) => problem.with_interface_options(options),
         None => problem,

@@ -297,13 +297,13 @@ impl<const D: usize> ElasticBody<D> {
         let points = self.mesh.points();
         let mut facet_dofs = Vec::new();
         for traction in &self.tractions {
-            let facets = self
-                .mesh
-                .part_facets(traction.part())
-                .map_err(|source| ElasticError::Mesh {
-                    body: self.name.clone(),
-                    source,
-                })?;
+            let facets =
+                self.mesh
+                    .part_facets(traction.part())
+                    .map_err(|source| ElasticError::Mesh {
+                        body: self.name.clone(),
+                        source,
+                    })?;
             for facet in facets {
                 let corners: Vec<PointD<D>> = facet.iter().map(|&v| points[v]).collect();
                 let load = self
@@ -469,10 +469,9 @@ impl<const D: usize> ElasticBody<D> {
         if (0..modes).any(|a| gram[(a, a)] <= 0.0) {
             return false;
         }
-        let correlation =
-            nalgebra::DMatrix::from_fn(modes, modes, |a, b| {
-                gram[(a, b)] / (gram[(a, a)] * gram[(b, b)]).sqrt()
-            });
+        let correlation = nalgebra::DMatrix::from_fn(modes, modes, |a, b| {
+            gram[(a, b)] / (gram[(a, a)] * gram[(b, b)]).sqrt()
+        });
         correlation.determinant() > 1e-12
     }
 

@@ -226,7 +226,6 @@ impl Traction<2> {
         Self::field(part, traction)
     }
 
-
     /// A normal pressure `pressure` on the boundary part `part` of `mesh`: the traction
     /// `g = -p nu` with `nu` the outward unit normal of the part, so that `p > 0` pushes into
     /// the body and `p < 0` pulls on it.
@@ -281,7 +280,6 @@ impl Traction<2> {
             nearest.map_or_else(Vector::zeros, |&(_, _, outward)| -pressure * outward)
         }))
     }
-
 }
 
 /// Squared distance from `x` to the segment from `start` to `start + tangent`.

@@ -190,7 +190,10 @@ impl Material {
     /// The three-dimensional strain tensor of a body in `D` dimensions whose strain tensor is
     /// `strain`: in 2D the in-plane strain completed by `eps_zz` (zero in plane strain and for
     /// a general tensor, `-lambda / (lambda + 2 mu) (eps_xx + eps_yy)` in plane stress).
-    pub fn strain_state<const D: usize>(&self, strain: &nalgebra::SMatrix<f64, D, D>) -> Matrix3<f64> {
+    pub fn strain_state<const D: usize>(
+        &self,
+        strain: &nalgebra::SMatrix<f64, D, D>,
+    ) -> Matrix3<f64> {
         let mut full = Matrix3::zeros();
         for i in 0..D.min(3) {
             for j in 0..D.min(3) {

@@ -159,7 +159,8 @@ fn uniaxial_tension_stretch_in_plane_stress_and_plane_strain() {
             let fields = body.element_fields(solution.displacement()).unwrap();
             let sigma_zz = if plane == Plane::Strain { nu * t } else { 0.0 };
             for f in fields {
-                let expected = nalgebra::Matrix3::new(t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, sigma_zz);
+                let expected =
+                    nalgebra::Matrix3::new(t, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, sigma_zz);
                 assert!((f.stress - expected).norm() < 1e-10, "{}", f.stress);
                 let von_mises = (t * t + sigma_zz * sigma_zz - t * sigma_zz).sqrt();
                 assert!((f.von_mises - von_mises).abs() < 1e-10);

@@ -109,11 +109,21 @@ impl<const D: usize> ElasticityTensor<D> {
         // Voigt strain with engineering shears.
         let eps: Vec<f64> = pairs
             .iter()
-            .map(|&(i, j)| if i == j { strain[(i, j)] } else { strain[(i, j)] + strain[(j, i)] })
+            .map(|&(i, j)| {
+                if i == j {
+                    strain[(i, j)]
+                } else {
+                    strain[(i, j)] + strain[(j, i)]
+                }
+            })
             .collect();
         let mut sigma = SMatrix::<f64, D, D>::zeros();
         for (a, &(i, j)) in pairs.iter().enumerate() {
-            let value: f64 = eps.iter().enumerate().map(|(b, e)| self.voigt[(a, b)] * e).sum();
+            let value: f64 = eps
+                .iter()
+                .enumerate()
+                .map(|(b, e)| self.voigt[(a, b)] * e)
+                .sum();
             sigma[(i, j)] = value;
             sigma[(j, i)] = value;
         }
@@ -224,7 +234,9 @@ mod tests {
         let strain = nalgebra::Matrix2::new(0.2, 0.05, 0.05, 0.4);
         let sigma = c.stress_tensor(&strain);
         let voigt = c.stress(&Vector3::new(0.2, 0.4, 0.1));
-        assert!((sigma - nalgebra::Matrix2::new(voigt.x, voigt.z, voigt.z, voigt.y)).norm() < 1e-15);
+        assert!(
+            (sigma - nalgebra::Matrix2::new(voigt.x, voigt.z, voigt.z, voigt.y)).norm() < 1e-15
+        );
         // 3D isotropic: sigma = lambda tr(eps) I + 2 mu eps.
         let (lambda, mu) = (2.0, 1.0);
         let mut m = DMatrix::zeros(6, 6);

@@ -123,13 +123,18 @@ impl PlanarElement {
 
     fn polygon(mesh: &dyn BodyMesh<2>, cell: usize) -> Vec<Point> {
         let points = mesh.points();
-        mesh.cell_vertices(cell).iter().map(|&v| points[v]).collect()
+        mesh.cell_vertices(cell)
+            .iter()
+            .map(|&v| points[v])
+            .collect()
     }
 }
 
 impl fmt::Debug for PlanarElement {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_tuple("PlanarElement").field(&self.0.name()).finish()
+        f.debug_tuple("PlanarElement")
+            .field(&self.0.name())
+            .finish()
     }
 }
 
@@ -188,7 +193,12 @@ impl MeshElement<2> for PlanarElement {
     ) -> Result<SMatrix<f64, 2, 2>, SpaceError> {
         let projection = self.0.projection(&Self::polygon(mesh, cell))?;
         let e = projection.strain(local);
-        Ok(SMatrix::<f64, 2, 2>::new(e[0], 0.5 * e[2], 0.5 * e[2], e[1]))
+        Ok(SMatrix::<f64, 2, 2>::new(
+            e[0],
+            0.5 * e[2],
+            0.5 * e[2],
+            e[1],
+        ))
     }
 
     fn as_planar(&self) -> Option<&dyn ElementSpace> {

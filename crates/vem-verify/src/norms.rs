@@ -384,12 +384,15 @@ pub fn body_errors(
     system: &AssembledSystem,
     displacement: &[f64],
 ) -> Result<ErrorNorms, VerifyError> {
-    let element = elastic.element().as_planar().ok_or_else(|| VerifyError::InvalidSetting {
-        reason: format!(
-            "body '{}': the error norms need a polygonal element (its energy projection)",
-            elastic.name()
-        ),
-    })?;
+    let element = elastic
+        .element()
+        .as_planar()
+        .ok_or_else(|| VerifyError::InvalidSetting {
+            reason: format!(
+                "body '{}': the error norms need a polygonal element (its energy projection)",
+                elastic.name()
+            ),
+        })?;
     let projection = projection_errors(exact, body, elastic.mesh(), element, displacement)?;
     let energy = energy_error(exact, body, elastic.mesh(), system, displacement)?;
     Ok(ErrorNorms {

@@ -13,7 +13,7 @@
 use std::sync::Arc;
 
 use vem_contact::{
-    ContactLaw, ContactSolver, ExactSettings, ExactSolver, FixedPointSettings, Coulomb, Tresca,
+    ContactLaw, ContactSolver, Coulomb, ExactSettings, ExactSolver, FixedPointSettings, Tresca,
 };
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Point, Vector};
@@ -158,10 +158,7 @@ fn the_field_bound_is_applied_at_every_node() {
         .unwrap();
     for node in &result.nodes {
         let bound = node.tributary_measure * variable_bound(node.position.x);
-        assert!(
-            node.friction_t().abs() <= bound * (1.0 + 1e-6),
-            "{node:?}"
-        );
+        assert!(node.friction_t().abs() <= bound * (1.0 + 1e-6), "{node:?}");
         if node.position.x < STICK_SLIP_POINT - 0.35 {
             // The exact margin here is at least 2 (x_s - x)^2 > 0.24: far from the bound.
             assert!(node.friction_t().abs() < 0.5 * bound, "{node:?}");

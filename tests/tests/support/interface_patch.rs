@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{CondensedSolver, ContactLaw, ContactProblem, Frictionless};
+use vem_contact::{CondensedSolver, ContactProblem, Frictionless};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::InterfaceOptions;

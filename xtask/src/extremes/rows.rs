@@ -13,7 +13,10 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ContactError, ContactLaw, ContactProblem, ContactResult, FrictionBound, Frictionless, PenaltyParameter, SolverOptions, SolverRegistry, Tresca};
+use vem_contact::{
+    ContactError, ContactLaw, ContactNode, ContactProblem, ContactResult, Frictionless, LawState,
+    PenaltyParameter, SolverOptions, SolverRegistry, Tresca,
+};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
@@ -461,7 +464,7 @@ struct Patch {
     offset: [f64; 2],
     /// The gap beyond the exact normal jump (0: in contact where pressed).
     opening: f64,
-    law: ContactLaw,
+    law: Arc<dyn ContactLaw>,
     cells: Cells,
     /// Both bodies on the same number of cells across (no interface node insertion).
     matching: bool,
@@ -480,7 +483,7 @@ impl Patch {
             lateral: None,
             offset: [0.003, 0.0],
             opening: 0.0,
-            law: Frictionless,
+            law: Arc::new(Frictionless),
             cells: n_cells,
             matching: false,
             element: default_element(),
@@ -832,7 +835,7 @@ pub fn contrast(size: &Size) -> Vec<Row> {
         let mut tied = Patch::pressed(lame, Cells::Quads);
         tied.shear = 0.5 * tied.pressure;
         tied.offset = [0.0, 0.0];
-        tied.law = Tresca::try_new(10.0 * tied.shear).expect("valid bound");
+        tied.law = Arc::new(Tresca::try_new(10.0 * tied.shear).expect("valid bound"));
         rows.push(patch_row(
             format!("E_1/E_2 = {c:.0e}, Tresca stick"),
             &tied,
@@ -986,7 +989,7 @@ pub fn cells(size: &Size) -> Vec<Row> {
         let bound = 0.25 * slip.pressure;
         slip.shear = bound;
         slip.offset = [0.01, 0.0];
-        slip.law = Tresca::try_new(bound).expect("valid bound");
+        slip.law = Arc::new(Tresca::try_new(bound).expect("valid bound"));
         rows.push(patch_row(
             format!("{}, Tresca full slip", kind.describe()),
             &slip,
@@ -1032,7 +1035,7 @@ pub fn penalty(size: &Size) -> Vec<Row> {
 
 /// M1 on non-matching quads (`n` over `3n/2` cells), its contact problem and its exact
 /// solution.
-fn m1_problem(n: usize, law: Option<ContactLaw>) -> Result<ContactProblem, String> {
+fn m1_problem(n: usize, law: Option<Arc<dyn ContactLaw>>) -> Result<ContactProblem, String> {
     let exact = CaseRegistry::builtin()
         .make("M1", Lame::default())
         .map_err(|e| chain(&e))?;
@@ -1047,7 +1050,7 @@ fn m1_problem(n: usize, law: Option<ContactLaw>) -> Result<ContactProblem, Strin
     let Some(law) = law else {
         return Ok(contact);
     };
-    let gap = contact.imposed_gap().cloned();
+    let gap = contact.pairs()[0].imposed_gap().cloned();
     let bodies = problem.bodies();
     let mut posed = ContactProblem::two_bodies(
         bodies[0].clone(),
@@ -1135,7 +1138,7 @@ pub fn friction(size: &Size) -> Vec<Row> {
         outcomes,
     });
     let mut zero = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
-    zero.law = Tresca::try_new(0.0).expect("valid bound");
+    zero.law = Arc::new(Tresca::try_new(0.0).expect("valid bound"));
     rows.push(patch_row(
         "patch test, Tresca g_F = 0 (the frictionless exact field)".to_string(),
         &zero,
@@ -1145,9 +1148,7 @@ pub fn friction(size: &Size) -> Vec<Row> {
         let mut tied = Patch::pressed([(2.0, 1.0), (2.0, 1.0)], Cells::Quads);
         tied.shear = 0.5 * tied.pressure;
         tied.offset = [0.0, 0.0];
-        tied.law = ContactLaw::Tresca {
-            friction_bound: FrictionBound::Constant(bound * tied.pressure),
-        };
+        tied.law = Arc::new(Tresca::try_new(bound * tied.pressure).expect("valid bound"));
         rows.push(patch_row(
             format!("patch test, Tresca g_F = {bound:.0e} p: the tied exact field"),
             &tied,
@@ -1158,14 +1159,14 @@ pub fn friction(size: &Size) -> Vec<Row> {
 }
 
 fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
-    let run = |law: ContactLaw| -> Result<ContactResult, String> {
+    let run = |law: Arc<dyn ContactLaw>| -> Result<ContactResult, String> {
         solve(
             &m1_problem(n, Some(law))?,
             solver,
             &SolverOptions::default(),
         )
     };
-    let reference = match run(Frictionless) {
+    let reference = match run(Arc::new(Frictionless)) {
         Ok(r) => r,
         Err(e) => {
             return Outcome {
@@ -1175,7 +1176,7 @@ fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
             }
         }
     };
-    let zero = run(Tresca::try_new(0.0).expect("valid bound"));
+    let zero = run(Arc::new(Tresca::try_new(0.0).expect("valid bound")));
     judge(solver, zero, |r| {
         let change = answer_change(&reference, r, 1.0, 1.0);
         (
@@ -1257,29 +1258,16 @@ impl ExactSolution for Scaled {
 }
 
 impl ExactContact for Scaled {
-    fn law(&self) -> ContactLaw {
-        let law = self
-            .inner
-            .contact()
-            .map_or(Frictionless, |c| c.law());
-        match law {
-            ContactLaw::Tresca {
-                friction_bound: FrictionBound::Constant(g),
-            } => ContactLaw::Tresca {
-                friction_bound: FrictionBound::Constant(self.modulus * g),
-            },
-            ContactLaw::Tresca {
-                friction_bound: FrictionBound::Field(g),
-            } => {
-                let (s, m) = (self.length, self.modulus);
-                ContactLaw::Tresca {
-                    friction_bound: FrictionBound::Field(Arc::new(move |x: Point| {
-                        m * g(Point::new(x.x / s, x.y / s))
-                    })),
-                }
-            }
-            other => other,
-        }
+    fn law(&self) -> Arc<dyn ContactLaw> {
+        let inner = self.inner.contact().map_or_else(
+            || Arc::new(Frictionless) as Arc<dyn ContactLaw>,
+            |c| c.law(),
+        );
+        Arc::new(ScaledLaw {
+            inner,
+            length: self.length,
+            modulus: self.modulus,
+        })
     }
 
     fn initial_gap(&self, x: f64) -> f64 {
@@ -1287,5 +1275,65 @@ impl ExactContact for Scaled {
             .contact()
             .map_or(0.0, |c| c.initial_gap(x / self.length))
             * self.length
+    }
+}
+
+/// A law on a problem whose lengths are scaled by `length` and moduli by `modulus`: the nodes
+/// and the state are mapped back to the unscaled problem, the bounds (forces) forward by
+/// `length * modulus`.
+#[derive(Debug)]
+struct ScaledLaw {
+    inner: Arc<dyn ContactLaw>,
+    length: f64,
+    modulus: f64,
+}
+
+impl ContactLaw for ScaledLaw {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    fn has_friction(&self) -> bool {
+        self.inner.has_friction()
+    }
+
+    fn friction_bounds(
+        &self,
+        nodes: &[ContactNode],
+        state: Option<&LawState<'_>>,
+    ) -> Result<Vec<f64>, ContactError> {
+        let (s, m) = (self.length, self.modulus);
+        let unscaled: Vec<ContactNode> = nodes
+            .iter()
+            .map(|n| ContactNode {
+                position: Point::new(n.position.x / s, n.position.y / s),
+                tributary_measure: n.tributary_measure / s,
+                geometric_gap: n.geometric_gap / s,
+                initial_gap: n.initial_gap / s,
+                ..*n
+            })
+            .collect();
+        let forces = |f: &[f64]| f.iter().map(|x| x / (s * m)).collect::<Vec<f64>>();
+        let lengths = |u: &[f64]| u.iter().map(|x| x / s).collect::<Vec<f64>>();
+        let bounds = match state {
+            None => self.inner.friction_bounds(&unscaled, None)?,
+            Some(state) => {
+                let (normal, tangential) =
+                    (forces(state.normal_forces), forces(state.tangential_forces));
+                let (jumps, slips) = (lengths(state.normal_jumps), lengths(state.slips));
+                let back = LawState {
+                    normal_forces: &normal,
+                    tangential_forces: &tangential,
+                    normal_jumps: &jumps,
+                    slips: &slips,
+                };
+                self.inner.friction_bounds(&unscaled, Some(&back))?
+            }
+        };
+        Ok(bounds.into_iter().map(|b| b * s * m).collect())
+    }
+
+    fn fixed_point(&self) -> Option<vem_contact::FixedPointSettings> {
+        self.inner.fixed_point()
     }
 }

@@ -27,7 +27,10 @@ impl Coulomb {
     /// # Errors
     /// [`SettingsError`] for a coefficient that is negative or not finite, or invalid
     /// fixed-point settings.
-    pub fn try_with(coefficient: f64, fixed_point: FixedPointSettings) -> Result<Self, SettingsError> {
+    pub fn try_with(
+        coefficient: f64,
+        fixed_point: FixedPointSettings,
+    ) -> Result<Self, SettingsError> {
         SettingsError::non_negative("coefficient", coefficient)?;
         fixed_point.validate()?;
         Ok(Self {

@@ -116,7 +116,12 @@ pub fn projection_errors(
     let (mut grad, mut l2) = (0.0, 0.0);
     for p in 0..mesh.n_polygons() {
         let points = mesh.polygon_points(p);
-        let projection = body.element().as_planar().unwrap().projection(&points).unwrap();
+        let projection = body
+            .element()
+            .as_planar()
+            .unwrap()
+            .projection(&points)
+            .unwrap();
         let local = local_dofs(mesh, p, displacement);
         let g_h = projection.gradient(&local);
         for q in polygon_rule(&points, &rule) {

@@ -345,9 +345,9 @@ fn body_force(d: &Derived, lame: Lame, x: Point) -> Vector {
 impl ExactContact for FamilyA {
     fn law(&self) -> Arc<dyn ContactLaw> {
         match self.case {
-            Case::M2 => Arc::new(
-                Tresca::try_new(FAMILY_A_FRICTION_BOUND).expect("the bound is positive"),
-            ),
+            Case::M2 => {
+                Arc::new(Tresca::try_new(FAMILY_A_FRICTION_BOUND).expect("the bound is positive"))
+            }
             Case::M1 | Case::M3 | Case::M4 => Arc::new(Frictionless),
         }
     }
