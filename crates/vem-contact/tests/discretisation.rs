@@ -175,7 +175,7 @@ fn coulomb_costs_one_assembly_and_one_symbolic_analysis() {
         Box::new(tight_exact()),
         Box::new(CondensedSolver::default()),
     ] {
-        let result = blocks(law.clone(), 0.03).solve(&mut *solver).unwrap();
+        let result = blocks(law, 0.03).solve(&mut *solver).unwrap();
         let steps = result.fixed_point.as_ref().unwrap().steps;
         assert!(steps >= 1);
         assert_eq!(result.work.assemblies, 2, "one per body"); // built once
