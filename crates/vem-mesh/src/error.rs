@@ -277,20 +277,13 @@ pub enum MeshError {
         /// A face unreachable from the cell's first face.
         face: usize,
     },
-    /// The boundary faces do not close up: some edge is traversed by the boundary faces
-    /// (oriented outward) more often in one direction than in the other. Typically two faces
-    /// meant to be shared do not list the same vertices (a hanging node missing in one of them).
-    #[error("the boundary is not closed: boundary faces traverse edge ({a}, {b}) {forward} time(s) from {a} to {b} and {backward} time(s) back (e.g. face {face}); faces meant to be shared must list the same vertices")]
-    OpenBoundary {
-        /// First vertex of the edge.
-        a: usize,
-        /// Second vertex of the edge.
-        b: usize,
-        /// Traversals from a to b.
-        forward: usize,
-        /// Traversals from b to a.
-        backward: usize,
-        /// A boundary face using the edge.
+    /// A vertex lies on a face (in its interior or on one of its edges) without being one of
+    /// its vertices: a hanging node that the face does not list, or two cells overlapping.
+    #[error("vertex {vertex} lies on face {face} but is not one of its vertices: a hanging node must be a vertex of every face it lies on (faces meant to be shared must list the same vertices)")]
+    HangingVertex {
+        /// The vertex.
+        vertex: usize,
+        /// The face it lies on.
         face: usize,
     },
     /// A cell has a negative volume: its faces are oriented inwards.

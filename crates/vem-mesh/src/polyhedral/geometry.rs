@@ -333,8 +333,8 @@ mod tests {
         let area = face_area(&l_shape);
         assert_relative_eq!(area, 3.0, max_relative = 1e-15);
         let centroid = face_centroid(&l_shape);
-        assert_relative_eq!(centroid.x, 7.0 / 6.0, max_relative = 1e-14);
-        assert_relative_eq!(centroid.y, 7.0 / 6.0, max_relative = 1e-14);
+        assert_relative_eq!(centroid.x, 5.0 / 6.0, max_relative = 1e-14);
+        assert_relative_eq!(centroid.y, 5.0 / 6.0, max_relative = 1e-14);
         for field in [
             |p: &Point3| p.x,
             |p: &Point3| p.y,

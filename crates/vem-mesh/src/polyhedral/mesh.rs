@@ -672,46 +672,54 @@ impl CellsBuilder {
         for l in 0..n_loops {
             sorted[loop_offsets[l]..loop_offsets[l + 1]].sort_unstable();
         }
-        let mut face_of_key: HashMap<&[usize], Vec<usize>> = HashMap::with_capacity(n_loops);
+        // The first face with each vertex set; faces with the same set but another cycle
+        // (invalid, reported by the validation as duplicates) go to `others`.
+        let mut face_of_key: HashMap<&[usize], usize, FastHash> =
+            HashMap::with_capacity_and_hasher(n_loops, FastHash::default());
+        let mut others: Vec<(usize, usize)> = Vec::new();
         let mut face_offsets = vec![0usize];
         let mut face_vertices = Vec::with_capacity(self.loop_vertices.len() / 2 + 8);
         let mut slots = Vec::with_capacity(n_loops);
         for l in 0..n_loops {
             let loop_ = &self.loop_vertices[loop_offsets[l]..loop_offsets[l + 1]];
             let key = &sorted[loop_offsets[l]..loop_offsets[l + 1]];
-            let candidates = face_of_key.entry(key).or_default();
+            let next = face_offsets.len() - 1;
+            let first = *face_of_key.entry(key).or_insert(next);
             let mut found = None;
-            for &f in candidates.iter() {
-                let stored = &face_vertices[face_offsets[f]..face_offsets[f + 1]];
-                if let Some(outward) = same_cycle(stored, loop_) {
-                    found = Some(OrientedFace::new(f, outward));
-                    break;
+            if first != next {
+                let candidates = std::iter::once(first).chain(
+                    others
+                        .iter()
+                        .filter(|&&(f, _)| f == first)
+                        .map(|&(_, other)| other),
+                );
+                for f in candidates {
+                    let stored = &face_vertices[face_offsets[f]..face_offsets[f + 1]];
+                    if let Some(outward) = same_cycle(stored, loop_) {
+                        found = Some(OrientedFace::new(f, outward));
+                        break;
+                    }
                 }
             }
             let slot = match found {
                 Some(slot) => slot,
                 None => {
-                    let f = face_offsets.len() - 1;
+                    if first != next {
+                        others.push((first, next));
+                    }
                     face_vertices.extend_from_slice(loop_);
                     face_offsets.push(face_vertices.len());
-                    candidates.push(f);
-                    OrientedFace::new(f, true)
+                    OrientedFace::new(next, true)
                 }
             };
             slots.push(slot);
-        }
-        let mut keys: HashMap<Vec<usize>, usize> = HashMap::new();
-        for f in 0..face_offsets.len() - 1 {
-            let mut key = face_vertices[face_offsets[f]..face_offsets[f + 1]].to_vec();
-            key.sort_unstable();
-            keys.entry(key).or_insert(f);
         }
         MatchedFaces {
             face_offsets,
             face_vertices,
             cell_offsets,
             cell_faces: slots,
-            keys,
+            keys: std::cell::OnceCell::new(),
         }
     }
 }
@@ -722,15 +730,26 @@ pub(crate) struct MatchedFaces {
     pub(crate) face_vertices: Vec<usize>,
     pub(crate) cell_offsets: Vec<usize>,
     pub(crate) cell_faces: Vec<OrientedFace>,
-    keys: HashMap<Vec<usize>, usize>,
+    /// Face of each sorted vertex set, built on the first call of `find`.
+    keys: std::cell::OnceCell<HashMap<Vec<usize>, usize, FastHash>>,
 }
 
 impl MatchedFaces {
     /// The face with the vertices of `loop_` (any order), if any.
     pub(crate) fn find(&self, loop_: &[usize]) -> Option<usize> {
+        let keys = self.keys.get_or_init(|| {
+            let mut keys =
+                HashMap::with_capacity_and_hasher(self.face_offsets.len() - 1, FastHash::default());
+            for f in 0..self.face_offsets.len() - 1 {
+                let mut key = self.face(f).to_vec();
+                key.sort_unstable();
+                keys.entry(key).or_insert(f);
+            }
+            keys
+        });
         let mut key = loop_.to_vec();
         key.sort_unstable();
-        self.keys.get(&key).copied()
+        keys.get(&key).copied()
     }
 
     /// Indices of the faces used by exactly one cell.
@@ -761,6 +780,34 @@ impl MatchedFaces {
             self.cell_faces,
             parts,
         )
+    }
+}
+
+/// A fast multiplicative hash for vertex-index keys (lookups only: nothing depends on the
+/// iteration order of the maps that use it).
+type FastHash = std::hash::BuildHasherDefault<FastHasher>;
+
+/// The hasher of [`FastHash`].
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct FastHasher(u64);
+
+impl std::hash::Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
     }
 }
 

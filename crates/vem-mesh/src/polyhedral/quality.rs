@@ -99,7 +99,7 @@ fn face_figures(points: &[Point3]) -> (f64, f64, f64, f64) {
     }
     let warping = geometry::face_warping(points) / diameter;
     let projected = project_on_plane(points, normal);
-    let radius = crate::quality::star_radius(&projected);
+    let radius = polygon_star_radius(&projected);
     (diameter, radius / diameter, warping, shortest)
 }
 
@@ -122,6 +122,35 @@ pub fn cell_quality(cell: &Polyhedron) -> CellQuality {
         q.shortest_edge_ratio = q.shortest_edge_ratio.min(shortest / diameter);
     }
     q
+}
+
+/// Radius of the largest disc the counter-clockwise polygon `points` is star-shaped with respect
+/// to (0 when it is not star-shaped): the Chebyshev radius of the intersection of its edges'
+/// inner half-planes, by the same linear programme as the cells' (module docs). It agrees with
+/// [`crate::quality::star_radius`], which bisects on the radius instead.
+pub fn polygon_star_radius(points: &[crate::Point]) -> f64 {
+    let m = points.len();
+    let centre = crate::geometry::vertex_mean(points);
+    let scale = crate::geometry::diameter(points);
+    if m < 3 || !(scale > 0.0 && scale.is_finite()) {
+        return 0.0;
+    }
+    let mut normals = Vec::with_capacity(2 * m);
+    let mut offsets = Vec::with_capacity(m);
+    for k in 0..m {
+        let a = (points[k] - centre) / scale;
+        let t = (points[(k + 1) % m] - points[k]) / scale;
+        let length = t.norm();
+        if length > 1e-14 {
+            let n = crate::Vector::new(t.y, -t.x) / length;
+            normals.extend_from_slice(&[n.x, n.y]);
+            offsets.push(n.dot(&a));
+        }
+    }
+    match chebyshev_ball(2, &normals, &offsets) {
+        Some((_, radius)) if radius > 0.0 => radius * scale,
+        _ => 0.0,
+    }
 }
 
 /// Radius of the largest ball the polyhedron `cell` is star-shaped with respect to (0 when it

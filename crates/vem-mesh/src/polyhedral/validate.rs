@@ -20,9 +20,8 @@
 //!    once in each direction, so the cell's surface is closed and consistently oriented
 //!    ([`MeshError::CellNotClosed`]), and are connected through shared edges
 //!    ([`MeshError::DisconnectedCell`]);
-//! 4. boundary: the boundary faces, oriented out of the domain, traverse every edge as often in
-//!    one direction as in the other ([`MeshError::OpenBoundary`]); this catches faces that were
-//!    meant to be shared but list different vertices (a hanging node missing in one);
+//! 4. (the boundary is then a closed surface: a sum of closed cell surfaces in which the interior
+//!    faces cancel in pairs);
 //! 5. coincidence: no two distinct vertices closer than the coincidence tolerance
 //!    ([`MeshError::DuplicateVertices`]);
 //! 6. faces: positive area ([`MeshError::DegenerateFace`]); a planar face (see below) is a
@@ -30,6 +29,10 @@
 //!    does not fold over ([`MeshError::FoldedFace`]);
 //! 7. cells: positive volume ([`MeshError::InvertedCell`] when negative: faces oriented inward;
 //!    [`MeshError::DegenerateCell`] when negligible);
+//! 7b. conformity: no vertex lies on a face, in its interior or on one of its edges, without
+//!    being one of its vertices ([`MeshError::HangingVertex`]): a hanging node must be listed by
+//!    every face it lies on, and two cells meant to share a face must list the same vertices.
+//!    For a warped face only its edges are searched;
 //! 8. parts: unique names ([`MeshError::DuplicatePart`]), faces in range
 //!    ([`MeshError::PartFaceOutOfRange`]) and on the boundary
 //!    ([`MeshError::InteriorFaceInPart`]).
@@ -47,11 +50,11 @@
 //!
 //! # What is not checked
 //!
-//! Cells are checked one by one and through their shared faces; two cells that overlap in space
-//! without any combinatorial defect (for example, a cell whose surface passes through another
-//! cell's interior while every face and edge count is right) are not detected, nor is a cell
-//! whose surface intersects itself with all edges paired: that needs face-face intersection
-//! tests that are not run.
+//! Cells are checked one by one, through their shared faces, and for vertices lying on faces that
+//! do not list them; two cells that overlap in space with no vertex of one on a face of the other
+//! (for example, faces crossing each other's interiors), and a cell whose surface intersects
+//! itself with all edges paired, are not detected: that needs face-face intersection tests that
+//! are not run.
 //!
 //! # Cost
 //!
@@ -268,7 +271,6 @@ pub(crate) fn face_cells(
 pub(crate) fn validate(mesh: &PolyhedralMesh) -> Result<(), MeshError> {
     check_duplicate_faces(mesh)?;
     check_cells_closed(mesh)?;
-    check_boundary_closed(mesh)?;
     let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
     check_duplicate_vertices(mesh, tolerance)?;
     for f in 0..mesh.n_faces() {
@@ -277,7 +279,7 @@ pub(crate) fn validate(mesh: &PolyhedralMesh) -> Result<(), MeshError> {
     for c in 0..mesh.n_cells() {
         check_volume(mesh, c)?;
     }
-    Ok(())
+    check_conformity(mesh, tolerance)
 }
 
 /// The coincidence tolerance of `mesh`: [`COINCIDENCE_RATIO`] times the mean bounding-box
@@ -392,43 +394,6 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
     if ra != rb {
         parent[ra.max(rb)] = ra.min(rb);
     }
-}
-
-/// Step 4: the boundary faces (loops oriented out of the domain) traverse every edge as often
-/// in each direction.
-fn check_boundary_closed(mesh: &PolyhedralMesh) -> Result<(), MeshError> {
-    let mut corners: Vec<(usize, bool, usize)> = Vec::new();
-    for f in mesh.boundary_faces() {
-        let loop_ = mesh.face(f);
-        let edges = mesh.face_edges(f);
-        let n = loop_.len();
-        for k in 0..n {
-            corners.push((edges[k], loop_[k] < loop_[(k + 1) % n], f));
-        }
-    }
-    corners.sort_unstable();
-    let mut i = 0;
-    while i < corners.len() {
-        let e = corners[i].0;
-        let mut j = i;
-        while j < corners.len() && corners[j].0 == e {
-            j += 1;
-        }
-        let forward = corners[i..j].iter().filter(|x| x.1).count();
-        let backward = j - i - forward;
-        if forward != backward {
-            let [a, b] = mesh.edge(e);
-            return Err(MeshError::OpenBoundary {
-                a,
-                b,
-                forward,
-                backward,
-                face: corners[i].2,
-            });
-        }
-        i = j;
-    }
-    Ok(())
 }
 
 /// Step 5: no two distinct vertices closer than `tolerance` (the vertices sorted by the cell of
@@ -594,4 +559,192 @@ pub(crate) fn check_parts(
         }
     }
     Ok(parts)
+}
+
+/// Step 7b: no vertex on a face that does not list it. The vertices are bucketed in a uniform
+/// grid of cells about the mean face size; each face looks at the vertices of the cells its
+/// bounding box (grown by the tolerance) overlaps.
+fn check_conformity(mesh: &PolyhedralMesh, tolerance: f64) -> Result<(), MeshError> {
+    let vertices = mesh.vertices();
+    let mut low = Vector3::repeat(f64::INFINITY);
+    let mut high = Vector3::repeat(f64::NEG_INFINITY);
+    for p in vertices {
+        low = low.inf(&p.coords);
+        high = high.sup(&p.coords);
+    }
+    let mean_face = (0..mesh.n_faces())
+        .map(|f| bounding_diagonal(mesh.face(f).iter().map(|&v| vertices[v])))
+        .sum::<f64>()
+        / mesh.n_faces() as f64;
+    let limit = 2 * (vertices.len() as f64).cbrt() as usize + 2;
+    let extent = high - low;
+    let mut cell = mean_face;
+    if !(cell > 0.0 && cell.is_finite()) {
+        cell = extent.max().max(f64::MIN_POSITIVE);
+    }
+    let dims: [usize; 3] =
+        std::array::from_fn(|a| (((extent[a] / cell).floor() as usize) + 1).clamp(1, limit));
+    let cell: Vector3 = Vector3::from_fn(|a, _| {
+        (extent[a] / dims[a] as f64)
+            .max(cell.min(f64::MAX))
+            .max(f64::MIN_POSITIVE)
+    });
+    let index = |value: f64, a: usize| -> usize {
+        let i = ((value - low[a]) / cell[a]).floor();
+        if i <= 0.0 || i.is_nan() {
+            0
+        } else {
+            (i as usize).min(dims[a] - 1)
+        }
+    };
+    let slot = |i: [usize; 3]| i[0] + dims[0] * (i[1] + dims[1] * i[2]);
+    let mut start = vec![0usize; dims[0] * dims[1] * dims[2] + 1];
+    let keys: Vec<usize> = vertices
+        .iter()
+        .map(|p| slot([index(p.x, 0), index(p.y, 1), index(p.z, 2)]))
+        .collect();
+    for &k in &keys {
+        start[k + 1] += 1;
+    }
+    for c in 0..start.len() - 1 {
+        start[c + 1] += start[c];
+    }
+    let mut fill = start.clone();
+    let mut items = vec![0usize; vertices.len()];
+    for (v, &k) in keys.iter().enumerate() {
+        items[fill[k]] = v;
+        fill[k] += 1;
+    }
+    let mut found: Option<(usize, usize)> = None;
+    for f in 0..mesh.n_faces() {
+        let face = mesh.face(f);
+        let points: Vec<Point3> = face.iter().map(|&v| vertices[v]).collect();
+        let (mut lo, mut hi) = (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        );
+        for p in &points {
+            lo = lo.inf(&p.coords);
+            hi = hi.sup(&p.coords);
+        }
+        lo -= Vector3::repeat(tolerance);
+        hi += Vector3::repeat(tolerance);
+        let planar = PlanarFace::new(&points);
+        for k in index(lo.z, 2)..=index(hi.z, 2) {
+            for j in index(lo.y, 1)..=index(hi.y, 1) {
+                for i in index(lo.x, 0)..=index(hi.x, 0) {
+                    let c = slot([i, j, k]);
+                    for &v in &items[start[c]..start[c + 1]] {
+                        let p = vertices[v];
+                        let inside_box = (0..3).all(|a| p[a] >= lo[a] && p[a] <= hi[a]);
+                        if !inside_box
+                            || face.contains(&v)
+                            || found.is_some_and(|best| (v, f) >= best)
+                        {
+                            continue;
+                        }
+                        if on_face(&points, planar.as_ref(), p, tolerance) {
+                            found = Some((v, f));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    match found {
+        Some((vertex, face)) => Err(MeshError::HangingVertex { vertex, face }),
+        None => Ok(()),
+    }
+}
+
+/// A planar face's frame: its projection and the distance of its plane from its vertices.
+struct PlanarFace {
+    centre: Point3,
+    normal: Vector3,
+    projected: Vec<Point>,
+    u: Vector3,
+    v: Vector3,
+    slack: f64,
+}
+
+impl PlanarFace {
+    /// The frame of a planar face (`None` for a warped or degenerate one).
+    fn new(points: &[Point3]) -> Option<Self> {
+        let normal = geometry::face_normal(points);
+        let diameter = geometry::diameter(points);
+        let warping = geometry::face_warping(points);
+        if normal == Vector3::zeros() || warping > PLANARITY_RATIO * diameter {
+            return None;
+        }
+        let projected = project_on_plane(points, normal);
+        let centre = geometry::vertex_mean(points);
+        // The frame of `project_on_plane`, recomputed for single points.
+        let helper = if normal.x.abs() <= normal.y.abs() && normal.x.abs() <= normal.z.abs() {
+            Vector3::x()
+        } else if normal.y.abs() <= normal.z.abs() {
+            Vector3::y()
+        } else {
+            Vector3::z()
+        };
+        let u = normal.cross(&helper).normalize();
+        let v = normal.cross(&u);
+        Some(Self {
+            centre,
+            normal,
+            projected,
+            u,
+            v,
+            slack: warping,
+        })
+    }
+}
+
+/// True when `p` lies on the face `points`: on one of its edges away from the end points (all
+/// faces), or inside it (planar faces), to `tolerance`.
+fn on_face(points: &[Point3], planar: Option<&PlanarFace>, p: Point3, tolerance: f64) -> bool {
+    let n = points.len();
+    for k in 0..n {
+        let (a, b) = (points[k], points[(k + 1) % n]);
+        let along = b - a;
+        let length = along.norm();
+        if length <= 2.0 * tolerance {
+            continue;
+        }
+        let t = (p - a).dot(&along) / length;
+        if t > tolerance && t < length - tolerance {
+            let off = (p - a) - along * (t / length);
+            if off.norm() <= tolerance {
+                return true;
+            }
+        }
+    }
+    let Some(face) = planar else {
+        return false;
+    };
+    let d = p - face.centre;
+    if d.dot(&face.normal).abs() > tolerance + face.slack {
+        return false;
+    }
+    let q = Point::new(d.dot(&face.u), d.dot(&face.v));
+    // Strictly inside (the boundary was handled above): crossing number, and away from the
+    // vertices.
+    if face
+        .projected
+        .iter()
+        .any(|&corner| (corner - q).norm() <= tolerance)
+    {
+        return false;
+    }
+    let mut inside = false;
+    let m = face.projected.len();
+    for k in 0..m {
+        let (a, b) = (face.projected[k], face.projected[(k + 1) % m]);
+        if (a.y > q.y) != (b.y > q.y) {
+            let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if x > q.x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
 }
