@@ -289,14 +289,19 @@ mod tests {
 
     #[test]
     fn cube_far_from_the_origin() {
+        // Coordinates exactly representable, so any error is the algorithm's.
         let origin = Vector3::new(1e6, -3e5, 2e7);
-        let c = cube(origin, 1e-2);
+        let side = 1.0 / 64.0;
+        let c = cube(origin, side);
         let (volume, centroid) = c.volume_and_centroid();
-        assert_relative_eq!(volume, 1e-6, max_relative = 1e-9);
-        let expected = Point3::from(origin + Vector3::repeat(5e-3));
-        assert!((centroid - expected).norm() < 1e-9, "{centroid}");
-        assert!(c.total_vector_area().norm() < 1e-12);
-        assert_relative_eq!(c.diameter(), 3f64.sqrt() * 1e-2, max_relative = 1e-9);
+        assert_relative_eq!(volume, side.powi(3), max_relative = 1e-12);
+        let expected = Point3::from(origin + Vector3::repeat(side / 2.0));
+        assert!(
+            (centroid - expected).norm() < 1e-12 * side + 4e-9,
+            "{centroid}"
+        );
+        assert!(c.total_vector_area().norm() < 1e-15);
+        assert_relative_eq!(c.diameter(), 3f64.sqrt() * side, max_relative = 1e-12);
     }
 
     #[test]

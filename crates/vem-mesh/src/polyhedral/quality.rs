@@ -523,6 +523,6 @@ mod tests {
             1.0 / (2.0 * 3f64.sqrt()),
             max_relative = 1e-10
         );
-        assert_eq!(q.face_warping, 0.0);
+        assert!(q.face_warping < 1e-15);
     }
 }

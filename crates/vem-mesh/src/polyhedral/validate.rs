@@ -20,8 +20,8 @@
 //!    once in each direction, so the cell's surface is closed and consistently oriented
 //!    ([`MeshError::CellNotClosed`]), and are connected through shared edges
 //!    ([`MeshError::DisconnectedCell`]);
-//! 4. (the boundary is then a closed surface: a sum of closed cell surfaces in which the interior
-//!    faces cancel in pairs);
+//! 4. boundary: nothing left to check, it is a closed surface (the sum of the closed cell
+//!    surfaces, in which the interior faces cancel in pairs);
 //! 5. coincidence: no two distinct vertices closer than the coincidence tolerance
 //!    ([`MeshError::DuplicateVertices`]);
 //! 6. faces: positive area ([`MeshError::DegenerateFace`]); a planar face (see below) is a
@@ -29,11 +29,11 @@
 //!    does not fold over ([`MeshError::FoldedFace`]);
 //! 7. cells: positive volume ([`MeshError::InvertedCell`] when negative: faces oriented inward;
 //!    [`MeshError::DegenerateCell`] when negligible);
-//! 7b. conformity: no vertex lies on a face, in its interior or on one of its edges, without
+//! 8. conformity: no vertex lies on a face, in its interior or on one of its edges, without
 //!    being one of its vertices ([`MeshError::HangingVertex`]): a hanging node must be listed by
 //!    every face it lies on, and two cells meant to share a face must list the same vertices.
 //!    For a warped face only its edges are searched;
-//! 8. parts: unique names ([`MeshError::DuplicatePart`]), faces in range
+//! 9. parts: unique names ([`MeshError::DuplicatePart`]), faces in range
 //!    ([`MeshError::PartFaceOutOfRange`]) and on the boundary
 //!    ([`MeshError::InteriorFaceInPart`]).
 //!
@@ -267,7 +267,7 @@ pub(crate) fn face_cells(
     Ok((result, reversed))
 }
 
-/// Steps 2 (duplicate faces) to 7 on a mesh whose storage and face sharing are consistent.
+/// Steps 2 (duplicate faces) to 8 on a mesh whose storage and face sharing are consistent.
 pub(crate) fn validate(mesh: &PolyhedralMesh) -> Result<(), MeshError> {
     check_duplicate_faces(mesh)?;
     check_cells_closed(mesh)?;
@@ -529,7 +529,7 @@ fn check_volume(mesh: &PolyhedralMesh, cell: usize) -> Result<(), MeshError> {
     Ok(())
 }
 
-/// Step 8: parts name boundary faces that exist, under distinct names.
+/// Step 9: parts name boundary faces that exist, under distinct names.
 pub(crate) fn check_parts(
     mesh: &PolyhedralMesh,
     parts: Vec<FacePart>,
@@ -561,7 +561,7 @@ pub(crate) fn check_parts(
     Ok(parts)
 }
 
-/// Step 7b: no vertex on a face that does not list it. The vertices are bucketed in a uniform
+/// Step 8: no vertex on a face that does not list it. The vertices are bucketed in a uniform
 /// grid of cells about the mean face size; each face looks at the vertices of the cells its
 /// bounding box (grown by the tolerance) overlaps.
 fn check_conformity(mesh: &PolyhedralMesh, tolerance: f64) -> Result<(), MeshError> {

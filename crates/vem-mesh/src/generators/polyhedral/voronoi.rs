@@ -514,14 +514,14 @@ fn conforming(
     let mut sum = vec![Vector3::zeros(); points.len()];
     let mut members = vec![0usize; points.len()];
     let mut sides = vec![0u8; points.len()];
-    for k in 0..points.len() {
+    for (k, point) in points.iter().enumerate() {
         let r = root(&mut parent, k);
-        sum[r] += points[k].coords;
+        sum[r] += point.coords;
         members[r] += 1;
-        for axis in 0..3 {
-            if (points[k][axis] - cuboid.min[axis]).abs() <= snap_tolerance {
+        for (axis, &value) in point.iter().enumerate() {
+            if (value - cuboid.min[axis]).abs() <= snap_tolerance {
                 sides[r] |= 1 << (2 * axis);
-            } else if (points[k][axis] - cuboid.max[axis]).abs() <= snap_tolerance {
+            } else if (value - cuboid.max[axis]).abs() <= snap_tolerance {
                 sides[r] |= 2 << (2 * axis);
             }
         }
