@@ -621,6 +621,7 @@ pub(crate) struct CellsBuilder {
 }
 
 impl CellsBuilder {
+    #[cfg(feature = "generators")]
     /// A builder with room for about `cells` cells of `faces` faces of `corners` vertices.
     pub(crate) fn with_capacity(cells: usize, faces: usize, corners: usize) -> Self {
         let mut loop_offsets = Vec::with_capacity(cells * faces + 1);
@@ -753,6 +754,7 @@ impl MatchedFaces {
     }
 
     /// Indices of the faces used by exactly one cell.
+    #[cfg(feature = "generators")]
     pub(crate) fn boundary_faces(&self) -> Vec<usize> {
         let mut count = vec![0u8; self.face_offsets.len() - 1];
         for slot in &self.cell_faces {

@@ -17,5 +17,6 @@ mod mesh;
 pub mod quality;
 pub mod validate;
 
+#[cfg(feature = "generators")]
 pub(crate) use mesh::CellsBuilder;
 pub use mesh::{FaceCells, FacePart, FacePartSpec, OrientedFace, PolyhedralMesh};

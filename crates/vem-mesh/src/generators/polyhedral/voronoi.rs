@@ -23,7 +23,10 @@ use super::{box_counts, mesh_with_box_sides, Cuboid, SIDE_NAMES};
 use crate::polyhedral::CellsBuilder;
 use crate::{MeshError, Point3, PolyhedralMesh, Vector3};
 
-/// Number of Lloyd iterations [`voronoi_polyhedra`] runs.
+/// Number of Lloyd iterations [`voronoi_polyhedra`] runs. Measured on the unit cube at n = 16
+/// (4096 cells, seed 1): 10 iterations raise the smallest star-shaped ratio from 0.18 to 0.21
+/// for 1.6 times the generation time; the edge and face ratios are set by the merge
+/// ([`SHORT_EDGE_RATIO_3D`]) either way.
 pub const VORONOI_LLOYD_ITERATIONS: usize = 5;
 
 /// Vertices of the Voronoi cells closer than this times the site spacing (the cube root of the
