@@ -904,8 +904,15 @@ proptest! {
 
     /// Random seeds and sizes give valid meshes that fill the box.
     #[test]
-    fn random_meshes_are_valid(seed in 0u64..1_000_000, n in 1usize..5, distortion in 0.0f64..=0.25) {
-        let cuboid = cuboids()[1];
+    fn random_meshes_are_valid(
+        seed in 0u64..1_000_000,
+        n in 1usize..5,
+        distortion in 0.0f64..=0.25,
+        which in 0usize..3,
+    ) {
+        // Two boxes of near-cubic cells and a slab whose cells are ten times thinner in y.
+        let slab = Cuboid::new(Point3::origin(), Point3::new(1.0, 0.1, 3.0));
+        let cuboid = [cuboids()[0], cuboids()[1], slab][which];
         for mesh in [
             voronoi_polyhedra(&cuboid, n, seed).unwrap(),
             perturbed_hexahedra(&cuboid, n, distortion, seed).unwrap(),
