@@ -423,9 +423,8 @@ fn decode_polyhedral(text: &str) -> DecodedPolyhedral {
     let mut cells = Vec::new();
     let mut current: Vec<Vec<usize>> = Vec::new();
     let mut parts: Vec<vem_mesh::FacePartSpec> = Vec::new();
-    let indices = |fields: &[&str]| -> Option<Vec<usize>> {
-        fields.iter().map(|i| i.parse().ok()).collect()
-    };
+    let indices =
+        |fields: &[&str]| -> Option<Vec<usize>> { fields.iter().map(|i| i.parse().ok()).collect() };
     for line in text.lines().take(100_000) {
         let fields: Vec<&str> = line.split_whitespace().collect();
         match fields.as_slice() {
