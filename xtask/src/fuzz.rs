@@ -11,6 +11,10 @@
 //! - `interface`: interface node insertion (`insert_interface_nodes`) between two text meshes
 //!   (a first line `parts A B`, the meshes separated by a line `---`); seeds: pairs of generated
 //!   meshes of different sizes facing each other.
+//! - `polyhedral`: polyhedral mesh validation (`PolyhedralMesh::from_polyhedra`) and cell
+//!   quality on meshes written as text (`v x y z` vertices, `f i j k ...` faces of the current
+//!   cell, `c` ending a cell, `b part i j k ...` part faces); seeds: generated polyhedral
+//!   meshes of every family.
 //!
 //! Each input is a seed changed by one to four byte or structure mutations (bit flips, random
 //! bytes, deletions, duplications, splices with another seed, lines deleted, duplicated or
@@ -41,7 +45,7 @@ pub struct FuzzArgs {
     /// given.
     #[arg(long)]
     pub seconds: Option<f64>,
-    /// Fuzz only this target: scene, gmsh, validate or interface.
+    /// Fuzz only this target: scene, gmsh, validate, interface or polyhedral.
     #[arg(long)]
     pub target: Option<String>,
     /// Seed of the mutation generator (runs with the same seed and the same number of inputs
@@ -99,6 +103,11 @@ pub fn targets() -> Vec<Target> {
             name: "interface",
             run: run_interface,
             seeds: interface_seeds,
+        },
+        Target {
+            name: "polyhedral",
+            run: run_polyhedral,
+            seeds: polyhedral_seeds,
         },
     ]
 }
@@ -340,6 +349,104 @@ fn generated_meshes() -> Vec<Mesh> {
     .into_iter()
     .map(|m| m.expect("seed mesh"))
     .collect()
+}
+
+fn run_polyhedral(input: &[u8]) -> Verdict {
+    let (vertices, cells, parts) = decode_polyhedral(&String::from_utf8_lossy(input));
+    let mesh = match vem_mesh::PolyhedralMesh::from_polyhedra(vertices, &cells, parts) {
+        Ok(mesh) => mesh,
+        Err(_) => return Verdict::Rejected,
+    };
+    for c in 0..mesh.n_cells() {
+        let (volume, centroid) = mesh.cell_polyhedron(c).volume_and_centroid();
+        if !(volume.is_finite() && volume > 0.0 && centroid.iter().all(|x| x.is_finite())) {
+            return Verdict::NonFinite(format!("cell {c}: volume {volume}, centroid {centroid}"));
+        }
+        let quality = mesh.cell_quality(c);
+        if !(quality.gamma().is_finite() && quality.face_warping.is_finite()) {
+            return Verdict::NonFinite(format!("cell {c}: quality {quality:?}"));
+        }
+    }
+    Verdict::Accepted
+}
+
+fn polyhedral_seeds() -> Vec<Vec<u8>> {
+    use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
+    PolyhedralFamily::all()
+        .iter()
+        .map(|family| {
+            let mesh = family
+                .generate(&Cuboid::unit_cube(), 2, 3)
+                .expect("seed mesh");
+            encode_polyhedral(&mesh).into_bytes()
+        })
+        .collect()
+}
+
+/// The text form of a polyhedral mesh used by the `polyhedral` target.
+fn encode_polyhedral(mesh: &vem_mesh::PolyhedralMesh) -> String {
+    let mut text = String::new();
+    for p in mesh.vertices() {
+        text += &format!("v {:?} {:?} {:?}\n", p.x, p.y, p.z);
+    }
+    let join = |loop_: &[usize]| -> String {
+        loop_
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    for c in 0..mesh.n_cells() {
+        for face in mesh.cell_face_loops(c) {
+            text += &format!("f {}\n", join(&face));
+        }
+        text += "c\n";
+    }
+    for part in mesh.parts() {
+        for &f in &part.faces {
+            text += &format!("b {} {}\n", part.name, join(mesh.face(f)));
+        }
+    }
+    text
+}
+
+type DecodedPolyhedral = (
+    Vec<vem_mesh::Point3>,
+    Vec<Vec<Vec<usize>>>,
+    Vec<vem_mesh::FacePartSpec>,
+);
+
+/// Reads the text form of [`encode_polyhedral`]; lines it cannot read are skipped, and at most
+/// 10^5 lines are read.
+fn decode_polyhedral(text: &str) -> DecodedPolyhedral {
+    let mut vertices = Vec::new();
+    let mut cells = Vec::new();
+    let mut current: Vec<Vec<usize>> = Vec::new();
+    let mut parts: Vec<vem_mesh::FacePartSpec> = Vec::new();
+    let indices =
+        |fields: &[&str]| -> Option<Vec<usize>> { fields.iter().map(|i| i.parse().ok()).collect() };
+    for line in text.lines().take(100_000) {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        match fields.as_slice() {
+            ["v", x, y, z] => {
+                if let (Ok(x), Ok(y), Ok(z)) = (x.parse(), y.parse(), z.parse()) {
+                    vertices.push(vem_mesh::Point3::new(x, y, z));
+                }
+            }
+            ["f", rest @ ..] => current.extend(indices(rest)),
+            ["c"] => cells.push(std::mem::take(&mut current)),
+            ["b", name, rest @ ..] => {
+                if let Some(face) = indices(rest) {
+                    match parts.iter_mut().find(|p| p.name == *name) {
+                        Some(part) => part.faces.push(face),
+                        None => parts.push(vem_mesh::FacePartSpec::new(*name, vec![face])),
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    (vertices, cells, parts)
 }
 
 fn files_with_extension(dir: &Path, extension: &str) -> Vec<Vec<u8>> {

@@ -139,6 +139,232 @@ pub enum MeshError {
         /// Second polygon.
         b: usize,
     },
+    /// A polyhedral mesh has no vertices, faces or cells.
+    #[error("the polyhedral mesh is empty ({vertices} vertices, {faces} faces, {cells} cells)")]
+    EmptyPolyhedral {
+        /// Number of vertices given.
+        vertices: usize,
+        /// Number of faces given.
+        faces: usize,
+        /// Number of cells given.
+        cells: usize,
+    },
+    /// A vertex of a polyhedral mesh has a NaN or infinite coordinate.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFiniteVertex3 {
+        /// Vertex index.
+        vertex: usize,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+        /// Its z coordinate.
+        z: f64,
+    },
+    /// A face of a polyhedral mesh has fewer than three vertices.
+    #[error("face {face} has {count} vertices; at least 3 are needed")]
+    FaceTooFewVertices {
+        /// Face index.
+        face: usize,
+        /// Its number of vertices.
+        count: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} refers to vertex {vertex}, but the mesh has {vertex_count} vertices")]
+    FaceVertexOutOfRange {
+        /// Face index.
+        face: usize,
+        /// The offending vertex index.
+        vertex: usize,
+        /// Number of vertices of the mesh.
+        vertex_count: usize,
+    },
+    /// A face lists the same vertex twice.
+    #[error("face {face} lists vertex {vertex} more than once")]
+    FaceRepeatedVertex {
+        /// Face index.
+        face: usize,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// A cell refers to a face that does not exist.
+    #[error("cell {cell} refers to face {face}, but the mesh has {face_count} faces")]
+    CellFaceOutOfRange {
+        /// Cell index.
+        cell: usize,
+        /// The offending face index.
+        face: usize,
+        /// Number of faces of the mesh.
+        face_count: usize,
+    },
+    /// A cell has fewer than four faces.
+    #[error("cell {cell} has {count} faces; a polyhedron needs at least 4")]
+    CellTooFewFaces {
+        /// Cell index.
+        cell: usize,
+        /// Its number of faces.
+        count: usize,
+    },
+    /// A cell lists the same face twice.
+    #[error("cell {cell} lists face {face} more than once")]
+    CellRepeatedFace {
+        /// Cell index.
+        cell: usize,
+        /// The repeated face.
+        face: usize,
+    },
+    /// A face belongs to no cell.
+    #[error("face {face} belongs to no cell")]
+    UnusedFace {
+        /// Face index.
+        face: usize,
+    },
+    /// A face belongs to more than two cells.
+    #[error("face {face} belongs to {} cells ({cells:?}); a face may bound at most two", cells.len())]
+    OverusedFace {
+        /// Face index.
+        face: usize,
+        /// The cells using it.
+        cells: Vec<usize>,
+    },
+    /// The two cells of an interior face see it with the same orientation (both outward or
+    /// both inward), so they lie on the same side of it.
+    #[error("face {face} is seen {} by both its cells {cells:?}; an interior face must be outward for one cell and inward for the other", if *outward { "outward" } else { "inward" })]
+    FaceSameOrientation {
+        /// Face index.
+        face: usize,
+        /// The two cells.
+        cells: [usize; 2],
+        /// How both see it.
+        outward: bool,
+    },
+    /// Two faces have the same vertices.
+    #[error("faces {a} and {b} have the same vertices")]
+    DuplicateFace {
+        /// First face.
+        a: usize,
+        /// Second face.
+        b: usize,
+    },
+    /// A vertex belongs to no face.
+    #[error("vertex {vertex} belongs to no face")]
+    UnusedVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// A cell's faces, oriented as the cell sees them, do not close up consistently: some edge
+    /// is not traversed exactly once in each direction.
+    #[error("cell {cell} is not a closed, consistently oriented surface: its faces traverse edge ({a}, {b}) {forward} time(s) from {a} to {b} and {backward} time(s) back")]
+    CellNotClosed {
+        /// Cell index.
+        cell: usize,
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+        /// Traversals from a to b.
+        forward: usize,
+        /// Traversals from b to a.
+        backward: usize,
+    },
+    /// A cell's faces form more than one connected surface.
+    #[error(
+        "cell {cell} is not connected: face {face} shares no chain of edges with its first face"
+    )]
+    DisconnectedCell {
+        /// Cell index.
+        cell: usize,
+        /// A face unreachable from the cell's first face.
+        face: usize,
+    },
+    /// A vertex lies on a face (in its interior or on one of its edges) without being one of
+    /// its vertices: a hanging node that the face does not list, or two cells overlapping.
+    #[error("vertex {vertex} lies on face {face} but is not one of its vertices: a hanging node must be a vertex of every face it lies on (faces meant to be shared must list the same vertices)")]
+    HangingVertex {
+        /// The vertex.
+        vertex: usize,
+        /// The face it lies on.
+        face: usize,
+    },
+    /// A cell has a negative volume: its faces are oriented inwards.
+    #[error("cell {cell} is inverted (volume {volume:e}): its faces must be oriented outwards")]
+    InvertedCell {
+        /// Cell index.
+        cell: usize,
+        /// Its signed volume.
+        volume: f64,
+    },
+    /// A cell has zero volume (relative to its size cubed).
+    #[error("cell {cell} has zero or negligible volume ({volume:e})")]
+    DegenerateCell {
+        /// Cell index.
+        cell: usize,
+        /// Its signed volume.
+        volume: f64,
+    },
+    /// A face has zero area (relative to its size squared).
+    #[error("face {face} has zero or negligible area ({area:e})")]
+    DegenerateFace {
+        /// Face index.
+        face: usize,
+        /// Its area.
+        area: f64,
+    },
+    /// Two edges of a planar face cross or touch away from their shared vertex.
+    #[error(
+        "face {face} intersects itself: its edges {edge_a} and {edge_b} (local numbering) cross"
+    )]
+    SelfIntersectingFace {
+        /// Face index.
+        face: usize,
+        /// Local index of the first edge (edge k joins local vertices k and k+1).
+        edge_a: usize,
+        /// Local index of the second edge.
+        edge_b: usize,
+    },
+    /// A warped (non-planar) face whose fan triangulation about its vertex mean folds over:
+    /// seen along the face's mean normal, its fan triangle `triangle` (local vertices
+    /// `triangle` and `triangle + 1` with the mean) is reversed or flat.
+    #[error("face {face} is warped (out of plane by {warping:e} of its diameter) and its fan triangle {triangle} folds over")]
+    FoldedFace {
+        /// Face index.
+        face: usize,
+        /// Local index of the folded fan triangle.
+        triangle: usize,
+        /// Largest distance of a vertex from the face's mean plane, divided by its diameter.
+        warping: f64,
+    },
+    /// A boundary part of a polyhedral mesh names a face index that does not exist.
+    #[error("boundary part '{part}' names face {face}, but the mesh has {face_count} faces")]
+    PartFaceOutOfRange {
+        /// The part's name.
+        part: String,
+        /// The face index.
+        face: usize,
+        /// Number of faces of the mesh.
+        face_count: usize,
+    },
+    /// A boundary part of a polyhedral mesh names a face (by its vertices) that is not a face of
+    /// the mesh.
+    #[error("boundary part '{part}' names the face with vertices {vertices:?}, which is not a face of the mesh")]
+    UnknownFace {
+        /// The part's name.
+        part: String,
+        /// The vertices given.
+        vertices: Vec<usize>,
+    },
+    /// A boundary part of a polyhedral mesh names an interior face.
+    #[error(
+        "boundary part '{part}' names face {face}, which is interior (shared by cells {cells:?})"
+    )]
+    InteriorFaceInPart {
+        /// The part's name.
+        part: String,
+        /// The face index.
+        face: usize,
+        /// Its two cells.
+        cells: [usize; 2],
+    },
     /// A boundary part names an edge that is not an edge of the mesh.
     #[error("boundary part '{part}' names ({a}, {b}), which is not an edge of the mesh")]
     UnknownEdge {

@@ -28,6 +28,14 @@
 //! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input | none |
 //! | `vtu` | `io::write_vtu`: VTK `.vtu` output | none |
 //! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes | none |
+//!
+//! # Polyhedral meshes
+//!
+//! [`PolyhedralMesh`] (module [`polyhedral`]) is the three-dimensional counterpart: vertices in
+//! space, polygonal faces stored once with their one or two cells, cells as lists of oriented
+//! faces, derived edges and named boundary parts made of boundary faces; its generators (hexahedra,
+//! tetrahedra, perturbed hexahedra, Voronoi, non-convex prisms, octree cubes with hanging nodes)
+//! are in `generators::polyhedral` behind the `generators` feature.
 #![deny(missing_docs)]
 
 mod body_mesh;
@@ -38,6 +46,7 @@ pub mod geometry;
 pub mod interface;
 pub mod io;
 mod mesh;
+pub mod polyhedral;
 pub mod quality;
 pub mod validate;
 
@@ -47,8 +56,14 @@ pub use interface::{
     boundary_chain, insert_interface_nodes, ChainNode, Interface, InterfaceOptions, InterfacePair,
 };
 pub use mesh::{BoundaryPart, Edge, Mesh, PartSpec};
+pub use polyhedral::{FaceCells, FacePart, FacePartSpec, OrientedFace, PolyhedralMesh};
 
 /// A point of the plane.
 pub type Point = nalgebra::Point2<f64>;
 /// A vector of the plane.
 pub type Vector = nalgebra::Vector2<f64>;
+
+/// A point of space (the vertices of a [`PolyhedralMesh`]).
+pub type Point3 = nalgebra::Point3<f64>;
+/// A vector of space.
+pub type Vector3 = nalgebra::Vector3<f64>;

@@ -34,6 +34,7 @@ mod hanging;
 mod hexagons;
 mod nonconvex;
 mod perturbed;
+pub mod polyhedral;
 mod structured;
 mod voronoi;
 
