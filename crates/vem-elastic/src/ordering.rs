@@ -43,7 +43,7 @@ impl Ordering {
     /// Unknowns to order from which [`Ordering::Auto`] takes nested dissection: below, AMD's
     /// factor is at most a few per cent larger and AMD is computed faster (measured in
     /// `docs/benchmarks.md`).
-    pub const NESTED_DISSECTION_MIN_UNKNOWNS: usize = 20_000;
+    pub const NESTED_DISSECTION_MIN_UNKNOWNS: usize = 200_000;
 
     /// Whether [`Ordering::NestedDissection`] is compiled in (the `metis` feature).
     pub const fn nested_dissection_available() -> bool {
