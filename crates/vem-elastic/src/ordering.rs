@@ -295,16 +295,15 @@ impl Graph {
         // in vertex order), members in increasing order.
         let mut index = vec![NONE; n];
         let mut count = 0;
-        for v in 0..n {
-            let r = representative[v];
+        for &r in &representative {
             if index[r] == NONE {
                 index[r] = count;
                 count += 1;
             }
         }
         let mut ptr = vec![0usize; count + 1];
-        for v in 0..n {
-            ptr[index[representative[v]] + 1] += 1;
+        for &r in &representative {
+            ptr[index[r] + 1] += 1;
         }
         for s in 0..count {
             ptr[s + 1] += ptr[s];
