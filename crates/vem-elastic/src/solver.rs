@@ -956,7 +956,12 @@ mod tests {
         let mut supernodal_seen = false;
         for (a, trailing) in &cases {
             let n = a.nrows();
-            for ordering in [Ordering::Amd, Ordering::Natural] {
+            for ordering in [
+                Ordering::Amd,
+                Ordering::Natural,
+                #[cfg(feature = "metis")]
+                Ordering::NestedDissection,
+            ] {
                 let settings = CholeskySettings::builder()
                     .ordering(ordering)
                     .build()
