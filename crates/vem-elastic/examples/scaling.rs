@@ -2,17 +2,23 @@
 //!
 //! ```text
 //! cargo run --release -p vem-elastic --example scaling [-- --family voronoi|quads] [--dofs 1e5,1e6]
+//!     [--ordering auto|amd|nd|natural]
 //! ```
 //!
 //! For each target size: a mesh of the unit square, clamped on all sides, loaded by a body
 //! force; prints mesh, assembly, symbolic analysis, numeric factorisation, refactorisation (new
 //! values, same pattern), solve times, the number of stored entries of `K_ff` and of the
-//! factor, and the process's peak resident memory (VmHWM) after each phase.
+//! factor, the flops of one factorisation, and the process's peak resident memory (VmHWM)
+//! after each phase; then one table row (`| family | unknowns | ordering | analyse | factor
+//! entries | flops | factorise | solve | peak |`) for `docs/benchmarks.md`. Run one size and
+//! ordering per process for a peak that belongs to that ordering alone.
 
 use std::sync::Arc;
 use std::time::Instant;
 
-use vem_elastic::{CholeskySolver, ElasticBody, LinearSolver, Material, Plane};
+use vem_elastic::{
+    CholeskySettings, CholeskySolver, ElasticBody, LinearSolver, Material, Ordering, Plane,
+};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::Vector;
 use vem_space::LowestOrderVem;
@@ -42,6 +48,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut family = MeshFamily::Voronoi;
     let mut targets = vec![1e5, 1e6];
+    let mut ordering = Ordering::Auto;
     let mut i = 0;
     while i < args.len() {
         match (args[i].as_str(), args.get(i + 1)) {
@@ -51,6 +58,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .split(',')
                     .map(str::parse::<f64>)
                     .collect::<Result<_, _>>()?;
+            }
+            ("--ordering", Some(name)) => {
+                ordering = match name.as_str() {
+                    "auto" => Ordering::Auto,
+                    "amd" => Ordering::Amd,
+                    "nd" => Ordering::NestedDissection,
+                    "natural" => Ordering::Natural,
+                    other => return Err(format!("unknown ordering '{other}'").into()),
+                }
             }
             (other, _) => return Err(format!("unknown or incomplete argument '{other}'").into()),
         }
@@ -103,18 +119,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             clock.elapsed().as_secs_f64()
         );
 
-        let mut solver = CholeskySolver::default();
+        let mut solver =
+            CholeskySolver::new(CholeskySettings::builder().ordering(ordering).build()?);
         let clock = Instant::now();
         solver.analyse(system.stiffness().symbolic())?;
         let t_symbolic = clock.elapsed().as_secs_f64();
+        let stats = solver.statistics();
         println!(
-            "  symbolic (AMD)    {t_symbolic:8.3} s   factor entries {} ({}), peak {}",
-            solver.factor_len().unwrap_or(0),
+            "  symbolic ({:?})  {t_symbolic:8.3} s   factor entries {} ({}), flops {:.3e}, peak {}",
+            stats.ordering.unwrap_or(ordering),
+            stats.factor_entries,
             if solver.is_supernodal() == Some(true) {
                 "supernodal"
             } else {
                 "simplicial"
             },
+            stats.flops,
             memory()
         );
         let clock = Instant::now();
@@ -135,6 +155,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!(
             "  solve (Par::Seq)  {t_solve:8.3} s   strain energy {energy:.6e}   peak {}",
             memory()
+        );
+        println!(
+            "| {} | {} | {:?} | {t_symbolic:.2} | {:.3e} | {:.3e} | {t_numeric:.2} | {t_solve:.3} | {:.2} |",
+            family.name(),
+            body.dofs().n_free(),
+            stats.ordering.unwrap_or(ordering),
+            stats.factor_entries as f64,
+            stats.flops,
+            peak_memory_mib().unwrap_or(0.0) / 1024.0
         );
     }
     Ok(())

@@ -21,8 +21,10 @@
 //!   component with a prescribed resultant; each translation is one extra unknown after the
 //!   free degrees of freedom ([`DofMap::n_unknowns`]) and the matrix of the unknowns is the
 //!   bordered `T^T K T` (pattern built once, values refilled with the blocks).
-//! - Solve: behind the [`LinearSolver`] trait (analyse a pattern once, factorise values as
-//!   often as needed, solve); [`CholeskySolver`] is faer's sparse Cholesky with AMD. A
+//! - Solve: behind the [`LinearSolver`] trait (analyse a pattern once, optionally with
+//!   unknowns eliminated last, factorise values as often as needed, solve, read the trailing
+//!   factor); [`CholeskySolver`] is faer's sparse Cholesky, ordered by AMD or nested
+//!   dissection ([`Ordering`]), its analysis and factor shareable between solvers. A
 //!   stiffness that is not positive definite is reported as
 //!   [`ElasticError::SingularStiffness`] when the Dirichlet conditions leave a rigid motion
 //!   free ([`ElasticBody::holds_rigid_motions`]); a held body with badly shaped elements is
@@ -87,6 +89,7 @@ mod boundary;
 mod dofs;
 mod error;
 mod material;
+mod ordering;
 mod post;
 mod solver;
 
@@ -96,10 +99,11 @@ pub use boundary::{Component, Dirichlet, Traction, VectorField};
 pub use dofs::{DofMap, DofStatus, PlateUnknown};
 pub use error::{ElasticError, SolveError};
 pub use material::{von_mises, Material, Plane};
+pub use ordering::elimination_order;
 pub use post::{ElementField, PartReaction, Solution};
 pub use solver::{
-    CholeskySettings, CholeskySettingsBuilder, CholeskySolver, FactorisationParallelism,
-    LinearSolver, Ordering,
+    CholeskyAnalysis, CholeskyFactor, CholeskySettings, CholeskySettingsBuilder, CholeskySolver,
+    FactorStatistics, FactorisationParallelism, LinearSolver, Ordering,
 };
 #[cfg(feature = "testkit")]
 pub mod testkit;

@@ -1,35 +1,71 @@
-//! The linear solve behind a small trait: analyse a pattern once, factorise values (many times
-//! on the same pattern), solve.
+//! The linear solve behind one trait: analyse a pattern once (optionally with unknowns to
+//! eliminate last), factorise values on it as often as needed, solve, read the trailing factor.
+//!
+//! [`CholeskySolver`] implements it over faer's sparse Cholesky. Its symbolic analysis
+//! ([`CholeskyAnalysis`]) and numeric factor ([`CholeskyFactor`]) are immutable once made and
+//! held behind [`Arc`]s, so that several solvers share them: a clone of a solver, or a solver
+//! made with [`CholeskySolver::from_analysis`] or [`CholeskySolver::from_factor`], costs no
+//! analysis and no factorisation, and a new factorisation on one of them leaves the others
+//! untouched.
+
+use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltError;
-use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::perm::PermRef;
-use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams,
-    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, simplicial, supernodal, supernodal::SupernodalLltRef,
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
+use crate::ordering::elimination_order;
+pub use crate::ordering::Ordering;
 use crate::SolveError;
 
-/// A direct solver for symmetric positive definite sparse systems, split into the three
-/// phases a contact solver needs: the pattern is analysed once, then values are factorised and
-/// right-hand sides solved as often as needed.
+/// A direct solver for symmetric positive definite sparse systems, split into the phases a
+/// contact solver needs: the pattern is analysed once (with the unknowns that couple to the
+/// contact rows eliminated last, if asked), then values are factorised and right-hand sides
+/// solved as often as needed; the trailing block of the factor is the Cholesky factor of the
+/// Schur complement onto the trailing unknowns.
 ///
-/// Matrices are passed in full symmetric storage (both triangles), as
-/// [`crate::AssembledSystem::stiffness`] returns them.
+/// Matrices are passed in full symmetric storage (both triangles, as
+/// [`crate::AssembledSystem::stiffness`] returns them) or as their lower triangle: only the
+/// entries on and below the diagonal are read.
 pub trait LinearSolver: Send + Sync {
     /// A short name for reports.
     fn name(&self) -> &str;
 
     /// Symbolic analysis (ordering, elimination tree) of the square `pattern`. Discards any
     /// earlier analysis and factorisation.
-    fn analyse(&mut self, pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<(), SolveError>;
+    fn analyse(&mut self, pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<(), SolveError> {
+        self.analyse_with_trailing(pattern, &[])
+    }
 
-    /// Numeric factorisation of `matrix`, which must have the analysed pattern.
+    /// Symbolic analysis that eliminates the unknowns `trailing` last, in the order given,
+    /// after the others in the solver's fill-reducing order. With `P A P' = L L'` split as
+    ///
+    /// ```text
+    /// L = [ L_II    0  ]     S = A_TT - A_TI A_II^-1 A_IT = L_TT L_TT'
+    ///     [ L_TI  L_TT ]
+    /// ```
+    ///
+    /// the trailing block of the factor is the Cholesky factor of the Schur complement `S` of
+    /// `A` onto `trailing` ([`LinearSolver::trailing_factor`]). Discards any earlier analysis
+    /// and factorisation.
+    ///
+    /// # Errors
+    /// [`SolveError::Mismatch`] for a non-square pattern, an index out of range or repeated in
+    /// `trailing`; [`SolveError::Backend`] when the ordering fails.
+    fn analyse_with_trailing(
+        &mut self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        trailing: &[usize],
+    ) -> Result<(), SolveError>;
+
+    /// Numeric factorisation of `matrix`, which must have the analysed pattern (a
+    /// refactorisation when values change on the same pattern).
     fn factorise(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> Result<(), SolveError>;
 
     /// Overwrites each column of `rhs` with the solution of the factorised system.
@@ -42,16 +78,37 @@ pub trait LinearSolver: Send + Sync {
         self.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1))?;
         Ok(x)
     }
+
+    /// The trailing block `L_TT` of the last factorisation (dense, lower triangular, rows and
+    /// columns in the order of the `trailing` unknowns given to
+    /// [`LinearSolver::analyse_with_trailing`]): the Cholesky factor of the Schur complement
+    /// onto them, `S = L_TT L_TT'`, so that `(A^-1)_TT = S^-1`.
+    ///
+    /// # Errors
+    /// [`SolveError::OutOfOrder`] before a successful factorisation.
+    fn trailing_factor(&self) -> Result<Mat<f64>, SolveError>;
+
+    /// What the analysis and the last factorisation measured (sizes of a solver that has not
+    /// analysed anything are zero).
+    fn statistics(&self) -> FactorStatistics;
 }
 
-/// The fill-reducing ordering of the Cholesky factorisation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Ordering {
-    /// Approximate minimum degree (faer's built-in AMD).
-    #[default]
-    Amd,
-    /// The natural order (no permutation; for tests and already ordered matrices).
-    Natural,
+/// What a solver reports of its factor.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FactorStatistics {
+    /// The ordering used ([`Ordering::Auto`] resolved; `None` before an analysis).
+    pub ordering: Option<Ordering>,
+    /// Unknowns.
+    pub n: usize,
+    /// Stored values of the factor `L` (the supernodal factor stores its diagonal blocks
+    /// whole): its memory is `8 factor_entries` bytes.
+    pub factor_entries: usize,
+    /// Multiply-adds of one numeric factorisation, `sum_j c_j^2` over the columns of `L` with
+    /// `c_j` their stored entries (counted from the symbolic structure, as stored).
+    pub flops: f64,
+    /// The smallest relative pivot of the last successful factorisation
+    /// ([`CholeskySolver::smallest_relative_pivot`]).
+    pub smallest_relative_pivot: Option<f64>,
 }
 
 /// How the numeric factorisation of [`CholeskySolver`] is parallelised.
@@ -72,7 +129,7 @@ pub enum FactorisationParallelism {
 impl FactorisationParallelism {
     /// Stored entries of the factor from which [`FactorisationParallelism::Auto`] factorises
     /// in parallel: 5e7, about 3.5e5 unknowns of the lowest-order VEM on quadrilaterals
-    /// (1.1e7 entries at 1e5 unknowns, 1.8e8 at 1e6). Measured with two cores (see
+    /// with AMD (1.1e7 entries at 1e5 unknowns, 1.8e8 at 1e6). Measured with two cores (see
     /// `docs/benchmarks.md`): the parallel factorisation is slower than the sequential one at
     /// 1e4 and 1e5 unknowns.
     pub const PARALLEL_MIN_FACTOR_ENTRIES: usize = 50_000_000;
@@ -155,11 +212,11 @@ impl CholeskySettings {
 }
 
 impl Default for CholeskySettings {
-    /// AMD, factorisation parallelism chosen by the factor's size
+    /// [`Ordering::Auto`], factorisation parallelism chosen by the factor's size
     /// ([`FactorisationParallelism::Auto`]), sequential solves, pivot tolerance `1e-9`.
     fn default() -> Self {
         Self {
-            ordering: Ordering::Amd,
+            ordering: Ordering::Auto,
             factorisation_parallelism: FactorisationParallelism::Auto,
             solve_parallelism: Par::Seq,
             singular_pivot_tolerance: Self::DEFAULT_SINGULAR_PIVOT_TOLERANCE,
@@ -174,7 +231,7 @@ pub struct CholeskySettingsBuilder {
 }
 
 impl CholeskySettingsBuilder {
-    /// The fill-reducing ordering (default AMD).
+    /// The fill-reducing ordering (default [`Ordering::Auto`]).
     pub fn ordering(mut self, ordering: Ordering) -> Self {
         self.settings.ordering = ordering;
         self
@@ -191,7 +248,7 @@ impl CholeskySettingsBuilder {
     }
 
     /// Parallelism of the triangular solves (default sequential: a parallel supernodal solve
-    /// was measured 20x slower, see `dependencies.md`).
+    /// was measured 20x slower).
     pub fn solve_parallelism(mut self, parallelism: Par) -> Self {
         self.settings.solve_parallelism = parallelism;
         self
@@ -209,7 +266,8 @@ impl CholeskySettingsBuilder {
         self
     }
 
-    /// The settings, checked: the pivot tolerance must lie in `[0, 1)`.
+    /// The settings, checked: the pivot tolerance must lie in `[0, 1)`; nested dissection
+    /// needs the `metis` feature.
     pub fn build(self) -> Result<CholeskySettings, SolveError> {
         let tol = self.settings.singular_pivot_tolerance;
         if !(0.0..1.0).contains(&tol) {
@@ -217,13 +275,170 @@ impl CholeskySettingsBuilder {
                 reason: format!("singular_pivot_tolerance = {tol} is outside [0, 1)"),
             });
         }
+        if self.settings.ordering == Ordering::NestedDissection
+            && !Ordering::nested_dissection_available()
+        {
+            return Err(SolveError::InvalidSetting {
+                reason: "ordering = nested dissection needs vem-elastic's `metis` feature"
+                    .to_string(),
+            });
+        }
         Ok(self.settings)
     }
 }
 
-/// Sparse Cholesky `L L^T` with faer: the symbolic analysis (AMD ordering, supernodal or
-/// simplicial structure) is kept and reused for every factorisation of new values on the same
-/// pattern.
+/// The symbolic analysis of a pattern: the elimination order, faer's symbolic factorisation
+/// (elimination tree, supernodes, the structure of `L`) and a fingerprint of the pattern.
+/// Immutable; shared between solvers behind an [`Arc`] ([`CholeskySolver::shared_analysis`]).
+#[derive(Debug)]
+pub struct CholeskyAnalysis {
+    symbolic: SymbolicCholesky<usize>,
+    n: usize,
+    /// Number of unknowns eliminated last.
+    n_trailing: usize,
+    nnz: usize,
+    fingerprint: u64,
+    ordering: Ordering,
+    flops: f64,
+}
+
+impl CholeskyAnalysis {
+    /// Analyses `pattern` with the elimination order `order` (new position -> original
+    /// unknown), whose last `n_trailing` unknowns are the trailing ones.
+    fn new(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        order: &[usize],
+        n_trailing: usize,
+        ordering: Ordering,
+    ) -> Result<Self, SolveError> {
+        let n = pattern.nrows();
+        if n != pattern.ncols() {
+            return Err(SolveError::Mismatch {
+                reason: format!("the matrix is {} x {}, not square", n, pattern.ncols()),
+            });
+        }
+        if order.len() != n {
+            return Err(SolveError::Mismatch {
+                reason: format!("the order has {} unknowns, the matrix {n}", order.len()),
+            });
+        }
+        let mut inverse = vec![usize::MAX; n];
+        for (new, &old) in order.iter().enumerate() {
+            if old >= n || inverse[old] != usize::MAX {
+                return Err(SolveError::Mismatch {
+                    reason: format!("the order is not a permutation (unknown {old})"),
+                });
+            }
+            inverse[old] = new;
+        }
+        // The natural order, too, is passed as an explicit permutation: faer's `Identity`
+        // ordering skips the symmetric permutation step that selects the `Side::Lower`
+        // triangle of a full-storage matrix.
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(order, &inverse, n)),
+            CholeskySymbolicParams::default(),
+        )
+        .map_err(backend)?;
+        let flops = factor_flops(&symbolic);
+        Ok(Self {
+            symbolic,
+            n,
+            n_trailing,
+            nnz: pattern.row_idx().len(),
+            fingerprint: fingerprint(pattern),
+            ordering,
+            flops,
+        })
+    }
+
+    /// Unknowns.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Unknowns eliminated last.
+    pub fn n_trailing(&self) -> usize {
+        self.n_trailing
+    }
+
+    /// The ordering used ([`Ordering::Auto`] resolved).
+    pub fn ordering(&self) -> Ordering {
+        self.ordering
+    }
+
+    /// The elimination order: `order[k]` is the unknown eliminated at step `k`.
+    pub fn elimination_order(&self) -> &[usize] {
+        self.symbolic
+            .perm()
+            .map(|p| p.arrays().0)
+            .expect("every analysis has an explicit permutation")
+    }
+
+    /// Stored values of the factor `L`.
+    pub fn factor_entries(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Multiply-adds of one numeric factorisation (see [`FactorStatistics::flops`]).
+    pub fn flops(&self) -> f64 {
+        self.flops
+    }
+
+    /// True when faer chose the supernodal (blocked) factorisation.
+    pub fn is_supernodal(&self) -> bool {
+        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+    }
+
+    fn check_pattern(&self, pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<(), SolveError> {
+        if pattern.nrows() != self.n
+            || pattern.ncols() != self.n
+            || pattern.row_idx().len() != self.nnz
+            || fingerprint(pattern) != self.fingerprint
+        {
+            return Err(SolveError::Mismatch {
+                reason: format!(
+                    "the matrix ({} x {}, {} entries) does not have the analysed pattern ({} x {}, {} entries)",
+                    pattern.nrows(),
+                    pattern.ncols(),
+                    pattern.row_idx().len(),
+                    self.n,
+                    self.n,
+                    self.nnz
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A numeric Cholesky factor: the values of `L` on a [`CholeskyAnalysis`] and the smallest
+/// relative pivot. Immutable; shared between solvers behind an [`Arc`]
+/// ([`CholeskySolver::shared_factor`]).
+#[derive(Debug)]
+pub struct CholeskyFactor {
+    analysis: Arc<CholeskyAnalysis>,
+    values: Vec<f64>,
+    smallest_relative_pivot: f64,
+}
+
+impl CholeskyFactor {
+    /// The analysis the factor was computed on.
+    pub fn analysis(&self) -> &Arc<CholeskyAnalysis> {
+        &self.analysis
+    }
+
+    /// The smallest relative pivot `d_k / A_kk` (see
+    /// [`CholeskySolver::smallest_relative_pivot`]).
+    pub fn smallest_relative_pivot(&self) -> f64 {
+        self.smallest_relative_pivot
+    }
+}
+
+/// Sparse Cholesky `L L^T` with faer: the symbolic analysis (fill-reducing ordering, supernodal
+/// or simplicial structure) is kept and reused for every factorisation of new values on the
+/// same pattern; analysis and factor are shared with the solver's clones.
 ///
 /// ```
 /// use faer::sparse::{SparseColMat, Triplet};
@@ -238,29 +453,16 @@ impl CholeskySettingsBuilder {
 /// solver.factorise(a.as_ref())?;
 /// let x = solver.solve(&[1.0, 2.0])?;
 /// assert!((x[0] - 1.0 / 11.0).abs() < 1e-15 && (x[1] - 7.0 / 11.0).abs() < 1e-15);
+/// // A clone shares the factor: it solves without factorising again.
+/// let shared = solver.clone();
+/// assert_eq!(shared.solve(&[1.0, 2.0])?, x);
 /// # Ok::<(), vem_elastic::SolveError>(())
 /// ```
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct CholeskySolver {
     settings: CholeskySettings,
-    analysis: Option<Analysis>,
-    factor: Option<Factor>,
-}
-
-#[derive(Debug)]
-struct Factor {
-    values: Vec<f64>,
-    smallest_relative_pivot: f64,
-}
-
-#[derive(Debug)]
-struct Analysis {
-    symbolic: SymbolicCholesky<usize>,
-    n: usize,
-    /// Number of unknowns eliminated last (see [`CholeskySolver::analyse_with_trailing`]).
-    n_trailing: usize,
-    nnz: usize,
-    fingerprint: u64,
+    analysis: Option<Arc<CholeskyAnalysis>>,
+    factor: Option<Arc<CholeskyFactor>>,
 }
 
 impl CholeskySolver {
@@ -273,18 +475,75 @@ impl CholeskySolver {
         }
     }
 
+    /// A solver on an existing analysis (shared, not copied): ready to factorise.
+    pub fn from_analysis(settings: CholeskySettings, analysis: Arc<CholeskyAnalysis>) -> Self {
+        Self {
+            settings,
+            analysis: Some(analysis),
+            factor: None,
+        }
+    }
+
+    /// A solver on an existing factor and its analysis (shared, not copied): ready to solve.
+    pub fn from_factor(settings: CholeskySettings, factor: Arc<CholeskyFactor>) -> Self {
+        Self {
+            settings,
+            analysis: Some(Arc::clone(&factor.analysis)),
+            factor: Some(factor),
+        }
+    }
+
     /// The settings in force.
     pub fn settings(&self) -> &CholeskySettings {
         &self.settings
     }
 
-    /// Number of stored values of the factor `L` (after [`LinearSolver::analyse`]).
+    /// The analysis, to share with other solvers (after an analysis).
+    pub fn shared_analysis(&self) -> Option<Arc<CholeskyAnalysis>> {
+        self.analysis.clone()
+    }
+
+    /// The factor of the last successful factorisation, to share with other solvers.
+    pub fn shared_factor(&self) -> Option<Arc<CholeskyFactor>> {
+        self.factor.clone()
+    }
+
+    /// Symbolic analysis with an explicit elimination order (`order[k]` the unknown eliminated
+    /// at step `k`, a permutation of `0..n`) whose last `n_trailing` unknowns are the trailing
+    /// ones: the analysis of a matrix that shares an ordering with another (the ordering of a
+    /// stiffness reused for the same stiffness plus contact terms). Discards any earlier
+    /// analysis and factorisation.
+    ///
+    /// # Errors
+    /// [`SolveError::Mismatch`] for a non-square pattern, an order that is not a permutation of
+    /// its unknowns or `n_trailing` above `n`; [`SolveError::Backend`] when faer fails.
+    pub fn analyse_with_order(
+        &mut self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        order: &[usize],
+        n_trailing: usize,
+    ) -> Result<(), SolveError> {
+        self.analysis = None;
+        self.factor = None;
+        if n_trailing > order.len() {
+            return Err(SolveError::Mismatch {
+                reason: format!("{n_trailing} trailing unknowns of {}", order.len()),
+            });
+        }
+        let ordering = self.settings.ordering.resolve(order.len() - n_trailing);
+        self.analysis = Some(Arc::new(CholeskyAnalysis::new(
+            pattern, order, n_trailing, ordering,
+        )?));
+        Ok(())
+    }
+
+    /// Number of stored values of the factor `L` (after an analysis).
     pub fn factor_len(&self) -> Option<usize> {
-        self.analysis.as_ref().map(|a| a.symbolic.len_val())
+        self.analysis.as_ref().map(|a| a.factor_entries())
     }
 
     /// The parallelism the numeric factorisation uses for the analysed pattern (after
-    /// [`LinearSolver::analyse`]): [`FactorisationParallelism::for_factor`] of the factor's size.
+    /// an analysis): [`FactorisationParallelism::for_factor`] of the factor's size.
     pub fn factorisation_par(&self) -> Option<Par> {
         self.factor_len()
             .map(|len| self.settings.factorisation_parallelism.for_factor(len))
@@ -292,9 +551,7 @@ impl CholeskySolver {
 
     /// True when the analysis chose the supernodal (blocked) factorisation.
     pub fn is_supernodal(&self) -> Option<bool> {
-        self.analysis
-            .as_ref()
-            .map(|a| matches!(a.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)))
+        self.analysis.as_ref().map(|a| a.is_supernodal())
     }
 
     /// The smallest relative pivot `d_k / A_kk` (`d_k = L_kk^2`, `A_kk` the matching diagonal
@@ -303,170 +560,91 @@ impl CholeskySolver {
     pub fn smallest_relative_pivot(&self) -> Option<f64> {
         self.factor.as_ref().map(|f| f.smallest_relative_pivot)
     }
+}
 
-    /// Symbolic analysis that eliminates the unknowns `trailing` last, in the order given, after
-    /// the others in the solver's fill-reducing order ([`Ordering::Amd`] of the matrix without
-    /// them, or natural). With `P A P' = L L'` split as
-    ///
-    /// ```text
-    /// L = [ L_II    0  ]     S = A_TT - A_TI A_II^-1 A_IT = L_TT L_TT'
-    ///     [ L_TI  L_TT ]
-    /// ```
-    ///
-    /// the trailing block of the factor is the Cholesky factor of the Schur complement `S` of
-    /// `A` onto `trailing`; [`CholeskySolver::trailing_factor`] returns it after a
-    /// factorisation. Discards any earlier analysis and factorisation.
-    ///
-    /// # Errors
-    /// [`SolveError::Mismatch`] for a non-square pattern, an index out of range or repeated in
-    /// `trailing`; [`SolveError::Backend`] when the ordering fails.
-    pub fn analyse_with_trailing(
-        &mut self,
-        pattern: SymbolicSparseColMatRef<'_, usize>,
-        trailing: &[usize],
-    ) -> Result<(), SolveError> {
-        self.analysis = None;
-        self.factor = None;
-        let n = pattern.nrows();
-        if n != pattern.ncols() {
-            return Err(SolveError::Mismatch {
-                reason: format!("the matrix is {} x {}, not square", n, pattern.ncols()),
-            });
+/// Multiply-adds of the numeric factorisation: `sum_j c_j^2` over the stored columns.
+fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => s
+            .col_ptr()
+            .windows(2)
+            .map(|w| {
+                let c = (w[1] - w[0]) as f64;
+                c * c
+            })
+            .sum(),
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let begin = s.supernode_begin();
+            let end = s.supernode_end();
+            let ptr = s.col_ptr_for_row_idx();
+            (0..s.n_supernodes())
+                .map(|k| {
+                    let width = end[k] - begin[k];
+                    let below = (ptr[k + 1] - ptr[k]) as f64;
+                    (0..width)
+                        .map(|c| {
+                            let entries = (width - c) as f64 + below;
+                            entries * entries
+                        })
+                        .sum::<f64>()
+                })
+                .sum()
         }
-        let forward = trailing_last_order(pattern, trailing, self.settings.ordering)?;
-        let mut inverse = vec![0; n];
-        for (new, &old) in forward.iter().enumerate() {
-            inverse[old] = new;
-        }
-        // The natural order, too, is passed as an explicit permutation: faer's `Identity`
-        // ordering skips the symmetric permutation step that selects the `Side::Lower`
-        // triangle of a full-storage matrix.
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Lower,
-            SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, n)),
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(backend)?;
-        self.analysis = Some(Analysis {
-            symbolic,
-            n,
-            n_trailing: trailing.len(),
-            nnz: pattern.row_idx().len(),
-            fingerprint: fingerprint(pattern),
-        });
-        Ok(())
-    }
-
-    /// The trailing block `L_TT` of the last factorisation (dense, lower triangular, rows and
-    /// columns in the order of the `trailing` unknowns given to
-    /// [`CholeskySolver::analyse_with_trailing`]): the Cholesky factor of the Schur complement
-    /// onto them, `S = L_TT L_TT'`, so that `(A^-1)_TT = S^-1`.
-    ///
-    /// # Errors
-    /// [`SolveError::OutOfOrder`] before a successful factorisation.
-    pub fn trailing_factor(&self) -> Result<Mat<f64>, SolveError> {
-        let (Some(analysis), Some(factor)) = (&self.analysis, &self.factor) else {
-            return Err(SolveError::OutOfOrder {
-                reason: "trailing factor before a successful factorise",
-            });
-        };
-        let first = analysis.n - analysis.n_trailing;
-        let mut block = Mat::<f64>::zeros(analysis.n_trailing, analysis.n_trailing);
-        match analysis.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => {
-                let (col_ptr, row_idx) = (s.col_ptr(), s.row_idx());
-                for j in first..analysis.n {
-                    for k in col_ptr[j]..col_ptr[j + 1] {
-                        block[(row_idx[k] - first, j - first)] = factor.values[k];
-                    }
-                }
-            }
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let l = SupernodalLltRef::new(s, &factor.values);
-                for k in 0..s.n_supernodes() {
-                    let node = l.supernode(k);
-                    let (start, values, pattern) = (node.start(), node.val(), node.pattern());
-                    let width = values.ncols();
-                    if start + width <= first {
-                        continue;
-                    }
-                    // Rows of the supernode: its own columns, then `pattern` (all below them).
-                    for j in start.max(first)..start + width {
-                        let c = j - start;
-                        for i in c..width {
-                            block[(start + i - first, j - first)] = values[(i, c)];
-                        }
-                        for (r, &row) in pattern.iter().enumerate() {
-                            block[(row - first, j - first)] = values[(width + r, c)];
-                        }
-                    }
-                }
-            }
-        }
-        Ok(block)
     }
 }
 
-/// The elimination order (new position -> original unknown): the unknowns not in `trailing` in
-/// `ordering` (AMD of the matrix restricted to them), then `trailing` as given.
-fn trailing_last_order(
-    pattern: SymbolicSparseColMatRef<'_, usize>,
-    trailing: &[usize],
-    ordering: Ordering,
-) -> Result<Vec<usize>, SolveError> {
-    let n = pattern.nrows();
-    const TRAILING: usize = usize::MAX;
-    let mut local = vec![0usize; n];
-    for &t in trailing {
-        if t >= n || local[t] == TRAILING {
-            return Err(SolveError::Mismatch {
-                reason: format!("trailing unknown {t} is out of range (n = {n}) or repeated"),
-            });
-        }
-        local[t] = TRAILING;
+/// The matrix permuted by the analysis' order, only the triangle faer's numeric factorisation
+/// reads (the lower for the supernodal, the upper for the simplicial factorisation): half the
+/// memory of a full-storage copy.
+fn permuted_triangle(
+    analysis: &CholeskyAnalysis,
+    matrix: SparseColMatRef<'_, usize, f64>,
+) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+    let n = analysis.n;
+    let order = analysis.elimination_order();
+    let mut position = vec![0usize; n];
+    for (new, &old) in order.iter().enumerate() {
+        position[old] = new;
     }
-    let leading: Vec<usize> = (0..n).filter(|&i| local[i] != TRAILING).collect();
-    for (k, &i) in leading.iter().enumerate() {
-        local[i] = k;
-    }
-    let mut order = match ordering {
-        Ordering::Natural => leading.clone(),
-        Ordering::Amd => {
-            // The pattern of the leading block, in full storage (rows stay sorted: the
-            // renumbering is monotone).
-            let mut col_ptr = Vec::with_capacity(leading.len() + 1);
-            let mut row_idx = Vec::with_capacity(pattern.row_idx().len());
-            col_ptr.push(0);
-            for &j in &leading {
-                row_idx.extend(
-                    pattern
-                        .row_idx_of_col_raw(j)
-                        .iter()
-                        .filter(|&&i| local[i] != TRAILING)
-                        .map(|&i| local[i]),
-                );
-                col_ptr.push(row_idx.len());
-            }
-            let m = leading.len();
-            let block = SymbolicSparseColMatRef::new_checked(m, m, &col_ptr, None, &row_idx);
-            let (mut forward, mut inverse) = (vec![0usize; m], vec![0usize; m]);
-            let mut scratch =
-                MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(m, row_idx.len()))
-                    .map_err(|_| backend("out of memory for the ordering workspace"))?;
-            amd::order_maybe_unsorted(
-                &mut forward,
-                &mut inverse,
-                block,
-                amd::Control::default(),
-                MemStack::new(&mut scratch),
-            )
-            .map_err(backend)?;
-            forward.iter().map(|&k| leading[k]).collect()
+    let lower = analysis.is_supernodal();
+    // Column of the permuted entry (i, j), i >= j, in the triangle kept: (max, min) for the
+    // lower triangle, the other way round for the upper one.
+    let place = |i: usize, j: usize| -> (usize, usize) {
+        let (pi, pj) = (position[i], position[j]);
+        let (row, col) = (pi.max(pj), pi.min(pj));
+        if lower {
+            (row, col)
+        } else {
+            (col, row)
         }
     };
-    order.extend_from_slice(trailing);
-    Ok(order)
+    let mut col_ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        for &i in matrix.symbolic().row_idx_of_col_raw(j) {
+            if i >= j {
+                col_ptr[place(i, j).1 + 1] += 1;
+            }
+        }
+    }
+    for k in 0..n {
+        col_ptr[k + 1] += col_ptr[k];
+    }
+    let mut next = col_ptr.clone();
+    let entries = col_ptr[n];
+    let mut row_idx = vec![0usize; entries];
+    let mut values = vec![0.0f64; entries];
+    for j in 0..n {
+        let rows = matrix.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(matrix.val_of_col(j)) {
+            if i >= j {
+                let (row, col) = place(i, j);
+                row_idx[next[col]] = row;
+                values[next[col]] = v;
+                next[col] += 1;
+            }
+        }
+    }
+    (col_ptr, row_idx, values)
 }
 
 /// The smallest relative pivot `d_k / A_kk` of the factor `factor` of `matrix` and the
@@ -477,10 +655,14 @@ fn smallest_relative_pivot(
     matrix: SparseColMatRef<'_, usize, f64>,
 ) -> (f64, usize) {
     let diagonal = |old: usize| {
-        let rows = matrix.symbolic().row_idx_of_col_raw(old);
-        rows.binary_search(&old)
-            .map(|k| matrix.val_of_col(old)[k])
-            .unwrap_or(0.0)
+        matrix
+            .symbolic()
+            .row_idx_of_col_raw(old)
+            .iter()
+            .zip(matrix.val_of_col(old))
+            .filter(|(&i, _)| i == old)
+            .map(|(_, &v)| v)
+            .sum::<f64>()
     };
     let original = |new: usize| match symbolic.perm() {
         Some(perm) => perm.arrays().0[new],
@@ -530,76 +712,106 @@ impl LinearSolver for CholeskySolver {
         "faer sparse Cholesky"
     }
 
-    fn analyse(&mut self, pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<(), SolveError> {
-        self.analyse_with_trailing(pattern, &[])
+    fn analyse_with_trailing(
+        &mut self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        trailing: &[usize],
+    ) -> Result<(), SolveError> {
+        self.analysis = None;
+        self.factor = None;
+        let (order, ordering) = elimination_order(pattern, trailing, self.settings.ordering)?;
+        self.analysis = Some(Arc::new(CholeskyAnalysis::new(
+            pattern,
+            &order,
+            trailing.len(),
+            ordering,
+        )?));
+        Ok(())
     }
 
     fn factorise(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> Result<(), SolveError> {
-        self.factor = None;
+        // The values of the last factor are reused when no other solver shares it.
+        let mut values = match self.factor.take().map(Arc::try_unwrap) {
+            Some(Ok(factor)) => factor.values,
+            _ => Vec::new(),
+        };
         let analysis = self.analysis.as_ref().ok_or(SolveError::OutOfOrder {
             reason: "factorise before analyse",
         })?;
-        let pattern = matrix.symbolic();
-        if pattern.nrows() != analysis.n
-            || pattern.ncols() != analysis.n
-            || pattern.row_idx().len() != analysis.nnz
-            || fingerprint(pattern) != analysis.fingerprint
-        {
-            return Err(SolveError::Mismatch {
-                reason: format!(
-                    "the matrix ({} x {}, {} entries) does not have the analysed pattern ({} x {}, {} entries)",
-                    pattern.nrows(),
-                    pattern.ncols(),
-                    pattern.row_idx().len(),
-                    analysis.n,
-                    analysis.n,
-                    analysis.nnz
-                ),
-            });
-        }
+        analysis.check_pattern(matrix.symbolic())?;
         let symbolic = &analysis.symbolic;
         let par = self
             .settings
             .factorisation_parallelism
             .for_factor(symbolic.len_val());
-        let mut values = vec![0.0; symbolic.len_val()];
-        let mut scratch = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|_| backend("out of memory for the factorisation workspace"))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                matrix,
-                Side::Lower,
-                LltRegularization::default(),
-                par,
-                MemStack::new(&mut scratch),
-                Default::default(),
-            )
-            .map_err(
-                |LltError::NonPositivePivot { index }| SolveError::NotPositiveDefinite {
-                    step: index.saturating_sub(1),
-                },
-            )?;
+        let (col_ptr, row_idx, permuted) = permuted_triangle(analysis, matrix);
+        let n = analysis.n;
+        let a = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_unsorted_checked(n, n, &col_ptr, None, &row_idx),
+            &permuted,
+        );
+        values.clear();
+        values.resize(symbolic.len_val(), 0.0);
+        let non_positive = |LltError::NonPositivePivot { index }| SolveError::NotPositiveDefinite {
+            step: index.saturating_sub(1),
+        };
+        match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let mut scratch =
+                    MemBuffer::try_new(simplicial::factorize_simplicial_numeric_llt_scratch::<
+                        usize,
+                        f64,
+                    >(n))
+                    .map_err(|_| backend("out of memory for the factorisation workspace"))?;
+                simplicial::factorize_simplicial_numeric_llt(
+                    &mut values,
+                    a,
+                    LltRegularization::default(),
+                    s,
+                    MemStack::new(&mut scratch),
+                )
+                .map_err(non_positive)?;
+            }
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let mut scratch =
+                    MemBuffer::try_new(supernodal::factorize_supernodal_numeric_llt_scratch::<
+                        usize,
+                        f64,
+                    >(s, par, Default::default()))
+                    .map_err(|_| backend("out of memory for the factorisation workspace"))?;
+                supernodal::factorize_supernodal_numeric_llt(
+                    &mut values,
+                    a,
+                    LltRegularization::default(),
+                    s,
+                    par,
+                    MemStack::new(&mut scratch),
+                    Default::default(),
+                )
+                .map_err(non_positive)?;
+            }
+        }
+        drop((col_ptr, row_idx, permuted));
         let (smallest, step) = smallest_relative_pivot(symbolic, &values, matrix);
         // NaN (a zero diagonal entry) counts as singular too.
         if smallest.is_nan() || smallest <= self.settings.singular_pivot_tolerance {
             return Err(SolveError::NotPositiveDefinite { step });
         }
-        self.factor = Some(Factor {
+        self.factor = Some(Arc::new(CholeskyFactor {
+            analysis: Arc::clone(analysis),
             values,
             smallest_relative_pivot: smallest,
-        });
+        }));
         Ok(())
     }
 
     fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), SolveError> {
-        let (Some(analysis), Some(factor)) = (&self.analysis, &self.factor) else {
+        let Some(factor) = &self.factor else {
             return Err(SolveError::OutOfOrder {
                 reason: "solve before a successful factorise",
             });
         };
+        let analysis = &factor.analysis;
         if rhs.nrows() != analysis.n {
             return Err(SolveError::Mismatch {
                 reason: format!(
@@ -616,9 +828,69 @@ impl LinearSolver for CholeskySolver {
                 .solve_in_place_scratch::<f64>(rhs.ncols(), par),
         )
         .map_err(|_| backend("out of memory for the solve workspace"))?;
-        faer::sparse::linalg::cholesky::LltRef::new(&analysis.symbolic, &factor.values)
-            .solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut scratch));
+        LltRef::new(&analysis.symbolic, &factor.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            par,
+            MemStack::new(&mut scratch),
+        );
         Ok(())
+    }
+
+    fn trailing_factor(&self) -> Result<Mat<f64>, SolveError> {
+        let Some(factor) = &self.factor else {
+            return Err(SolveError::OutOfOrder {
+                reason: "trailing factor before a successful factorise",
+            });
+        };
+        let analysis = &factor.analysis;
+        let first = analysis.n - analysis.n_trailing;
+        let mut block = Mat::<f64>::zeros(analysis.n_trailing, analysis.n_trailing);
+        match analysis.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let (col_ptr, row_idx) = (s.col_ptr(), s.row_idx());
+                for j in first..analysis.n {
+                    for k in col_ptr[j]..col_ptr[j + 1] {
+                        block[(row_idx[k] - first, j - first)] = factor.values[k];
+                    }
+                }
+            }
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let l = SupernodalLltRef::new(s, &factor.values);
+                for k in 0..s.n_supernodes() {
+                    let node = l.supernode(k);
+                    let (start, values, pattern) = (node.start(), node.val(), node.pattern());
+                    let width = values.ncols();
+                    if start + width <= first {
+                        continue;
+                    }
+                    // Rows of the supernode: its own columns, then `pattern` (all below them).
+                    for j in start.max(first)..start + width {
+                        let c = j - start;
+                        for i in c..width {
+                            block[(start + i - first, j - first)] = values[(i, c)];
+                        }
+                        for (r, &row) in pattern.iter().enumerate() {
+                            block[(row - first, j - first)] = values[(width + r, c)];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(block)
+    }
+
+    fn statistics(&self) -> FactorStatistics {
+        match &self.analysis {
+            None => FactorStatistics::default(),
+            Some(a) => FactorStatistics {
+                ordering: Some(a.ordering),
+                n: a.n,
+                factor_entries: a.factor_entries(),
+                flops: a.flops,
+                smallest_relative_pivot: self.smallest_relative_pivot(),
+            },
+        }
     }
 }
 
@@ -684,7 +956,12 @@ mod tests {
         let mut supernodal_seen = false;
         for (a, trailing) in &cases {
             let n = a.nrows();
-            for ordering in [Ordering::Amd, Ordering::Natural] {
+            for ordering in [
+                Ordering::Amd,
+                Ordering::Natural,
+                #[cfg(feature = "metis")]
+                Ordering::NestedDissection,
+            ] {
                 let settings = CholeskySettings::builder()
                     .ordering(ordering)
                     .build()

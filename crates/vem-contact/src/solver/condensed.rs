@@ -3,7 +3,7 @@
 //! Every contact row touches only the **interface unknowns** `G` of each body (the unknowns of
 //! the nodes that carry a normal or tangential row); call the others `I`. Each body's stiffness
 //! is factorised once with its interface unknowns eliminated last
-//! ([`CholeskySolver::analyse_with_trailing`]), so that the trailing block of the factor is the
+//! ([`LinearSolver::analyse_with_trailing`](vem_elastic::LinearSolver::analyse_with_trailing)), so that the trailing block of the factor is the
 //! Cholesky factor `L_GG` of the interface Schur complement `S = K_GG - K_GI K_II^-1 K_IG`, and
 //! `(K^-1)_GG = S^-1`. With `B = [B_N; B_T]` and `u0 = K^-1 f`, the displacement for given
 //! multipliers is `u = u0 - K^-1 B' lambda`, and the contact problem becomes its dual, a small
@@ -47,7 +47,9 @@ use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Accum, Mat, MatMut, MatRef, Par};
-use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver, SolveError};
+use std::sync::Arc;
+
+use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 
 use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome};
@@ -56,6 +58,7 @@ use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
     WorkCounters,
 };
+use super::shared::{self, BlockFactor, BlockKey, BlockOrder, FactorKey};
 use super::system::{ContactSystem, PatternId};
 use super::{ContactSolution, ContactSolver};
 
@@ -180,8 +183,18 @@ struct Structure {
     pattern: PatternId,
     stiffness_version: u64,
     has_friction: bool,
+    /// The shared orders and analyses of the blocks (held for the other solvers of the
+    /// structure, and for a refilled stiffness).
+    held: Held,
     /// `None` when a body stays singular with the shift (the active-set fallback solves).
     factors: Option<Factors>,
+}
+
+/// Shared work a solver holds so that other solvers of the structure find it.
+#[derive(Debug, Default)]
+struct Held {
+    orders: Vec<Arc<BlockOrder>>,
+    analyses: Vec<Arc<CholeskyAnalysis>>,
 }
 
 #[derive(Debug)]
@@ -200,6 +213,8 @@ struct BodyFactor {
     offset: usize,
     n: usize,
     cholesky: CholeskySolver,
+    /// The shared factor (held for the other solvers of the structure).
+    _shared: Arc<BlockFactor>,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
     /// Bodies with a singular stiffness: the shift, `L_GG`, `W = L_GG^-1 B_G'` and the
@@ -267,11 +282,14 @@ impl Structure {
         settings: &CondensedSettings,
         work: &mut WorkCounters,
     ) -> Result<Self, ContactSolverError> {
+        let mut held = Held::default();
+        let factors = Factors::build(system, settings, &mut held, work)?;
         Ok(Self {
             pattern: system.pattern(),
             stiffness_version: system.stiffness_version(),
             has_friction: system.friction().is_some(),
-            factors: Factors::build(system, settings, work)?,
+            held,
+            factors,
         })
     }
 
@@ -286,40 +304,59 @@ impl Factors {
     fn build(
         system: &ContactSystem<'_>,
         settings: &CondensedSettings,
+        held: &mut Held,
         work: &mut WorkCounters,
     ) -> Result<Option<Self>, ContactSolverError> {
         let rows = all_rows(system);
         let mut bodies = Vec::new();
         let mut hessian = Mat::<f64>::zeros(rows.len(), rows.len());
-        for block in system.stiffness_blocks() {
+        let interfaces = shared::interfaces(system);
+        let ordering = settings.cholesky.ordering();
+        for (b, (block, interface)) in system.stiffness_blocks().iter().zip(interfaces).enumerate()
+        {
             let (offset, k) = (block.offset(), block.matrix());
             let n = k.nrows();
-            // The interface unknowns of the body, local numbering, and their position in G.
+            // The position of each interface unknown in G.
             const NONE: usize = usize::MAX;
             let mut position = vec![NONE; n];
-            let mut interface = Vec::new();
-            for &(cols, _) in &rows {
-                for &c in cols {
-                    if (offset..offset + n).contains(&c) && position[c - offset] == NONE {
-                        position[c - offset] = 0;
-                        interface.push(c - offset);
-                    }
-                }
-            }
-            interface.sort_unstable();
             for (p, &i) in interface.iter().enumerate() {
                 position[i] = p;
             }
-            let mut cholesky = CholeskySolver::new(settings.cholesky);
+            // The analysis with the interface last, on the block's shared order.
             let start = Instant::now();
-            cholesky
-                .analyse_with_trailing(k.symbolic(), &interface)
-                .map_err(backend)?;
-            work.symbolic_analyses += 1;
-            work.times.symbolic += start.elapsed();
-            let Some(shift) = factorise_or_shift(&mut cholesky, k, &interface, work)? else {
+            let order = shared::order_of_block(system, b, &interface, ordering).map_err(backend)?;
+            let key = BlockKey::of(system, b, ordering);
+            let (analysis, made) = shared::block_analysis(key, || {
+                let mut cholesky = CholeskySolver::new(settings.cholesky);
+                cholesky.analyse_with_order(k.symbolic(), &order.order, interface.len())?;
+                Ok::<_, SolveError>(cholesky.shared_analysis().expect("analysed above"))
+            })
+            .map_err(backend)?;
+            if made {
+                work.symbolic_analyses += 1;
+                work.times.symbolic += start.elapsed();
+            }
+            held.orders.push(order);
+            held.analyses.push(Arc::clone(&analysis));
+            // The numeric factor for these stiffness values, shared.
+            let factor_key = FactorKey {
+                block: key,
+                stiffness_version: system.stiffness_version(),
+                settings: format!("{:?}", settings.cholesky),
+            };
+            let (block_factor, _) = shared::block_factor(factor_key, || {
+                let mut cholesky = CholeskySolver::from_analysis(settings.cholesky, analysis);
+                let shift = factorise_or_shift(&mut cholesky, k, &interface, work)?;
+                Ok::<_, ContactSolverError>(BlockFactor {
+                    factor: shift.and_then(|_| cholesky.shared_factor()),
+                    shift: shift.unwrap_or(0.0),
+                })
+            })?;
+            let Some(factor) = block_factor.factor.clone() else {
                 return Ok(None);
             };
+            let shift = block_factor.shift;
+            let cholesky = CholeskySolver::from_factor(settings.cholesky, factor);
             let mut proximal = None;
             if !interface.is_empty() {
                 // W = L_GG^-1 B_G' and H += W'W.
@@ -355,6 +392,7 @@ impl Factors {
                 offset,
                 n,
                 cholesky,
+                _shared: block_factor,
                 interface,
                 proximal,
             });
@@ -396,20 +434,17 @@ fn factorise_or_shift(
         .filter_map(|&j| diagonal_slot(j).map(|slot| k.val()[slot].abs()))
         .fold(0.0f64, f64::max);
     let shift = RELATIVE_SHIFT * largest;
-    let pattern = k.symbolic().to_owned().map_err(|e| {
-        backend(SolveError::Backend {
-            reason: e.to_string(),
-        })
-    })?;
-    let mut shifted = faer::sparse::SparseColMat::new(pattern, k.val().to_vec());
+    // Only the values are copied; the pattern is the stiffness'.
+    let mut values = k.val().to_vec();
     for &j in interface {
         // The stiffness pattern holds every diagonal entry (element matrices are dense).
         if let Some(slot) = diagonal_slot(j) {
-            shifted.val_mut()[slot] += shift;
+            values[slot] += shift;
         }
     }
+    let shifted = faer::sparse::SparseColMatRef::new(k.symbolic(), &values);
     let start = Instant::now();
-    let outcome = cholesky.factorise(shifted.as_ref());
+    let outcome = cholesky.factorise(shifted);
     work.numeric_factorisations += 1;
     work.times.numeric += start.elapsed();
     match outcome {
@@ -656,8 +691,11 @@ impl ContactSolver for CondensedSolver {
         }
         let mut work = WorkCounters::default();
         if !self.structure.as_ref().is_some_and(|s| s.fits(system)) {
-            self.structure = None;
+            // The old factors go before the new ones are made; the orders and analyses stay
+            // (a refilled stiffness keeps its pattern).
+            let held = self.structure.take().map(|s| s.held);
             self.structure = Some(Structure::build(system, &self.settings, &mut work)?);
+            drop(held);
         }
         let structure = self.structure.as_mut().expect("built above");
         let Some(factors) = structure.factors.as_mut() else {

@@ -32,6 +32,7 @@ mod exact;
 mod newton_matrix;
 mod penalty;
 mod report;
+mod shared;
 mod system;
 
 pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};

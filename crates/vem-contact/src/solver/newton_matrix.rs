@@ -1,22 +1,23 @@
-//! The Newton matrix `K + sum_r w_r b_r b_r' + diag(s)` of the penalty method on a fixed
-//! pattern: symbolic analysis (AMD ordering) once on the pattern of
-//! `K + B_N'B_N + B_T'B_T + I`, then for every Newton step only the values are refilled and
-//! factorised (faer sparse Cholesky, low-level API with explicit parallelism).
+//! The Newton matrix `K + sum_r w_r b_r b_r' + diag(s)` of the penalty and active-set methods
+//! on a fixed pattern: the lower triangle of `K + B_N'B_N + B_T'B_T + I` is analysed once per
+//! structure, in the order made of every stiffness block's interior order followed by all
+//! interface unknowns (the blocks' orders are shared with the condensed solver, see
+//! [`super::shared`]); the pattern and its analysis are shared by the penalty and active-set
+//! solvers of one structure. For every Newton step only the values are refilled and factorised
+//! ([`CholeskySolver`] through [`LinearSolver`]).
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
-};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, MatMut, Par, Side};
-
+use std::sync::Arc;
 use std::time::Instant;
 
-use super::report::WorkCounters;
-use super::system::{ConstraintRows, ContactSystem, PatternId};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{MatMut, Par};
+use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver, Ordering, SolveError};
 
-/// Entries `(slot, coefficient)` of `b_r b_r'` (upper triangle) for each constraint row `r`.
+use super::report::WorkCounters;
+use super::shared::{self, BlockOrder, CoupledKey};
+use super::system::{ConstraintRows, ContactSystem};
+
+/// Entries `(slot, coefficient)` of `b_r b_r'` (lower triangle) for each constraint row `r`.
 #[derive(Debug, Clone)]
 struct RowProducts {
     ptr: Vec<usize>,
@@ -31,8 +32,8 @@ impl RowProducts {
             let (cols, vals) = rows.row(r);
             for a in 0..cols.len() {
                 for b in a..cols.len() {
-                    // Columns are sorted: cols[a] <= cols[b] is an upper-triangle entry.
-                    entries.push((slot(cols[a], cols[b]), vals[a] * vals[b]));
+                    // Columns are sorted: cols[b] >= cols[a] is a lower-triangle entry.
+                    entries.push((slot(cols[b], cols[a]), vals[a] * vals[b]));
                 }
             }
             ptr.push(entries.len());
@@ -52,55 +53,55 @@ impl RowProducts {
     }
 }
 
-/// Symmetric positive definite Newton matrix with a reusable symbolic Cholesky analysis, made
-/// for one structure ([`PatternId`] and the presence of tangential rows).
-pub(crate) struct NewtonMatrix {
-    pattern_id: PatternId,
-    has_friction: bool,
+/// The pattern of the Newton matrices of one structure and its symbolic analysis: the lower
+/// triangle of `K + B_N'B_N + B_T'B_T + I`, each column holding first the lower entries of
+/// `K` in the stiffness' own storage order (refilled by a plain copy), then the entries only
+/// the contact rows or the diagonal add.
+#[derive(Debug)]
+pub(crate) struct CoupledPattern {
     n: usize,
     pattern: SymbolicSparseColMat<usize>,
-    symbolic: SymbolicCholesky<usize>,
-    /// For every stored entry of `K` (in the order of [`ContactSystem::stiffness_entries`]) its
-    /// slot in the upper triangle, `None` for the lower triangle.
-    k_slots: Vec<Option<usize>>,
+    /// For a stiffness that repeats entries (unsorted storage, summed): the slot of every
+    /// lower entry of `K` in column order. `None` when the lower entries of each column of
+    /// `K` are the head of the column, in order.
+    k_slots: Option<Vec<usize>>,
     normal: RowProducts,
     tangential: Option<RowProducts>,
     diag_slots: Vec<usize>,
-    values: Vec<f64>,
-    factor: Vec<f64>,
-    buffer: MemBuffer,
-    par: Par,
-    work: WorkCounters,
+    analysis: Arc<vem_elastic::CholeskyAnalysis>,
+    /// The blocks' orders the analysis was made on (held, so that other solvers of the
+    /// structure find them).
+    _orders: Vec<Arc<BlockOrder>>,
 }
 
-impl std::fmt::Debug for NewtonMatrix {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("NewtonMatrix")
-            .field("n", &self.n)
-            .field("pattern_nnz", &self.values.len())
-            .field("factor_nnz", &self.factor.len())
-            .field("par", &self.par)
-            .finish_non_exhaustive()
-    }
-}
-
-impl NewtonMatrix {
-    /// Analyses the pattern of `K + B_N'B_N + B_T'B_T + I` (upper triangle).
-    pub(crate) fn try_new(system: &ContactSystem<'_>, par: Par) -> Result<Self, String> {
-        let start = Instant::now();
+impl CoupledPattern {
+    fn new(system: &ContactSystem<'_>, ordering: Ordering) -> Result<Self, SolveError> {
         let n = system.n_dofs();
-        let mut pairs: Vec<(usize, usize)> = (0..n).map(|j| (j, j)).collect();
-        pairs.extend(
-            system
-                .stiffness_entries()
-                .filter(|&(i, j, _)| i <= j)
-                .map(|(i, j, _)| (i, j)),
-        );
+        let interfaces = shared::interfaces(system);
+        let blocks = system.stiffness_blocks();
+        let orders = blocks
+            .iter()
+            .enumerate()
+            .map(|(b, _)| shared::order_of_block(system, b, &interfaces[b], ordering))
+            .collect::<Result<Vec<_>, _>>()?;
+        // Every block's interior, then every block's interface.
+        let mut order = Vec::with_capacity(n);
+        for (block, o) in blocks.iter().zip(&orders) {
+            let interior = o.order.len() - o.interface.len();
+            order.extend(o.order[..interior].iter().map(|&i| i + block.offset()));
+        }
+        let n_interface = n - order.len();
+        for (block, o) in blocks.iter().zip(&orders) {
+            let interior = o.order.len() - o.interface.len();
+            order.extend(o.order[interior..].iter().map(|&i| i + block.offset()));
+        }
+        // The entries the rows add, by column (lower triangle), and the diagonal.
+        let mut extra: Vec<(usize, usize)> = (0..n).map(|j| (j, j)).collect();
         let mut add_rows = |rows: &ConstraintRows| {
             for r in 0..rows.nrows() {
                 let cols = rows.row(r).0;
                 for a in 0..cols.len() {
-                    pairs.extend(cols[a..].iter().map(|&cb| (cols[a], cb)));
+                    extra.extend(cols[a..].iter().map(|&cb| (cols[a], cb)));
                 }
             }
         };
@@ -108,69 +109,146 @@ impl NewtonMatrix {
         if let Some(fr) = system.friction() {
             add_rows(fr.tangential_rows());
         }
-        pairs.sort_unstable_by_key(|&(i, j)| (j, i));
-        pairs.dedup();
-        let mut col_ptr = vec![0usize; n + 1];
-        for &(_, j) in &pairs {
-            col_ptr[j + 1] += 1;
+        extra.sort_unstable();
+        extra.dedup();
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        let mut k_slots = Vec::new();
+        let mut repeats = false;
+        let mut stamp = vec![usize::MAX; n];
+        let mut next_extra = 0;
+        col_ptr.push(0);
+        for block in blocks {
+            let k = block.matrix();
+            let offset = block.offset();
+            for jl in 0..k.ncols() {
+                let j = jl + offset;
+                let start = row_idx.len();
+                for &il in k.row_idx_of_col_raw(jl) {
+                    if il < jl {
+                        continue;
+                    }
+                    let i = il + offset;
+                    if stamp[i] != j {
+                        stamp[i] = j;
+                        row_idx.push(i);
+                        k_slots.push(row_idx.len() - 1);
+                    } else {
+                        repeats = true;
+                        let at = row_idx[start..].iter().position(|&r| r == i);
+                        k_slots.push(start + at.expect("stamped in this column"));
+                    }
+                }
+                while next_extra < extra.len() && extra[next_extra].0 == j {
+                    let i = extra[next_extra].1;
+                    if stamp[i] != j {
+                        stamp[i] = j;
+                        row_idx.push(i);
+                    }
+                    next_extra += 1;
+                }
+                col_ptr.push(row_idx.len());
+            }
         }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
-        let row_idx: Vec<usize> = pairs.iter().map(|&(i, _)| i).collect();
+        drop((extra, stamp));
         let slot = |i: usize, j: usize| -> usize {
             let start = col_ptr[j];
-            // The pair was inserted above, so the search cannot fail.
-            start + row_idx[start..col_ptr[j + 1]].partition_point(|&r| r < i)
+            // The entry was inserted above, so the search cannot fail.
+            start
+                + row_idx[start..col_ptr[j + 1]]
+                    .iter()
+                    .position(|&r| r == i)
+                    .expect("every coupled entry is in the pattern")
         };
-        let k_slots = system
-            .stiffness_entries()
-            .map(|(i, j, _)| (i <= j).then(|| slot(i, j)))
-            .collect();
         let normal = RowProducts::new(system.normal_rows(), &slot);
         let tangential = system
             .friction()
             .map(|fr| RowProducts::new(fr.tangential_rows(), &slot));
         let diag_slots = (0..n).map(|j| slot(j, j)).collect();
-        let nnz = row_idx.len();
-        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Upper,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|e| format!("symbolic Cholesky analysis: {e}"))?;
-        let scratch = symbolic
-            .factorize_numeric_llt_scratch::<f64>(par, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, par));
-        let buffer = MemBuffer::try_new(scratch).map_err(|e| format!("workspace: {e}"))?;
-        let factor = vec![0.0; symbolic.len_val()];
-        let mut work = WorkCounters {
-            symbolic_analyses: 1,
-            ..WorkCounters::default()
-        };
-        work.times.symbolic = start.elapsed();
+        let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
+        let mut cholesky = CholeskySolver::new(newton_settings(ordering, Par::Seq)?);
+        cholesky.analyse_with_order(pattern.as_ref(), &order, n_interface)?;
+        let analysis = cholesky.shared_analysis().expect("analysed above");
         Ok(Self {
-            pattern_id: system.pattern(),
-            has_friction: system.friction().is_some(),
             n,
             pattern,
-            symbolic,
-            k_slots,
+            k_slots: repeats.then_some(k_slots),
             normal,
             tangential,
             diag_slots,
-            values: vec![0.0; nnz],
-            factor,
-            buffer,
+            analysis,
+            _orders: orders,
+        })
+    }
+}
+
+/// The Cholesky settings of a Newton matrix: the solver's parallelism for factorisations and
+/// solves, and any positive pivot accepted (a matrix the factorisation accepts is used; the
+/// guard below shifts those it refuses).
+fn newton_settings(ordering: Ordering, par: Par) -> Result<CholeskySettings, SolveError> {
+    CholeskySettings::builder()
+        .ordering(ordering)
+        .factorisation_parallelism(par)
+        .solve_parallelism(par)
+        .singular_pivot_tolerance(0.0)
+        .build()
+}
+
+/// Symmetric positive definite Newton matrix on the shared pattern of its structure
+/// ([`CoupledPattern`]), with its own values and factor.
+pub(crate) struct NewtonMatrix {
+    key: CoupledKey,
+    par: Par,
+    coupled: Arc<CoupledPattern>,
+    values: Vec<f64>,
+    cholesky: CholeskySolver,
+    work: WorkCounters,
+}
+
+impl std::fmt::Debug for NewtonMatrix {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NewtonMatrix")
+            .field("n", &self.coupled.n)
+            .field("pattern_nnz", &self.values.len())
+            .field("factor_nnz", &self.coupled.analysis.factor_entries())
+            .field("par", &self.par)
+            .finish_non_exhaustive()
+    }
+}
+
+impl NewtonMatrix {
+    /// The matrix of `system`'s structure: its pattern and analysis shared with the other
+    /// solvers of the structure, or made here (counted as one symbolic analysis).
+    pub(crate) fn try_new(system: &ContactSystem<'_>, par: Par) -> Result<Self, String> {
+        let start = Instant::now();
+        let ordering = Ordering::default();
+        let key = CoupledKey {
+            pattern: system.pattern(),
+            has_friction: system.friction().is_some(),
+            ordering,
+        };
+        let (coupled, made) =
+            shared::coupled_pattern(key, || CoupledPattern::new(system, ordering))
+                .map_err(|e| format!("symbolic Cholesky analysis: {e}"))?;
+        let settings = newton_settings(ordering, par).map_err(|e| e.to_string())?;
+        let cholesky = CholeskySolver::from_analysis(settings, Arc::clone(&coupled.analysis));
+        let mut work = WorkCounters::default();
+        if made {
+            work.symbolic_analyses = 1;
+            work.times.symbolic = start.elapsed();
+        }
+        Ok(Self {
+            key,
             par,
+            values: vec![0.0; coupled.pattern.row_idx().len()],
+            coupled,
+            cholesky,
             work,
         })
     }
 
     /// The matrix kept in `slot` if it was made for the structure of `system` (and
-    /// parallelism `par`), else a new analysis.
+    /// parallelism `par`), else a new one.
     pub(crate) fn reuse_or_analyse<'m>(
         slot: &'m mut Option<NewtonMatrix>,
         system: &ContactSystem<'_>,
@@ -178,10 +256,12 @@ impl NewtonMatrix {
     ) -> Result<&'m mut NewtonMatrix, String> {
         let fits = slot.as_ref().is_some_and(|m| {
             m.par == par
-                && m.pattern_id == system.pattern()
-                && m.has_friction == system.friction().is_some()
+                && m.key.pattern == system.pattern()
+                && m.key.has_friction == system.friction().is_some()
         });
         if !fits {
+            // The old matrix's values and factor go before the new ones are made.
+            *slot = None;
             *slot = Some(Self::try_new(system, par)?);
         }
         Ok(slot.as_mut().expect("filled above"))
@@ -202,54 +282,56 @@ impl NewtonMatrix {
         shift: &[f64],
     ) -> bool {
         let start = Instant::now();
+        let coupled = &self.coupled;
+        let col_ptr = coupled.pattern.col_ptr();
         self.values.iter_mut().for_each(|v| *v = 0.0);
-        // The entries in the order of `stiffness_entries`, read from plain slices.
-        let mut slots = self.k_slots.iter();
+        // The lower entries of K, at the head of every column in K's storage order (or where
+        // `k_slots` puts them).
+        let mut j = 0;
+        let mut entry = 0;
         for block in system.stiffness_blocks() {
             let k = block.matrix();
-            for j in 0..k.ncols() {
-                for (&v, slot) in k.val()[k.col_range(j)].iter().zip(&mut slots) {
-                    if let Some(slot) = *slot {
-                        self.values[slot] += v;
+            for jl in 0..k.ncols() {
+                let mut slot = col_ptr[j];
+                let rows = k.row_idx_of_col_raw(jl);
+                for (&il, &v) in rows.iter().zip(k.val_of_col(jl)) {
+                    if il >= jl {
+                        let at = coupled.k_slots.as_ref().map_or(slot, |s| s[entry]);
+                        self.values[at] += v;
+                        slot += 1;
+                        entry += 1;
                     }
                 }
+                j += 1;
             }
         }
-        self.normal.add_weighted(normal_weights, &mut self.values);
-        if let Some(t) = &self.tangential {
+        coupled
+            .normal
+            .add_weighted(normal_weights, &mut self.values);
+        if let Some(t) = &coupled.tangential {
             t.add_weighted(tangential_weights, &mut self.values);
         }
-        for (&slot, &s) in self.diag_slots.iter().zip(shift) {
+        for (&slot, &s) in coupled.diag_slots.iter().zip(shift) {
             self.values[slot] += s;
         }
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let ok = self
-            .symbolic
-            .factorize_numeric_llt(
-                &mut self.factor,
-                matrix,
-                Side::Upper,
-                LltRegularization::default(),
-                self.par,
-                MemStack::new(&mut self.buffer),
-                Default::default(),
-            )
-            .is_ok();
+        let matrix = SparseColMatRef::new(coupled.pattern.as_ref(), &self.values);
+        let ok = self.cholesky.factorise(matrix).is_ok();
         self.work.numeric_factorisations += 1;
         self.work.times.numeric += start.elapsed();
         ok
     }
 
-    /// Solves with the last factorisation, in place.
+    /// Solves with the last factorisation, in place (NaN if the last factorisation failed).
     pub(crate) fn solve_in_place(&mut self, rhs: &mut [f64]) {
         let start = Instant::now();
         let n = rhs.len();
-        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, n, 1),
-            self.par,
-            MemStack::new(&mut self.buffer),
-        );
+        if self
+            .cholesky
+            .solve_in_place(MatMut::from_column_major_slice_mut(rhs, n, 1))
+            .is_err()
+        {
+            rhs.fill(f64::NAN);
+        }
         self.work.triangular_solves += 1;
         self.work.times.solves += start.elapsed();
     }
