@@ -61,6 +61,9 @@ pub const COINCIDENCE_RATIO: f64 = 1e-10;
 /// than pair by pair.
 const BRUTE_FORCE_EDGES: usize = 64;
 
+/// Meshes with at least this many edges check edge pairs (step 4) on a second thread.
+const PARALLEL_EDGES: usize = 50_000;
+
 /// Angular slack (radians) when comparing corners around a vertex.
 const ANGLE_TOLERANCE: f64 = 1e-9;
 
@@ -136,16 +139,33 @@ pub(crate) fn check_storage(
 pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     // An extent that overflows leaves the coincidence tests to the area check below.
     let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
-    check_duplicate_vertices(mesh, tolerance)?;
-    let mut points = Vec::new();
-    for p in 0..mesh.n_polygons() {
-        points.clear();
-        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
-        check_polygon(p, &points, tolerance)?;
+    let polygons = || -> Result<(), MeshError> {
+        let mut points = Vec::new();
+        for p in 0..mesh.n_polygons() {
+            points.clear();
+            points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+            check_polygon(p, &points, tolerance)?;
+        }
+        Ok(())
+    };
+    if mesh.n_edges() < PARALLEL_EDGES {
+        check_duplicate_vertices(mesh, tolerance)?;
+        polygons()?;
+        check_conformity(mesh, tolerance)?;
+        check_corners(mesh)?;
+        return check_nesting(mesh);
     }
-    check_conformity(mesh, tolerance)?;
-    check_corners(mesh)?;
-    check_nesting(mesh)
+    // Step 4, the costliest, on a second thread beside the others; the first failure in the
+    // order of the steps is returned, as when they run one after the other.
+    std::thread::scope(|scope| {
+        let conformity = scope.spawn(|| check_conformity(mesh, tolerance));
+        let before = check_duplicate_vertices(mesh, tolerance).and_then(|()| polygons());
+        let after = check_corners(mesh).and_then(|()| check_nesting(mesh));
+        let conformity = conformity
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        before.and(conformity).and(after)
+    })
 }
 
 /// The coincidence tolerance of `mesh`: [`COINCIDENCE_RATIO`] times the mean bounding-box
