@@ -27,6 +27,10 @@ mod msh;
 #[cfg(feature = "svg")]
 mod svg;
 #[cfg(feature = "vtu")]
+mod vtk;
+#[cfg(feature = "vtu")]
+mod vtk_read;
+#[cfg(feature = "vtu")]
 mod vtu;
 
 #[cfg(feature = "gmsh")]
@@ -39,7 +43,16 @@ pub use msh::{
 #[cfg(feature = "svg")]
 pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
 #[cfg(feature = "vtu")]
-pub use vtu::{write_vtu, DataArray, VtuData};
+pub use vtk::{
+    CellType, Cells, PvdCollection, PvdDataSet, UnstructuredGrid, Values, VtkArray, VtuEncoding,
+};
+#[cfg(feature = "vtu")]
+pub use vtk_read::{
+    mesh_from_grid, read_legacy_vtk, read_legacy_vtk_bytes, read_vtk_mesh, read_vtu,
+    read_vtu_bytes, GridMeshOptions,
+};
+#[cfg(feature = "vtu")]
+pub use vtu::{write_vtu, write_vtu_with, DataArray, VtuData};
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
