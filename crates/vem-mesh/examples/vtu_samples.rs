@@ -73,15 +73,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let body = UnstructuredGrid::from_mesh(&mesh)
         .with_point_data(VtkArray::vectors_2d(
             "displacement",
-            &(0..n).map(|k| Vector::new(f(k), -f(k + 1) * 1e-9)).collect::<Vec<_>>(),
+            &(0..n)
+                .map(|k| Vector::new(f(k), -f(k + 1) * 1e-9))
+                .collect::<Vec<_>>(),
         ))
         .with_point_data(VtkArray::scalars("temperature", (0..n).map(f).collect()))
         .with_cell_data(VtkArray::symmetric_tensors_2d(
             "stress",
-            &(0..m).map(|k| [f(k), f(k + 7), f(k + 9)]).collect::<Vec<_>>(),
+            &(0..m)
+                .map(|k| [f(k), f(k + 7), f(k + 9)])
+                .collect::<Vec<_>>(),
         ))
         .with_cell_data(VtkArray::int32("body", vec![1; m]))
-        .with_cell_data(VtkArray::uint8("status", (0..m).map(|k| (k % 4) as u8).collect()));
+        .with_cell_data(VtkArray::uint8(
+            "status",
+            (0..m).map(|k| (k % 4) as u8).collect(),
+        ));
 
     // The bottom of the mesh as a contact interface of line cells.
     let bottom = mesh.part("bottom")?;
@@ -119,11 +126,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|k| [(k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64])
         .collect();
     let solids = UnstructuredGrid::new(corners, cells)
-        .with_point_data(VtkArray::new("ids", 1, Values::Int64((0..8).map(|k| k << 35).collect())))
-        .with_cell_data(VtkArray::tensors("gradient", &[[0.5; 9], [1.5; 9], [2.5; 9], [3.5; 9]]));
+        .with_point_data(VtkArray::new(
+            "ids",
+            1,
+            Values::Int64((0..8).map(|k| k << 35).collect()),
+        ))
+        .with_cell_data(VtkArray::tensors(
+            "gradient",
+            &[[0.5; 9], [1.5; 9], [2.5; 9], [3.5; 9]],
+        ));
 
     let mut pvd = PvdCollection::new();
-    for encoding in [VtuEncoding::Ascii, VtuEncoding::Binary, VtuEncoding::Compressed] {
+    for encoding in [
+        VtuEncoding::Ascii,
+        VtuEncoding::Binary,
+        VtuEncoding::Compressed,
+    ] {
         let tag = encoding.name();
         for (name, grid, meshio) in [
             ("body", &body, true),
@@ -142,7 +160,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let data = VtuData::new()
             .with_point_vectors(
                 "u",
-                &(0..n).map(|k| Vector::new(f(k), f(k + 2))).collect::<Vec<_>>(),
+                &(0..n)
+                    .map(|k| Vector::new(f(k), f(k + 2)))
+                    .collect::<Vec<_>>(),
             )
             .with_cell_scalars("energy", (0..m).map(f).collect());
         let file = format!("mesh-{tag}.vtu");
@@ -156,6 +176,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )?;
     }
     pvd.write(dir.join("samples.pvd"))?;
-    println!("vtu_samples: wrote {} files and samples.pvd in {}", pvd.datasets().len() + 3, dir.display());
+    println!(
+        "vtu_samples: wrote {} files and samples.pvd in {}",
+        pvd.datasets().len() + 3,
+        dir.display()
+    );
     Ok(())
 }

@@ -25,6 +25,8 @@ mod gmsh;
 #[cfg(feature = "gmsh")]
 mod msh;
 #[cfg(feature = "svg")]
+mod raster;
+#[cfg(feature = "svg")]
 mod svg;
 #[cfg(feature = "vtu")]
 mod vtk;
@@ -41,7 +43,7 @@ pub use msh::{
     MshNode, MshVersion,
 };
 #[cfg(feature = "svg")]
-pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
+pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions, VECTOR_CELL_LIMIT};
 #[cfg(feature = "vtu")]
 pub use vtk::{
     CellType, Cells, PvdCollection, PvdDataSet, UnstructuredGrid, Values, VtkArray, VtuEncoding,

@@ -356,7 +356,11 @@ impl Values {
     fn write_text(&self, out: &mut String, per_line: usize) {
         let per_line = per_line.max(1);
         for k in 0..self.len() {
-            out.push_str(if k % per_line == 0 { "\n          " } else { " " });
+            out.push_str(if k % per_line == 0 {
+                "\n          "
+            } else {
+                " "
+            });
             match self {
                 Values::Float64(v) => write!(out, "{:e}", v[k]),
                 Values::Int32(v) => write!(out, "{}", v[k]),
@@ -586,7 +590,9 @@ impl UnstructuredGrid {
                     return Err(bad("hold a face of fewer than 3 points or cut short"));
                 }
                 if let Some(&p) = tail[..k].iter().find(|p| !cells.cell(c).contains(p)) {
-                    return Err(bad(&format!("use point {p}, which is not a point of the cell")));
+                    return Err(bad(&format!(
+                        "use point {p}, which is not a point of the cell"
+                    )));
                 }
                 rest = &tail[k..];
             }
@@ -746,8 +752,16 @@ fn write_document(
     // The appended blocks, in the order of the arrays in the XML.
     let mut appended: Vec<u8> = Vec::new();
     let mut sections: Vec<(&str, String, &[Entry])> = vec![
-        ("PointData", active_attributes(&grid.point_data), &point_entries),
-        ("CellData", active_attributes(&grid.cell_data), &data_entries),
+        (
+            "PointData",
+            active_attributes(&grid.point_data),
+            &point_entries,
+        ),
+        (
+            "CellData",
+            active_attributes(&grid.cell_data),
+            &data_entries,
+        ),
         ("Points", String::new(), &point_coordinates),
         ("Cells", String::new(), &cell_entries),
     ];
@@ -775,8 +789,12 @@ fn write_document(
             )
             .unwrap_or(());
             if tag == "FieldData" {
-                write!(xml, " NumberOfTuples=\"{}\"", entry.values.len() / entry.components.max(1))
-                    .unwrap_or(());
+                write!(
+                    xml,
+                    " NumberOfTuples=\"{}\"",
+                    entry.values.len() / entry.components.max(1)
+                )
+                .unwrap_or(());
             }
             match encoding {
                 VtuEncoding::Ascii => {
@@ -827,8 +845,11 @@ fn text_per_line(components: usize) -> usize {
 fn active_attributes(arrays: &[VtkArray]) -> String {
     let mut active = String::new();
     let pick = |components: &[usize]| arrays.iter().find(|a| components.contains(&a.components));
-    for (attribute, components) in [("Scalars", &[1][..]), ("Vectors", &[3]), ("Tensors", &[9, 6])]
-    {
+    for (attribute, components) in [
+        ("Scalars", &[1][..]),
+        ("Vectors", &[3]),
+        ("Tensors", &[9, 6]),
+    ] {
         if let Some(a) = pick(components) {
             write!(active, " {attribute}=\"{}\"", xml_escape(&a.name)).unwrap_or(());
         }

@@ -45,12 +45,10 @@ pub fn read_legacy_vtk_bytes(
     bytes: &[u8],
     name: impl AsRef<Path>,
 ) -> Result<UnstructuredGrid, MeshError> {
-    Legacy::new(bytes)
-        .grid()
-        .map_err(|reason| MeshError::Read {
-            path: name.as_ref().to_path_buf(),
-            reason,
-        })
+    Legacy::new(bytes).grid().map_err(|reason| MeshError::Read {
+        path: name.as_ref().to_path_buf(),
+        reason,
+    })
 }
 
 /// Reads a polygonal mesh from a `.vtu` or legacy `.vtk` file (by its extension), as
@@ -121,7 +119,10 @@ pub fn mesh_from_grid(grid: &UnstructuredGrid, options: &GridMeshOptions) -> Res
             2 => {
                 for &p in cells.cell(c) {
                     *used.get_mut(p).ok_or_else(|| {
-                        format!("cell {c} refers to point {p}, but there are {} points", grid.points.len())
+                        format!(
+                            "cell {c} refers to point {p}, but there are {} points",
+                            grid.points.len()
+                        )
                     })? = true;
                 }
                 polygon_cells.push(c);
@@ -205,17 +206,15 @@ fn grid_parts(
     if lines.is_empty() {
         return Ok(Vec::new());
     }
-    let array = match &options.part_array {
-        Some(name) => Some(
-            grid.cell_data
+    let array =
+        match &options.part_array {
+            Some(name) => Some(grid.cell_data.iter().find(|a| &a.name == name).ok_or_else(
+                || format!("the file has no cell-data array '{name}' of part numbers"),
+            )?),
+            None => PART_ARRAYS
                 .iter()
-                .find(|a| &a.name == name)
-                .ok_or_else(|| format!("the file has no cell-data array '{name}' of part numbers"))?,
-        ),
-        None => PART_ARRAYS
-            .iter()
-            .find_map(|name| grid.cell_data.iter().find(|a| a.name == *name)),
-    };
+                .find_map(|name| grid.cell_data.iter().find(|a| a.name == *name)),
+        };
     let mut by_number: BTreeMap<i64, Vec<[usize; 2]>> = BTreeMap::new();
     for &c in &lines {
         let number = match array {
@@ -380,7 +379,10 @@ fn xml_grid(bytes: &[u8]) -> Result<UnstructuredGrid, String> {
     }
     let document = roxmltree::Document::parse(&text).map_err(|e| {
         let p = e.pos();
-        format!("line {}, column {}: the XML is malformed: {e}", p.row, p.col)
+        format!(
+            "line {}, column {}: the XML is malformed: {e}",
+            p.row, p.col
+        )
     })?;
     let root = document.root_element();
     let position = |node: roxmltree::Node| {
@@ -491,10 +493,7 @@ fn xml_grid(bytes: &[u8]) -> Result<UnstructuredGrid, String> {
             }
             let values = decode(s, &encoding, Some(3 * n_points))?;
             let values = as_f64(&values);
-            values
-                .chunks_exact(3)
-                .map(|c| [c[0], c[1], c[2]])
-                .collect()
+            values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
         }
     };
 
@@ -506,9 +505,12 @@ fn xml_grid(bytes: &[u8]) -> Result<UnstructuredGrid, String> {
             None => Ok(None),
             Some(s) => {
                 let values = decode(s, &encoding, expected)?;
-                as_i64(&values)
-                    .map(Some)
-                    .map_err(|k| format!("line {}: array '{name}' holds a non-integer at entry {k}", s.at.0))
+                as_i64(&values).map(Some).map_err(|k| {
+                    format!(
+                        "line {}: array '{name}' holds a non-integer at entry {k}",
+                        s.at.0
+                    )
+                })
             }
         }
     };
@@ -621,7 +623,9 @@ fn build_cells(
         let cell_type = u8::try_from(t)
             .ok()
             .and_then(CellType::from_vtk_id)
-            .ok_or_else(|| format!("cell {c} has VTK cell type {t}, which this reader does not know"))?;
+            .ok_or_else(|| {
+                format!("cell {c} has VTK cell type {t}, which this reader does not know")
+            })?;
         cells.types.push(cell_type);
     }
     if let (Some(faces), Some(face_offsets)) = (faces, face_offsets) {
@@ -640,7 +644,11 @@ fn build_cells(
 
 /// The values of an array: floats as Float64, UInt8 as UInt8, other integers as Int32 when
 /// every type value fits (Int8, Int16, UInt16, Int32) and Int64 otherwise.
-fn decode(spec: &ArraySpec, encoding: &Encoding, expected: Option<usize>) -> Result<Values, String> {
+fn decode(
+    spec: &ArraySpec,
+    encoding: &Encoding,
+    expected: Option<usize>,
+) -> Result<Values, String> {
     let where_ = format!("array '{}' (line {})", spec.name, spec.at.0);
     let (size, kind) = match spec.type_name.as_str() {
         "Float32" => (4, 'f'),
@@ -658,7 +666,11 @@ fn decode(spec: &ArraySpec, encoding: &Encoding, expected: Option<usize>) -> Res
     let values = match spec.format.as_str() {
         "ascii" => ascii_values(spec.text, size, kind).map_err(|e| format!("{where_}: {e}"))?,
         "binary" => {
-            let text: Vec<u8> = spec.text.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
+            let text: Vec<u8> = spec
+                .text
+                .bytes()
+                .filter(|b| !b.is_ascii_whitespace())
+                .collect();
             let raw = inline_binary(&text, encoding).map_err(|e| format!("{where_}: {e}"))?;
             binary_values(&raw, size, kind, encoding.little_endian)
                 .map_err(|e| format!("{where_}: {e}"))?
@@ -708,7 +720,8 @@ fn decode(spec: &ArraySpec, encoding: &Encoding, expected: Option<usize>) -> Res
 /// Numbers written as text.
 fn ascii_values(text: &str, size: usize, kind: char) -> Result<Values, String> {
     let tokens = text.split_ascii_whitespace();
-    let bad = |k: usize, t: &str| format!("value {k} is '{}', not a number of the type", shorten(t));
+    let bad =
+        |k: usize, t: &str| format!("value {k} is '{}', not a number of the type", shorten(t));
     if kind == 'f' {
         let mut v = Vec::new();
         for (k, t) in tokens.enumerate() {
@@ -780,7 +793,10 @@ fn binary_values(raw: &[u8], size: usize, kind: char, little: bool) -> Result<Va
             let mut v = Vec::with_capacity(raw.len() / 8);
             for (k, c) in chunks.enumerate() {
                 v.push(i64::try_from(word(c)).map_err(|_| {
-                    format!("value {k} is {}, beyond the integers this reader keeps", word(c))
+                    format!(
+                        "value {k} is {}, beyond the integers this reader keeps",
+                        word(c)
+                    )
                 })?);
             }
             Values::Int64(v)
@@ -790,7 +806,9 @@ fn binary_values(raw: &[u8], size: usize, kind: char, little: bool) -> Result<Va
             // Sign-extend from `size` bytes.
             let shift = 64 - 8 * size as u32;
             integer_values(
-                chunks.map(|c| ((word(c) << shift) as i64) >> shift).collect(),
+                chunks
+                    .map(|c| ((word(c) << shift) as i64) >> shift)
+                    .collect(),
                 size,
                 kind,
             )
@@ -825,7 +843,9 @@ fn raw_block(data: &[u8], encoding: &Encoding) -> Result<Vec<u8>, String> {
     }
     let n_blocks = header_word(data, 0)?;
     if n_blocks > data.len() / h {
-        return Err(format!("the header announces {n_blocks} blocks, more than the file holds"));
+        return Err(format!(
+            "the header announces {n_blocks} blocks, more than the file holds"
+        ));
     }
     let block_size = header_word(data, 1)?;
     let last = header_word(data, 2)?;
@@ -839,10 +859,21 @@ fn raw_block(data: &[u8], encoding: &Encoding) -> Result<Vec<u8>, String> {
         let block = data
             .get(at..)
             .and_then(|rest| rest.get(..size))
-            .ok_or_else(|| format!("compressed block {k} ({size} bytes) runs past the end of the file"))?;
-        let expected = if k + 1 == n_blocks && last != 0 { last } else { block_size };
+            .ok_or_else(|| {
+                format!("compressed block {k} ({size} bytes) runs past the end of the file")
+            })?;
+        let expected = if k + 1 == n_blocks && last != 0 {
+            last
+        } else {
+            block_size
+        };
         let inflated = miniz_oxide::inflate::decompress_to_vec_zlib_with_limit(block, expected)
-            .map_err(|e| format!("compressed block {k} is not valid zlib data ({:?})", e.status))?;
+            .map_err(|e| {
+                format!(
+                    "compressed block {k} is not valid zlib data ({:?})",
+                    e.status
+                )
+            })?;
         if inflated.len() != expected {
             return Err(format!(
                 "compressed block {k} holds {} bytes, the header announces {expected}",
@@ -882,7 +913,9 @@ fn inline_binary(text: &[u8], encoding: &Encoding) -> Result<Vec<u8>, String> {
         .checked_add(3)
         .and_then(|k| k.checked_mul(h))
         .filter(|&l| base64_len(l) <= text.len())
-        .ok_or_else(|| format!("the header announces {n_blocks} blocks, more than the text holds"))?;
+        .ok_or_else(|| {
+            format!("the header announces {n_blocks} blocks, more than the text holds")
+        })?;
     let header_chars = base64_len(header_len);
     let mut raw = base64_decode(&text[..header_chars])?;
     raw.truncate(header_len);
@@ -931,7 +964,10 @@ fn base64_decode(text: &[u8]) -> Result<Vec<u8>, String> {
             continue;
         }
         let v = value(c).ok_or_else(|| {
-            format!("character {k} of the base64 data is {:?}, not base64", c as char)
+            format!(
+                "character {k} of the base64 data is {:?}, not base64",
+                c as char
+            )
         })?;
         buffer = (buffer << 6) | v;
         bits += 6;
@@ -945,7 +981,9 @@ fn base64_decode(text: &[u8]) -> Result<Vec<u8>, String> {
 }
 
 fn as_f64(values: &Values) -> Vec<f64> {
-    (0..values.len()).filter_map(|k| values.get_f64(k)).collect()
+    (0..values.len())
+        .filter_map(|k| values.get_f64(k))
+        .collect()
 }
 
 /// The values as integers; the error is the index of the first that is not one.
@@ -1084,7 +1122,10 @@ impl<'a> Legacy<'a> {
             let bad = || {
                 self.error(
                     start,
-                    format!("{what}: value {k} is '{}', not a number of type {type_name}", shorten(token)),
+                    format!(
+                        "{what}: value {k} is '{}', not a number of type {type_name}",
+                        shorten(token)
+                    ),
                 )
             };
             if kind == 'f' {
@@ -1126,20 +1167,31 @@ impl<'a> Legacy<'a> {
             .next()
             .and_then(|v| v.parse().ok())
             .unwrap_or(3.0);
-        self.line().ok_or("line 2: the file ends before its title")?;
-        let (format, at) = self.content_line().ok_or("the file ends before ASCII or BINARY")?;
+        self.line()
+            .ok_or("line 2: the file ends before its title")?;
+        let (format, at) = self
+            .content_line()
+            .ok_or("the file ends before ASCII or BINARY")?;
         self.binary = match format.trim().to_ascii_uppercase().as_str() {
             "ASCII" => false,
             "BINARY" => true,
             other => {
-                return Err(self.error(at, format!("expected ASCII or BINARY, found '{}'", shorten(other))))
+                return Err(self.error(
+                    at,
+                    format!("expected ASCII or BINARY, found '{}'", shorten(other)),
+                ))
             }
         };
         let (dataset, at) = self.content_line().ok_or("the file ends before DATASET")?;
         let mut words = dataset.split_whitespace();
         let kind = match (words.next(), words.next()) {
             (Some(d), Some(kind)) if d.eq_ignore_ascii_case("DATASET") => kind.to_ascii_uppercase(),
-            _ => return Err(self.error(at, format!("expected DATASET, found '{}'", shorten(dataset)))),
+            _ => {
+                return Err(self.error(
+                    at,
+                    format!("expected DATASET, found '{}'", shorten(dataset)),
+                ))
+            }
         };
         if kind != "POLYDATA" && kind != "UNSTRUCTURED_GRID" {
             return Err(self.error(
@@ -1168,7 +1220,10 @@ impl<'a> Legacy<'a> {
                     let n = self.count(words.next(), at, "the number of points")?;
                     let type_name = words.next().unwrap_or("float").to_string();
                     let values = self.numbers(3 * n, &type_name, "POINTS")?;
-                    points = as_f64(&values).chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                    points = as_f64(&values)
+                        .chunks_exact(3)
+                        .map(|c| [c[0], c[1], c[2]])
+                        .collect();
                 }
                 "VERTICES" | "LINES" | "POLYGONS" | "CELLS" => {
                     let n = self.count(words.next(), at, "the number of cells")?;
@@ -1188,18 +1243,29 @@ impl<'a> Legacy<'a> {
                     }
                 }
                 "TRIANGLE_STRIPS" => {
-                    return Err(self.error(at, "triangle strips are not supported; convert them to triangles"))
+                    return Err(self.error(
+                        at,
+                        "triangle strips are not supported; convert them to triangles",
+                    ))
                 }
                 "CELL_TYPES" => {
                     let n = self.count(words.next(), at, "the number of cell types")?;
                     let values = self.numbers(n, "int", "CELL_TYPES")?;
-                    ug_types = Some(as_i64(&values).map_err(|k| self.error(at, format!("cell type {k} is not an integer")))?);
+                    ug_types =
+                        Some(as_i64(&values).map_err(|k| {
+                            self.error(at, format!("cell type {k} is not an integer"))
+                        })?);
                 }
                 "POINT_DATA" | "CELL_DATA" => {
                     let n = self.count(words.next(), at, "the number of entries")?;
                     group = Some((keyword == "POINT_DATA", n));
                 }
-                "SCALARS" | "VECTORS" | "NORMALS" | "TENSORS" | "COLOR_SCALARS" | "TEXTURE_COORDINATES" => {
+                "SCALARS"
+                | "VECTORS"
+                | "NORMALS"
+                | "TENSORS"
+                | "COLOR_SCALARS"
+                | "TEXTURE_COORDINATES" => {
                     let (is_point, entries) = group.ok_or_else(|| {
                         self.error(at, format!("{keyword} before POINT_DATA or CELL_DATA"))
                     })?;
@@ -1214,7 +1280,10 @@ impl<'a> Legacy<'a> {
                             // A lookup table line follows.
                             let here = self.pos;
                             match self.content_line() {
-                                Some((l, _)) if l.trim_start().to_ascii_uppercase().starts_with("LOOKUP_TABLE") => {}
+                                Some((l, _))
+                                    if l.trim_start()
+                                        .to_ascii_uppercase()
+                                        .starts_with("LOOKUP_TABLE") => {}
                                 _ => self.pos = here,
                             }
                             (k, type_name)
@@ -1223,14 +1292,24 @@ impl<'a> Legacy<'a> {
                         "TENSORS" => (9, words.next().unwrap_or("float").to_string()),
                         "COLOR_SCALARS" => {
                             let k = self.count(words.next(), at, "the number of components")?;
-                            (k, if self.binary { "unsigned_char" } else { "float" }.to_string())
+                            (
+                                k,
+                                if self.binary {
+                                    "unsigned_char"
+                                } else {
+                                    "float"
+                                }
+                                .to_string(),
+                            )
                         }
                         _ => {
                             let k = self.count(words.next(), at, "the number of components")?;
                             (k, words.next().unwrap_or("float").to_string())
                         }
                     };
-                    let count = entries.checked_mul(components).ok_or_else(|| self.error(at, "too many values"))?;
+                    let count = entries
+                        .checked_mul(components)
+                        .ok_or_else(|| self.error(at, "too many values"))?;
                     let values = self.numbers(count, &type_name, &keyword)?;
                     let array = VtkArray::new(name, components, values);
                     if is_point {
@@ -1242,13 +1321,17 @@ impl<'a> Legacy<'a> {
                 "FIELD" => {
                     let n = self.count(words.nth(1), at, "the number of field arrays")?;
                     for _ in 0..n {
-                        let (header, at) = self.content_line().ok_or_else(|| self.error(self.pos, "the file ends inside FIELD"))?;
+                        let (header, at) = self
+                            .content_line()
+                            .ok_or_else(|| self.error(self.pos, "the file ends inside FIELD"))?;
                         let mut w = header.split_whitespace();
                         let name = w.next().unwrap_or("").to_string();
                         let k = self.count(w.next(), at, "the number of components")?;
                         let tuples = self.count(w.next(), at, "the number of tuples")?;
                         let type_name = w.next().unwrap_or("float").to_string();
-                        let count = k.checked_mul(tuples).ok_or_else(|| self.error(at, "too many values"))?;
+                        let count = k
+                            .checked_mul(tuples)
+                            .ok_or_else(|| self.error(at, "too many values"))?;
                         let values = self.numbers(count, &type_name, &name)?;
                         let array = VtkArray::new(name, k, values);
                         match group {
@@ -1268,8 +1351,18 @@ impl<'a> Legacy<'a> {
                 }
                 "LOOKUP_TABLE" => {
                     let n = self.count(words.nth(1), at, "the size of the lookup table")?;
-                    let count = n.checked_mul(4).ok_or_else(|| self.error(at, "too many values"))?;
-                    self.numbers(count, if self.binary { "unsigned_char" } else { "float" }, "LOOKUP_TABLE")?;
+                    let count = n
+                        .checked_mul(4)
+                        .ok_or_else(|| self.error(at, "too many values"))?;
+                    self.numbers(
+                        count,
+                        if self.binary {
+                            "unsigned_char"
+                        } else {
+                            "float"
+                        },
+                        "LOOKUP_TABLE",
+                    )?;
                 }
                 other => {
                     return Err(self.error(at, format!("unknown keyword '{}'", shorten(other))));
@@ -1302,9 +1395,13 @@ impl<'a> Legacy<'a> {
                 let cell_type = u8::try_from(t)
                     .ok()
                     .and_then(CellType::from_vtk_id)
-                    .ok_or_else(|| format!("cell {c} has VTK cell type {t}, which this reader does not know"))?;
+                    .ok_or_else(|| {
+                        format!("cell {c} has VTK cell type {t}, which this reader does not know")
+                    })?;
                 if cell_type == CellType::Polyhedron {
-                    return Err(format!("cell {c} is a polyhedron; read polyhedra from .vtu files"));
+                    return Err(format!(
+                        "cell {c} is a polyhedron; read polyhedra from .vtu files"
+                    ));
                 }
                 cells.push(cell_type, points);
             }
@@ -1322,26 +1419,46 @@ impl<'a> Legacy<'a> {
 
     /// A cell list: `n` cells of `size` numbers in all; in formats before 5, each cell as its
     /// number of points then the points; from 5 on, OFFSETS then CONNECTIVITY arrays.
-    fn cell_list(&mut self, n: usize, size: usize, version: f64, at: usize) -> Result<Vec<Vec<usize>>, String> {
+    fn cell_list(
+        &mut self,
+        n: usize,
+        size: usize,
+        version: f64,
+        at: usize,
+    ) -> Result<Vec<Vec<usize>>, String> {
         let index = |v: i64, what: &str| -> Result<usize, String> {
             usize::try_from(v).map_err(|_| format!("{what} is {v}"))
         };
         if version >= 5.0 {
             // CELLS n_offsets n_connectivity, then OFFSETS type / CONNECTIVITY type.
-            let (line, at) = self.content_line().ok_or_else(|| self.error(at, "the file ends before OFFSETS"))?;
+            let (line, at) = self
+                .content_line()
+                .ok_or_else(|| self.error(at, "the file ends before OFFSETS"))?;
             let mut w = line.split_whitespace();
             if !w.next().is_some_and(|k| k.eq_ignore_ascii_case("OFFSETS")) {
                 return Err(self.error(at, format!("expected OFFSETS, found '{}'", shorten(line))));
             }
             let offsets = self.numbers(n, w.next().unwrap_or("vtktypeint64"), "OFFSETS")?;
-            let (line, at2) = self.content_line().ok_or_else(|| self.error(at, "the file ends before CONNECTIVITY"))?;
+            let (line, at2) = self
+                .content_line()
+                .ok_or_else(|| self.error(at, "the file ends before CONNECTIVITY"))?;
             let mut w = line.split_whitespace();
-            if !w.next().is_some_and(|k| k.eq_ignore_ascii_case("CONNECTIVITY")) {
-                return Err(self.error(at2, format!("expected CONNECTIVITY, found '{}'", shorten(line))));
+            if !w
+                .next()
+                .is_some_and(|k| k.eq_ignore_ascii_case("CONNECTIVITY"))
+            {
+                return Err(self.error(
+                    at2,
+                    format!("expected CONNECTIVITY, found '{}'", shorten(line)),
+                ));
             }
-            let connectivity = self.numbers(size, w.next().unwrap_or("vtktypeint64"), "CONNECTIVITY")?;
-            let offsets = as_i64(&offsets).map_err(|k| self.error(at, format!("offset {k} is not an integer")))?;
-            let connectivity = as_i64(&connectivity).map_err(|k| self.error(at2, format!("connectivity entry {k} is not an integer")))?;
+            let connectivity =
+                self.numbers(size, w.next().unwrap_or("vtktypeint64"), "CONNECTIVITY")?;
+            let offsets = as_i64(&offsets)
+                .map_err(|k| self.error(at, format!("offset {k} is not an integer")))?;
+            let connectivity = as_i64(&connectivity).map_err(|k| {
+                self.error(at2, format!("connectivity entry {k} is not an integer"))
+            })?;
             let mut cells = Vec::with_capacity(n.saturating_sub(1));
             for c in 0..n.saturating_sub(1) {
                 let (s, e) = (
@@ -1349,7 +1466,13 @@ impl<'a> Legacy<'a> {
                     index(offsets[c + 1], "an offset").map_err(|e| self.error(at, e))?,
                 );
                 if s > e || e > connectivity.len() {
-                    return Err(self.error(at, format!("cell {c} spans entries {s}..{e} of {} connectivity entries", connectivity.len())));
+                    return Err(self.error(
+                        at,
+                        format!(
+                            "cell {c} spans entries {s}..{e} of {} connectivity entries",
+                            connectivity.len()
+                        ),
+                    ));
                 }
                 cells.push(
                     connectivity[s..e]
@@ -1361,18 +1484,26 @@ impl<'a> Legacy<'a> {
             return Ok(cells);
         }
         let values = self.numbers(size, "int", "the cell list")?;
-        let values = as_i64(&values).map_err(|k| self.error(at, format!("entry {k} is not an integer")))?;
+        let values =
+            as_i64(&values).map_err(|k| self.error(at, format!("entry {k} is not an integer")))?;
         let mut cells = Vec::with_capacity(n.min(size));
         let mut k = 0;
         for c in 0..n {
             let count = values
                 .get(k)
                 .ok_or_else(|| self.error(at, format!("the cell list ends before cell {c}")))
-                .and_then(|&v| index(v, &format!("the size of cell {c}")).map_err(|e| self.error(at, e)))?;
+                .and_then(|&v| {
+                    index(v, &format!("the size of cell {c}")).map_err(|e| self.error(at, e))
+                })?;
             let points = values
                 .get(k + 1..)
                 .and_then(|rest| rest.get(..count))
-                .ok_or_else(|| self.error(at, format!("cell {c} of {count} points runs past the cell list")))?;
+                .ok_or_else(|| {
+                    self.error(
+                        at,
+                        format!("cell {c} of {count} points runs past the cell list"),
+                    )
+                })?;
             cells.push(
                 points
                     .iter()
@@ -1382,7 +1513,10 @@ impl<'a> Legacy<'a> {
             k += 1 + count;
         }
         if k != size {
-            return Err(self.error(at, format!("the cell list has {size} numbers, its cells use {k}")));
+            return Err(self.error(
+                at,
+                format!("the cell list has {size} numbers, its cells use {k}"),
+            ));
         }
         Ok(cells)
     }

@@ -194,4 +194,3 @@ fn check_arrays(group: &str, arrays: &[DataArray], entries: usize) -> Result<(),
     }
     Ok(())
 }
-
