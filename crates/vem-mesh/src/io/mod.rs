@@ -24,6 +24,7 @@
 mod gmsh;
 #[cfg(feature = "gmsh")]
 mod msh;
+mod polymesher;
 #[cfg(feature = "svg")]
 mod raster;
 #[cfg(feature = "svg")]
@@ -42,6 +43,7 @@ pub use msh::{
     element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,
     MshNode, MshVersion,
 };
+pub use polymesher::{read_polymesher, read_polymesher_bytes};
 #[cfg(feature = "svg")]
 pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions, VECTOR_CELL_LIMIT};
 #[cfg(feature = "vtu")]
