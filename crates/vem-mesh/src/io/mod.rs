@@ -1,5 +1,6 @@
-//! File input and output: atomic writes, and with the features of the same names Gmsh `.msh`
-//! 4.1 and 2.2 input (`gmsh`), VTK `.vtu` output (`vtu`) and SVG output (`svg`).
+//! File input and output: atomic writes; PolyMesher/mVEM text input; and with the features of
+//! the same names Gmsh `.msh` 4.1 and 2.2 input (`gmsh`), VTK `.vtu` output and `.pvd`
+//! collections with `.vtu`/legacy `.vtk` input (`vtu`), and SVG output (`svg`).
 //!
 //! Every writer goes through [`write_atomically`]: a file is written whole or not at all, so
 //! an interrupted run never leaves a truncated `.vtu` that a viewer half-reads.
