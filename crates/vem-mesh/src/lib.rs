@@ -26,8 +26,10 @@
 //! | --- | --- | --- |
 //! | `generators` | [`generators`]: structured, hexagonal, Voronoi, perturbed, ... meshes | `rand`, `rand_chacha` |
 //! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input | none |
-//! | `vtu` | `io::write_vtu`: VTK `.vtu` output | none |
-//! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes | none |
+//! | `vtu` | `io::write_vtu`, `io::UnstructuredGrid`, `io::PvdCollection`: VTK `.vtu` output (ASCII, binary, zlib) and `.pvd` collections; `io::read_vtu`, `io::read_legacy_vtk`, `io::read_vtk_mesh`: VTK input | `miniz_oxide`, `roxmltree` |
+//! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes (large ones with an embedded PNG) | `miniz_oxide` |
+//!
+//! `io::read_polymesher` (PolyMesher/mVEM meshes exported as text) needs no feature.
 //!
 //! # Polyhedral meshes
 //!

@@ -299,30 +299,63 @@ impl Mesh {
 
 /// Derives the edges from the polygon loops; an edge used twice in the same direction or by
 /// more than two polygons is an error.
+///
+/// Edges are numbered in order of first appearance along the loops. Each edge is filed under
+/// its smaller end vertex in a compressed table with one slot per loop side having that vertex
+/// as its smaller end (an upper bound), so that finding the edge of a loop side is a scan of
+/// the few edges of one vertex: linear time, no hashing.
 fn derive_edges(
     offsets: &[usize],
     indices: &[usize],
 ) -> Result<(Vec<Edge>, Vec<usize>), MeshError> {
-    let mut edge_of_pair: HashMap<(usize, usize), usize> = HashMap::with_capacity(indices.len());
+    let n_vertices = indices.iter().max().map_or(0, |&v| v + 1);
+    let side = |p: usize, k: usize| -> (usize, usize) {
+        let (start, end) = (offsets[p], offsets[p + 1]);
+        let a = indices[start + k];
+        let b = if start + k + 1 == end {
+            indices[start]
+        } else {
+            indices[start + k + 1]
+        };
+        (a, b)
+    };
+    // start[v]..start[v + 1]: the slots of the edges whose smaller end is v.
+    let mut start = vec![0usize; n_vertices + 1];
+    for p in 0..offsets.len() - 1 {
+        for k in 0..offsets[p + 1] - offsets[p] {
+            let (a, b) = side(p, k);
+            start[a.min(b) + 1] += 1;
+        }
+    }
+    for v in 0..n_vertices {
+        start[v + 1] += start[v];
+    }
+    let mut filled = vec![0usize; n_vertices];
+    let mut slots = vec![0usize; indices.len()];
     let mut edges: Vec<Edge> = Vec::with_capacity(indices.len() / 2 + 16);
     let mut polygon_edges = vec![0; indices.len()];
     for p in 0..offsets.len() - 1 {
-        let loop_ = &indices[offsets[p]..offsets[p + 1]];
-        let n = loop_.len();
-        for k in 0..n {
-            let (a, b) = (loop_[k], loop_[(k + 1) % n]);
-            let key = (a.min(b), a.max(b));
-            let e = match edge_of_pair.get(&key) {
+        for k in 0..offsets[p + 1] - offsets[p] {
+            let (a, b) = side(p, k);
+            let (low, high) = (a.min(b), a.max(b));
+            let filed = &slots[start[low]..start[low] + filled[low]];
+            let existing = filed.iter().copied().find(|&e| {
+                let [c, d] = edges[e].vertices;
+                c.max(d) == high
+            });
+            let e = match existing {
                 None => {
                     edges.push(Edge {
                         vertices: [a, b],
                         left: p,
                         right: None,
                     });
-                    edge_of_pair.insert(key, edges.len() - 1);
-                    edges.len() - 1
+                    let e = edges.len() - 1;
+                    slots[start[low] + filled[low]] = e;
+                    filled[low] += 1;
+                    e
                 }
-                Some(&e) => {
+                Some(e) => {
                     let edge = &mut edges[e];
                     if edge.right.is_some() || edge.vertices != [b, a] {
                         let mut polygons = vec![edge.left];

@@ -36,11 +36,16 @@
 //!
 //! # Cost
 //!
-//! Everything is close to linear in the size of the mesh (about 1 s for 10^6 vertices on one
-//! core): duplicates by sorting the vertices by the cell of side 4 x tolerance that holds them
-//! and searching the neighbouring cells, edge pairs through a uniform grid of cells about the
-//! mean edge length, corners by sorting them by angle around each vertex. Only polygons that are not convex are checked pair by pair (through a grid when they
-//! have more than 64 edges).
+//! Everything is close to linear in the size of the mesh: duplicates by sorting the vertices
+//! by the cell of side 4 x tolerance that holds them and searching the neighbouring cells;
+//! edge pairs (step 4) through grids of cells, one per class of edge length, each edge filed
+//! in the few cells it passes through and the edges visited in the order of a space-filling
+//! curve, so that graded meshes cost no more than uniform ones and the work stays in cache;
+//! corners by one angle per edge, sorted around each vertex. Only polygons that are not convex
+//! are checked pair by pair (through a grid when they have more than 64 edges).
+//!
+//! A vertex within the tolerance of another polygon's edge is found even when it lies just
+//! outside the edge's bounding box (a hanging node a hair below a horizontal edge).
 
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -55,6 +60,9 @@ pub const COINCIDENCE_RATIO: f64 = 1e-10;
 /// Polygons with more edges than this are checked for self-intersection through a grid rather
 /// than pair by pair.
 const BRUTE_FORCE_EDGES: usize = 64;
+
+/// Meshes with at least this many edges check edge pairs (step 4) on a second thread.
+const PARALLEL_EDGES: usize = 50_000;
 
 /// Angular slack (radians) when comparing corners around a vertex.
 const ANGLE_TOLERANCE: f64 = 1e-9;
@@ -131,16 +139,33 @@ pub(crate) fn check_storage(
 pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     // An extent that overflows leaves the coincidence tests to the area check below.
     let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
-    check_duplicate_vertices(mesh, tolerance)?;
-    let mut points = Vec::new();
-    for p in 0..mesh.n_polygons() {
-        points.clear();
-        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
-        check_polygon(p, &points, tolerance)?;
+    let polygons = || -> Result<(), MeshError> {
+        let mut points = Vec::new();
+        for p in 0..mesh.n_polygons() {
+            points.clear();
+            points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+            check_polygon(p, &points, tolerance)?;
+        }
+        Ok(())
+    };
+    if mesh.n_edges() < PARALLEL_EDGES {
+        check_duplicate_vertices(mesh, tolerance)?;
+        polygons()?;
+        check_conformity(mesh, tolerance)?;
+        check_corners(mesh)?;
+        return check_nesting(mesh);
     }
-    check_conformity(mesh, tolerance)?;
-    check_corners(mesh)?;
-    check_nesting(mesh)
+    // Step 4, the costliest, on a second thread beside the others; the first failure in the
+    // order of the steps is returned, as when they run one after the other.
+    std::thread::scope(|scope| {
+        let conformity = scope.spawn(|| check_conformity(mesh, tolerance));
+        let before = check_duplicate_vertices(mesh, tolerance).and_then(|()| polygons());
+        let after = check_corners(mesh).and_then(|()| check_nesting(mesh));
+        let conformity = conformity
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        before.and(conformity).and(after)
+    })
 }
 
 /// The coincidence tolerance of `mesh`: [`COINCIDENCE_RATIO`] times the mean bounding-box
@@ -167,7 +192,7 @@ fn check_duplicate_vertices(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError
     let key = |x: f64, y: f64| -> (i64, i64) {
         if cell > 0.0 {
             // `as` saturates: far-away points share border cells, which costs time, not truth.
-            ((x / cell).floor() as i64, (y / cell).floor() as i64)
+            (floor_to_i64(x / cell), floor_to_i64(y / cell))
         } else {
             (x.to_bits() as i64, y.to_bits() as i64)
         }
@@ -281,9 +306,14 @@ pub fn self_intersection(points: &[Point], tolerance: f64) -> Option<(usize, usi
 
 /// True when every turn of the loop is strictly to the left (or straight on) and the total
 /// turning is one full turn: the loop is then convex and simple.
+///
+/// The turning of a closed loop is a whole number of turns, each turn of a loop turning only
+/// left is less than half a turn, so a triangle or quadrangle turning only left turns once:
+/// its angles need not be summed.
 fn is_convex_loop(points: &[Point]) -> bool {
     let m = points.len();
     let mut turning = 0.0;
+    let sum_angles = m > 4;
     for k in 0..m {
         let incoming = points[k] - points[(k + m - 1) % m];
         let outgoing = points[(k + 1) % m] - points[k];
@@ -292,39 +322,80 @@ fn is_convex_loop(points: &[Point]) -> bool {
         if c < 0.0 || (c == 0.0 && d <= 0.0) {
             return false;
         }
-        turning += c.atan2(d);
+        if sum_angles {
+            turning += c.atan2(d);
+        }
     }
-    (turning - std::f64::consts::TAU).abs() < 1e-6
+    !sum_angles || (turning - std::f64::consts::TAU).abs() < 1e-6
 }
 
 /// Step 4: edges of different polygons neither cross nor touch away from shared vertices.
 fn check_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
     let edges = mesh.edges();
-    let boxes: Vec<Aabb> = edges
+    // The edges in the order of a space-filling curve through their midpoints, so that edges
+    // close in the plane are close in memory (a mesh's own numbering need not be).
+    let order = spatial_order(edges.iter().map(|e| {
+        let [a, b] = e.vertices.map(|v| mesh.vertex(v));
+        Point::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y))
+    }));
+    let segments: Vec<[Point; 2]> = order
         .iter()
-        .map(|e| Aabb::of_points(e.vertices.iter().map(|&v| mesh.vertex(v))))
+        .map(|&e| edges[e].vertices.map(|v| mesh.vertex(v)))
         .collect();
-    // Keep the conflict with the smallest edge pair, so the report does not depend on the grid.
+    // The polygons on either side of each edge (`usize::MAX`: none), and its vertices.
+    let sides: Vec<[usize; 2]> = order
+        .iter()
+        .map(|&e| [edges[e].left, edges[e].right.unwrap_or(usize::MAX)])
+        .collect();
+    let vertices: Vec<[usize; 2]> = order.iter().map(|&e| edges[e].vertices).collect();
+    let lengths: Vec<f64> = segments.iter().map(|s| (s[1] - s[0]).norm()).collect();
+    // Keep the conflict with the smallest edge pair, so the report does not depend on the
+    // order in which pairs are found.
     let mut found: Option<((usize, usize), Conflict)> = None;
-    Grid::new(&boxes).for_each_pair(&boxes, |e, f| {
+    let test = |i: usize, k: usize| {
+        let ([pa, qa], [pb, qb]) = (sides[i], sides[k]);
+        if pa == pb || pa == qb || (qa != usize::MAX && (qa == pb || qa == qb)) {
+            return; // a pair within one polygon: checked by `self_intersection`
+        }
+        // Segments farther apart than the tolerance in x or y cannot meet.
+        let ([a0, a1], [b0, b1]) = (segments[i], segments[k]);
+        if a0.x.max(a1.x) + tolerance < b0.x.min(b1.x)
+            || b0.x.max(b1.x) + tolerance < a0.x.min(a1.x)
+            || a0.y.max(a1.y) + tolerance < b0.y.min(b1.y)
+            || b0.y.max(b1.y) + tolerance < a0.y.min(a1.y)
+        {
+            return;
+        }
+        let (e, f) = (order[i], order[k]);
+        let (first, second) = if e < f { (i, k) } else { (k, i) };
         let pair = (e.min(f), e.max(f));
         if found.is_some_and(|(best, _)| best <= pair) {
             return;
         }
-        let (ea, eb) = (&edges[pair.0], &edges[pair.1]);
-        let polygons_a = [Some(ea.left), ea.right];
-        if polygons_a.contains(&Some(eb.left))
-            || (eb.right.is_some() && polygons_a.contains(&eb.right))
-        {
-            return; // a pair within one polygon: checked by `self_intersection`
-        }
-        let points = |edge: &crate::Edge| edge.vertices.map(|v| mesh.vertex(v));
-        let conflict =
-            segments_conflict(ea.vertices, points(ea), eb.vertices, points(eb), tolerance);
+        let conflict = segments_conflict_with_lengths(
+            vertices[first],
+            segments[first],
+            lengths[first],
+            vertices[second],
+            segments[second],
+            lengths[second],
+            tolerance,
+        );
         if conflict != Conflict::None {
             found = Some((pair, conflict));
         }
-    });
+    };
+    // Segments that conflict come within the tolerance of each other.
+    match SegmentGrid::new(&segments, tolerance) {
+        Some(grid) => grid.for_each_pair(&segments, test),
+        None => {
+            let boxes: Vec<Aabb> = segments
+                .iter()
+                .map(|s| Aabb::of_points(s.iter().copied()))
+                .collect();
+            Grid::new(&boxes).for_each_pair(&boxes, test);
+        }
+    }
     match found {
         None => Ok(()),
         Some(((e, f), conflict)) => {
@@ -349,48 +420,73 @@ fn check_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
 
 /// Step 5: around each vertex, the polygon corners (angular sectors from the outgoing edge
 /// counter-clockwise to the incoming one) do not overlap.
+///
+/// The direction of every edge is computed once (one `atan2` per edge); a ray from a vertex
+/// along an edge takes that angle or the opposite one, so the two corners meeting along an
+/// edge see the same angle bit for bit. The corners are computed polygon by polygon and filed
+/// under their vertex in compressed storage, then sorted by angle around each vertex.
 fn check_corners(mesh: &Mesh) -> Result<(), MeshError> {
+    use std::f64::consts::{PI, TAU};
     let n = mesh.n_vertices();
+    let indices = mesh.polygon_vertex_indices();
     let mut start = vec![0usize; n + 1];
-    for &v in mesh.polygon_vertex_indices() {
+    for &v in indices {
         start[v + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
     }
+    let direction: Vec<f64> = mesh
+        .edges()
+        .iter()
+        .map(|e| {
+            let d = mesh.vertex(e.vertices[1]) - mesh.vertex(e.vertices[0]);
+            d.y.atan2(d.x)
+        })
+        .collect();
+    // The angle of the ray from vertex `v` along edge `e`, in (-pi, pi].
+    let ray = |e: usize, v: usize| -> f64 {
+        let edge = &mesh.edges()[e];
+        if edge.vertices[0] == v {
+            direction[e]
+        } else {
+            let angle = direction[e] + PI;
+            if angle > PI {
+                angle - TAU
+            } else {
+                angle
+            }
+        }
+    };
+    // (start angle, opening angle, polygon), filed by vertex.
     let mut fill = start.clone();
-    let mut corners = vec![(0usize, 0usize); start[n]];
+    let mut sectors = vec![(0.0f64, 0.0f64, 0usize); indices.len()];
     for p in 0..mesh.n_polygons() {
-        for (k, &v) in mesh.polygon(p).iter().enumerate() {
-            corners[fill[v]] = (p, k);
+        let loop_ = mesh.polygon(p);
+        let loop_edges = mesh.polygon_edges(p);
+        let m = loop_.len();
+        for (k, &v) in loop_.iter().enumerate() {
+            if start[v + 1] - start[v] < 2 {
+                continue;
+            }
+            let from = ray(loop_edges[k], v);
+            let to = ray(loop_edges[(k + m - 1) % m], v);
+            sectors[fill[v]] = (from, (to - from).rem_euclid(TAU), p);
             fill[v] += 1;
         }
     }
-    // (start angle, opening angle, polygon)
-    let mut sectors: Vec<(f64, f64, usize)> = Vec::new();
     for v in 0..n {
-        let around = &corners[start[v]..start[v + 1]];
-        if around.len() < 2 {
+        let around = &mut sectors[start[v]..start[v + 1]];
+        let count = around.len();
+        if count < 2 {
             continue;
         }
-        let centre = mesh.vertex(v);
-        sectors.clear();
-        for &(p, k) in around {
-            let loop_ = mesh.polygon(p);
-            let m = loop_.len();
-            let next = mesh.vertex(loop_[(k + 1) % m]) - centre;
-            let prev = mesh.vertex(loop_[(k + m - 1) % m]) - centre;
-            let from = next.y.atan2(next.x);
-            let opening = (prev.y.atan2(prev.x) - from).rem_euclid(std::f64::consts::TAU);
-            sectors.push((from, opening, p));
-        }
-        sectors.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let count = sectors.len();
+        around.sort_by(|a, b| a.0.total_cmp(&b.0));
         for i in 0..count {
-            let (from, opening, p) = sectors[i];
-            let (next_from, _, q) = sectors[(i + 1) % count];
+            let (from, opening, p) = around[i];
+            let (next_from, _, q) = around[(i + 1) % count];
             let next_from = if i + 1 == count {
-                next_from + std::f64::consts::TAU
+                next_from + TAU
             } else {
                 next_from
             };
@@ -471,6 +567,62 @@ fn check_nesting(mesh: &Mesh) -> Result<(), MeshError> {
     Ok(())
 }
 
+/// The indices of `points` in the order of a Morton (Z-order) curve through their bounding
+/// box, at a resolution of about two points per step: points close in the plane come close
+/// in the order, so that work done in this order stays in a small part of memory.
+pub(crate) fn spatial_order(points: impl ExactSizeIterator<Item = Point> + Clone) -> Vec<usize> {
+    let (mut lo, mut hi) = (
+        Point::new(f64::INFINITY, f64::INFINITY),
+        Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for p in points.clone() {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let span = (hi.x - lo.x).max(hi.y - lo.y);
+    let scale = if span > 0.0 && span.is_finite() {
+        f64::from(u32::MAX) / span
+    } else {
+        0.0
+    };
+    // Spreads the 32 bits of `v` to the even bits of a u64.
+    fn spread(v: u32) -> u64 {
+        let mut x = u64::from(v);
+        x = (x | (x << 16)) & 0x0000_FFFF_0000_FFFF;
+        x = (x | (x << 8)) & 0x00FF_00FF_00FF_00FF;
+        x = (x | (x << 4)) & 0x0F0F_0F0F_0F0F_0F0F;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        x = (x | (x << 1)) & 0x5555_5555_5555_5555;
+        x
+    }
+    let keys: Vec<u64> = points
+        .map(|p| {
+            // `as` saturates (and sends NaN to 0).
+            let x = ((p.x - lo.x) * scale) as u32;
+            let y = ((p.y - lo.y) * scale) as u32;
+            spread(x) | (spread(y) << 1)
+        })
+        .collect();
+    // A counting sort on the leading bits of the keys (about two points per bucket): the
+    // order within a bucket is that of the indices, close enough for locality.
+    let bits = (usize::BITS - keys.len().leading_zeros()).clamp(1, 24);
+    let bucket = |key: u64| (key >> (64 - bits)) as usize;
+    let mut start = vec![0usize; (1 << bits) + 1];
+    for &key in &keys {
+        start[bucket(key) + 1] += 1;
+    }
+    for b in 0..1 << bits {
+        start[b + 1] += start[b];
+    }
+    let mut order = vec![0; keys.len()];
+    for (i, &key) in keys.iter().enumerate() {
+        let b = bucket(key);
+        order[start[b]] = i;
+        start[b] += 1;
+    }
+    order
+}
+
 /// Crossing-number test; the point is known not to lie on the loop.
 fn strictly_inside(point: Point, loop_: &[Point]) -> bool {
     let m = loop_.len();
@@ -511,11 +663,25 @@ fn segments_conflict(
     b: [Point; 2],
     tolerance: f64,
 ) -> Conflict {
+    let length = |s: [Point; 2]| (s[1] - s[0]).norm();
+    segments_conflict_with_lengths(ia, a, length(a), ib, b, length(b), tolerance)
+}
+
+/// [`segments_conflict`] for segments of known lengths `la` and `lb`.
+fn segments_conflict_with_lengths(
+    ia: [usize; 2],
+    a: [Point; 2],
+    la: f64,
+    ib: [usize; 2],
+    b: [Point; 2],
+    lb: f64,
+    tolerance: f64,
+) -> Conflict {
     for k in 0..2 {
-        if !ia.contains(&ib[k]) && in_segment_interior(b[k], a, tolerance) {
+        if !ia.contains(&ib[k]) && in_segment_interior(b[k], a, la, tolerance) {
             return Conflict::Touch;
         }
-        if !ib.contains(&ia[k]) && in_segment_interior(a[k], b, tolerance) {
+        if !ib.contains(&ia[k]) && in_segment_interior(a[k], b, lb, tolerance) {
             return Conflict::Touch;
         }
     }
@@ -532,11 +698,10 @@ fn segments_conflict(
     Conflict::None
 }
 
-/// True when `p` is within `tolerance` of segment `s` and farther than `tolerance` from both of
-/// its end points (measured along the segment).
-fn in_segment_interior(p: Point, s: [Point; 2], tolerance: f64) -> bool {
+/// True when `p` is within `tolerance` of segment `s` (of length `length`) and farther than
+/// `tolerance` from both of its end points (measured along the segment).
+fn in_segment_interior(p: Point, s: [Point; 2], length: f64, tolerance: f64) -> bool {
     let along = s[1] - s[0];
-    let length = along.norm();
     if length <= 2.0 * tolerance {
         return false;
     }
@@ -736,6 +901,285 @@ impl Grid {
     }
 }
 
+/// Segments filed by length in a hierarchy of grids, to find the pairs of segments that come
+/// close to each other.
+///
+/// Segments are grouped by length: a segment whose longer coordinate extent is about 2^l is
+/// in group l, filed in a grid of cells of side 2^(l - 1) over the group's bounding box, in the
+/// cells that the segment, widened by a reach, passes through (two to four cells, not all the
+/// cells of its bounding box, so that a cell holds only the few segments that cross it). Two
+/// segments that come within twice the reach of each other pass through a common cell of the
+/// grid of the longer one's group, so a segment looks for partners in the grids of its own
+/// group and of the longer ones only: the work does not grow with the ratio of the longest to
+/// the shortest segment (graded meshes), and queries in the order of the segments (the order
+/// of the mesh's polygons) stay within a few cells of each other in memory. A pair may be
+/// reported more than once: the caller's test decides.
+pub(crate) struct SegmentGrid {
+    /// One grid per group of segments, in increasing order of length.
+    groups: Vec<CellGrid>,
+    /// The index in `groups` of each segment's group.
+    group_of: Vec<u32>,
+    /// How far around each segment its cells reach.
+    reach: f64,
+}
+
+/// The grid of one group of segments: cell (i, j) holds
+/// `items[start[j * nx + i]..start[j * nx + i + 1]]`.
+struct CellGrid {
+    origin: Point,
+    /// The box of the group's widened segments.
+    bounds: Aabb,
+    /// The inverse of the side of a cell (a power of two).
+    inverse: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<usize>,
+    items: Vec<u32>,
+}
+
+/// Group numbers (log2 of a length) are clamped to this range, where 2^l is a normal number.
+const LEVEL_LIMIT: i32 = 1000;
+
+/// Most pieces a segment is cut into when listing its cells.
+const MAX_PIECES: usize = 64;
+
+impl CellGrid {
+    /// The cell column or row of coordinate `value` (`origin`: that of the grid), unclamped.
+    fn index(&self, value: f64, origin: f64) -> i64 {
+        // `as` saturates: far-away values land in far-away (border) cells.
+        floor_to_i64((value - origin) * self.inverse)
+    }
+
+    /// The cells that `segment` widened by `r` passes through, inside the grid, each once.
+    fn cells_of(&self, segment: &[Point; 2], r: f64, cells: &mut Vec<usize>) {
+        cells.clear();
+        let [p, q] = *segment;
+        let d = q - p;
+        let extent = d.x.abs().max(d.y.abs());
+        let pieces = if extent.is_finite() {
+            ((extent * self.inverse).ceil() as usize).clamp(1, MAX_PIECES)
+        } else {
+            MAX_PIECES
+        };
+        let (nx, ny) = (self.nx as i64, self.ny as i64);
+        // Consecutive pieces share cells: a cell already listed (among the last few) is not
+        // listed again.
+        let add_box = |lo: Point, hi: Point, cells: &mut Vec<usize>| {
+            let i0 = self.index(lo.x - r, self.origin.x).max(0);
+            let i1 = self.index(hi.x + r, self.origin.x).min(nx - 1);
+            let j0 = self.index(lo.y - r, self.origin.y).max(0);
+            let j1 = self.index(hi.y + r, self.origin.y).min(ny - 1);
+            let previous = cells.len().saturating_sub(9);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let c = j as usize * self.nx + i as usize;
+                    if !cells[previous..].contains(&c) {
+                        cells.push(c);
+                    }
+                }
+            }
+        };
+        if pieces == MAX_PIECES {
+            // Longer than its grid's cells allow (extreme coordinates only): its whole box.
+            let lo = Point::new(p.x.min(q.x), p.y.min(q.y));
+            let hi = Point::new(p.x.max(q.x), p.y.max(q.y));
+            add_box(lo, hi, cells);
+        } else {
+            for k in 0..pieces {
+                let a = p + (k as f64 / pieces as f64) * d;
+                let b = if k + 1 == pieces {
+                    q
+                } else {
+                    p + ((k + 1) as f64 / pieces as f64) * d
+                };
+                let lo = Point::new(a.x.min(b.x), a.y.min(b.y));
+                let hi = Point::new(a.x.max(b.x), a.y.max(b.y));
+                add_box(lo, hi, cells);
+            }
+        }
+        if pieces == MAX_PIECES {
+            cells.sort_unstable();
+            cells.dedup();
+        }
+    }
+}
+
+/// `value.floor() as i64` (saturating, NaN to 0) without a call into the maths library.
+fn floor_to_i64(value: f64) -> i64 {
+    let truncated = value as i64;
+    if (truncated as f64) > value {
+        truncated.saturating_sub(1)
+    } else {
+        truncated
+    }
+}
+
+impl SegmentGrid {
+    /// Files `segments`; pairs that come within `2 * reach` of each other are reported.
+    /// Returns `None` when there are more than `u32::MAX` segments.
+    pub(crate) fn new(segments: &[[Point; 2]], reach: f64) -> Option<Self> {
+        u32::try_from(segments.len()).ok()?;
+        let reach = if reach.is_finite() {
+            reach.max(0.0)
+        } else {
+            0.0
+        };
+        let level_of: Vec<i32> = segments.iter().map(|s| Self::level(s, reach)).collect();
+        let mut levels = level_of.clone();
+        levels.sort_unstable();
+        levels.dedup();
+        let group_of: Vec<u32> = level_of
+            .iter()
+            .map(|l| levels.partition_point(|m| m < l) as u32)
+            .collect();
+        let mut members: Vec<Vec<u32>> = vec![Vec::new(); levels.len()];
+        for (item, &g) in group_of.iter().enumerate() {
+            members[g as usize].push(item as u32);
+        }
+        let mut grid = SegmentGrid {
+            groups: Vec::with_capacity(levels.len()),
+            group_of,
+            reach,
+        };
+        let mut scratch = Vec::new();
+        let mut filed: Vec<(usize, u32)> = Vec::new();
+        for (&level, items) in levels.iter().zip(&members) {
+            let mut cells = grid.empty_grid(segments, items, level);
+            filed.clear();
+            for &item in items {
+                cells.cells_of(
+                    &segments[item as usize],
+                    grid.widening(&segments[item as usize]),
+                    &mut scratch,
+                );
+                filed.extend(scratch.iter().map(|&c| (c, item)));
+            }
+            for &(c, _) in &filed {
+                cells.start[c + 1] += 1;
+            }
+            for c in 0..cells.nx * cells.ny {
+                cells.start[c + 1] += cells.start[c];
+            }
+            let mut fill = cells.start.clone();
+            cells.items = vec![0; filed.len()];
+            for &(c, item) in &filed {
+                cells.items[fill[c]] = item;
+                fill[c] += 1;
+            }
+            grid.groups.push(cells);
+        }
+        Some(grid)
+    }
+
+    /// The grid of a group (without its items): cells of side 2^(level - 1), larger when
+    /// that would make more than about four cells per segment.
+    fn empty_grid(&self, segments: &[[Point; 2]], items: &[u32], level: i32) -> CellGrid {
+        let mut lo = Point::new(f64::INFINITY, f64::INFINITY);
+        let mut hi = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for &item in items {
+            let s = &segments[item as usize];
+            let r = self.widening(s);
+            for p in s {
+                lo = Point::new(lo.x.min(p.x - r), lo.y.min(p.y - r));
+                hi = Point::new(hi.x.max(p.x + r), hi.y.max(p.y + r));
+            }
+        }
+        let limit = (4 * items.len() + 64) as f64;
+        let mut l = (level - 1).clamp(-LEVEL_LIMIT, LEVEL_LIMIT);
+        let (width, height) = (hi.x - lo.x, hi.y - lo.y);
+        loop {
+            let side = f64::from_bits(((1023 + l) as u64) << 52);
+            let (fx, fy) = ((width / side).floor() + 1.0, (height / side).floor() + 1.0);
+            if (fx * fy <= limit && fx.is_finite() && fy.is_finite()) || l >= LEVEL_LIMIT {
+                let clamp = |f: f64| f.clamp(1.0, limit) as usize;
+                let (nx, ny) = (clamp(fx), clamp(fy));
+                return CellGrid {
+                    origin: if lo.x.is_finite() && lo.y.is_finite() {
+                        lo
+                    } else {
+                        Point::origin()
+                    },
+                    bounds: Aabb { min: lo, max: hi },
+                    inverse: f64::from_bits(((1023 - l) as u64) << 52),
+                    nx,
+                    ny,
+                    start: vec![0; nx * ny + 1],
+                    items: Vec::new(),
+                };
+            }
+            l += 1;
+        }
+    }
+
+    /// How far around `segment` its cells must reach: the reach, and a few units in the last
+    /// place of its coordinates (the end points of its pieces are rounded).
+    fn widening(&self, segment: &[Point; 2]) -> f64 {
+        let [p, q] = segment;
+        let magnitude = p.x.abs().max(p.y.abs()).max(q.x.abs()).max(q.y.abs());
+        self.reach + 4.0 * f64::EPSILON * magnitude
+    }
+
+    /// The length group of a segment: the smallest l with 2^l at least its longer coordinate
+    /// extent (and twice the reach).
+    fn level(segment: &[Point; 2], reach: f64) -> i32 {
+        let d = segment[1] - segment[0];
+        let size = d.x.abs().max(d.y.abs()).max(2.0 * reach);
+        if size > 0.0 && size.is_finite() {
+            // ceil(log2(size)) from the bits: the exponent, plus one unless a power of two.
+            let bits = size.to_bits();
+            let exponent = ((bits >> 52) & 0x7ff) as i32 - 1023;
+            let above = i32::from(bits & ((1 << 52) - 1) != 0);
+            (exponent + above).clamp(-LEVEL_LIMIT + 1, LEVEL_LIMIT)
+        } else if size > 0.0 {
+            LEVEL_LIMIT
+        } else {
+            -LEVEL_LIMIT + 1
+        }
+    }
+
+    /// Calls `visit(a, b)` (a != b) at least once for every pair of segments that come within
+    /// twice the reach of each other.
+    pub(crate) fn for_each_pair(
+        &self,
+        segments: &[[Point; 2]],
+        mut visit: impl FnMut(usize, usize),
+    ) {
+        // Pairs within a group: the pairs of each cell, in the order of the cells.
+        for grid in &self.groups {
+            for c in 0..grid.nx * grid.ny {
+                let items = &grid.items[grid.start[c]..grid.start[c + 1]];
+                for (k, &a) in items.iter().enumerate() {
+                    for &b in &items[k + 1..] {
+                        visit(a as usize, b as usize);
+                    }
+                }
+            }
+        }
+        // Pairs across groups: each segment looks in the grids of the longer ones.
+        let mut cells = Vec::new();
+        for (a, segment) in segments.iter().enumerate() {
+            let own = self.group_of[a] as usize;
+            let r = self.widening(segment);
+            let reach = Aabb::of_points(segment.iter().copied());
+            for grid in &self.groups[own + 1..] {
+                let near = reach.min.x - r <= grid.bounds.max.x
+                    && grid.bounds.min.x <= reach.max.x + r
+                    && reach.min.y - r <= grid.bounds.max.y
+                    && grid.bounds.min.y <= reach.max.y + r;
+                if !near {
+                    continue;
+                }
+                grid.cells_of(segment, r, &mut cells);
+                for &c in &cells {
+                    for &b in &grid.items[grid.start[c]..grid.start[c + 1]] {
+                        visit(a, b as usize);
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -807,5 +1251,65 @@ mod tests {
             }
         }
         assert_eq!(from_grid, brute);
+    }
+
+    /// The distance between two segments (brute force, for the test).
+    fn segment_distance(a: [Point; 2], b: [Point; 2]) -> f64 {
+        let point_to = |p: Point, s: [Point; 2]| {
+            let d = s[1] - s[0];
+            let t = if d.norm_squared() > 0.0 {
+                ((p - s[0]).dot(&d) / d.norm_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p - (s[0] + t * d)).norm()
+        };
+        let side = |s: [Point; 2], p: Point| cross(s[1] - s[0], p - s[0]);
+        let crossing = side(a, b[0]) * side(a, b[1]) < 0.0 && side(b, a[0]) * side(b, a[1]) < 0.0;
+        if crossing {
+            return 0.0;
+        }
+        point_to(a[0], b)
+            .min(point_to(a[1], b))
+            .min(point_to(b[0], a))
+            .min(point_to(b[1], a))
+    }
+
+    /// Segments of lengths from 1e-6 to 10 (a graded mesh's edges), some of zero length, one
+    /// far away: every pair closer than twice the reach is reported.
+    #[test]
+    fn segment_grid_finds_every_close_pair_over_many_scales() {
+        let mut segments = Vec::new();
+        for k in 0..600u64 {
+            let r = |s: u64| ((k * 2_654_435_761 + s * 40_503) % 10_007) as f64 / 10_007.0;
+            let size = 10f64.powf(-6.0 + 7.0 * r(1));
+            let p = Point::new(r(2) * 3.0, r(3) * 3.0);
+            let angle = std::f64::consts::TAU * r(4);
+            let q = if k % 17 == 0 {
+                p
+            } else {
+                p + size * Vector::new(angle.cos(), angle.sin())
+            };
+            segments.push([p, q]);
+        }
+        segments.push([Point::new(1e300, -1e300), Point::new(1e300, -1e299)]);
+        for reach in [0.0, 1e-9, 1e-3] {
+            let grid = SegmentGrid::new(&segments, reach).unwrap();
+            let mut reported = std::collections::HashSet::new();
+            grid.for_each_pair(&segments, |a, b| {
+                assert_ne!(a, b);
+                reported.insert((a.min(b), a.max(b)));
+            });
+            let mut close = 0;
+            for a in 0..segments.len() {
+                for b in a + 1..segments.len() {
+                    if segment_distance(segments[a], segments[b]) <= 2.0 * reach {
+                        close += 1;
+                        assert!(reported.contains(&(a, b)), "reach {reach}: pair ({a}, {b})");
+                    }
+                }
+            }
+            assert!(close > 10, "{close}");
+        }
     }
 }

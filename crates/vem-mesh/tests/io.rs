@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use vem_mesh::generators::{structured_quads, structured_triangles, Rectangle};
 use vem_mesh::io::{
-    read_gmsh, read_gmsh_bytes, write_svg, write_svg_layers, write_vtu, DataArray, SvgLayer,
-    SvgOptions, VtuData,
+    read_gmsh, read_gmsh_bytes, write_svg, write_svg_layers, write_vtu, write_vtu_with, DataArray,
+    SvgLayer, SvgOptions, VtuData, VtuEncoding,
 };
 use vem_mesh::{Mesh, MeshError, Point, Vector};
 
@@ -262,7 +262,7 @@ fn vtu_round_trip_is_exact() {
         .with_cell_data(DataArray::new("stress <xx,yy,xy>", 3, stress.clone()));
     let dir = scratch("vtu");
     let path = dir.join("mesh.vtu");
-    write_vtu(&path, &mesh, &data).unwrap();
+    write_vtu_with(&path, &mesh, &data, VtuEncoding::Ascii).unwrap();
 
     let text = std::fs::read_to_string(&path).unwrap();
     let document = roxmltree::Document::parse(&text).unwrap();
@@ -530,4 +530,125 @@ fn an_msh2_line_in_two_physical_groups_is_one_edge_of_each_part() {
     assert_eq!(mesh.part("b").unwrap().edges.len(), 2);
     assert!((part_length(&mesh, "a") - 1.0).abs() < 1e-15);
     assert!((part_length(&mesh, "b") - 2.0).abs() < 1e-15);
+}
+
+/// Above the vector limit the cells are one embedded PNG: the picture's size does not follow
+/// the mesh, and the pixel at the centre of a cell has the colour of the cell's value.
+#[test]
+fn svg_of_many_cells_embeds_a_png_of_the_cells() {
+    let mesh = structured_quads(&Rectangle::unit_square(), 40, 40).unwrap();
+    // Left half 0, right half 1: the colour map's two ends.
+    let values: Vec<f64> = (0..mesh.n_polygons())
+        .map(|p| if mesh.centroid(p).x < 0.5 { 0.0 } else { 1.0 })
+        .collect();
+    let layers = [SvgLayer::new(&mesh).with_cell_values(&values)];
+    let options = SvgOptions {
+        width: 400.0,
+        margin: 20.0,
+        parts: false,
+        vector_cell_limit: 1000,
+        ..SvgOptions::default()
+    };
+    let dir = scratch("svg-raster");
+    let path = dir.join("many.svg");
+    write_svg_layers(&path, &layers, &options).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let document = roxmltree::Document::parse(&text).unwrap();
+    assert_eq!(polygons(&document, "cells").len(), 0);
+    let image = document
+        .descendants()
+        .find(|n| n.has_tag_name("image"))
+        .expect("an <image>");
+    let href = image
+        .attribute(("http://www.w3.org/1999/xlink", "href"))
+        .unwrap();
+    let png = decode_base64(href.strip_prefix("data:image/png;base64,").unwrap());
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let width = u32::from_be_bytes(png[16..20].try_into().unwrap()) as usize;
+    let height = u32::from_be_bytes(png[20..24].try_into().unwrap()) as usize;
+    let picture_width: f64 = image.attribute("width").unwrap().parse().unwrap();
+    assert_eq!(width as f64, 2.0 * picture_width);
+    // Decode the (single) IDAT chunk and undo the filters (none or up).
+    let at = png.windows(4).position(|w| w == b"IDAT").unwrap();
+    let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
+    let raw = inflate(&png[at + 4..at + 4 + len]);
+    let stride = 4 * width;
+    let mut pixels = vec![0u8; stride * height];
+    for row in 0..height {
+        let line = &raw[row * (stride + 1)..(row + 1) * (stride + 1)];
+        for k in 0..stride {
+            let above = if row > 0 {
+                pixels[(row - 1) * stride + k]
+            } else {
+                0
+            };
+            pixels[row * stride + k] = match line[0] {
+                0 => line[1 + k],
+                2 => line[1 + k].wrapping_add(above),
+                f => panic!("filter {f}"),
+            };
+        }
+    }
+    // The square is the box of the opaque pixels; sample the centres of the cells of
+    // column 4 (value 0) and 35 (value 1) in row 20, away from the drawn edges.
+    let opaque: Vec<(usize, usize)> = (0..height)
+        .flat_map(|j| (0..width).map(move |i| (i, j)))
+        .filter(|&(i, j)| pixels[j * stride + 4 * i + 3] == 255)
+        .collect();
+    let (x0, x1) = (
+        opaque.iter().map(|p| p.0).min().unwrap() as f64,
+        opaque.iter().map(|p| p.0).max().unwrap() as f64 + 1.0,
+    );
+    let (y0, y1) = (
+        opaque.iter().map(|p| p.1).min().unwrap() as f64,
+        opaque.iter().map(|p| p.1).max().unwrap() as f64 + 1.0,
+    );
+    assert!(
+        ((x1 - x0) - (y1 - y0)).abs() <= 2.0,
+        "a square: {x0}..{x1} x {y0}..{y1}"
+    );
+    let pixel = |column: f64, row: f64| {
+        let i = (x0 + (column + 0.5) / 40.0 * (x1 - x0)) as usize;
+        let j = (y0 + (row + 0.5) / 40.0 * (y1 - y0)) as usize;
+        pixels[j * stride + 4 * i..j * stride + 4 * i + 4].to_vec()
+    };
+    assert_eq!(pixel(4.0, 20.0), [0x44, 0x01, 0x54, 255]);
+    assert_eq!(pixel(35.0, 20.0), [0xfd, 0xe7, 0x25, 255]);
+    // Outside the mesh: transparent.
+    assert_eq!(pixels[3], 0);
+    // The boundary is drawn as a vector path of its 160 edges.
+    let boundary = document
+        .descendants()
+        .find(|n| n.attribute("class") == Some("boundary"))
+        .unwrap();
+    assert_eq!(boundary.attribute("d").unwrap().matches('M').count(), 160);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn decode_base64(text: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        _ => 63,
+    } as u32;
+    let mut out = Vec::new();
+    for quad in text.as_bytes().chunks(4) {
+        let n = quad.iter().enumerate().fold(0u32, |n, (k, &c)| {
+            if c == b'=' {
+                n
+            } else {
+                n | value(c) << (18 - 6 * k)
+            }
+        });
+        let bytes = quad.iter().filter(|&&c| c != b'=').count() - 1;
+        out.extend_from_slice(&n.to_be_bytes()[1..1 + bytes]);
+    }
+    out
+}
+
+/// Inflates a zlib stream.
+fn inflate(stream: &[u8]) -> Vec<u8> {
+    miniz_oxide::inflate::decompress_to_vec_zlib(stream).expect("a valid zlib stream")
 }

@@ -18,12 +18,12 @@
 //!
 //! The format itself is read by [`read_msh_bytes`](super::read_msh_bytes).
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
 use super::msh::{element_type_name, read_msh_bytes, MshFile};
-use crate::{geometry, Mesh, MeshError, PartSpec, Point};
+use crate::{Mesh, MeshError, PartSpec, Point};
 
 /// Gmsh's type number of a 2-node line.
 const LINE: i32 = 1;
@@ -73,15 +73,64 @@ pub fn read_gmsh_bytes(bytes: &[u8], name: impl AsRef<Path>) -> Result<Mesh, Mes
     convert(&parsed).map_err(fail)
 }
 
+/// Node tags to positions in the `$Nodes` section: a table indexed by tag when the tags are
+/// dense (as Gmsh writes them), else the tags sorted for binary search.
+enum TagIndex {
+    Dense(Vec<u32>),
+    Sorted(Vec<(u64, u32)>),
+}
+
+impl TagIndex {
+    /// The index of `nodes` (whose tags are distinct: the parser checks).
+    fn new(nodes: &[super::MshNode]) -> Result<Self, String> {
+        if u32::try_from(nodes.len()).is_err() {
+            return Err(format!(
+                "{} nodes are more than this reader takes",
+                nodes.len()
+            ));
+        }
+        let largest = nodes.iter().map(|n| n.tag).max().unwrap_or(0);
+        if largest <= 4 * nodes.len() as u64 + 1024 {
+            let mut table = vec![u32::MAX; largest as usize + 1];
+            for (i, node) in nodes.iter().enumerate() {
+                table[node.tag as usize] = i as u32;
+            }
+            Ok(TagIndex::Dense(table))
+        } else {
+            let mut sorted: Vec<(u64, u32)> = nodes
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.tag, i as u32))
+                .collect();
+            sorted.sort_unstable();
+            Ok(TagIndex::Sorted(sorted))
+        }
+    }
+
+    /// The position of the node with tag `tag`.
+    fn get(&self, tag: u64) -> Option<usize> {
+        match self {
+            TagIndex::Dense(table) => match table.get(usize::try_from(tag).ok()?) {
+                Some(&i) if i != u32::MAX => Some(i as usize),
+                _ => None,
+            },
+            TagIndex::Sorted(sorted) => sorted
+                .binary_search_by_key(&tag, |&(t, _)| t)
+                .ok()
+                .map(|k| sorted[k].1 as usize),
+        }
+    }
+}
+
 /// Turns a parsed MSH file into a mesh; errors are the reason text of [`MeshError::Read`].
 fn convert(msh: &MshFile) -> Result<Mesh, String> {
-    let nodes: HashMap<u64, [f64; 3]> = msh.nodes.iter().map(|n| (n.tag, n.xyz)).collect();
+    let nodes = TagIndex::new(&msh.nodes)?;
 
     // 2D elements become polygons, 2-node lines are kept per curve. Surface elements are looked
     // at first, so that a second-order mesh is reported by its triangles rather than by its
     // boundary lines.
     let mut faces: Vec<(u64, &[u64])> = Vec::new();
-    let mut lines_of_curve: HashMap<i32, Vec<(u64, [u64; 2])>> = HashMap::new();
+    let mut lines_of_curve: BTreeMap<i32, Vec<(u64, [u64; 2])>> = BTreeMap::new();
     let surfaces_first = msh
         .elements
         .iter()
@@ -109,50 +158,50 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
         );
     }
 
-    // Compact renumbering in order of first use; counter-clockwise loops.
-    let mut compact: HashMap<u64, usize> = HashMap::new();
+    // Compact renumbering in order of first use (`compact[node position]`, `usize::MAX`
+    // unused); counter-clockwise loops.
+    let mut compact = vec![usize::MAX; msh.nodes.len()];
     let mut vertices: Vec<Point> = Vec::new();
     let mut plane_z: Option<(u64, f64)> = None;
-    let mut polygons: Vec<Vec<usize>> = Vec::with_capacity(faces.len());
+    let mut offsets = Vec::with_capacity(faces.len() + 1);
+    offsets.push(0);
+    let mut indices: Vec<usize> = Vec::with_capacity(faces.iter().map(|f| f.1.len()).sum());
     for &(element_tag, element_nodes) in &faces {
-        let mut polygon = Vec::with_capacity(element_nodes.len());
+        let first = indices.len();
         for &node in element_nodes {
-            let index = match compact.get(&node) {
-                Some(&index) => index,
-                None => {
-                    let &[x, y, z] = nodes.get(&node).ok_or_else(|| {
-                        format!(
-                            "element {element_tag} refers to node {node}, which is not in the \
-                             $Nodes section"
-                        )
-                    })?;
-                    match plane_z {
-                        None => plane_z = Some((node, z)),
-                        Some((first, z0)) if (z - z0).abs() > 1e-9 * (1.0 + z0.abs()) => {
-                            return Err(format!(
-                                "node {node} has z = {z} but node {first} has z = {z0}: a 2D \
-                                 mesh must lie in a plane z = constant"
-                            ));
-                        }
-                        Some(_) => {}
+            let position = nodes.get(node).ok_or_else(|| {
+                format!(
+                    "element {element_tag} refers to node {node}, which is not in the $Nodes \
+                     section"
+                )
+            })?;
+            if compact[position] == usize::MAX {
+                let [x, y, z] = msh.nodes[position].xyz;
+                match plane_z {
+                    None => plane_z = Some((node, z)),
+                    Some((first, z0)) if (z - z0).abs() > 1e-9 * (1.0 + z0.abs()) => {
+                        return Err(format!(
+                            "node {node} has z = {z} but node {first} has z = {z0}: a 2D mesh \
+                             must lie in a plane z = constant"
+                        ));
                     }
-                    vertices.push(Point::new(x, y));
-                    compact.insert(node, vertices.len() - 1);
-                    vertices.len() - 1
+                    Some(_) => {}
                 }
-            };
-            polygon.push(index);
+                vertices.push(Point::new(x, y));
+                compact[position] = vertices.len() - 1;
+            }
+            indices.push(compact[position]);
         }
-        let points: Vec<Point> = polygon.iter().map(|&v| vertices[v]).collect();
-        if geometry::signed_area(&points) < 0.0 {
+        let polygon = &mut indices[first..];
+        if signed_area_of(polygon, &vertices) < 0.0 {
             polygon.reverse();
         }
-        polygons.push(polygon);
+        offsets.push(indices.len());
     }
 
-    let parts = boundary_parts(msh, &lines_of_curve, &compact, &polygons)?;
-    let n_polygons = polygons.len();
-    Mesh::from_polygons(vertices, &polygons, parts).map_err(|e| {
+    let parts = boundary_parts(msh, &lines_of_curve, &nodes, &compact, &offsets, &indices)?;
+    let n_polygons = faces.len();
+    Mesh::from_compact(vertices, offsets, indices, parts).map_err(|e| {
         format!(
             "the mesh it describes is invalid: {e} (polygons are its {n_polygons} triangles and \
              quadrangles numbered from 0 in file order; vertices are its nodes numbered from 0 \
@@ -161,12 +210,26 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
     })
 }
 
+/// The signed area of the polygon with vertex indices `loop_` (shoelace formula, as
+/// `geometry::signed_area`, without gathering the points).
+fn signed_area_of(loop_: &[usize], vertices: &[Point]) -> f64 {
+    let m = loop_.len();
+    let mut twice = 0.0;
+    for k in 0..m {
+        let (a, b) = (vertices[loop_[k]], vertices[loop_[(k + 1) % m]]);
+        twice += a.x * b.y - b.x * a.y;
+    }
+    0.5 * twice
+}
+
 /// The boundary parts: one per physical curve group, in increasing order of physical tag.
 fn boundary_parts(
     msh: &MshFile,
-    lines_of_curve: &HashMap<i32, Vec<(u64, [u64; 2])>>,
-    compact: &HashMap<u64, usize>,
-    polygons: &[Vec<usize>],
+    lines_of_curve: &BTreeMap<i32, Vec<(u64, [u64; 2])>>,
+    nodes: &TagIndex,
+    compact: &[usize],
+    offsets: &[usize],
+    indices: &[usize],
 ) -> Result<Vec<PartSpec>, String> {
     // Physical tag -> curves carrying it.
     let mut curves_of_group: BTreeMap<i32, Vec<i32>> = msh
@@ -185,13 +248,50 @@ fn boundary_parts(
         return Ok(Vec::new());
     }
 
-    let mut uses: HashMap<(usize, usize), usize> = HashMap::new();
-    for polygon in polygons {
-        for k in 0..polygon.len() {
-            let (a, b) = (polygon[k], polygon[(k + 1) % polygon.len()]);
-            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+    // The polygons around each vertex (compressed), to count the polygons using an edge.
+    let n_vertices = compact.iter().filter(|&&v| v != usize::MAX).count();
+    let mut start = vec![0usize; n_vertices + 1];
+    for &v in indices {
+        start[v + 1] += 1;
+    }
+    for v in 0..n_vertices {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut around = vec![(0usize, 0usize); indices.len()];
+    for p in 0..offsets.len() - 1 {
+        for k in offsets[p]..offsets[p + 1] {
+            around[fill[indices[k]]] = (p, k);
+            fill[indices[k]] += 1;
         }
     }
+    // How many polygons have the edge (a, b) as a side.
+    let uses = |a: usize, b: usize| -> usize {
+        around[start[a]..start[a + 1]]
+            .iter()
+            .filter(|&&(p, k)| {
+                let (first, last) = (offsets[p], offsets[p + 1] - 1);
+                let next = if k == last {
+                    indices[first]
+                } else {
+                    indices[k + 1]
+                };
+                let previous = if k == first {
+                    indices[last]
+                } else {
+                    indices[k - 1]
+                };
+                next == b || previous == b
+            })
+            .count()
+    };
+    let vertex_of = |tag: u64| {
+        nodes
+            .get(tag)
+            .map(|i| compact[i])
+            .filter(|&v| v != usize::MAX)
+    };
+
     let mut parts = Vec::with_capacity(curves_of_group.len());
     for (tag, curves) in curves_of_group {
         let name = msh.physical_names.get(&(1, tag)).ok_or_else(|| {
@@ -206,10 +306,8 @@ fn boundary_parts(
         let mut seen = std::collections::HashSet::new();
         for curve in curves {
             for &(element_tag, [a, b]) in lines_of_curve.get(&curve).into_iter().flatten() {
-                let edge = match (compact.get(&a), compact.get(&b)) {
-                    (Some(&a), Some(&b)) if uses.get(&(a.min(b), a.max(b))) == Some(&1) => {
-                        Some([a, b])
-                    }
+                let edge = match (vertex_of(a), vertex_of(b)) {
+                    (Some(a), Some(b)) if a != b && uses(a, b) == 1 => Some([a, b]),
                     _ => None,
                 };
                 let [a, b] = edge.ok_or_else(|| {

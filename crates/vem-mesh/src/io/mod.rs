@@ -1,5 +1,6 @@
-//! File input and output: atomic writes, and with the features of the same names Gmsh `.msh`
-//! 4.1 and 2.2 input (`gmsh`), VTK `.vtu` output (`vtu`) and SVG output (`svg`).
+//! File input and output: atomic writes; PolyMesher/mVEM text input; and with the features of
+//! the same names Gmsh `.msh` 4.1 and 2.2 input (`gmsh`), VTK `.vtu` output and `.pvd`
+//! collections with `.vtu`/legacy `.vtk` input (`vtu`), and SVG output (`svg`).
 //!
 //! Every writer goes through [`write_atomically`]: a file is written whole or not at all, so
 //! an interrupted run never leaves a truncated `.vtu` that a viewer half-reads.
@@ -24,8 +25,15 @@
 mod gmsh;
 #[cfg(feature = "gmsh")]
 mod msh;
+mod polymesher;
+#[cfg(feature = "svg")]
+mod raster;
 #[cfg(feature = "svg")]
 mod svg;
+#[cfg(feature = "vtu")]
+mod vtk;
+#[cfg(feature = "vtu")]
+mod vtk_read;
 #[cfg(feature = "vtu")]
 mod vtu;
 
@@ -36,10 +44,20 @@ pub use msh::{
     element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,
     MshNode, MshVersion,
 };
+pub use polymesher::{read_polymesher, read_polymesher_bytes};
 #[cfg(feature = "svg")]
-pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions};
+pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions, VECTOR_CELL_LIMIT};
 #[cfg(feature = "vtu")]
-pub use vtu::{write_vtu, DataArray, VtuData};
+pub use vtk::{
+    CellType, Cells, PvdCollection, PvdDataSet, UnstructuredGrid, Values, VtkArray, VtuEncoding,
+};
+#[cfg(feature = "vtu")]
+pub use vtk_read::{
+    mesh_from_grid, read_legacy_vtk, read_legacy_vtk_bytes, read_vtk_mesh, read_vtu,
+    read_vtu_bytes, GridMeshOptions,
+};
+#[cfg(feature = "vtu")]
+pub use vtu::{write_vtu, write_vtu_with, DataArray, VtuData};
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};

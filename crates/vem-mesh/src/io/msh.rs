@@ -13,6 +13,7 @@
 
 use std::collections::{BTreeMap, HashSet};
 use std::fmt;
+use std::str::FromStr;
 
 /// The format version of a `.msh` file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,6 +241,84 @@ macro_rules! binary {
 }
 binary!(i32, u64, f64);
 
+/// A number read from the bytes of one token of ASCII text, accepting what `str::parse`
+/// accepts; integers are read from the bytes directly, without a text conversion.
+trait Ascii: Sized {
+    fn parse_ascii(token: &[u8]) -> Option<Self>;
+}
+
+/// The digits of an unsigned decimal integer (an optional `+`, then at least one digit).
+fn decimal_u64(token: &[u8]) -> Option<u64> {
+    let digits = token.strip_prefix(b"+").unwrap_or(token);
+    if digits.is_empty() {
+        return None;
+    }
+    let mut value: u64 = 0;
+    for &c in digits {
+        let digit = c.wrapping_sub(b'0');
+        if digit > 9 {
+            return None;
+        }
+        value = value.checked_mul(10)?.checked_add(u64::from(digit))?;
+    }
+    Some(value)
+}
+
+impl Ascii for u64 {
+    fn parse_ascii(token: &[u8]) -> Option<Self> {
+        decimal_u64(token)
+    }
+}
+
+impl Ascii for i32 {
+    fn parse_ascii(token: &[u8]) -> Option<Self> {
+        match token.strip_prefix(b"-") {
+            Some(digits) if !digits.starts_with(b"+") => {
+                let magnitude = i64::try_from(decimal_u64(digits)?).ok()?;
+                i32::try_from(-magnitude).ok()
+            }
+            Some(_) => None,
+            None => i32::try_from(decimal_u64(token)?).ok(),
+        }
+    }
+}
+
+impl Ascii for f64 {
+    fn parse_ascii(token: &[u8]) -> Option<Self> {
+        f64::from_str(std::str::from_utf8(token).ok()?).ok()
+    }
+}
+
+/// A set of tags (of nodes or elements): a bit per tag below a bound proportional to the
+/// number of items (Gmsh numbers them densely), a hash set above it.
+struct TagSet {
+    bits: Vec<u64>,
+    others: HashSet<u64>,
+}
+
+impl TagSet {
+    /// A set for about `items` tags.
+    fn with_capacity(items: usize) -> Self {
+        TagSet {
+            bits: vec![0; (items.saturating_mul(8).saturating_add(1024)) / 64 + 1],
+            others: HashSet::new(),
+        }
+    }
+
+    /// Adds `tag`; false when it was there already.
+    fn insert(&mut self, tag: u64) -> bool {
+        let (word, bit) = ((tag / 64) as usize, tag % 64);
+        match self.bits.get_mut(word) {
+            Some(w) => {
+                let new = *w & (1 << bit) == 0;
+                *w |= 1 << bit;
+                new
+            }
+            None => self.others.insert(tag),
+        }
+    }
+}
+
 impl<'a> Parser<'a> {
     fn new(bytes: &'a [u8]) -> Self {
         Parser {
@@ -291,63 +370,83 @@ impl<'a> Parser<'a> {
 
     /// The next whitespace-separated token and its start, or an error at the end of the file.
     fn token(&mut self, what: &str) -> Result<(&'a str, usize), MshError> {
-        self.skip_whitespace();
-        let start = self.pos;
-        while self.pos < self.bytes.len() && !self.bytes[self.pos].is_ascii_whitespace() {
-            self.pos += 1;
+        let (token, start) = self.token_bytes(what)?;
+        match std::str::from_utf8(token) {
+            Ok(token) => Ok((token, start)),
+            Err(_) => Err(self.not_text(start, what)),
         }
-        if start == self.pos {
+    }
+
+    /// The bytes of the next whitespace-separated token and its start, or an error at the end
+    /// of the file.
+    fn token_bytes(&mut self, what: &str) -> Result<(&'a [u8], usize), MshError> {
+        let bytes = self.bytes;
+        let mut pos = self.pos;
+        while pos < bytes.len() && bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        let start = pos;
+        while pos < bytes.len() && !bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        self.pos = pos;
+        if start == pos {
             return Err(self.error(format!("the file ends where {what} was expected")));
         }
-        match std::str::from_utf8(&self.bytes[start..self.pos]) {
-            Ok(token) => Ok((token, start)),
-            Err(_) => Err(self.error_at(
+        Ok((&bytes[start..pos], start))
+    }
+
+    /// The error for a token at `start` that is not text.
+    fn not_text(&self, start: usize, what: &str) -> MshError {
+        self.error_at(
+            start,
+            false,
+            format!("expected {what}, found bytes that are not text"),
+        )
+    }
+
+    /// The error for a token that is not the number expected.
+    fn not_a_number(&self, token: &[u8], start: usize, what: &str) -> MshError {
+        match std::str::from_utf8(token) {
+            Ok(text) => self.error_at(
                 start,
                 false,
-                format!("expected {what}, found bytes that are not text"),
-            )),
+                format!("expected {what}, found '{}'", shorten(text)),
+            ),
+            Err(_) => self.not_text(start, what),
         }
     }
 
     /// The next token parsed as a number of type `T`.
-    fn number<T: std::str::FromStr>(&mut self, what: &str) -> Result<T, MshError> {
-        let (token, start) = self.token(what)?;
-        token.parse().map_err(|_| {
-            self.error_at(
-                start,
-                false,
-                format!("expected {what}, found '{}'", shorten(token)),
-            )
-        })
+    fn number<T: Ascii>(&mut self, what: &str) -> Result<T, MshError> {
+        let (token, start) = self.token_bytes(what)?;
+        T::parse_ascii(token).ok_or_else(|| self.not_a_number(token, start, what))
     }
 
     /// The next token as coordinate `k` (0, 1, 2: x, y, z) of node `tag`, which must be finite.
     fn coordinate(&mut self, tag: u64, k: usize) -> Result<f64, MshError> {
-        let (token, start) = self.token("a node coordinate")?;
-        match token.parse::<f64>() {
-            Ok(value) if value.is_finite() => Ok(value),
-            _ => Err(self.error_at(
-                start,
-                false,
-                format!(
-                    "expected coordinate {} of node {tag} (a finite number), found '{}'",
-                    ["x", "y", "z"][k],
-                    shorten(token)
-                ),
-            )),
+        let (token, start) = self.token_bytes("a node coordinate")?;
+        match f64::parse_ascii(token) {
+            Some(value) if value.is_finite() => Ok(value),
+            _ => match std::str::from_utf8(token) {
+                Ok(text) => Err(self.error_at(
+                    start,
+                    false,
+                    format!(
+                        "expected coordinate {} of node {tag} (a finite number), found '{}'",
+                        ["x", "y", "z"][k],
+                        shorten(text)
+                    ),
+                )),
+                Err(_) => Err(self.not_text(start, "a node coordinate")),
+            },
         }
     }
 
     /// A count of items announced by a header, checked against the bytes that remain.
     fn count(&mut self, what: &str, item_bytes: usize) -> Result<usize, MshError> {
-        let (token, start) = self.token(what)?;
-        let count: u64 = token.parse().map_err(|_| {
-            self.error_at(
-                start,
-                false,
-                format!("expected {what}, found '{}'", shorten(token)),
-            )
-        })?;
+        let (token, start) = self.token_bytes(what)?;
+        let count = u64::parse_ascii(token).ok_or_else(|| self.not_a_number(token, start, what))?;
         self.check_count(count, start, false, what, item_bytes)
     }
 
@@ -376,7 +475,7 @@ impl<'a> Parser<'a> {
     }
 
     /// The next number of type `T`: binary or text, as the file is.
-    fn value<T: Binary + std::str::FromStr>(&mut self, what: &str) -> Result<T, MshError> {
+    fn value<T: Binary + Ascii>(&mut self, what: &str) -> Result<T, MshError> {
         if self.binary {
             self.binary(what)
         } else {
@@ -838,7 +937,7 @@ impl<'a> Parser<'a> {
         };
         let (n_blocks, n_nodes) = self.section_header_v4("node", block_bytes, node_bytes)?;
         let mut nodes = Vec::with_capacity(n_nodes);
-        let mut seen: HashSet<u64> = HashSet::with_capacity(n_nodes);
+        let mut seen = TagSet::with_capacity(n_nodes);
         for _ in 0..n_blocks {
             let block_start = self.mark();
             let (dim, tag, parametric, count) = if self.binary {
@@ -931,7 +1030,7 @@ impl<'a> Parser<'a> {
         let (n_blocks, n_elements) =
             self.section_header_v4("element", block_bytes, element_bytes)?;
         let mut elements = Vec::with_capacity(n_elements);
-        let mut seen: HashSet<u64> = HashSet::with_capacity(n_elements);
+        let mut seen = TagSet::with_capacity(n_elements);
         for _ in 0..n_blocks {
             let block_start = self.mark();
             let (dim, entity_tag, element_type) = if self.binary {
@@ -1024,7 +1123,7 @@ impl<'a> Parser<'a> {
             self.line();
         }
         let mut nodes = Vec::with_capacity(n_nodes);
-        let mut seen: HashSet<u64> = HashSet::with_capacity(n_nodes);
+        let mut seen = TagSet::with_capacity(n_nodes);
         for _ in 0..n_nodes {
             let at = self.mark();
             let tag: u64 = if self.binary {
@@ -1067,7 +1166,7 @@ impl<'a> Parser<'a> {
             self.line();
         }
         let mut elements = Vec::with_capacity(n_elements);
-        let mut seen: HashSet<u64> = HashSet::with_capacity(n_elements);
+        let mut seen = TagSet::with_capacity(n_elements);
         // Binary files group elements under headers (type, count, number of tags).
         let mut group: (i32, usize, usize) = (0, 0, 0);
         while elements.len() < n_elements {

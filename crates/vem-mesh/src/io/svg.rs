@@ -8,6 +8,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use super::raster::{base64, Raster};
 use super::{write_atomically, xml_escape};
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -30,6 +31,12 @@ const COLOUR_MAP: [[f64; 3]; 9] = [
     [170.0, 220.0, 50.0],
     [253.0, 231.0, 37.0],
 ];
+
+/// The default [`SvgOptions::vector_cell_limit`]: under 1 MB of SVG drawn as vectors.
+pub const VECTOR_CELL_LIMIT: usize = 5_000;
+
+/// Raster pixels per picture pixel for large meshes (sharp on high-density screens).
+const RASTER_SCALE: f64 = 2.0;
 
 /// Height of the title line, in pixels.
 const TITLE_HEIGHT: f64 = 28.0;
@@ -102,10 +109,16 @@ pub struct SvgOptions {
     /// Values mapped to the two ends of the colour map; `None`: the smallest and largest
     /// cell value over all layers.
     pub value_range: Option<(f64, f64)>,
+    /// Pictures of more polygons than this (over all layers) draw the cells as an embedded PNG
+    /// at twice the picture's resolution, with the boundaries and parts as vectors above it,
+    /// so that the file's size depends on the picture, not on the mesh (vertex dots are then
+    /// left out). Below it every polygon is an SVG element.
+    pub vector_cell_limit: usize,
 }
 
 impl Default for SvgOptions {
-    /// 800 pixels wide, 20 pixels margin, parts with a legend, no dots, magnification 1.
+    /// 800 pixels wide, 20 pixels margin, parts with a legend, no dots, magnification 1,
+    /// vectors up to [`VECTOR_CELL_LIMIT`] polygons.
     fn default() -> Self {
         Self {
             width: 800.0,
@@ -116,6 +129,7 @@ impl Default for SvgOptions {
             magnification: 1.0,
             value_label: "value".into(),
             value_range: None,
+            vector_cell_limit: VECTOR_CELL_LIMIT,
         }
     }
 }
@@ -268,7 +282,8 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
     emit(
         out,
         format_args!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{height:.0}\" \
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" \
+             xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"{w:.0}\" height=\"{height:.0}\" \
              viewBox=\"0 0 {w:.0} {height:.0}\" font-family=\"sans-serif\" font-size=\"12\">\n",
             w = options.width
         ),
@@ -289,42 +304,75 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         );
     }
 
+    let n_polygons: usize = layers.iter().map(|l| l.mesh.n_polygons()).sum();
+    let raster = n_polygons > options.vector_cell_limit;
+    if raster {
+        raster_cells(
+            out,
+            &drawn,
+            value_range,
+            &to_picture,
+            (options.width, height),
+        );
+    }
     for (index, d) in drawn.iter().enumerate() {
         let mesh = d.layer.mesh;
         emit(out, format_args!("<g id=\"layer-{index}\">\n"));
-        if d.layer.displacement.is_some() {
+        if raster {
+            // The cells are in the image: the boundary as vectors, undeformed dashed.
+            if d.layer.displacement.is_some() {
+                boundary_path(
+                    out,
+                    mesh,
+                    mesh.vertices(),
+                    &to_picture,
+                    "undeformed",
+                    "stroke=\"#9a9a9a\" stroke-width=\"0.6\" stroke-dasharray=\"3 2\"",
+                );
+            }
+            boundary_path(
+                out,
+                mesh,
+                &d.positions,
+                &to_picture,
+                "boundary",
+                "stroke=\"#303030\" stroke-width=\"0.8\"",
+            );
+        } else {
+            if d.layer.displacement.is_some() {
+                emit(
+                    out,
+                    format_args!(
+                        "<g class=\"undeformed\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"0.6\" \
+                         stroke-dasharray=\"3 2\">\n"
+                    ),
+                );
+                for polygon in mesh.polygons() {
+                    polygon_element(out, polygon, mesh.vertices(), &to_picture, None);
+                }
+                emit(out, format_args!("</g>\n"));
+            }
+            let stroke_width = if d.layer.cell_values.is_some() {
+                0.4
+            } else {
+                0.7
+            };
             emit(
                 out,
                 format_args!(
-                    "<g class=\"undeformed\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"0.6\" \
-                     stroke-dasharray=\"3 2\">\n"
+                    "<g class=\"cells\" fill=\"none\" stroke=\"#303030\" stroke-width=\"{stroke_width}\" \
+                     stroke-linejoin=\"round\">\n"
                 ),
             );
-            for polygon in mesh.polygons() {
-                polygon_element(out, polygon, mesh.vertices(), &to_picture, None);
+            for (p, polygon) in mesh.polygons().enumerate() {
+                let fill = match (d.layer.cell_values, value_range) {
+                    (Some(values), Some(range)) => Some(colour_of(values[p], range)),
+                    _ => None,
+                };
+                polygon_element(out, polygon, &d.positions, &to_picture, fill);
             }
             emit(out, format_args!("</g>\n"));
         }
-        let stroke_width = if d.layer.cell_values.is_some() {
-            0.4
-        } else {
-            0.7
-        };
-        emit(
-            out,
-            format_args!(
-                "<g class=\"cells\" fill=\"none\" stroke=\"#303030\" stroke-width=\"{stroke_width}\" \
-                 stroke-linejoin=\"round\">\n"
-            ),
-        );
-        for (p, polygon) in mesh.polygons().enumerate() {
-            let fill = match (d.layer.cell_values, value_range) {
-                (Some(values), Some(range)) => Some(colour_of(values[p], range)),
-                _ => None,
-            };
-            polygon_element(out, polygon, &d.positions, &to_picture, fill);
-        }
-        emit(out, format_args!("</g>\n"));
         for (part, colour) in mesh.parts().iter().zip(&part_colours[index]) {
             let mut path = String::new();
             for &e in &part.edges {
@@ -342,7 +390,7 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
                 ),
             );
         }
-        if options.vertex_dots {
+        if options.vertex_dots && !raster {
             emit(
                 out,
                 format_args!("<g class=\"vertices\" fill=\"#000000\">\n"),
@@ -393,6 +441,95 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
 fn emit(out: &mut String, args: std::fmt::Arguments) {
     out.write_fmt(args)
         .expect("writing to a String cannot fail");
+}
+
+/// Draws the cells of every layer into one image at [`RASTER_SCALE`] times the picture's
+/// resolution and appends it as an `<image>` covering the picture: cells filled by their
+/// value's colour (light grey without values), their edges drawn when cells are at least 6
+/// pixels across on average.
+fn raster_cells(
+    out: &mut String,
+    drawn: &[Drawn],
+    value_range: Option<(f64, f64)>,
+    to_picture: &impl Fn(Point) -> (f64, f64),
+    (width, height): (f64, f64),
+) {
+    // At most about 16 million pixels, whatever the picture's size.
+    let scale = RASTER_SCALE.min((16.0e6 / (width * height).max(1.0)).sqrt());
+    let (w, h) = (
+        (width * scale).ceil().max(1.0) as usize,
+        (height * scale).ceil().max(1.0) as usize,
+    );
+    let mut image = Raster::new(w, h);
+    let to_pixels = |p: Point| {
+        let (x, y) = to_picture(p);
+        (x * scale, y * scale)
+    };
+    for d in drawn {
+        let mesh = d.layer.mesh;
+        let mut corners = Vec::new();
+        let mut across = 0.0;
+        for (p, polygon) in mesh.polygons().enumerate() {
+            corners.clear();
+            corners.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
+            let fill = match (d.layer.cell_values, value_range) {
+                (Some(values), Some(range)) => rgb(colour_of(values[p], range)),
+                _ => [236, 236, 236],
+            };
+            image.fill_polygon(&corners, [fill[0], fill[1], fill[2], 255]);
+            let (a, b) = (corners[0], corners[corners.len() / 2]);
+            across += ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+        }
+        if across / mesh.n_polygons().max(1) as f64 >= 6.0 {
+            for edge in mesh.edges() {
+                let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
+                image.segment(a, b, [48, 48, 48, 150]);
+            }
+        }
+    }
+    let png = image.to_png();
+    emit(
+        out,
+        format_args!(
+            "<image class=\"cells-raster\" x=\"0\" y=\"0\" width=\"{width:.0}\" \
+             height=\"{height:.0}\" preserveAspectRatio=\"none\" \
+             xlink:href=\"data:image/png;base64,{}\"/>\n",
+            base64(&png)
+        ),
+    );
+}
+
+/// The boundary edges of `mesh` at `positions` as one `<path>` of class `class`.
+fn boundary_path(
+    out: &mut String,
+    mesh: &Mesh,
+    positions: &[Point],
+    to_picture: &impl Fn(Point) -> (f64, f64),
+    class: &str,
+    style: &str,
+) {
+    let mut path = String::new();
+    for e in mesh.boundary_edges() {
+        let [a, b] = mesh.edge(e).vertices;
+        let (xa, ya) = to_picture(positions[a]);
+        let (xb, yb) = to_picture(positions[b]);
+        emit(&mut path, format_args!("M{xa:.2} {ya:.2}L{xb:.2} {yb:.2}"));
+    }
+    emit(
+        out,
+        format_args!(
+            "<path class=\"{class}\" d=\"{path}\" fill=\"none\" {style} \
+             stroke-linecap=\"round\"/>\n"
+        ),
+    );
+}
+
+/// The RGB triple of a `#rrggbb` colour.
+fn rgb(hex: String) -> [u8; 3] {
+    let channel = |k: usize| {
+        u8::from_str_radix(hex.get(1 + 2 * k..3 + 2 * k).unwrap_or("0"), 16).unwrap_or(0)
+    };
+    [channel(0), channel(1), channel(2)]
 }
 
 /// Appends one `<polygon>` with the given vertex positions and optional fill colour.

@@ -1,0 +1,219 @@
+//! A small RGBA raster for pictures of large meshes: polygons filled by scanlines, segments
+//! drawn one pixel wide, and PNG encoding (zlib through `miniz_oxide`, CRC-32 here).
+//!
+//! A picture of 10^6 cells drawn as vectors is a file of 100 MB that no browser opens; the
+//! same picture rasterised at the resolution it is shown at is a PNG whose size depends on the
+//! number of pixels, not of cells.
+
+/// An RGBA image, rows from the top, transparent where nothing is drawn.
+pub(crate) struct Raster {
+    width: usize,
+    height: usize,
+    rgba: Vec<u8>,
+}
+
+impl Raster {
+    /// A transparent image of `width` x `height` pixels.
+    pub(crate) fn new(width: usize, height: usize) -> Self {
+        Raster {
+            width,
+            height,
+            rgba: vec![0; width * height * 4],
+        }
+    }
+
+    /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
+    /// even-odd rule) with `colour`: every pixel whose centre lies inside.
+    pub(crate) fn fill_polygon(&mut self, points: &[(f64, f64)], colour: [u8; 4]) {
+        let m = points.len();
+        if m < 3 {
+            return;
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(_, y) in points {
+            lo = lo.min(y);
+            hi = hi.max(y);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return;
+        }
+        // Rows whose centre y + 1/2 lies in [lo, hi).
+        let first = (lo - 0.5).ceil().max(0.0) as usize;
+        let last = ((hi - 0.5).ceil().min(self.height as f64)).max(0.0) as usize;
+        let mut crossings: Vec<f64> = Vec::with_capacity(8);
+        for row in first..last {
+            let y = row as f64 + 0.5;
+            crossings.clear();
+            for k in 0..m {
+                let (a, b) = (points[k], points[(k + 1) % m]);
+                if (a.1 <= y) != (b.1 <= y) {
+                    crossings.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
+                }
+            }
+            crossings.sort_by(f64::total_cmp);
+            for pair in crossings.chunks_exact(2) {
+                // Pixels whose centre x + 1/2 lies in [pair[0], pair[1]).
+                let start = (pair[0] - 0.5).ceil().max(0.0) as usize;
+                let end = ((pair[1] - 0.5).ceil().min(self.width as f64)).max(0.0) as usize;
+                for column in start..end {
+                    self.put(column, row, colour);
+                }
+            }
+        }
+    }
+
+    /// Draws the segment from `a` to `b` one pixel wide (a pixel per step along the longer
+    /// axis), blending `colour` over what is there by its alpha.
+    pub(crate) fn segment(&mut self, a: (f64, f64), b: (f64, f64), colour: [u8; 4]) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let steps = dx.abs().max(dy.abs()).ceil();
+        if !steps.is_finite() || steps > 1e7 {
+            return;
+        }
+        let steps = steps.max(1.0) as usize;
+        for k in 0..=steps {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (a.0 + t * dx, a.1 + t * dy);
+            if x >= 0.0 && y >= 0.0 && x < self.width as f64 && y < self.height as f64 {
+                self.blend(x as usize, y as usize, colour);
+            }
+        }
+    }
+
+    fn put(&mut self, x: usize, y: usize, colour: [u8; 4]) {
+        let k = 4 * (y * self.width + x);
+        self.rgba[k..k + 4].copy_from_slice(&colour);
+    }
+
+    fn blend(&mut self, x: usize, y: usize, colour: [u8; 4]) {
+        let k = 4 * (y * self.width + x);
+        let alpha = u32::from(colour[3]);
+        for (old, &new) in self.rgba[k..k + 3].iter_mut().zip(&colour[..3]) {
+            *old = ((u32::from(new) * alpha + u32::from(*old) * (255 - alpha)) / 255) as u8;
+        }
+        let old = u32::from(self.rgba[k + 3]);
+        self.rgba[k + 3] = (alpha + old * (255 - alpha) / 255).min(255) as u8;
+    }
+
+    /// The image as a PNG file (8-bit RGBA, no interlacing, each row filtered by the
+    /// difference with the row above, which makes flat colour regions compress well).
+    pub(crate) fn to_png(&self) -> Vec<u8> {
+        let stride = 4 * self.width;
+        let mut filtered = Vec::with_capacity((stride + 1) * self.height);
+        for row in 0..self.height {
+            let line = &self.rgba[row * stride..(row + 1) * stride];
+            if row == 0 {
+                filtered.push(0); // None
+                filtered.extend_from_slice(line);
+            } else {
+                filtered.push(2); // Up
+                let above = &self.rgba[(row - 1) * stride..row * stride];
+                filtered.extend(line.iter().zip(above).map(|(x, a)| x.wrapping_sub(*a)));
+            }
+        }
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut header = Vec::with_capacity(13);
+        header.extend_from_slice(&(self.width as u32).to_be_bytes());
+        header.extend_from_slice(&(self.height as u32).to_be_bytes());
+        header.extend_from_slice(&[8, 6, 0, 0, 0]);
+        chunk(&mut png, b"IHDR", &header);
+        chunk(
+            &mut png,
+            b"IDAT",
+            &miniz_oxide::deflate::compress_to_vec_zlib(&filtered, 6),
+        );
+        chunk(&mut png, b"IEND", &[]);
+        png
+    }
+}
+
+/// Appends a PNG chunk: length, type, data, CRC-32 of type and data.
+fn chunk(png: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+    png.extend_from_slice(&(data.len() as u32).to_be_bytes());
+    png.extend_from_slice(kind);
+    png.extend_from_slice(data);
+    let crc = crc32(kind.iter().chain(data));
+    png.extend_from_slice(&crc.to_be_bytes());
+}
+
+/// CRC-32 (ISO 3309, as PNG uses it).
+fn crc32<'a>(bytes: impl Iterator<Item = &'a u8>) -> u32 {
+    let mut table = [0u32; 256];
+    for (n, entry) in table.iter_mut().enumerate() {
+        let mut c = n as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+        *entry = c;
+    }
+    let mut crc = u32::MAX;
+    for &b in bytes {
+        crc = table[((crc ^ u32::from(b)) & 0xff) as usize] ^ (crc >> 8);
+    }
+    crc ^ u32::MAX
+}
+
+/// Standard base64 with padding (for a PNG embedded in an SVG as a data URI).
+pub(crate) fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for group in bytes.chunks(3) {
+        let b = [
+            group[0],
+            *group.get(1).unwrap_or(&0),
+            *group.get(2).unwrap_or(&0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= group.len() {
+                out.push(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crc_of_the_png_end_chunk_is_the_known_one() {
+        // Every PNG ends with IEND and this CRC.
+        assert_eq!(crc32(b"IEND".iter()), 0xAE42_6082);
+        assert_eq!(crc32(b"123456789".iter()), 0xCBF4_3926);
+    }
+
+    #[test]
+    fn base64_of_known_strings() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+
+    #[test]
+    fn a_filled_square_covers_the_pixels_whose_centres_are_inside() {
+        let mut r = Raster::new(10, 10);
+        r.fill_polygon(
+            &[(2.0, 2.0), (6.0, 2.0), (6.0, 5.0), (2.0, 5.0)],
+            [255, 0, 0, 255],
+        );
+        let filled = r.rgba.chunks(4).filter(|p| p[3] == 255).count();
+        assert_eq!(filled, 4 * 3);
+        // The PNG decodes back (zlib stream of rows of 1 + 40 bytes).
+        let png = r.to_png();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        let idat = png.windows(4).position(|w| w == b"IDAT").unwrap();
+        let len = u32::from_be_bytes(png[idat - 4..idat].try_into().unwrap()) as usize;
+        let raw =
+            miniz_oxide::inflate::decompress_to_vec_zlib(&png[idat + 4..idat + 4 + len]).unwrap();
+        assert_eq!(raw.len(), 10 * 41);
+    }
+}
