@@ -42,6 +42,7 @@
 
 mod body_mesh;
 mod error;
+pub mod expression;
 #[cfg(feature = "generators")]
 pub mod generators;
 pub mod geometry;
