@@ -22,8 +22,9 @@
 
 use std::fmt;
 
-/// A compiled expression of `x`, `y`, `z` and `t`.
-#[derive(Debug, Clone, PartialEq)]
+/// A compiled expression of `x`, `y`, `z` and `t`. Two expressions are equal when they are
+/// written alike.
+#[derive(Debug, Clone)]
 pub struct Expression {
     source: String,
     program: Vec<Op>,
@@ -43,7 +44,7 @@ pub struct ExpressionError {
     pub message: String,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 enum Op {
     Number(f64),
     /// Variable 0..4: x, y, z, t.
@@ -217,6 +218,12 @@ impl Expression {
     }
 }
 
+impl PartialEq for Expression {
+    fn eq(&self, other: &Self) -> bool {
+        self.source == other.source
+    }
+}
+
 impl fmt::Display for Expression {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.source)
@@ -348,7 +355,7 @@ impl Parser<'_> {
             } else {
                 return Ok(());
             };
-            self.expect_value(if op == Op::Add { '+' } else { '-' })?;
+            self.expect_value(if matches!(op, Op::Add) { '+' } else { '-' })?;
             self.product()?;
             self.emit(op)?;
         }
