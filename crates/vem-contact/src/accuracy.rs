@@ -2,7 +2,7 @@
 //! `docs/tradeoff.md`).
 //!
 //! An [`AccuracyPreset`] names a solver setting (a registry name and its
-//! [`SolverOptions`]) and the relative energy-norm error it aims at when the mesh size is chosen
+//! [`Options`](vem_space::Options)) and the relative energy-norm error it aims at when the mesh size is chosen
 //! for the user. The study found that the mesh size, not the solver tolerance, sets the error:
 //! on one mesh the three presets give the same errors to three digits (the condensed solver's
 //! tolerance moves the interface forces far below the discretisation error), so the presets
@@ -31,7 +31,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::registry::SolverOptions;
+use vem_space::Options;
 use crate::solver::SettingsError;
 
 /// A named solver setting with the error it aims at (see the module docs). Ordered from the
@@ -87,8 +87,8 @@ impl AccuracyPreset {
     }
 
     /// The options the solver is made with.
-    pub fn solver_options(self) -> SolverOptions {
-        SolverOptions::default().tolerance(self.tolerance())
+    pub fn solver_options(self) -> Options {
+        Options::new().with("tolerance", self.tolerance())
     }
 
     /// The relative energy-norm error `E_grad / |u|_1` aimed at when the mesh size is chosen

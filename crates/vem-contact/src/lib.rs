@@ -63,7 +63,7 @@ pub use law::{
 pub use node::{frame, tangent, ContactNode, Location};
 pub use obstacle::{Obstacle, ObstacleGap, RigidObstacle};
 pub use problem::{ContactNormal, ContactPair, ContactProblem, Counterpart};
-pub use registry::{RegistryError, SolverFactory, SolverOptions, SolverRegistry};
+pub use registry::{LawRegistry, RegistryError, SolverRegistry};
 pub use result::{
     consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode,
     ModelSummary, NodeStatus, PairSummary,

@@ -1,19 +1,28 @@
-//! One registry of contact solvers for every tool: the scene files of `vem run`, `cargo xtask`
-//! and the verification studies take solver names from a [`SolverRegistry`], and a user's own
-//! solver joins them by [`SolverRegistry::register`].
+//! One registry of contact solvers and one of contact laws for every tool: scene files, `cargo
+//! xtask`, the verification studies and Python take names from them, and a user's own solver or
+//! law joins them by `register`. Each factory reads its own settings from a table
+//! ([`Options`]): a new setting is one field of the solver's (or law's) settings, in its own
+//! file.
 //!
 //! ```
-//! use vem_contact::{ContactSolver, ExactSolver, SolverOptions, SolverRegistry};
+//! use vem_contact::{ContactSolver, ExactSolver, SolverRegistry};
+//! use vem_space::Options;
 //! let mut registry = SolverRegistry::builtin();
 //! assert!(registry.names().contains(&"active-set"));
 //! // A solver of one's own (here the exact solver under another name).
-//! registry.register("my-qp", "my QP solver", |_options: &SolverOptions| {
+//! registry.register("my-qp", "my QP solver", |options: &Options| {
+//!     options.refuse_all("my-qp")?;
 //!     Ok(Box::new(ExactSolver::default()) as Box<dyn ContactSolver>)
 //! })?;
-//! let solver = registry.make("my-qp", &SolverOptions::default())?;
-//! assert_eq!(solver.name(), "exact (clarabel)");
+//! assert_eq!(registry.make("my-qp", &Options::new())?.name(), "exact (clarabel)");
+//! // Settings by name, checked by the solver; an unknown one is refused with its key.
+//! let tight = Options::new().with("tolerance", 1e-10);
+//! assert!(registry.make("condensed", &tight).is_ok());
+//! let typo = Options::new().with("tolerence", 1e-10);
+//! let error = registry.make("condensed", &typo).err().unwrap();
+//! assert_eq!(error.option_path(), Some("tolerence"));
 //! // An unknown name lists the known ones.
-//! let error = registry.make("newton", &SolverOptions::default()).err().unwrap();
+//! let error = registry.make("newton", &Options::new()).err().unwrap();
 //! assert!(error.to_string().contains("active-set"));
 //! # Ok::<(), vem_contact::RegistryError>(())
 //! ```
@@ -21,148 +30,26 @@
 use std::fmt;
 use std::sync::Arc;
 
+use serde::Deserialize;
+use vem_space::{Choice, Options, OptionsError, Registry};
+
 use crate::solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ContactSolver,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError,
+    PenaltySettings, PenaltySolver,
 };
 #[cfg(feature = "clarabel")]
 use crate::solver::{ExactSettings, ExactSolver};
+use crate::{ContactLaw, Coulomb, FixedPointSettings, Frictionless, Tresca};
 
-/// Settings a solver may take from a scene or a command line; every one is optional (the
-/// solver's default applies) and each solver's builder validates the values it uses. A solver
-/// given an option it has no use for refuses it ([`SolverOptions::refuse`]), so that no setting
-/// is silently ignored.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SolverOptions {
-    tolerance: Option<f64>,
-    max_iterations: Option<usize>,
-    penalty: Option<PenaltyParameter>,
-    augmentation: Option<PenaltyParameter>,
-}
+pub use vem_space::RegistryError;
 
-impl SolverOptions {
-    /// The solver's stopping tolerance (relative; for the exact solver its gap and feasibility
-    /// tolerances).
-    pub fn tolerance(mut self, value: f64) -> Self {
-        self.tolerance = Some(value);
-        self
-    }
-
-    /// The solver's iteration limit.
-    pub fn max_iterations(mut self, value: usize) -> Self {
-        self.max_iterations = Some(value);
-        self
-    }
-
-    /// The penalty parameter (penalty solvers).
-    pub fn penalty(mut self, value: PenaltyParameter) -> Self {
-        self.penalty = Some(value);
-        self
-    }
-
-    /// The augmentation parameter (augmented-Lagrangian and active-set solvers).
-    pub fn augmentation(mut self, value: PenaltyParameter) -> Self {
-        self.augmentation = Some(value);
-        self
-    }
-
-    /// The tolerance, if given.
-    pub fn tolerance_value(&self) -> Option<f64> {
-        self.tolerance
-    }
-
-    /// The iteration limit, if given.
-    pub fn max_iterations_value(&self) -> Option<usize> {
-        self.max_iterations
-    }
-
-    /// The penalty parameter, if given.
-    pub fn penalty_value(&self) -> Option<PenaltyParameter> {
-        self.penalty
-    }
-
-    /// The augmentation parameter, if given.
-    pub fn augmentation_value(&self) -> Option<PenaltyParameter> {
-        self.augmentation
-    }
-
-    /// Fails with a [`SettingsError`] naming the first of `unused` ("tolerance",
-    /// "max_iterations", "penalty", "augmentation") that is set: for a solver factory to refuse
-    /// the options its solver has no use for.
-    ///
-    /// # Errors
-    /// The first unused option that is set.
-    pub fn refuse(&self, unused: &[&'static str]) -> Result<(), SettingsError> {
-        for &name in unused {
-            let value = match name {
-                "tolerance" => self.tolerance,
-                "max_iterations" => self.max_iterations.map(|m| m as f64),
-                "penalty" => self.penalty.map(PenaltyParameter::number),
-                "augmentation" => self.augmentation.map(PenaltyParameter::number),
-                _ => None,
-            };
-            if let Some(value) = value {
-                return Err(SettingsError {
-                    setting: name,
-                    value,
-                    requirement: "unset: this solver does not use it",
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-/// A function making a solver from options.
-pub type SolverFactory =
-    Arc<dyn Fn(&SolverOptions) -> Result<Box<dyn ContactSolver>, SettingsError> + Send + Sync>;
-
-/// Why a registry refused a name.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum RegistryError {
-    /// No solver has this name.
-    #[error("unknown solver '{name}'; known solvers: {}", known.join(", "))]
-    UnknownName {
-        /// The name asked for.
-        name: String,
-        /// The names the registry knows.
-        known: Vec<String>,
-    },
-    /// A solver with this name is registered already.
-    #[error("a solver named '{name}' is registered already")]
-    Duplicate {
-        /// The name.
-        name: String,
-    },
-    /// The solver refused its options.
-    #[error("solver '{name}': invalid options")]
-    Settings {
-        /// The solver's name.
-        name: String,
-        /// The option it refused.
-        #[source]
-        source: SettingsError,
-    },
-}
-
-struct Entry {
-    name: String,
-    summary: String,
-    factory: SolverFactory,
-}
-
-/// Solvers by name (see the module docs).
+/// Contact solvers by name (see the module docs).
 #[derive(Clone)]
-pub struct SolverRegistry {
-    entries: Vec<Arc<Entry>>,
-}
+pub struct SolverRegistry(Registry<Box<dyn ContactSolver>>);
 
 impl fmt::Debug for SolverRegistry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("SolverRegistry")
-            .field("names", &self.names())
-            .finish()
+        self.0.fmt(f)
     }
 }
 
@@ -179,160 +66,255 @@ impl SolverRegistry {
 
     /// A registry without any solver.
     pub fn empty() -> Self {
-        Self {
-            entries: Vec::new(),
-        }
+        Self(Registry::empty("solver"))
     }
 
-    /// The solvers of this crate: `"exact"` (`ExactSolver`, with the `clarabel` feature),
-    /// `"penalty"` ([`PenaltySolver`]) and `"active-set"` ([`ActiveSetSolver`]).
+    /// The solvers of this crate: `"condensed"` ([`CondensedSolver`], the default),
+    /// `"exact"` (`ExactSolver`, with the `clarabel` feature), `"penalty"` ([`PenaltySolver`])
+    /// and `"active-set"` ([`ActiveSetSolver`]); each reads its settings with its
+    /// `from_options` (e.g. [`CondensedSettings::from_options`]).
     pub fn builtin() -> Self {
         let mut registry = Self::empty();
-        #[allow(unused_mut)]
-        let mut builtin: Vec<(&str, &str, SolverFactory)> = vec![
-            (
-                "condensed",
-                "condensation onto the interface: one factorisation, exact dense interface problem",
-                Arc::new(|o: &SolverOptions| {
-                    o.refuse(&["penalty", "augmentation"])?;
-                    let mut b = CondensedSettings::builder();
-                    if let Some(t) = o.tolerance {
-                        b = b.tolerance(t);
-                    }
-                    if let Some(m) = o.max_iterations {
-                        b = b.max_iterations(m);
-                    }
-                    Ok(Box::new(CondensedSolver::new(b.build()?)) as Box<dyn ContactSolver>)
-                }),
-            ),
-            (
-                "penalty",
-                "penalty method, semismooth Newton with exact line search",
-                Arc::new(|o: &SolverOptions| {
-                    o.refuse(&["augmentation"])?;
-                    let mut b = PenaltySettings::builder();
-                    if let Some(t) = o.tolerance {
-                        b = b.tolerance(t);
-                    }
-                    if let Some(m) = o.max_iterations {
-                        b = b.max_iterations(m);
-                    }
-                    if let Some(p) = o.penalty {
-                        b = b.penalty(p);
-                    }
-                    Ok(Box::new(PenaltySolver::new(b.build()?)) as Box<dyn ContactSolver>)
-                }),
-            ),
-            (
-                "active-set",
-                "primal-dual active set on the exact KKT conditions",
-                Arc::new(|o: &SolverOptions| {
-                    o.refuse(&["penalty"])?;
-                    let mut b = ActiveSetSettings::builder();
-                    if let Some(t) = o.tolerance {
-                        b = b.tolerance(t);
-                    }
-                    if let Some(m) = o.max_iterations {
-                        b = b.max_iterations(m);
-                    }
-                    if let Some(a) = o.augmentation {
-                        b = b.augmentation(a);
-                    }
-                    Ok(Box::new(ActiveSetSolver::new(b.build()?)) as Box<dyn ContactSolver>)
-                }),
-            ),
-        ];
+        let r = &mut registry.0;
+        r.register(
+            "condensed",
+            "condensation onto the interface: one factorisation, exact dense interface problem",
+            |o| {
+                Ok(Box::new(CondensedSolver::new(CondensedSettings::from_options(o)?))
+                    as Box<dyn ContactSolver>)
+            },
+        )
+        .expect("built-in names are valid and distinct");
         #[cfg(feature = "clarabel")]
-        builtin.insert(
-            1,
-            (
-                "exact",
-                "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
-                Arc::new(|o: &SolverOptions| {
-                    o.refuse(&["penalty", "augmentation"])?;
-                    let mut b = ExactSettings::builder();
-                    if let Some(t) = o.tolerance {
-                        b = b.eps_abs(t).eps_rel(t);
-                    }
-                    if let Some(m) = o.max_iterations {
-                        b = b.max_iterations(m);
-                    }
-                    Ok(Box::new(ExactSolver::new(b.build()?)) as Box<dyn ContactSolver>)
-                }),
-            ),
-        );
-        for (name, summary, factory) in builtin {
-            registry.entries.push(Arc::new(Entry {
-                name: name.to_string(),
-                summary: summary.to_string(),
-                factory,
-            }));
-        }
+        r.register(
+            "exact",
+            "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
+            |o| Ok(Box::new(ExactSolver::new(ExactSettings::from_options(o)?)) as Box<dyn ContactSolver>),
+        )
+        .expect("built-in names are valid and distinct");
+        r.register(
+            "penalty",
+            "penalty method, semismooth Newton with exact line search",
+            |o| {
+                Ok(Box::new(PenaltySolver::new(PenaltySettings::from_options(o)?))
+                    as Box<dyn ContactSolver>)
+            },
+        )
+        .expect("built-in names are valid and distinct");
+        r.register(
+            "active-set",
+            "primal-dual active set on the exact KKT conditions",
+            |o| {
+                Ok(Box::new(ActiveSetSolver::new(ActiveSetSettings::from_options(o)?))
+                    as Box<dyn ContactSolver>)
+            },
+        )
+        .expect("built-in names are valid and distinct");
         registry
     }
 
-    /// Adds a solver under `name` with a one-line `summary`.
+    /// Adds a solver under `name` with a one-line `summary`, built from its settings by
+    /// `factory`.
     ///
     /// # Errors
-    /// [`RegistryError::Duplicate`] if the name is taken.
+    /// [`RegistryError::DuplicateName`] if the name is taken, [`RegistryError::InvalidName`].
     pub fn register(
         &mut self,
         name: impl Into<String>,
         summary: impl Into<String>,
-        factory: impl Fn(&SolverOptions) -> Result<Box<dyn ContactSolver>, SettingsError>
+        factory: impl Fn(&Options) -> Result<Box<dyn ContactSolver>, OptionsError>
             + Send
             + Sync
             + 'static,
     ) -> Result<(), RegistryError> {
-        let name = name.into();
-        if self.entries.iter().any(|e| e.name == name) {
-            return Err(RegistryError::Duplicate { name });
-        }
-        self.entries.push(Arc::new(Entry {
-            name,
-            summary: summary.into(),
-            factory: Arc::new(factory),
-        }));
-        Ok(())
+        self.0.register(name, summary, factory).map(|_| ())
     }
 
     /// The names, in the order of registration.
     pub fn names(&self) -> Vec<&str> {
-        self.entries.iter().map(|e| e.name.as_str()).collect()
+        self.0.names()
     }
 
     /// The one-line summary of `name`.
     pub fn summary(&self, name: &str) -> Option<&str> {
-        self.entry(name).map(|e| e.summary.as_str())
+        self.0.summary(name)
     }
 
     /// Whether `name` is registered.
     pub fn contains(&self, name: &str) -> bool {
-        self.entry(name).is_some()
+        self.0.contains(name)
     }
 
-    /// A new solver `name` with `options`.
+    /// A new solver `name` with the settings `options`.
     ///
     /// # Errors
     /// [`RegistryError::UnknownName`] (listing the known names) or
-    /// [`RegistryError::Settings`] naming the refused option.
+    /// [`RegistryError::Options`] naming the refused setting.
     pub fn make(
         &self,
         name: &str,
-        options: &SolverOptions,
+        options: &Options,
     ) -> Result<Box<dyn ContactSolver>, RegistryError> {
-        let entry = self.entry(name).ok_or_else(|| RegistryError::UnknownName {
-            name: name.to_string(),
-            known: self.names().into_iter().map(String::from).collect(),
-        })?;
-        (entry.factory)(options).map_err(|source| RegistryError::Settings {
-            name: name.to_string(),
-            source,
-        })
+        self.0.make(name, options)
     }
 
-    fn entry(&self, name: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.name == name).map(|e| &**e)
+    /// The solver of a [`Choice`].
+    ///
+    /// # Errors
+    /// As [`SolverRegistry::make`].
+    pub fn make_choice(&self, choice: &Choice) -> Result<Box<dyn ContactSolver>, RegistryError> {
+        self.0.make_choice(choice)
+    }
+}
+
+/// Contact laws by name, in dimension `D`: `"frictionless"`, `"tresca"` (setting
+/// `friction_bound`), `"coulomb"` (settings `coefficient`, `fixed_point = { max_iterations,
+/// tolerance }`). A law of one's own joins with [`LawRegistry::register`].
+///
+/// ```
+/// use vem_contact::LawRegistry;
+/// use vem_space::Options;
+/// let laws = LawRegistry::<2>::builtin();
+/// let tresca = laws.make("tresca", &Options::new().with("friction_bound", 0.3))?;
+/// assert_eq!(tresca.describe(), "tresca, g_F = 0.3");
+/// // A setting of another law is refused by the law: misplaced keys are found.
+/// let error = laws.make("tresca", &Options::new().with("coefficient", 0.3)).err().unwrap();
+/// assert_eq!(error.option_path(), Some("coefficient"));
+/// # Ok::<(), vem_contact::RegistryError>(())
+/// ```
+pub struct LawRegistry<const D: usize = 2>(Registry<Arc<dyn ContactLaw<D>>>);
+
+impl<const D: usize> Clone for LawRegistry<D> {
+    fn clone(&self) -> Self {
+        Self(self.0.clone())
+    }
+}
+
+impl<const D: usize> fmt::Debug for LawRegistry<D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl<const D: usize> Default for LawRegistry<D> {
+    fn default() -> Self {
+        Self::builtin()
+    }
+}
+
+/// The settings of Tresca's law.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrescaOptions {
+    friction_bound: f64,
+}
+
+/// The settings of Coulomb's law.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CoulombOptions {
+    coefficient: f64,
+    #[serde(default)]
+    fixed_point: FixedPointSettings,
+}
+
+impl<const D: usize> LawRegistry<D> {
+    /// The name of the default law.
+    pub const DEFAULT: &'static str = "frictionless";
+
+    /// A registry without any law.
+    pub fn empty() -> Self {
+        Self(Registry::empty("law"))
+    }
+
+    /// The laws of this crate: [`Frictionless`], [`Tresca`] and [`Coulomb`].
+    pub fn builtin() -> Self {
+        let mut registry = Self::empty();
+        let r = &mut registry.0;
+        r.register("frictionless", "frictionless (Signorini-type) contact, problem P1", |o| {
+            o.refuse_all("the frictionless law")?;
+            Ok(Arc::new(Frictionless) as Arc<dyn ContactLaw<D>>)
+        })
+        .expect("built-in names are valid and distinct");
+        r.register(
+            "tresca",
+            "Tresca friction with the bound friction_bound (force per length), problem P2",
+            |o| {
+                let s: TrescaOptions = o.parse()?;
+                Ok(Arc::new(Tresca::<D>::try_new(s.friction_bound)?) as Arc<dyn ContactLaw<D>>)
+            },
+        )
+        .expect("built-in names are valid and distinct");
+        r.register(
+            "coulomb",
+            "Coulomb friction with the coefficient F, by a fixed point of Tresca problems",
+            |o| {
+                let s: CoulombOptions = o.parse()?;
+                let law = Coulomb::try_with(s.coefficient, s.fixed_point).map_err(|e| {
+                    let mut e = OptionsError::from(e);
+                    if e.path != "coefficient" {
+                        e.path = format!("fixed_point.{}", e.path);
+                    }
+                    e
+                })?;
+                Ok(Arc::new(law) as Arc<dyn ContactLaw<D>>)
+            },
+        )
+        .expect("built-in names are valid and distinct");
+        registry
+    }
+
+    /// Adds a law under `name` with a one-line `summary`, built from its settings by
+    /// `factory`.
+    ///
+    /// # Errors
+    /// [`RegistryError::DuplicateName`] if the name is taken, [`RegistryError::InvalidName`].
+    pub fn register(
+        &mut self,
+        name: impl Into<String>,
+        summary: impl Into<String>,
+        factory: impl Fn(&Options) -> Result<Arc<dyn ContactLaw<D>>, OptionsError>
+            + Send
+            + Sync
+            + 'static,
+    ) -> Result<(), RegistryError> {
+        self.0.register(name, summary, factory).map(|_| ())
+    }
+
+    /// The names, in the order of registration.
+    pub fn names(&self) -> Vec<&str> {
+        self.0.names()
+    }
+
+    /// The one-line summary of `name`.
+    pub fn summary(&self, name: &str) -> Option<&str> {
+        self.0.summary(name)
+    }
+
+    /// Whether `name` is registered.
+    pub fn contains(&self, name: &str) -> bool {
+        self.0.contains(name)
+    }
+
+    /// A new law `name` with the settings `options`.
+    ///
+    /// # Errors
+    /// [`RegistryError::UnknownName`] (listing the known names) or
+    /// [`RegistryError::Options`] naming the refused setting.
+    pub fn make(
+        &self,
+        name: &str,
+        options: &Options,
+    ) -> Result<Arc<dyn ContactLaw<D>>, RegistryError> {
+        self.0.make(name, options)
+    }
+
+    /// The law of a [`Choice`].
+    ///
+    /// # Errors
+    /// As [`LawRegistry::make`].
+    pub fn make_choice(&self, choice: &Choice) -> Result<Arc<dyn ContactLaw<D>>, RegistryError> {
+        self.0.make_choice(choice)
     }
 }
 
@@ -353,32 +335,60 @@ mod tests {
             ("penalty", "penalty (semismooth Newton)"),
             ("active-set", "active set (primal-dual)"),
         ] {
-            let made = registry.make(name, &SolverOptions::default()).unwrap();
+            let made = registry.make(name, &Options::new()).unwrap();
             assert_eq!(made.name(), solver);
         }
         assert!(registry.contains(SolverRegistry::DEFAULT));
     }
 
     #[test]
-    fn options_are_validated_and_unused_ones_refused() {
+    fn settings_are_validated_and_unknown_ones_refused_with_their_key() {
         let registry = SolverRegistry::builtin();
-        let bad = SolverOptions::default().tolerance(-1.0);
-        match registry.make("penalty", &bad) {
-            Err(RegistryError::Settings { source, .. }) => assert_eq!(source.setting, "tolerance"),
-            other => panic!(
-                "expected a settings error, got {:?}",
-                other.map(|s| s.name())
-            ),
-        }
-        let unused = SolverOptions::default().penalty(PenaltyParameter::Absolute(1e6));
-        match registry.make("exact", &unused) {
-            Err(RegistryError::Settings { source, .. }) => assert_eq!(source.setting, "penalty"),
-            other => panic!("expected a refusal, got {:?}", other.map(|s| s.name())),
-        }
+        let bad = Options::new().with("tolerance", -1.0);
+        let err = registry.make("penalty", &bad).err().unwrap();
+        assert_eq!(err.option_path(), Some("tolerance"), "{err}");
+        let unused = Options::new().with("penalty", serde_json::json!({ "factor": 1e6 }));
+        let err = registry.make("exact", &unused).err().unwrap();
+        assert_eq!(err.option_path(), Some("penalty"), "{err}");
+        let both = Options::new().with("penalty", serde_json::json!({ "factor": 1, "value": 2 }));
+        assert!(registry.make("penalty", &both).is_err());
+        let fine = Options::new().with("penalty", serde_json::json!({ "value": 1e6 }));
+        assert!(registry.make("penalty", &fine).is_ok());
         let mut registry = registry;
         let duplicate = registry.register("exact", "again", |_| {
             Ok(Box::new(ExactSolver::default()) as Box<dyn ContactSolver>)
         });
-        assert!(matches!(duplicate, Err(RegistryError::Duplicate { .. })));
+        assert!(matches!(duplicate, Err(RegistryError::DuplicateName { .. })));
+    }
+
+    #[test]
+    fn laws_read_their_settings() {
+        let laws = LawRegistry::<2>::builtin();
+        let coulomb = laws
+            .make(
+                "coulomb",
+                &Options::new()
+                    .with("coefficient", 0.3)
+                    .with("fixed_point", serde_json::json!({ "tolerance": 1e-6 })),
+            )
+            .unwrap();
+        assert_eq!(coulomb.describe(), "coulomb, F = 0.3");
+        assert_eq!(coulomb.fixed_point().unwrap().tolerance(), 1e-6);
+        let err = laws
+            .make(
+                "coulomb",
+                &Options::new()
+                    .with("coefficient", 0.3)
+                    .with("fixed_point", serde_json::json!({ "max_iterations": 0 })),
+            )
+            .err()
+            .unwrap();
+        assert_eq!(err.option_path(), Some("fixed_point.max_iterations"), "{err}");
+        let err = laws
+            .make("tresca", &Options::new().with("friction_bound", -1.0))
+            .err()
+            .unwrap();
+        assert_eq!(err.option_path(), Some("friction_bound"), "{err}");
+        assert!(laws.make("frictionless", &Options::new().with("coefficient", 1)).is_err());
     }
 }

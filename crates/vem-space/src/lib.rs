@@ -45,6 +45,7 @@ mod error;
 mod load;
 mod material;
 mod mesh_element;
+mod options;
 mod p1;
 mod polygon;
 pub mod quadrature;
@@ -60,7 +61,10 @@ pub use material::{voigt_len, voigt_pairs, ElasticityTensor};
 pub use mesh_element::{DofLayout, FieldOf, MeshElement, PlanarElement};
 pub use p1::LinearTriangle;
 pub use polygon::PolygonGeometry;
-pub use registry::{ElementFactory, ElementRegistry, RegistryError};
+pub use options::{Options, OptionsError};
+pub use registry::{
+    Choice, ElementRegistry, Factory, Registry, RegistryError, StabilisationRegistry,
+};
 pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
 pub use vem::LowestOrderVem;
 

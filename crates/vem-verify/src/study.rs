@@ -24,7 +24,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use vem_contact::{SolverOptions, SolverRegistry};
+use vem_contact::SolverRegistry;
+use vem_space::Options;
 use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
 use vem_space::ElementSpace;
@@ -480,7 +481,7 @@ pub struct Study {
     sizes: Vec<usize>,
     solver: String,
     registry: SolverRegistry,
-    options: SolverOptions,
+    options: Options,
     settings: ProblemSettings,
     seed: u64,
     fitted: usize,
@@ -524,7 +525,7 @@ impl Study {
             sizes: Self::DEFAULT_SIZES.to_vec(),
             solver: SolverRegistry::DEFAULT.to_string(),
             registry: SolverRegistry::builtin(),
-            options: SolverOptions::default(),
+            options: Options::new(),
             settings: ProblemSettings::default(),
             seed: Self::DEFAULT_SEED,
             fitted: Self::DEFAULT_FITTED,
@@ -555,7 +556,7 @@ impl Study {
     }
 
     /// The options every solver of the study is made with (tolerance, iterations, penalty).
-    pub fn solver_options(mut self, options: SolverOptions) -> Self {
+    pub fn solver_options(mut self, options: Options) -> Self {
         self.options = options;
         self
     }

@@ -117,8 +117,8 @@ pub(crate) fn checked_bounds<const D: usize>(
 /// Settings of a fixed point of Tresca problems (Coulomb); build them with
 /// [`FixedPointSettings::builder`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct FixedPointSettings {
     max_iterations: usize,
     tolerance: f64,

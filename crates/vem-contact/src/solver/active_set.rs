@@ -21,6 +21,7 @@
 //! penalty solver: a shifted factorisation and a free-mode test that reports rigid sliding or
 //! an unbounded energy.
 
+use vem_space::{Options, OptionsError};
 use std::time::Instant;
 
 use faer::Par;
@@ -151,6 +152,41 @@ impl ActiveSetSettingsBuilder {
         SettingsError::at_least_one("max_iterations", s.max_iterations)?;
         SettingsError::at_least_one("max_inner_iterations", s.max_inner_iterations)?;
         Ok(s)
+    }
+}
+
+/// The settings a scene or a dict may give the active-set solver (registry name `"active-set"`).
+#[derive(Debug, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ActiveSetOptions {
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    max_inner_iterations: Option<usize>,
+    augmentation: Option<PenaltyParameter>,
+}
+
+impl ActiveSetSettings {
+    /// The settings of a table of options (`tolerance`, `max_iterations`,
+    /// `max_inner_iterations`, `augmentation = { factor = .. }` or `{ value = .. }`), checked.
+    ///
+    /// # Errors
+    /// [`OptionsError`] naming the unknown or invalid setting.
+    pub fn from_options(options: &Options) -> Result<Self, OptionsError> {
+        let o: ActiveSetOptions = options.parse()?;
+        let mut b = Self::builder();
+        if let Some(t) = o.tolerance {
+            b = b.tolerance(t);
+        }
+        if let Some(m) = o.max_iterations {
+            b = b.max_iterations(m);
+        }
+        if let Some(m) = o.max_inner_iterations {
+            b = b.max_inner_iterations(m);
+        }
+        if let Some(a) = o.augmentation {
+            b = b.augmentation(a);
+        }
+        b.build().map_err(OptionsError::from)
     }
 }
 

@@ -40,6 +40,7 @@
 //! A body that stays singular with the shift (a part not connected to the interface) is
 //! handed to the [`ActiveSetSolver`], whose report then says so.
 
+use vem_space::{Options, OptionsError};
 use std::time::Instant;
 
 use faer::linalg::matmul::matmul;
@@ -151,6 +152,32 @@ impl CondensedSettingsBuilder {
         SettingsError::positive("tolerance", s.tolerance)?;
         SettingsError::at_least_one("max_iterations", s.max_iterations)?;
         Ok(s)
+    }
+}
+
+/// The settings a scene or a dict may give the condensed solver (registry name `"condensed"`).
+#[derive(Debug, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CondensedOptions {
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+}
+
+impl CondensedSettings {
+    /// The settings of a table of options (`tolerance`, `max_iterations`), checked.
+    ///
+    /// # Errors
+    /// [`OptionsError`] naming the unknown or invalid setting.
+    pub fn from_options(options: &Options) -> Result<Self, OptionsError> {
+        let o: CondensedOptions = options.parse()?;
+        let mut b = Self::builder();
+        if let Some(t) = o.tolerance {
+            b = b.tolerance(t);
+        }
+        if let Some(m) = o.max_iterations {
+            b = b.max_iterations(m);
+        }
+        b.build().map_err(OptionsError::from)
     }
 }
 

@@ -15,6 +15,13 @@ pub struct SettingsError {
     pub requirement: &'static str,
 }
 
+impl From<SettingsError> for vem_space::OptionsError {
+    /// The refused setting as an error at its key.
+    fn from(e: SettingsError) -> Self {
+        vem_space::OptionsError::at(e.setting, e.to_string())
+    }
+}
+
 impl SettingsError {
     /// Checks `value` is finite and `> 0`.
     pub(crate) fn positive(setting: &'static str, value: f64) -> Result<f64, Self> {

@@ -8,6 +8,7 @@
 //! `z = (lambda_N, z_+, z_-)` the stationarity in `t` gives `z_+ + z_- = b`, so
 //! `lambda_T = z_+ - z_-` satisfies `|lambda_T| <= b` and has the sign of the slip.
 
+use vem_space::{Options, OptionsError};
 use std::time::Instant;
 
 use clarabel::algebra::CscMatrix;
@@ -139,6 +140,51 @@ impl ExactSettingsBuilder {
             });
         }
         Ok(s)
+    }
+}
+
+/// The settings a scene or a dict may give the exact solver (registry name `"exact"`).
+#[derive(Debug, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExactOptions {
+    tolerance: Option<f64>,
+    eps_abs: Option<f64>,
+    eps_rel: Option<f64>,
+    max_iterations: Option<usize>,
+    accept_reduced_accuracy: Option<bool>,
+}
+
+impl ExactSettings {
+    /// The settings of a table of options (`tolerance` for both `eps_abs` and `eps_rel`, or
+    /// each; `max_iterations`, `accept_reduced_accuracy`), checked.
+    ///
+    /// # Errors
+    /// [`OptionsError`] naming the unknown or invalid setting.
+    pub fn from_options(options: &Options) -> Result<Self, OptionsError> {
+        let o: ExactOptions = options.parse()?;
+        let mut b = Self::builder();
+        if let Some(t) = o.tolerance {
+            b = b.eps_abs(t).eps_rel(t);
+        }
+        if let Some(t) = o.eps_abs {
+            b = b.eps_abs(t);
+        }
+        if let Some(t) = o.eps_rel {
+            b = b.eps_rel(t);
+        }
+        if let Some(m) = o.max_iterations {
+            b = b.max_iterations(m);
+        }
+        if let Some(a) = o.accept_reduced_accuracy {
+            b = b.accept_reduced_accuracy(a);
+        }
+        b.build().map_err(|e| {
+            let mut e = OptionsError::from(e);
+            if o.tolerance.is_some() && e.path.starts_with("eps_") {
+                e.path = "tolerance".into();
+            }
+            e
+        })
     }
 }
 

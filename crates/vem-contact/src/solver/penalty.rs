@@ -29,6 +29,7 @@
 //! evaluation (`8 eps_mach || |K||u| + |f| + eps_N |B_N|'(|B_N||u| + |g|) + eps_T |B_T|'|B_T||u| ||_inf`,
 //! which dominates for very large penalties).
 
+use vem_space::{Options, OptionsError};
 use std::time::Instant;
 
 use faer::Par;
@@ -45,15 +46,18 @@ use crate::warning::Warning;
 
 const NAME: &str = "penalty (semismooth Newton)";
 
-/// How a penalty parameter is chosen.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// How a penalty parameter is chosen; written `{ factor = .. }` or `{ value = .. }` in
+/// settings tables.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum PenaltyParameter {
     /// `factor` times the constrained stiffness of the softest body
     /// ([`ContactSystem::softest_constrained_diagonal`]: for one body, the largest diagonal
     /// entry of `K` over the unknowns that appear in a constraint row; falls back to the
     /// largest diagonal entry of `K`, then to 1, if that vanishes).
+    #[serde(rename = "factor")]
     RelativeToStiffness(f64),
     /// An absolute value (force per length for unit constraint rows).
+    #[serde(rename = "value")]
     Absolute(f64),
 }
 
@@ -213,6 +217,52 @@ impl PenaltySettingsBuilder {
         SettingsError::positive("tolerance", s.tolerance)?;
         SettingsError::at_least_one("max_iterations", s.max_iterations)?;
         Ok(s)
+    }
+}
+
+/// The settings a scene or a dict may give the penalty solver (registry name `"penalty"`).
+#[derive(Debug, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PenaltyOptions {
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    penalty: Option<PenaltyParameter>,
+    normal_penalty: Option<PenaltyParameter>,
+    tangential_penalty: Option<PenaltyParameter>,
+}
+
+impl PenaltySettings {
+    /// The settings of a table of options (`tolerance`, `max_iterations`, `penalty` for both
+    /// penalties, or `normal_penalty` and `tangential_penalty`; each `{ factor = .. }` or
+    /// `{ value = .. }`), checked.
+    ///
+    /// # Errors
+    /// [`OptionsError`] naming the unknown or invalid setting.
+    pub fn from_options(options: &Options) -> Result<Self, OptionsError> {
+        let o: PenaltyOptions = options.parse()?;
+        let mut b = Self::builder();
+        if let Some(t) = o.tolerance {
+            b = b.tolerance(t);
+        }
+        if let Some(m) = o.max_iterations {
+            b = b.max_iterations(m);
+        }
+        if let Some(p) = o.penalty {
+            b = b.penalty(p);
+        }
+        if let Some(p) = o.normal_penalty {
+            b = b.normal_penalty(p);
+        }
+        if let Some(p) = o.tangential_penalty {
+            b = b.tangential_penalty(p);
+        }
+        b.build().map_err(|e| {
+            let mut e = OptionsError::from(e);
+            if o.penalty.is_some() && e.path.ends_with("_penalty") {
+                e.path = "penalty".into();
+            }
+            e
+        })
     }
 }
 
