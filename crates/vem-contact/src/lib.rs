@@ -71,6 +71,12 @@ pub use result::{
 
 pub use warning::{Warning, ZoneLimit};
 
+/// A duration as seconds (for serialised reports).
+#[cfg(feature = "serde")]
+fn seconds<S: serde::Serializer>(d: &std::time::Duration, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(d.as_secs_f64())
+}
+
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
     ContactSolution, ContactSolver, ContactSolverError, ContactSystem, ContactSystemError,

@@ -95,6 +95,8 @@ pub fn frame<const D: usize>(normal: &VectorD<D>) -> SMatrix<f64, D, D> {
 
 /// A position or direction of any dimension as reports write it: `(x, y)` or `(x, y, z)`.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(transparent))]
 pub struct Location(pub Vec<f64>);
 
 impl Location {

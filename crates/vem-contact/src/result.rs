@@ -13,6 +13,8 @@ use crate::{frame, SolveReport, Warning, WorkCounters};
 
 /// The contact state of an interface node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum NodeStatus {
     /// No contact force: the node is (or may be) separated.
     Open,
@@ -59,6 +61,7 @@ pub(crate) fn classify(
 /// in global coordinates. In 2D, `tau = (-nu_y, nu_x)` and [`InterfaceNode::friction_t`],
 /// [`InterfaceNode::slip_t`] give their components along `tau`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct InterfaceNode<const D: usize = 2> {
     /// The contact pair the node belongs to.
     pub pair: usize,
@@ -259,6 +262,7 @@ pub struct BodyResult<const D: usize = 2> {
 
 /// Size and content of one modelled body.
 #[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct BodySummary {
     /// The body's name.
     pub name: String,
@@ -274,6 +278,7 @@ pub struct BodySummary {
 
 /// One contact pair as modelled.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PairSummary {
     /// The law with its parameters ([`ContactLaw::describe`](crate::ContactLaw::describe)).
     pub law: String,
@@ -291,6 +296,7 @@ pub struct PairSummary {
 
 /// What was built for the solve: only what the problem requires.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ModelSummary {
     /// The contact solver.
     pub solver: &'static str,
@@ -305,11 +311,13 @@ pub struct ModelSummary {
     /// Vertices inserted by the interface node insertions (all pairs, both sides).
     pub inserted_nodes: usize,
     /// Wall-clock time of the whole call (the stages are in [`ContactResult::work`]).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub total_time: Duration,
 }
 
 /// How the fixed point of Tresca problems (Coulomb) went.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FixedPointReport {
     /// Tresca solves after the initial one.
     pub steps: usize,

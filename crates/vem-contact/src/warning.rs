@@ -7,6 +7,8 @@ use crate::Location;
 
 /// Why a limit of the contact zone was reached (see [`Warning::ContactZoneAtLimit`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ZoneLimit {
     /// The first or last node of the contact part is in contact: the zone may extend beyond
     /// the part.
@@ -29,6 +31,8 @@ impl ZoneLimit {
 /// Something a user should know about a result whose solve converged. Each names what and
 /// where, with the figures that triggered it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[non_exhaustive]
 pub enum Warning {
     /// The penalty is so large that the gradient of the penalised energy cannot be evaluated

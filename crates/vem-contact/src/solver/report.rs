@@ -8,6 +8,7 @@ use crate::warning::Warning;
 
 /// How a solver run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[non_exhaustive]
 pub enum SolveStatus {
     /// Converged to the requested tolerances.
@@ -45,6 +46,7 @@ impl SolveStatus {
 /// The scales in which [`KktResiduals`] are measured, taken from the problem and the answer
 /// (so that the residuals do not change with the units of lengths, forces or moduli).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct KktScales {
     /// Force scale `F = max_b F_b` over the stiffness blocks (bodies) `b`, with
     /// `F_b = max(||f_b||_inf, ||(K u)_b||_inf, ||(B_N' lambda_N + B_T' lambda_T)_b||_inf)`.
@@ -69,6 +71,7 @@ pub struct KktScales {
 /// touch: a contact force must be accurate relative to the forces of the softer (or less
 /// loaded) body, not only to those of a stiff body whose Dirichlet lifting dominates the load.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct KktResiduals {
     /// The scales the figures below are relative to.
     pub scales: KktScales,
@@ -483,6 +486,7 @@ pub(crate) fn unloaded_solution(
 /// What travels with every answer (and every failure): who solved, how it ended, how long it
 /// took and how good the answer is.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct SolveReport {
     /// Name of the solver (`"exact (clarabel)"`, `"penalty"`, ...).
     pub solver: &'static str,
@@ -496,6 +500,7 @@ pub struct SolveReport {
     /// their times.
     pub work: WorkCounters,
     /// Wall-clock time of the whole solve, set-up included.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub wall_time: Duration,
     /// KKT residuals of the returned answer.
     pub residuals: KktResiduals,
@@ -507,20 +512,28 @@ pub struct SolveReport {
 /// Seconds spent in each stage of a model build or a solve. A backend that does not expose a
 /// stage leaves it at zero (its whole time is in [`StageTimes::contact_solve`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct StageTimes {
     /// Interface node insertion (and the node geometry).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub insertion: Duration,
     /// Element matrices, scatter, loads, constraint rows.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub assembly: Duration,
     /// Symbolic analyses (orderings, symbolic factorisations, solver set-up).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub symbolic: Duration,
     /// Numeric factorisations.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub numeric: Duration,
     /// Triangular solves.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub solves: Duration,
     /// Whole contact solves (including the three stages above).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub contact_solve: Duration,
     /// Post-processing (full displacements, reactions, energies, interface results).
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
     pub post: Duration,
 }
 
@@ -539,6 +552,7 @@ impl AddAssign for StageTimes {
 /// What a build or a solve computed, counted where it happens and carried with every result
 /// (the CLI's `summary.json` and the xtask reports print these figures).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WorkCounters {
     /// Global assemblies of the stiffness and load (one per body and build or refill).
     pub assemblies: usize,

@@ -18,7 +18,6 @@ use std::fmt;
 use vem_mesh::generators::MeshSize;
 use vem_mesh::Mesh;
 
-use crate::CliError;
 
 /// Bytes per polygon corner of a mesh (its connectivity, edges, parts and the generator's
 /// scratch).
@@ -145,11 +144,11 @@ impl MemoryLimit {
     }
 
     /// A limit of `gib` GiB (finite and positive) set by `origin`.
-    pub fn try_from_gib(gib: f64, origin: LimitOrigin) -> Result<Self, CliError> {
+    pub fn try_from_gib(gib: f64, origin: LimitOrigin) -> Result<Self, String> {
         if !(gib.is_finite() && gib > 0.0) {
-            return Err(CliError::Usage(format!(
+            return Err(format!(
                 "memory limit {gib} GiB: give a finite positive number of GiB"
-            )));
+            ));
         }
         Ok(Self {
             bytes: gib * GIB,

@@ -1,0 +1,795 @@
+//! From a checked scene to library objects: meshes, elastic bodies, the contact problem and the
+//! contact solver's choice. Only what the scene requires is built: no contact pair, no contact
+//! problem (plain elasticity); a rigid obstacle is a gap function, not a mesh.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use vem_contact::{
+    AccuracyPreset, ContactError, ContactLaw, ContactNormal, ContactPair, ContactProblem,
+    ErrorModel, LawRegistry, Obstacle, RigidObstacle, SolverRegistry,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
+use vem_mesh::generators::{MeshFamily, Rectangle};
+use vem_mesh::interface::InterfaceOptions;
+use vem_mesh::{Mesh, Point, Vector};
+use vem_space::{Choice, ElementRegistry, RegistryError, SpaceError};
+
+use crate::check::{body_index, list, Checked};
+use crate::description::{
+    BodyDescription, ContactDescription, NormalDescription, ObstacleDescription,
+    PlaneDescription, Scene,
+};
+use crate::error::one_line;
+use crate::resources::{Footprint, LimitOrigin, MemoryLimit};
+use crate::{KeyPath, SceneError};
+
+/// The names a scene may use for its elements, contact laws and solvers: the built-in ones
+/// by default, or a user's own, registered in the registries.
+#[derive(Debug, Clone, Default)]
+pub struct Registries {
+    /// Contact solvers (scene key `solver`).
+    pub solvers: SolverRegistry,
+    /// Elements (scene key `element` of a body).
+    pub elements: ElementRegistry,
+    /// Contact laws (scene key `law` of a contact pair).
+    pub laws: LawRegistry<2>,
+}
+
+/// How a scene is built: the folder its relative file names start from, the registries and
+/// the memory the run may plan to use.
+#[derive(Debug, Clone)]
+pub struct BuildOptions {
+    /// The folder of the scene file (mesh files are relative to it).
+    pub base: PathBuf,
+    /// The names the scene may use.
+    pub registries: Registries,
+    /// The memory limit; `None`: the scene's `[limits] memory_gib`, else the memory the system
+    /// reports available.
+    pub memory_limit: Option<MemoryLimit>,
+}
+
+impl Default for BuildOptions {
+    /// Files relative to the current folder, the built-in registries, the scene's limit.
+    fn default() -> Self {
+        Self {
+            base: PathBuf::new(),
+            registries: Registries::default(),
+            memory_limit: None,
+        }
+    }
+}
+
+/// One body as built: its elastic body, where its mesh came from, its element in words.
+#[derive(Debug, Clone)]
+pub struct ModelBody {
+    /// The elastic body.
+    pub body: ElasticBody,
+    /// Where the mesh came from ("voronoi, n = 16, seed 1, on [0, 1] x [0, 1]" or a file).
+    pub mesh_source: String,
+    /// The element, in words ("vem1: lowest-order VEM ...").
+    pub element: String,
+    /// A generated mesh in a scene with `accuracy` or `target_error`: the relative energy
+    /// error `E_grad / |u|_1` the error model predicts for its size.
+    pub predicted_error: Option<f64>,
+}
+
+/// A contact pair as built: the scene's description, the counterpart's obstacle if any.
+#[derive(Debug, Clone)]
+pub struct ModelContact {
+    /// Index of body A into [`Model::bodies`].
+    pub body: usize,
+    /// Index of body B, `None` against an obstacle.
+    pub other: Option<usize>,
+    /// The rigid obstacle, if any (for pictures).
+    pub obstacle: Option<Obstacle>,
+    /// Which parts face what, in words.
+    pub description: String,
+    /// Radius of the Hertz comparison, if asked for.
+    pub hertz_radius: Option<f64>,
+}
+
+/// A scene turned into library objects, ready to solve ([`Model::solve`]).
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub(crate) checked: Checked,
+    pub(crate) bodies: Vec<ModelBody>,
+    pub(crate) contacts: Vec<ModelContact>,
+    /// The contact problem of the bodies in contact (`None` without a contact pair) and, for
+    /// each of its bodies, the index in [`Model::bodies`].
+    pub(crate) problem: Option<(ContactProblem, Vec<usize>)>,
+    pub(crate) solver: Choice,
+    pub(crate) registries: Registries,
+    pub(crate) mesh_time: Duration,
+}
+
+impl Model {
+    /// Checks the scene, generates or reads every mesh (after a check of the memory the run
+    /// plans to use), checks every part name against its mesh and builds the bodies, the
+    /// contact problem and the solver's choice.
+    ///
+    /// # Errors
+    /// A [`SceneError`] at the key at fault.
+    pub fn build(scene: &Scene, options: &BuildOptions) -> Result<Self, SceneError> {
+        let checked = crate::check::check(scene)?;
+        let located = |e: SceneError| SceneError {
+            path: checked.written(&e.path),
+            ..e
+        };
+        Self::build_checked(checked.clone(), options).map_err(located)
+    }
+
+    fn build_checked(checked: Checked, options: &BuildOptions) -> Result<Self, SceneError> {
+        let scene = &checked.scene;
+        let limit = options.memory_limit.unwrap_or_else(|| {
+            scene
+                .limits
+                .memory_gib
+                .and_then(|gib| MemoryLimit::try_from_gib(gib, LimitOrigin::Scene).ok())
+                .unwrap_or_else(MemoryLimit::available)
+        });
+        let start = Instant::now();
+        check_planned_memory(scene, &limit)?;
+        let meshes = scene
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| build_mesh(scene, b, &KeyPath::key("body").index(i), &options.base))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mesh_time = start.elapsed();
+        check_memory_of_meshes(&meshes, &limit)?;
+        let registries = &options.registries;
+        let mut bodies = Vec::with_capacity(meshes.len());
+        for (i, (spec, (mesh, source, predicted))) in scene.bodies.iter().zip(meshes).enumerate() {
+            let path = KeyPath::key("body").index(i);
+            let mut body = build_body(scene, spec, mesh, source, &registries.elements, &path)?;
+            body.predicted_error = predicted;
+            bodies.push(body);
+        }
+        let solver = solver_choice(scene);
+        registries
+            .solvers
+            .make_choice(&solver)
+            .map_err(|e| registry_error(e, &KeyPath::key("solver")))?;
+        let mut contacts = Vec::with_capacity(scene.contacts.len());
+        let mut pairs = Vec::with_capacity(scene.contacts.len());
+        let mut in_problem: Vec<usize> = Vec::new();
+        let slot = |i: usize, in_problem: &mut Vec<usize>| match in_problem
+            .iter()
+            .position(|&j| j == i)
+        {
+            Some(k) => k,
+            None => {
+                in_problem.push(i);
+                in_problem.len() - 1
+            }
+        };
+        for (k, spec) in scene.contacts.iter().enumerate() {
+            let path = KeyPath::key("contact").index(k);
+            let (contact, pair) = build_contact(scene, spec, &bodies, registries, &path)?;
+            let a = slot(contact.body, &mut in_problem);
+            let b = contact.other.map(|o| slot(o, &mut in_problem));
+            pairs.push(pair.renumbered(a, b));
+            contacts.push(contact);
+        }
+        let problem = (!pairs.is_empty()).then(|| {
+            let mut problem = ContactProblem::new(
+                in_problem.iter().map(|&i| bodies[i].body.clone()).collect(),
+            );
+            for pair in pairs {
+                problem = problem.with_pair(pair.pair);
+            }
+            (problem, in_problem)
+        });
+        Ok(Self {
+            checked,
+            bodies,
+            contacts,
+            problem,
+            solver,
+            registries: registries.clone(),
+            mesh_time,
+        })
+    }
+
+    /// The scene in its current form (the earlier keys folded into their new places).
+    pub fn scene(&self) -> &Scene {
+        &self.checked.scene
+    }
+
+    /// The notes about earlier keys the scene used.
+    pub fn deprecations(&self) -> &[crate::Deprecation] {
+        &self.checked.deprecations
+    }
+
+    /// The path where the user wrote the key `path` of the current form.
+    pub fn written(&self, path: &KeyPath) -> KeyPath {
+        self.checked.written(path)
+    }
+
+    /// The bodies, in the order of the scene.
+    pub fn bodies(&self) -> &[ModelBody] {
+        &self.bodies
+    }
+
+    /// The contact pairs, in the order of the scene.
+    pub fn contacts(&self) -> &[ModelContact] {
+        &self.contacts
+    }
+
+    /// The contact problem of the bodies in contact, and for each of its bodies the index
+    /// into [`Model::bodies`].
+    pub fn contact_problem(&self) -> Option<(&ContactProblem, &[usize])> {
+        self.problem.as_ref().map(|(p, idx)| (p, idx.as_slice()))
+    }
+
+    /// The contact solver's registry name and settings.
+    pub fn solver(&self) -> &Choice {
+        &self.solver
+    }
+
+    /// The registries the model was built with.
+    pub fn registries(&self) -> &Registries {
+        &self.registries
+    }
+
+    /// Time spent generating and reading meshes.
+    pub fn mesh_time(&self) -> Duration {
+        self.mesh_time
+    }
+}
+
+/// A pair about to join the problem, numbered by scene body until the problem's own numbering
+/// is known.
+struct PendingPair {
+    pair: ContactPair,
+}
+
+impl PendingPair {
+    /// The pair with its bodies numbered `a` and `b` in the problem.
+    fn renumbered(self, a: usize, b: Option<usize>) -> Self {
+        let pair = self.pair;
+        let counterpart = match (pair.counterpart(), b) {
+            (vem_contact::Counterpart::Body { part, .. }, Some(b)) => {
+                vem_contact::Counterpart::Body {
+                    body: b,
+                    part: part.clone(),
+                }
+            }
+            (other, _) => other.clone(),
+        };
+        let mut renumbered = ContactPair::new(
+            a,
+            pair.part().to_string(),
+            counterpart,
+            Arc::clone(pair.law()),
+        )
+        .with_interface_options(*pair.interface_options())
+        .with_normal(pair.normal());
+        if let Some(gap) = pair.imposed_gap() {
+            let gap = Arc::clone(gap);
+            renumbered = renumbered.with_imposed_gap(move |x| gap(x));
+        }
+        Self { pair: renumbered }
+    }
+}
+
+/// The solver of the scene: the accuracy preset's, the scene's `solver`, the preset matching
+/// `target_error`, or the default.
+fn solver_choice(scene: &Scene) -> Choice {
+    if let Some(preset) = scene
+        .accuracy
+        .as_deref()
+        .and_then(|a| a.parse::<AccuracyPreset>().ok())
+    {
+        return Choice::with_options(preset.solver(), preset.solver_options());
+    }
+    if let Some(solver) = &scene.solver {
+        return solver.clone();
+    }
+    if let Some(target) = scene.target_error {
+        let preset = AccuracyPreset::for_target(target);
+        return Choice::with_options(preset.solver(), preset.solver_options());
+    }
+    Choice::named(SolverRegistry::DEFAULT)
+}
+
+/// A registry's refusal at the key of the choice `path` (or of the refused setting in it).
+pub(crate) fn registry_error(error: RegistryError, path: &KeyPath) -> SceneError {
+    let at = match error.option_path() {
+        Some(option) => path.join(option),
+        None => path.clone(),
+    };
+    SceneError::at(at, one_line(&error))
+}
+
+/// The target error generated meshes without `n` are sized for: `target_error`, else the
+/// preset's target.
+fn target_error(scene: &Scene) -> Option<f64> {
+    scene.target_error.or_else(|| {
+        scene
+            .accuracy
+            .as_deref()
+            .and_then(|a| a.parse::<AccuracyPreset>().ok())
+            .map(AccuracyPreset::target_error)
+    })
+}
+
+/// The size `n` of a generated mesh: the scene's, or the one the error model chooses for the
+/// scene's target error (then with the error it predicts and a note).
+fn generated_size(
+    scene: &Scene,
+    spec: &BodyDescription,
+    path: &KeyPath,
+) -> Result<(usize, String, Option<f64>), SceneError> {
+    let model = ErrorModel::LOWEST_ORDER_VEM;
+    let target = target_error(scene);
+    match (spec.mesh.n, target) {
+        (Some(n), _) => Ok((n, String::new(), target.map(|_| model.predicted_error(n)))),
+        (None, Some(target)) => {
+            let n = model.try_size_for(target).map_err(|e| {
+                SceneError::at(path.at("mesh"), format!("body '{}': {e}", spec.name))
+            })?;
+            Ok((
+                n,
+                format!(" (chosen for a relative energy error of {target})"),
+                Some(model.predicted_error(n)),
+            ))
+        }
+        (None, None) => Err(SceneError::at(path.at("mesh"), "incomplete mesh")),
+    }
+}
+
+/// The rectangle and family of a generated mesh (checked by `check`).
+fn generator(spec: &BodyDescription, path: &KeyPath) -> Result<(MeshFamily, Rectangle), SceneError> {
+    let mesh = &spec.mesh;
+    let (Some(family), Some(rectangle)) = (&mesh.family, &mesh.rectangle) else {
+        return Err(SceneError::at(path.at("mesh"), "incomplete mesh"));
+    };
+    let family: MeshFamily = family
+        .parse()
+        .map_err(|e: vem_mesh::MeshError| SceneError::at(path.at("mesh").at("family"), e.to_string()))?;
+    let corner = |k: usize| Point::new(rectangle[k][0], rectangle[k][1]);
+    Ok((family, Rectangle::new(corner(0), corner(1))))
+}
+
+/// Refuses, before any mesh is generated, a scene whose generated meshes would not fit the
+/// memory limit, or whose run would not: the error is at the largest body's mesh.
+fn check_planned_memory(scene: &Scene, limit: &MemoryLimit) -> Result<(), SceneError> {
+    let mut total = Footprint::default();
+    let mut largest: Option<(f64, usize)> = None;
+    for (i, spec) in scene.bodies.iter().enumerate() {
+        if spec.mesh.file.is_some() {
+            continue; // a file: counted once read
+        }
+        let path = KeyPath::key("body").index(i);
+        let (n, _, _) = generated_size(scene, spec, &path)?;
+        let (family, rect) = generator(spec, &path)?;
+        let name = &spec.name;
+        let size = family
+            .size(&rect, n)
+            .map_err(|e| SceneError::at(path.at("mesh"), format!("body '{name}': {e}")))?;
+        let footprint = Footprint::of_size(&size);
+        limit
+            .check(
+                footprint.mesh_bytes(),
+                &format!(
+                    "body '{name}': generating its mesh ({} polygons, {} vertices)",
+                    size.polygons, size.vertices
+                ),
+            )
+            .map_err(|message| SceneError::at(path.at("mesh"), message))?;
+        if largest.is_none_or(|(bytes, _)| footprint.run_bytes() > bytes) {
+            largest = Some((footprint.run_bytes(), i));
+        }
+        total = total + footprint;
+    }
+    match largest {
+        Some((_, i)) => limit
+            .check(
+                total.run_bytes(),
+                &format!(
+                    "solving the scene ({:.0} polygons, {:.0} vertices in all; largest: body '{}')",
+                    total.polygons, total.vertices, scene.bodies[i].name
+                ),
+            )
+            .map_err(|message| SceneError::at(KeyPath::key("body").index(i).at("mesh"), message)),
+        None => Ok(()),
+    }
+}
+
+/// Refuses, before interface nodes are inserted and systems assembled, meshes (generated or
+/// read) whose run would not fit the memory limit.
+fn check_memory_of_meshes(
+    meshes: &[(Mesh, String, Option<f64>)],
+    limit: &MemoryLimit,
+) -> Result<(), SceneError> {
+    let total = meshes
+        .iter()
+        .fold(Footprint::default(), |sum, (mesh, _, _)| sum + Footprint::of_mesh(mesh));
+    limit
+        .check(
+            total.run_bytes(),
+            &format!(
+                "solving the scene ({:.0} polygons, {:.0} vertices in all)",
+                total.polygons, total.vertices
+            ),
+        )
+        .map_err(|message| SceneError::at(KeyPath::root(), message))
+}
+
+/// The mesh of one body, where it came from and, with a target error, the error predicted.
+fn build_mesh(
+    scene: &Scene,
+    spec: &BodyDescription,
+    path: &KeyPath,
+    base: &Path,
+) -> Result<(Mesh, String, Option<f64>), SceneError> {
+    let name = &spec.name;
+    if let Some(file) = &spec.mesh.file {
+        let at = path.at("mesh").at("file");
+        let full = base.join(file);
+        let extension = full
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let read = match extension.as_deref() {
+            Some("msh") => vem_mesh::io::read_gmsh(&full),
+            Some("vtu") | Some("vtk") => read_vtk(&full, &spec.mesh.part_names)
+                .map_err(|reason| vem_mesh::MeshError::Read {
+                    path: full.clone(),
+                    reason,
+                }),
+            Some("txt") | Some("poly") => vem_mesh::io::read_polymesher(&full),
+            _ => {
+                return Err(SceneError::at(
+                    at,
+                    format!(
+                        "body '{name}': mesh file '{file}': give a Gmsh .msh, a VTK .vtu or .vtk, \
+                         or a PolyMesher/mVEM .txt file"
+                    ),
+                ))
+            }
+        }
+        .map_err(|e| SceneError::at(at.clone(), format!("body '{name}': {e}")))?;
+        return Ok((read, format!("mesh file {file}"), None));
+    }
+    let (n, chosen, predicted) = generated_size(scene, spec, path)?;
+    let (family, rect) = generator(spec, path)?;
+    let seed = spec.mesh.seed.unwrap_or(1);
+    let generated = family
+        .generate(&rect, n, seed)
+        .map_err(|e| SceneError::at(path.at("mesh"), format!("body '{name}': {e}")))?;
+    let random = if family.is_random() {
+        format!(", seed {seed}")
+    } else {
+        String::new()
+    };
+    let (a, b) = (rect.min, rect.max);
+    Ok((
+        generated,
+        format!(
+            "{family}, n = {n}{chosen}{random}, on [{}, {}] x [{}, {}]",
+            a.x, b.x, a.y, b.y
+        ),
+        predicted,
+    ))
+}
+
+/// A polygonal mesh from a VTK file with the scene's part names.
+fn read_vtk(
+    path: &Path,
+    part_names: &std::collections::BTreeMap<String, String>,
+) -> Result<Mesh, String> {
+    let grid = match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("vtu") => vem_mesh::io::read_vtu(path),
+        _ => vem_mesh::io::read_legacy_vtk(path),
+    }
+    .map_err(|e| e.to_string())?;
+    let mut options = vem_mesh::io::GridMeshOptions::default();
+    for (number, name) in part_names {
+        let number: i64 = number
+            .parse()
+            .map_err(|_| format!("part number '{number}' is not an integer"))?;
+        options.part_names.insert(number, name.clone());
+    }
+    vem_mesh::io::mesh_from_grid(&grid, &options)
+}
+
+/// Checks that `part` names a boundary part of `mesh`; the error lists the parts.
+fn check_part(mesh: &Mesh, body: &str, part: &str, path: &KeyPath) -> Result<(), SceneError> {
+    if mesh.part(part).is_ok() {
+        return Ok(());
+    }
+    Err(SceneError::at(
+        path.clone(),
+        format!(
+            "body '{body}' has no boundary part named '{part}'; its mesh has {}",
+            list(&mesh.part_names())
+        ),
+    ))
+}
+
+fn build_body(
+    scene: &Scene,
+    spec: &BodyDescription,
+    mesh: Mesh,
+    mesh_source: String,
+    elements: &ElementRegistry,
+    path: &KeyPath,
+) -> Result<ModelBody, SceneError> {
+    let name = spec.name.clone();
+    let m = spec.material;
+    let plane = match m.plane {
+        Some(PlaneDescription::Stress) => Plane::Stress,
+        _ => Plane::Strain,
+    };
+    let material = match (m.young, m.nu, m.lambda, m.mu) {
+        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
+        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
+        _ => return Err(SceneError::at(path.at("material"), "incomplete material")),
+    }
+    .map_err(|e| SceneError::at(path.at("material"), format!("body '{name}': {e}")))?;
+    let choice = spec
+        .element
+        .clone()
+        .unwrap_or_else(|| Choice::named(ElementRegistry::DEFAULT));
+    let element = elements
+        .make_choice(&choice)
+        .map_err(|e| registry_error(e, &path.at("element")))?;
+    let description = elements.summary(&choice.name).map_or_else(
+        || element.name().to_string(),
+        |s| format!("{}: {s}", element.name()),
+    );
+    for (k, d) in spec.dirichlet.iter().enumerate() {
+        check_part(&mesh, &name, &d.part, &path.at("dirichlet").index(k).at("part"))?;
+    }
+    for (k, r) in spec.rigid_plate.iter().enumerate() {
+        check_part(&mesh, &name, &r.part, &path.at("rigid_plate").index(k).at("part"))?;
+    }
+    for (k, t) in spec.traction.iter().enumerate() {
+        check_part(&mesh, &name, &t.part, &path.at("traction").index(k).at("part"))?;
+    }
+    let t = load_time(scene);
+    let mut pressures = Vec::new();
+    for (k, traction) in spec.traction.iter().enumerate() {
+        if let Some(p) = traction.pressure {
+            let at = path.at("traction").index(k);
+            pressures.push(
+                Traction::try_normal_pressure(&mesh, traction.part.clone(), p)
+                    .map_err(|e| SceneError::at(at.at("part"), e.to_string()))?,
+            );
+        }
+    }
+    let mut builder = ElasticBody::builder(name.clone(), mesh, material, element);
+    for d in &spec.dirichlet {
+        let component = match (&d.x, &d.y) {
+            (Some(_), Some(_)) => Component::All,
+            (Some(_), None) => Component::X,
+            _ => Component::Y,
+        };
+        let (x, y) = (d.x.clone(), d.y.clone());
+        builder = builder.dirichlet(Dirichlet::prescribed(d.part.clone(), component, move |p| {
+            let at = [p.x, p.y];
+            Vector::new(
+                x.as_ref().map_or(0.0, |v| v.at(&at, t)),
+                y.as_ref().map_or(0.0, |v| v.at(&at, t)),
+            )
+        }));
+    }
+    for r in &spec.rigid_plate {
+        let component = match (r.resultant_x, r.resultant_y) {
+            (Some(_), Some(_)) => Component::All,
+            (Some(_), None) => Component::X,
+            _ => Component::Y,
+        };
+        let resultant = Vector::new(r.resultant_x.unwrap_or(0.0), r.resultant_y.unwrap_or(0.0));
+        builder = builder.dirichlet(Dirichlet::rigid_plate(r.part.clone(), component, resultant));
+    }
+    let mut pressures = pressures.into_iter();
+    for traction in &spec.traction {
+        builder = match &traction.value {
+            Some(value) => {
+                let value = value.clone();
+                builder.traction(traction.part.clone(), move |p| {
+                    let at = [p.x, p.y];
+                    Vector::new(value.at(&at, t, 0), value.at(&at, t, 1))
+                })
+            }
+            None => match pressures.next() {
+                Some(pressure) => builder.traction_condition(pressure),
+                None => builder,
+            },
+        };
+    }
+    if let Some(force) = &spec.body_force {
+        let force = force.clone();
+        builder = builder.body_force(move |p| {
+            let at = [p.x, p.y];
+            Vector::new(force.at(&at, t, 0), force.at(&at, t, 1))
+        });
+    }
+    let body = builder
+        .build()
+        .map_err(|e| locate_elastic(scene, e).unwrap_or_else(|e| SceneError::at(path.clone(), e)))?;
+    Ok(ModelBody {
+        body,
+        mesh_source,
+        element: description,
+        predicted_error: None,
+    })
+}
+
+/// The pseudo-time at which the values of the scene are taken: the end of the load history
+/// (its steps scale the loads).
+fn load_time(_scene: &Scene) -> f64 {
+    1.0
+}
+
+fn build_contact(
+    scene: &Scene,
+    spec: &ContactDescription,
+    bodies: &[ModelBody],
+    registries: &Registries,
+    path: &KeyPath,
+) -> Result<(ModelContact, PendingPair), SceneError> {
+    let a = body_index(scene, &spec.body, &path.at("body"))?;
+    let body_a = &bodies[a].body;
+    check_part(body_a.mesh(), body_a.name(), &spec.part, &path.at("part"))?;
+    let law_choice = spec
+        .law
+        .clone()
+        .unwrap_or_else(|| Choice::named(LawRegistry::<2>::DEFAULT));
+    let law: Arc<dyn ContactLaw> = registries
+        .laws
+        .make_choice(&law_choice)
+        .map_err(|e| registry_error(e, &path.at("law")))?;
+    let mut options = InterfaceOptions::builder();
+    if let Some(d) = spec.max_distance {
+        options = options.max_distance(d);
+    }
+    let options = options
+        .build()
+        .map_err(|e| SceneError::at(path.at("max_distance"), e.to_string()))?;
+    let (other, obstacle, pair, description) =
+        match (&spec.other_body, &spec.other_part, &spec.obstacle) {
+            (Some(other), Some(other_part), _) => {
+                let b = body_index(scene, other, &path.at("other_body"))?;
+                let body_b = &bodies[b].body;
+                check_part(body_b.mesh(), body_b.name(), other_part, &path.at("other_part"))?;
+                let description = format!(
+                    "body '{}' part '{}' against body '{}' part '{other_part}'",
+                    body_a.name(),
+                    spec.part,
+                    body_b.name()
+                );
+                let pair = ContactPair::new(
+                    a,
+                    spec.part.clone(),
+                    vem_contact::Counterpart::Body {
+                        body: b,
+                        part: other_part.clone(),
+                    },
+                    law,
+                );
+                (Some(b), None, pair, description)
+            }
+            (_, _, Some(obstacle)) => {
+                let built = build_obstacle(obstacle);
+                RigidObstacle::validate(&built)
+                    .map_err(|e| SceneError::at(path.at("obstacle"), e.to_string()))?;
+                let description = format!(
+                    "body '{}' part '{}' against a rigid {}",
+                    body_a.name(),
+                    spec.part,
+                    RigidObstacle::name(&built)
+                );
+                let pair = ContactPair::new(
+                    a,
+                    spec.part.clone(),
+                    vem_contact::Counterpart::Obstacle(Arc::new(built.clone())),
+                    law,
+                );
+                (None, Some(built), pair, description)
+            }
+            _ => return Err(SceneError::at(path.at("body"), "incomplete contact pair")),
+        };
+    let mut pair = pair.with_interface_options(options);
+    if let Some(normal) = spec.normal {
+        pair = pair.with_normal(match normal {
+            NormalDescription::BodyA => ContactNormal::BodyA,
+            NormalDescription::BodyB => ContactNormal::BodyB,
+            NormalDescription::Averaged => ContactNormal::Averaged,
+        });
+    }
+    if let Some(gap) = spec.imposed_gap.clone() {
+        let t = load_time(scene);
+        pair = pair.with_imposed_gap(move |x| gap.at(&[x.x, x.y], t));
+    }
+    Ok((
+        ModelContact {
+            body: a,
+            other,
+            obstacle,
+            description,
+            hertz_radius: spec.hertz.map(|h| h.radius),
+        },
+        PendingPair { pair },
+    ))
+}
+
+fn build_obstacle(spec: &ObstacleDescription) -> Obstacle {
+    let point = |p: &[f64]| Point::new(p[0], p[1]);
+    if let Some(line) = &spec.line {
+        Obstacle::Line {
+            point: point(&line.point),
+            normal: Vector::new(line.normal[0], line.normal[1]),
+        }
+    } else if let Some(circle) = &spec.circle {
+        Obstacle::Circle {
+            centre: point(&circle.centre),
+            radius: circle.radius,
+        }
+    } else {
+        Obstacle::Polyline(spec.polyline.iter().flatten().map(|p| point(p)).collect())
+    }
+}
+
+/// The elastic layer's `error` at the scene entry it comes from when it names one (a traction
+/// or Dirichlet entry by body and part, a body force by body), else its text.
+pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> Result<SceneError, String> {
+    let body = |name: &str| scene.bodies.iter().position(|b| b.name == name);
+    let entry = |b: usize, list: &str, part: &str| -> Option<KeyPath> {
+        let spec = &scene.bodies[b];
+        let k = match list {
+            "traction" => spec.traction.iter().position(|t| t.part == part),
+            "dirichlet" => spec.dirichlet.iter().position(|d| d.part == part),
+            _ => spec.rigid_plate.iter().position(|r| r.part == part),
+        }?;
+        Some(KeyPath::key("body").index(b).at(list).index(k))
+    };
+    let path = match &error {
+        ElasticError::Traction { body: b, part, .. } => body(b).and_then(|b| entry(b, "traction", part)),
+        ElasticError::NonFiniteDirichlet { body: b, part, .. }
+        | ElasticError::ConflictingDirichlet {
+            body: b,
+            second: part,
+            ..
+        } => body(b).and_then(|b| entry(b, "dirichlet", part)),
+        ElasticError::RigidPlateConflict { body: b, plate, .. }
+        | ElasticError::NonFiniteResultant {
+            body: b,
+            part: plate,
+            ..
+        } => body(b).and_then(|b| entry(b, "rigid_plate", plate)),
+        ElasticError::Element {
+            body: b,
+            source: SpaceError::NonFiniteLoad { .. },
+            ..
+        } => body(b).map(|b| KeyPath::key("body").index(b).at("body_force")),
+        _ => None,
+    };
+    match path {
+        Some(path) => Ok(SceneError::at(path, one_line(&error))),
+        None => Err(one_line(&error)),
+    }
+}
+
+/// The contact layer's `error` at the scene entry it comes from.
+pub(crate) fn locate_contact(scene: &Scene, error: ContactError) -> SceneError {
+    match error {
+        ContactError::Elastic(e) => locate_elastic(scene, e)
+            .unwrap_or_else(|text| SceneError::at(KeyPath::root(), text)),
+        other => {
+            // A pair's error names its index only through its context; the whole problem
+            // otherwise.
+            let path = if scene.contacts.len() == 1 {
+                KeyPath::key("contact").index(0)
+            } else {
+                KeyPath::root()
+            };
+            SceneError::at(path, one_line(&other))
+        }
+    }
+}

@@ -1,0 +1,764 @@
+//! Everything that can be checked without meshes, with the key path of every error; the
+//! earlier forms of keys folded into their new places, with a note each.
+
+use std::collections::{BTreeMap, HashSet};
+
+use vem_contact::{AccuracyPreset, ErrorModel};
+use vem_space::{Choice, Options};
+
+use crate::description::{
+    BodyDescription, ContactDescription, LegacyPenalty, LegacyScaling, LegacyStabilisationKind,
+    Scene,
+};
+use crate::{Deprecation, KeyPath, SceneError};
+
+/// The largest magnitude of a number of a scene.
+pub const LARGEST: f64 = 1e100;
+/// The smallest non-zero magnitude of a number of a scene.
+pub const SMALLEST: f64 = 1e-100;
+/// The largest `[output] width`, in pixels.
+pub const MAX_WIDTH: f64 = 20_000.0;
+/// The dimension of the bodies a scene describes today (the 3D floors take more).
+pub const DIMENSION: usize = 2;
+
+/// A scene in its current form: every earlier key folded into its new place.
+#[derive(Debug, Clone)]
+pub struct Checked {
+    /// The scene, with no earlier keys left.
+    pub scene: Scene,
+    /// The notes of the earlier keys read.
+    pub deprecations: Vec<Deprecation>,
+    /// Where a key of the current form was written in the earlier one (new path -> old path),
+    /// so that errors point at what the user wrote.
+    pub written_at: BTreeMap<KeyPath, KeyPath>,
+}
+
+impl Checked {
+    /// The path at which the user wrote the key `path` of the current form.
+    pub fn written(&self, path: &KeyPath) -> KeyPath {
+        // The longest prefix with a recorded place, the rest appended.
+        for k in (1..=path.0.len()).rev() {
+            let prefix = KeyPath(path.0[..k].to_vec());
+            if let Some(old) = self.written_at.get(&prefix) {
+                let mut full = old.clone();
+                full.0.extend_from_slice(&path.0[k..]);
+                return full;
+            }
+        }
+        path.clone()
+    }
+}
+
+/// Folds the earlier keys and checks what can be checked without meshes.
+///
+/// # Errors
+/// The first problem found, at its key.
+pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
+    let mut checked = Checked {
+        scene: scene.clone(),
+        deprecations: Vec::new(),
+        written_at: BTreeMap::new(),
+    };
+    fold_stabilisations(&mut checked)?;
+    fold_laws(&mut checked)?;
+    fold_solver(&mut checked)?;
+    let scene = &checked.scene;
+    if scene.bodies.is_empty() {
+        return Err(SceneError::at(KeyPath::root(), "the scene has no [[body]]"));
+    }
+    let mut names = HashSet::new();
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let path = KeyPath::key("body").index(i);
+        check_body(scene, body, &path)?;
+        if !names.insert(body.name.as_str()) {
+            return Err(SceneError::at(
+                path.at("name"),
+                format!("a second body is named '{}'", body.name),
+            ));
+        }
+    }
+    for (k, contact) in scene.contacts.iter().enumerate() {
+        check_contact(scene, contact, &KeyPath::key("contact").index(k))?;
+    }
+    check_accuracy(scene)?;
+    if let Some(m) = scene.output.magnification {
+        positive(m, &KeyPath::key("output").at("magnification"))?;
+    }
+    if let Some(w) = scene.output.width {
+        if !(w.is_finite() && (200.0..=MAX_WIDTH).contains(&w)) {
+            return Err(SceneError::at(
+                KeyPath::key("output").at("width"),
+                format!("width = {w} pixels: give at least 200 and at most {MAX_WIDTH}"),
+            ));
+        }
+    }
+    if let Some(gib) = scene.limits.memory_gib {
+        positive(gib, &KeyPath::key("limits").at("memory_gib"))?;
+    }
+    if let Some(history) = &scene.history {
+        let path = KeyPath::key("history").at("steps");
+        if history.steps.is_empty() {
+            return Err(SceneError::at(path, "a load history needs at least one step"));
+        }
+        for (k, &s) in history.steps.iter().enumerate() {
+            number(s, &path.index(k), "a load factor")?;
+        }
+    }
+    check_ranges(&checked)?;
+    Ok(checked)
+}
+
+/// `[body.stabilisation]` (earlier form) -> `element = { name = "vem1", stabilisation = .. }`.
+fn fold_stabilisations(checked: &mut Checked) -> Result<(), SceneError> {
+    for i in 0..checked.scene.bodies.len() {
+        let body = &mut checked.scene.bodies[i];
+        let Some(legacy) = body.stabilisation.take() else {
+            continue;
+        };
+        let path = KeyPath::key("body").index(i);
+        if body.element.is_some() {
+            return Err(SceneError::at(
+                path.at("element"),
+                format!(
+                    "body '{}': give `element` (a registered element) or `stabilisation` (of \
+                     the lowest-order VEM), not both",
+                    body.name
+                ),
+            ));
+        }
+        let mut stabilisation = Options::new();
+        let name = match legacy.kind {
+            LegacyStabilisationKind::DofiDofi => {
+                if let Some(scaling) = legacy.scaling {
+                    let s = match scaling {
+                        LegacyScaling::Trace => "trace",
+                        LegacyScaling::Shear => "shear",
+                    };
+                    stabilisation = stabilisation.with("scaling", s);
+                }
+                if let Some(scale) = legacy.scale {
+                    stabilisation = stabilisation.with("scale", scale);
+                }
+                "dofi-dofi"
+            }
+            LegacyStabilisationKind::DRecipe => {
+                if legacy.scaling.is_some() || legacy.scale.is_some() {
+                    return Err(SceneError::at(
+                        path.at("stabilisation"),
+                        format!(
+                            "body '{}': `scaling` and `scale` apply to kind = \"dofi-dofi\" only",
+                            body.name
+                        ),
+                    ));
+                }
+                "drecipe"
+            }
+        };
+        let stabilisation = Choice::with_options(name, stabilisation);
+        let element = Choice::with_options(
+            "vem1",
+            Options::new().with("stabilisation", &stabilisation),
+        );
+        checked.deprecations.push(Deprecation {
+            old: path.at("stabilisation").to_string(),
+            new: format!("element = {}", inline(&element)),
+        });
+        body.element = Some(element);
+        checked.written_at.insert(
+            path.at("element").at("stabilisation"),
+            path.at("stabilisation"),
+        );
+        checked
+            .written_at
+            .insert(path.at("element"), path.at("stabilisation"));
+    }
+    Ok(())
+}
+
+/// A choice as an inline TOML table for notes.
+fn inline(choice: &Choice) -> String {
+    fn value(v: &serde_json::Value) -> String {
+        match v {
+            serde_json::Value::Object(map) => {
+                let items: Vec<String> = map
+                    .iter()
+                    .map(|(k, v)| format!("{k} = {}", value(v)))
+                    .collect();
+                format!("{{ {} }}", items.join(", "))
+            }
+            other => other.to_string(),
+        }
+    }
+    let mut items = vec![format!("name = \"{}\"", choice.name)];
+    items.extend(
+        choice
+            .options
+            .keys()
+            .map(|k| format!("{k} = {}", value(choice.options.get(k).expect("a key"))))
+            .collect::<Vec<_>>(),
+    );
+    if items.len() == 1 {
+        format!("\"{}\"", choice.name)
+    } else {
+        format!("{{ {} }}", items.join(", "))
+    }
+}
+
+/// The earlier flat law keys of a contact (`friction_bound`, `coefficient`,
+/// `fixed_point_*`) -> the law's table.
+fn fold_laws(checked: &mut Checked) -> Result<(), SceneError> {
+    for k in 0..checked.scene.contacts.len() {
+        let path = KeyPath::key("contact").index(k);
+        let contact = &mut checked.scene.contacts[k];
+        let law_name = contact
+            .law
+            .as_ref()
+            .map_or("frictionless".to_string(), |l| l.name.clone());
+        let mut moved: Vec<(&'static str, serde_json::Value)> = Vec::new();
+        let mut fixed_point = serde_json::Map::new();
+        if let Some(g) = contact.friction_bound.take() {
+            moved.push(("friction_bound", g.into()));
+        }
+        if let Some(f) = contact.coefficient.take() {
+            moved.push(("coefficient", f.into()));
+        }
+        if let Some(m) = contact.fixed_point_max_iterations.take() {
+            fixed_point.insert("max_iterations".into(), m.into());
+        }
+        if let Some(t) = contact.fixed_point_tolerance.take() {
+            fixed_point.insert("tolerance".into(), t.into());
+        }
+        if moved.is_empty() && fixed_point.is_empty() {
+            continue;
+        }
+        // A flat key for another law than the one named is a mistake, not an earlier form.
+        let belongs = |key: &str| match key {
+            "friction_bound" => law_name == "tresca",
+            _ => law_name == "coulomb",
+        };
+        for (key, _) in &moved {
+            if !belongs(key) {
+                return Err(SceneError::at(
+                    path.at(key),
+                    format!("`{key}` does not apply to law = \"{law_name}\""),
+                ));
+            }
+        }
+        if !fixed_point.is_empty() && !belongs("fixed_point") {
+            let key = if fixed_point.contains_key("max_iterations") {
+                "fixed_point_max_iterations"
+            } else {
+                "fixed_point_tolerance"
+            };
+            return Err(SceneError::at(
+                path.at(key),
+                format!("`{key}` does not apply to law = \"{law_name}\""),
+            ));
+        }
+        let law = contact.law.get_or_insert_with(|| Choice::named(&law_name));
+        for (key, value) in moved {
+            law.options.insert(key, value);
+            checked
+                .written_at
+                .insert(path.at("law").at(key), path.at(key));
+        }
+        if !fixed_point.is_empty() {
+            let written = if fixed_point.contains_key("tolerance") {
+                "fixed_point_tolerance"
+            } else {
+                "fixed_point_max_iterations"
+            };
+            if fixed_point.contains_key("max_iterations") {
+                checked.written_at.insert(
+                    path.at("law").at("fixed_point").at("max_iterations"),
+                    path.at("fixed_point_max_iterations"),
+                );
+            }
+            if fixed_point.contains_key("tolerance") {
+                checked.written_at.insert(
+                    path.at("law").at("fixed_point").at("tolerance"),
+                    path.at("fixed_point_tolerance"),
+                );
+            }
+            checked
+                .written_at
+                .insert(path.at("law").at("fixed_point"), path.at(written));
+            law.options
+                .insert("fixed_point", serde_json::Value::Object(fixed_point));
+        }
+        checked.deprecations.push(Deprecation {
+            old: path.to_string() + " law keys",
+            new: format!("law = {}", inline(law)),
+        });
+    }
+    Ok(())
+}
+
+/// The earlier solver keys of a contact (`solver`, `tolerance`, `max_iterations`, `penalty`,
+/// `augmentation`) -> the scene's `solver`.
+fn fold_solver(checked: &mut Checked) -> Result<(), SceneError> {
+    let mut folded: Option<(Choice, KeyPath)> = None;
+    for k in 0..checked.scene.contacts.len() {
+        let path = KeyPath::key("contact").index(k);
+        let contact = &mut checked.scene.contacts[k];
+        let mut options = Options::new();
+        let mut first_key: Option<&'static str> = None;
+        let mut note = |key: &'static str, written: &mut BTreeMap<KeyPath, KeyPath>| {
+            first_key.get_or_insert(key);
+            written.insert(KeyPath::key("solver").at(key), path.at(key));
+        };
+        if let Some(t) = contact.tolerance.take() {
+            options = options.with("tolerance", t);
+            note("tolerance", &mut checked.written_at);
+        }
+        if let Some(m) = contact.max_iterations.take() {
+            options = options.with("max_iterations", m);
+            note("max_iterations", &mut checked.written_at);
+        }
+        for (key, legacy) in [
+            ("penalty", contact.penalty.take()),
+            ("augmentation", contact.augmentation.take()),
+        ] {
+            if let Some(p) = legacy {
+                options = options.with(key, penalty_value(p, &path.at(key))?);
+                note(key, &mut checked.written_at);
+            }
+        }
+        let name = contact.solver.take();
+        if name.is_none() && first_key.is_none() {
+            continue;
+        }
+        if name.is_some() {
+            first_key.get_or_insert("solver");
+        }
+        let choice = Choice::with_options(
+            name.unwrap_or_else(|| vem_contact::SolverRegistry::DEFAULT.to_string()),
+            options,
+        );
+        let where_written = path.at(first_key.unwrap_or("solver"));
+        if let Some(existing) = &checked.scene.solver {
+            return Err(SceneError::at(
+                where_written,
+                format!(
+                    "the scene's `solver` ({}) and this contact's solver keys both set the \
+                     solver: give the scene's `solver` only",
+                    existing.name
+                ),
+            ));
+        }
+        match &folded {
+            Some((earlier, _)) if *earlier != choice => {
+                return Err(SceneError::at(
+                    where_written,
+                    "the contact pairs set different solvers: one solver treats every pair; \
+                     give the scene's `solver`",
+                ))
+            }
+            _ => folded = Some((choice, path.clone())),
+        }
+        checked
+            .written_at
+            .insert(KeyPath::key("solver"), path.at("solver"));
+    }
+    if let Some((choice, path)) = folded {
+        checked.deprecations.push(Deprecation {
+            old: path.to_string() + " solver keys",
+            new: format!("solver = {} (at the top of the scene)", inline(&choice)),
+        });
+        checked.scene.solver = Some(choice);
+    }
+    Ok(())
+}
+
+/// A penalty of the earlier form as the solvers' setting.
+fn penalty_value(p: LegacyPenalty, path: &KeyPath) -> Result<serde_json::Value, SceneError> {
+    match (p.factor, p.value) {
+        (Some(f), None) => Ok(serde_json::json!({ "factor": f })),
+        (None, Some(v)) => Ok(serde_json::json!({ "value": v })),
+        _ => Err(SceneError::at(
+            path.clone(),
+            "give either `factor` (relative to the stiffness) or `value` (absolute)",
+        )),
+    }
+}
+
+fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(), SceneError> {
+    let name = &body.name;
+    let valid = !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
+    if !valid {
+        return Err(SceneError::at(
+            path.at("name"),
+            format!(
+                "body name '{name}': use letters, digits, '-', '_' and '.' (it names the body's \
+                 output files)"
+            ),
+        ));
+    }
+    let mesh = &body.mesh;
+    let mesh_path = path.at("mesh");
+    match (&mesh.family, &mesh.file) {
+        (Some(_), Some(_)) | (None, None) => {
+            return Err(SceneError::at(
+                mesh_path,
+                format!(
+                    "body '{name}': the mesh needs either `family` (a generator, with `rectangle` \
+                     and `n`) or `file` (a mesh file), not both"
+                ),
+            ))
+        }
+        (Some(family), None) => {
+            if let Err(e) = family.parse::<vem_mesh::generators::MeshFamily>() {
+                return Err(SceneError::at(mesh_path.at("family"), e.to_string()));
+            }
+            let Some(rectangle) = &mesh.rectangle else {
+                return Err(SceneError::at(
+                    mesh_path,
+                    format!("body '{name}': a generated mesh needs `rectangle`"),
+                ));
+            };
+            let corners = mesh_path.at("rectangle");
+            exact_len(rectangle.len(), 2, &corners)?;
+            for (k, corner) in rectangle.iter().enumerate() {
+                exact_len(corner.len(), DIMENSION, &corners.index(k))?;
+            }
+            if mesh.n.is_none() && scene.accuracy.is_none() && scene.target_error.is_none() {
+                return Err(SceneError::at(
+                    mesh_path,
+                    format!(
+                        "body '{name}': a generated mesh needs `n`, or the scene's `accuracy` or \
+                         `target_error` to choose it"
+                    ),
+                ));
+            }
+            if !mesh.part_names.is_empty() {
+                return Err(SceneError::at(
+                    mesh_path.at("part_names"),
+                    format!("body '{name}': `part_names` belongs to a mesh `file` (VTK)"),
+                ));
+            }
+        }
+        (None, Some(_)) => {
+            if mesh.rectangle.is_some() || mesh.n.is_some() || mesh.seed.is_some() {
+                return Err(SceneError::at(
+                    mesh_path,
+                    format!(
+                        "body '{name}': `rectangle`, `n` and `seed` belong to a generated mesh, \
+                         not to a mesh `file`"
+                    ),
+                ));
+            }
+        }
+    }
+    let m = &body.material;
+    let pairs = (
+        m.young.is_some() || m.nu.is_some(),
+        m.lambda.is_some() || m.mu.is_some(),
+    );
+    let complete = match pairs {
+        (true, false) => m.young.is_some() && m.nu.is_some(),
+        (false, true) => m.lambda.is_some() && m.mu.is_some(),
+        _ => false,
+    };
+    if !complete {
+        return Err(SceneError::at(
+            path.at("material"),
+            format!("body '{name}': give the material as `E` and `nu`, or as `lambda` and `mu`"),
+        ));
+    }
+    if m.plane.is_none() {
+        return Err(SceneError::at(
+            path.at("material"),
+            format!(
+                "body '{name}': a two-dimensional body needs `plane = \"strain\"` or \
+                 `plane = \"stress\"`"
+            ),
+        ));
+    }
+    for (k, d) in body.dirichlet.iter().enumerate() {
+        let at = path.at("dirichlet").index(k);
+        if d.x.is_none() && d.y.is_none() && d.z.is_none() {
+            return Err(SceneError::at(
+                at,
+                format!(
+                    "body '{name}': the Dirichlet condition on part '{}' prescribes nothing: give \
+                     `x`, `y` or both",
+                    d.part
+                ),
+            ));
+        }
+        if d.z.is_some() {
+            return Err(SceneError::at(
+                at.at("z"),
+                format!("body '{name}': `z` does not apply to a two-dimensional body"),
+            ));
+        }
+    }
+    for (k, r) in body.rigid_plate.iter().enumerate() {
+        let at = path.at("rigid_plate").index(k);
+        if r.resultant_x.is_none() && r.resultant_y.is_none() && r.resultant_z.is_none() {
+            return Err(SceneError::at(
+                at,
+                format!(
+                    "body '{name}': the rigid plate on part '{}' prescribes nothing: give \
+                     `resultant_x`, `resultant_y` or both",
+                    r.part
+                ),
+            ));
+        }
+        if r.resultant_z.is_some() {
+            return Err(SceneError::at(
+                at.at("resultant_z"),
+                format!("body '{name}': `resultant_z` does not apply to a two-dimensional body"),
+            ));
+        }
+    }
+    for (k, t) in body.traction.iter().enumerate() {
+        let at = path.at("traction").index(k);
+        if t.value.is_some() == t.pressure.is_some() {
+            return Err(SceneError::at(
+                at,
+                format!(
+                    "body '{name}': the traction on part '{}' needs either `value = [gx, gy]` or \
+                     `pressure = p`, not both",
+                    t.part
+                ),
+            ));
+        }
+        if let Some(n) = t.value.as_ref().and_then(|v| v.len()) {
+            exact_len(n, DIMENSION, &at.at("value"))?;
+        }
+    }
+    if let Some(n) = body.body_force.as_ref().and_then(|v| v.len()) {
+        exact_len(n, DIMENSION, &path.at("body_force"))?;
+    }
+    Ok(())
+}
+
+/// An array of `found` entries where `expected` are.
+fn exact_len(found: usize, expected: usize, path: &KeyPath) -> Result<(), SceneError> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(SceneError::at(
+            path.clone(),
+            format!("an array of {found} entries where exactly {expected} are expected"),
+        ))
+    }
+}
+
+fn check_contact(
+    scene: &Scene,
+    contact: &ContactDescription,
+    path: &KeyPath,
+) -> Result<(), SceneError> {
+    let a = body_index(scene, &contact.body, &path.at("body"))?;
+    match (&contact.other_body, &contact.other_part, &contact.obstacle) {
+        (Some(other), Some(_), None) => {
+            if body_index(scene, other, &path.at("other_body"))? == a {
+                return Err(SceneError::at(
+                    path.at("other_body"),
+                    format!(
+                        "`other_body` is '{other}' again: contact of a body with itself is not \
+                         supported"
+                    ),
+                ));
+            }
+        }
+        (None, None, Some(obstacle)) => {
+            let given = [
+                obstacle.line.is_some(),
+                obstacle.circle.is_some(),
+                obstacle.polyline.is_some(),
+            ];
+            let at = path.at("obstacle");
+            if given.iter().filter(|&&g| g).count() != 1 {
+                return Err(SceneError::at(
+                    at,
+                    "an obstacle is exactly one of `line = { point, normal }`, `circle = { \
+                     centre, radius }` or `polyline = [[x, y], ...]`",
+                ));
+            }
+            if let Some(line) = &obstacle.line {
+                exact_len(line.point.len(), DIMENSION, &at.at("line").at("point"))?;
+                exact_len(line.normal.len(), DIMENSION, &at.at("line").at("normal"))?;
+            }
+            if let Some(circle) = &obstacle.circle {
+                exact_len(circle.centre.len(), DIMENSION, &at.at("circle").at("centre"))?;
+            }
+            if let Some(points) = &obstacle.polyline {
+                for (k, p) in points.iter().enumerate() {
+                    exact_len(p.len(), DIMENSION, &at.at("polyline").index(k))?;
+                }
+            }
+            if contact.normal.is_some() {
+                return Err(SceneError::at(
+                    path.at("normal"),
+                    "`normal` does not apply to an obstacle (its own normal is used)",
+                ));
+            }
+        }
+        _ => {
+            return Err(SceneError::at(
+                path.at("body"),
+                "a contact pair needs either `other_body` and `other_part`, or an `obstacle`",
+            ))
+        }
+    }
+    if let Some(h) = &contact.hertz {
+        if !(h.radius.is_finite() && h.radius > 0.0) {
+            return Err(SceneError::at(
+                path.at("hertz"),
+                format!("hertz radius {} must be finite and positive", h.radius),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The index of the body named `name`; the error lists the bodies.
+pub(crate) fn body_index(scene: &Scene, name: &str, path: &KeyPath) -> Result<usize, SceneError> {
+    scene
+        .bodies
+        .iter()
+        .position(|b| b.name == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = scene.bodies.iter().map(|b| b.name.as_str()).collect();
+            SceneError::at(
+                path.clone(),
+                format!("no body named '{name}'; the scene has {}", list(&names)),
+            )
+        })
+}
+
+/// `['a', 'b']` for error messages.
+pub(crate) fn list<S: AsRef<str>>(names: &[S]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("'{}'", n.as_ref())).collect();
+    format!("[{}]", quoted.join(", "))
+}
+
+/// `accuracy` names a preset and leaves the solver setting to it; `target_error` is positive,
+/// reachable and used by some generated mesh without `n`.
+fn check_accuracy(scene: &Scene) -> Result<(), SceneError> {
+    if let Some(accuracy) = &scene.accuracy {
+        if let Err(e) = accuracy.parse::<AccuracyPreset>() {
+            return Err(SceneError::at(KeyPath::key("accuracy"), e.to_string()));
+        }
+        if scene.solver.is_some() {
+            return Err(SceneError::at(
+                KeyPath::key("solver"),
+                format!(
+                    "`solver` and the scene's `accuracy` both set the solver: `accuracy` = \
+                     \"{accuracy}\" chooses it; give one of the two"
+                ),
+            ));
+        }
+    }
+    if let Some(target) = scene.target_error {
+        let path = KeyPath::key("target_error");
+        positive(target, &path)?;
+        if let Err(e) = ErrorModel::LOWEST_ORDER_VEM.try_size_for(target) {
+            return Err(SceneError::at(path, e.to_string()));
+        }
+        let chooses = scene
+            .bodies
+            .iter()
+            .any(|b| b.mesh.family.is_some() && b.mesh.n.is_none());
+        if !chooses {
+            return Err(SceneError::at(
+                path,
+                "`target_error` chooses the size of generated meshes without `n`, and every mesh \
+                 here has `n` or is a file: drop `target_error` or an `n`",
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn positive(value: f64, path: &KeyPath) -> Result<(), SceneError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::at(
+            path.clone(),
+            format!("`{}` = {value} must be finite and positive", last_key(path)),
+        ))
+    }
+}
+
+fn last_key(path: &KeyPath) -> String {
+    path.0
+        .iter()
+        .rev()
+        .find_map(|s| match s {
+            crate::error::Segment::Key(k) => Some(k.clone()),
+            crate::error::Segment::Index(_) => None,
+        })
+        .unwrap_or_default()
+}
+
+/// Checks that a number of the scene is finite and, unless zero, of a magnitude between
+/// [`SMALLEST`] and [`LARGEST`], so that the products the model forms of moduli, lengths and
+/// loads (stiffness entries, resultants, energies) stay finite. `what` names it in the
+/// message.
+pub fn number(value: f64, path: &KeyPath, what: &str) -> Result<(), SceneError> {
+    if !value.is_finite() {
+        return Err(SceneError::at(
+            path.clone(),
+            format!("{what} = {value} must be finite"),
+        ));
+    }
+    let magnitude = value.abs();
+    if magnitude != 0.0 && !(SMALLEST..=LARGEST).contains(&magnitude) {
+        return Err(SceneError::at(
+            path.clone(),
+            format!(
+                "{what} = {value:e} is out of range: a number of a scene is 0 or of magnitude \
+                 {SMALLEST:e} to {LARGEST:e} (products of moduli, lengths and loads must stay \
+                 finite); change the units"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Every number of the scene in range ([`number`]), including those inside the settings
+/// tables of elements, laws and the solver.
+fn check_ranges(checked: &Checked) -> Result<(), SceneError> {
+    let value = serde_json::to_value(&checked.scene).map_err(|e| {
+        SceneError::at(
+            KeyPath::root(),
+            format!("the scene does not serialise (a function of the position?): {e}"),
+        )
+    });
+    // A scene with functions (from Rust) is checked where it has numbers only.
+    let Ok(value) = value else {
+        return Ok(());
+    };
+    fn walk(value: &serde_json::Value, path: &KeyPath) -> Result<(), SceneError> {
+        match value {
+            serde_json::Value::Number(n) => {
+                let what = match path.0.last() {
+                    Some(crate::error::Segment::Key(k)) => format!("`{k}`"),
+                    _ => format!("`{}`", last_key(path)),
+                };
+                number(n.as_f64().unwrap_or(f64::NAN), path, &what)
+            }
+            serde_json::Value::Array(items) => items
+                .iter()
+                .enumerate()
+                .try_for_each(|(k, v)| walk(v, &path.index(k))),
+            serde_json::Value::Object(map) => {
+                map.iter().try_for_each(|(k, v)| walk(v, &path.at(k)))
+            }
+            _ => Ok(()),
+        }
+    }
+    walk(&value, &KeyPath::root()).map_err(|e| SceneError {
+        path: checked.written(&e.path),
+        ..e
+    })
+}

@@ -1,0 +1,387 @@
+//! The description of a problem: what a scene file, a Python dict or a study writes. Every key
+//! is documented in `docs/scenes.md`; the types mirror the keys one to one.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+use vem_space::Choice;
+
+use crate::{ScalarValue, VectorValue};
+
+/// A whole problem: bodies, contact pairs, the contact solver, accuracy, load history, outputs
+/// and resource limits.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// A title for pictures and reports.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub title: Option<String>,
+    /// The bodies (`[[body]]`), at least one.
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<BodyDescription>,
+    /// The contact pairs (`[[contact]]`): any number; the solver treats them together.
+    #[serde(default, rename = "contact", skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<ContactDescription>,
+    /// The contact solver by registry name, with its settings: `solver = "active-set"` or
+    /// `solver = { name = "penalty", penalty = { factor = 1e4 } }` (default `"condensed"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver: Option<Choice>,
+    /// An accuracy preset (`"draft"`, `"balanced"`, `"reference"`): the solver's setting and,
+    /// for a generated mesh without `n`, the size for the preset's target error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<String>,
+    /// A target relative energy error (`E_grad / |u|_1`): generated meshes without `n` take the
+    /// size the error model predicts for it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_error: Option<f64>,
+    /// A load history: the loads, prescribed displacements and gaps' prescribed parts scaled
+    /// step by step (the static problem is one step of factor 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub history: Option<LoadHistory>,
+    /// Outputs (`[output]`).
+    #[serde(default)]
+    pub output: OutputDescription,
+    /// Resource limits (`[limits]`).
+    #[serde(default)]
+    pub limits: LimitsDescription,
+}
+
+/// One elastic body (`[[body]]`).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyDescription {
+    /// The body's name: letters, digits, `-`, `_` and `.`; also the name of its output files.
+    pub name: String,
+    /// Its mesh: a generator or a file.
+    pub mesh: MeshDescription,
+    /// Its material.
+    pub material: MaterialDescription,
+    /// The element by registry name, with its settings: `element = "vem1-bbar"` or
+    /// `element = { name = "vem1", stabilisation = "drecipe" }` (default `"vem1"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub element: Option<Choice>,
+    /// Earlier form of `element = { name = "vem1", stabilisation = ... }`: still read, with a
+    /// note naming the new key.
+    #[serde(default, skip_serializing)]
+    pub stabilisation: Option<LegacyStabilisation>,
+    /// Prescribed displacements by part (`[[body.dirichlet]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dirichlet: Vec<DirichletDescription>,
+    /// Rigid plates with prescribed resultants by part (`[[body.rigid_plate]]`): force control.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rigid_plate: Vec<RigidPlateDescription>,
+    /// Tractions by part (`[[body.traction]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub traction: Vec<TractionDescription>,
+    /// A body force per unit area (per unit volume in 3D): `[fx, fy]`, numbers or expressions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body_force: Option<VectorValue>,
+}
+
+/// A mesh: generated (`family` with `rectangle`, `n`, `seed`) or read (`file`).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDescription {
+    /// A mesh family name ("quads", "triangles", "hexagons", "voronoi", "perturbed",
+    /// "perturbed:0.2", "nonconvex", "hanging").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub family: Option<String>,
+    /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rectangle: Option<Vec<Vec<f64>>>,
+    /// The size parameter of a generated mesh (about `n` cells across); may be left out when
+    /// the scene gives `accuracy` or `target_error`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<usize>,
+    /// The seed of a random family (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// A mesh file, relative to the scene file: Gmsh `.msh` (4.1, 2.2), VTK `.vtu` or legacy
+    /// `.vtk` (polygons; boundary parts from line cells), or the PolyMesher/mVEM text layout
+    /// (`.txt`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// VTK files: the names of the part numbers of the line cells (`{ 1 = "bottom" }`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub part_names: BTreeMap<String, String>,
+}
+
+/// An isotropic material: `E` and `nu`, or `lambda` and `mu`, and `plane`.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialDescription {
+    /// Young's modulus.
+    #[serde(default, rename = "E", skip_serializing_if = "Option::is_none")]
+    pub young: Option<f64>,
+    /// Poisson's ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu: Option<f64>,
+    /// First Lame parameter.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// Shear modulus.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mu: Option<f64>,
+    /// Plane strain or plane stress (two-dimensional bodies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plane: Option<PlaneDescription>,
+}
+
+/// Plane strain or plane stress.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PlaneDescription {
+    /// Plane strain.
+    Strain,
+    /// Plane stress.
+    Stress,
+}
+
+/// Earlier form of the stabilisation of the lowest-order VEM (`[body.stabilisation]`).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LegacyStabilisation {
+    /// "dofi-dofi" or "d-recipe".
+    pub kind: LegacyStabilisationKind,
+    /// dofi-dofi only: "trace" (default) or "shear".
+    #[serde(default)]
+    pub scaling: Option<LegacyScaling>,
+    /// dofi-dofi only: the factor (default 1/8).
+    #[serde(default)]
+    pub scale: Option<f64>,
+}
+
+/// The stabilisation kinds of the earlier form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LegacyStabilisationKind {
+    /// `S = alpha I`.
+    DofiDofi,
+    /// The diagonal D-recipe.
+    DRecipe,
+}
+
+/// The dofi-dofi scalings of the earlier form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LegacyScaling {
+    /// `alpha = scale * trace(C)`.
+    Trace,
+    /// `alpha = scale * 5 mu`.
+    Shear,
+}
+
+/// `[[body.dirichlet]]`: prescribed displacement components on a part (absent: free).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletDescription {
+    /// The boundary part.
+    pub part: String,
+    /// `u_x` on the part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x: Option<ScalarValue>,
+    /// `u_y` on the part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y: Option<ScalarValue>,
+    /// `u_z` on the part (3D).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<ScalarValue>,
+}
+
+/// `[[body.rigid_plate]]`: the part moves as one rigid plate in the given components, pushed
+/// with the given resultant (force control); the translation is computed.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigidPlateDescription {
+    /// The boundary part.
+    pub part: String,
+    /// The resultant along x the plate applies to the body (absent: x not tied).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resultant_x: Option<f64>,
+    /// The resultant along y.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resultant_y: Option<f64>,
+    /// The resultant along z (3D).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resultant_z: Option<f64>,
+}
+
+/// `[[body.traction]]`: a traction vector or a normal pressure on a part.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionDescription {
+    /// The boundary part.
+    pub part: String,
+    /// A traction `[gx, gy]`: numbers or expressions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub value: Option<VectorValue>,
+    /// A normal pressure, positive compressive (a number).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+}
+
+/// Which side gives the contact normal of two bodies (`normal` key).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalDescription {
+    /// Body A's outward normal.
+    BodyA,
+    /// Minus body B's outward normal (default).
+    #[default]
+    BodyB,
+    /// The bisector of the two.
+    Averaged,
+}
+
+/// A penalty or augmentation parameter of the earlier form: `factor` or `value`.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LegacyPenalty {
+    /// Relative to the stiffness.
+    #[serde(default)]
+    pub factor: Option<f64>,
+    /// Absolute.
+    #[serde(default)]
+    pub value: Option<f64>,
+}
+
+/// `[[contact]]`: one contact pair.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactDescription {
+    /// Body A.
+    pub body: String,
+    /// Body A's contact part.
+    pub part: String,
+    /// Body B.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_body: Option<String>,
+    /// Body B's contact part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_part: Option<String>,
+    /// A rigid obstacle instead of body B.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<ObstacleDescription>,
+    /// The contact law by registry name, with its settings: `law = "frictionless"` (default),
+    /// `law = { name = "tresca", friction_bound = 0.3 }`,
+    /// `law = { name = "coulomb", coefficient = 0.3 }`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub law: Option<Choice>,
+    /// Which side gives the contact normal of two bodies: "body_b" (default), "body_a" or
+    /// "averaged" (not with an obstacle, whose own normal is used).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<NormalDescription>,
+    /// A gap imposed on top of the geometric one (the initial gap is their sum): a number or
+    /// an expression.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub imposed_gap: Option<ScalarValue>,
+    /// Only points of the two sides closer than this (along the normal) are paired.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_distance: Option<f64>,
+    /// Compare with Hertz's cylinder on a half-space: body A near the contact is a cylinder of
+    /// this radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hertz: Option<HertzDescription>,
+    /// Earlier form of `law = { name = "tresca", friction_bound = .. }`.
+    #[serde(default, skip_serializing)]
+    pub friction_bound: Option<f64>,
+    /// Earlier form of `law = { name = "coulomb", coefficient = .. }`.
+    #[serde(default, skip_serializing)]
+    pub coefficient: Option<f64>,
+    /// Earlier form of `law = { .., fixed_point = { max_iterations = .. } }`.
+    #[serde(default, skip_serializing)]
+    pub fixed_point_max_iterations: Option<usize>,
+    /// Earlier form of `law = { .., fixed_point = { tolerance = .. } }`.
+    #[serde(default, skip_serializing)]
+    pub fixed_point_tolerance: Option<f64>,
+    /// Earlier form of the scene's `solver`.
+    #[serde(default, skip_serializing)]
+    pub solver: Option<String>,
+    /// Earlier form of `solver = { .., tolerance = .. }`.
+    #[serde(default, skip_serializing)]
+    pub tolerance: Option<f64>,
+    /// Earlier form of `solver = { .., max_iterations = .. }`.
+    #[serde(default, skip_serializing)]
+    pub max_iterations: Option<usize>,
+    /// Earlier form of `solver = { .., penalty = { .. } }`.
+    #[serde(default, skip_serializing)]
+    pub penalty: Option<LegacyPenalty>,
+    /// Earlier form of `solver = { .., augmentation = { .. } }`.
+    #[serde(default, skip_serializing)]
+    pub augmentation: Option<LegacyPenalty>,
+}
+
+/// `hertz = { radius = R }`.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HertzDescription {
+    /// Radius of the cylinder (body A).
+    pub radius: f64,
+}
+
+/// A rigid obstacle: exactly one of `line`, `circle`, `polyline`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleDescription {
+    /// A straight line bounding a half-plane.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line: Option<LineDescription>,
+    /// A rigid disc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub circle: Option<CircleDescription>,
+    /// A polyline with the obstacle on its right.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polyline: Option<Vec<Vec<f64>>>,
+}
+
+/// `line = { point = [x, y], normal = [nx, ny] }`, the normal pointing out of the obstacle.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineDescription {
+    /// A point of the line.
+    pub point: Vec<f64>,
+    /// The normal pointing out of the obstacle, towards the body.
+    pub normal: Vec<f64>,
+}
+
+/// `circle = { centre = [x, y], radius = r }`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CircleDescription {
+    /// Centre.
+    pub centre: Vec<f64>,
+    /// Radius.
+    pub radius: f64,
+}
+
+/// `history = { steps = [0.25, 0.5, 1.0] }`: the load factors of the steps, each scaling every
+/// load, prescribed displacement and rigid-plate force.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadHistory {
+    /// The load factors, in order.
+    pub steps: Vec<f64>,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputDescription {
+    /// Displacement magnification of the deformed picture (default: the largest displacement
+    /// drawn as 8% of the picture's extent).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub magnification: Option<f64>,
+    /// Width of the pictures in pixels (default 900, at most 20000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+}
+
+/// `[limits]`: what a run may use.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsDescription {
+    /// The memory a run may plan to use, in GiB (default: the memory the system reports
+    /// available).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub memory_gib: Option<f64>,
+}

@@ -1,0 +1,853 @@
+//! Solving a [`Model`] and summarising what was computed: per body (mesh solved, DOFs,
+//! reactions, stresses, A1 figures), for the contact pairs (the library's own reports: rows,
+//! solver, iterations, KKT residuals, work, fixed point; resultants, node statuses, the Hertz
+//! comparison), and the times.
+
+use std::fmt;
+use std::time::{Duration, Instant};
+
+use serde::Serialize;
+use vem_contact::{
+    ContactError, ContactResult, ContactSolverError, FixedPointReport, InterfaceNode,
+    ModelSummary, NodeStatus, SolveReport, Warning, WorkCounters,
+};
+use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
+use vem_mesh::quality::ElementQuality;
+use vem_space::Choice;
+
+use crate::build::{locate_contact, locate_elastic, Model};
+use crate::error::one_line;
+use crate::{Deprecation, KeyPath, SceneError};
+
+/// One body after the solve.
+#[derive(Debug, Clone)]
+pub struct SolvedBody {
+    /// The body on the mesh that was solved (with the inserted interface nodes for a body in
+    /// contact).
+    pub body: ElasticBody,
+    /// Displacement, reactions, strain energy.
+    pub solution: Solution,
+    /// Strain, stress and von Mises stress of every element.
+    pub fields: Vec<ElementField>,
+    /// The A1 figures of every element.
+    pub qualities: Vec<ElementQuality>,
+}
+
+/// The result of solving a scene, with its summary.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Every body, in the order of the scene.
+    pub bodies: Vec<SolvedBody>,
+    /// The contact result of the bodies in contact (its `bodies` have been moved into
+    /// [`Outcome::bodies`]; nodes, report, fixed point and model summary are here).
+    pub contact: Option<ContactResult>,
+    /// For each body of the contact result, its index in [`Outcome::bodies`].
+    pub contact_bodies: Vec<usize>,
+    /// What was computed.
+    pub summary: RunSummary,
+    started: Instant,
+}
+
+impl Outcome {
+    /// The solved body named `name`.
+    pub fn body(&self, name: &str) -> Option<&SolvedBody> {
+        self.bodies.iter().find(|b| b.body.name() == name)
+    }
+
+    /// Sets the time spent writing outputs and the total time (from the start of the mesh
+    /// generation).
+    pub fn set_output_time(&mut self, output: Duration) {
+        self.summary.times.output_s = output.as_secs_f64();
+        self.summary.times.total_s = self.started.elapsed().as_secs_f64();
+    }
+}
+
+/// Everything a run reports, printed as text and written as `summary.json`: the scene-level
+/// figures, and the contact library's own reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSummary {
+    /// The scene's title.
+    pub title: String,
+    /// Every body.
+    pub bodies: Vec<BodySummary>,
+    /// The contact pairs, if any.
+    pub contact: Option<ContactSummary>,
+    /// Earlier keys of the scene and their new places.
+    pub deprecations: Vec<Deprecation>,
+    /// Wall-clock times.
+    pub times: RunTimes,
+}
+
+/// One body in the summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct BodySummary {
+    /// Name.
+    pub name: String,
+    /// Where the mesh came from.
+    pub mesh: String,
+    /// The element.
+    pub element: String,
+    /// Vertices of the mesh solved (with inserted interface nodes).
+    pub vertices: usize,
+    /// Vertices inserted by the interface node insertion.
+    pub inserted_vertices: usize,
+    /// Polygons.
+    pub polygons: usize,
+    /// Unknowns (free degrees of freedom).
+    pub free_dofs: usize,
+    /// Prescribed (Dirichlet) degrees of freedom.
+    pub prescribed_dofs: usize,
+    /// The material.
+    pub material: String,
+    /// Mesh size h (largest polygon diameter).
+    pub mesh_size: f64,
+    /// With `accuracy` or `target_error`, a generated mesh: the relative energy error
+    /// `E_grad / |u|_1` the error model predicts for its size.
+    pub predicted_error: Option<f64>,
+    /// Smallest A1 ratio of the mesh solved.
+    pub gamma: f64,
+    /// Discrete strain energy.
+    pub strain_energy: f64,
+    /// Largest vertex displacement.
+    pub max_displacement: f64,
+    /// Largest element von Mises stress.
+    pub max_von_mises: f64,
+    /// Reactions of the Dirichlet conditions and rigid plates.
+    pub reactions: Vec<ReactionSummary>,
+}
+
+/// The reaction of one Dirichlet condition or rigid plate.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReactionSummary {
+    /// The part.
+    pub part: String,
+    /// The prescribed components ("x", "y", "x, y").
+    pub components: String,
+    /// True for a rigid plate (force control): `force` is then the prescribed resultant.
+    pub rigid_plate: bool,
+    /// The force the support exerts on the body, by component.
+    pub force: Vec<f64>,
+}
+
+/// The contact pairs in the summary: the library's reports, and what follows from them.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactSummary {
+    /// What was modelled: bodies, pairs (law, parts, nodes), rows, inserted vertices.
+    pub model: ModelSummary,
+    /// The solver as chosen (registry name and settings).
+    pub solver: Choice,
+    /// The report of the (last) contact solve: status, iterations, KKT residuals, warnings.
+    pub report: SolveReport,
+    /// What the contact problem cost, build and every solve together.
+    pub work: WorkCounters,
+    /// Laws iterated by a fixed point (Coulomb): its report.
+    pub fixed_point: Option<FixedPointReport>,
+    /// Resultant contact forces.
+    pub resultants: Resultants,
+    /// Node statuses.
+    pub nodes: NodeCounts,
+    /// Warnings about the answer (solver and model), one sentence each.
+    pub warnings: Vec<String>,
+    /// The Hertz comparison of every pair that asks for it.
+    pub hertz: Vec<HertzComparison>,
+    /// With a load history: the load factor, normal resultant and statuses of every step.
+    pub history: Vec<StepSummary>,
+}
+
+/// One step of a load history.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepSummary {
+    /// The load factor.
+    pub load_factor: f64,
+    /// Sum of the nodal normal forces.
+    pub normal_resultant: f64,
+    /// Node statuses.
+    pub nodes: NodeCounts,
+}
+
+/// Resultant contact forces.
+#[derive(Debug, Clone, Serialize)]
+pub struct Resultants {
+    /// Sum of the nodal normal forces (compression positive) along the contact normals: not
+    /// a load component where the normals tilt (curved contact).
+    pub normal: f64,
+    /// Sum of the nodal friction forces on the bodies A (a vector).
+    pub friction: Vec<f64>,
+    /// The total contact force on body A of the first pair (a vector; its y component is the
+    /// load `P` of a body pressed down onto its counterpart).
+    pub force_on_body_a: Vec<f64>,
+}
+
+/// Interface node statuses.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct NodeCounts {
+    /// All interface nodes.
+    pub total: usize,
+    /// Open (no contact force).
+    pub open: usize,
+    /// Stick.
+    pub stick: usize,
+    /// Slip (friction at its bound).
+    pub slip: usize,
+    /// In contact without friction (frictionless laws).
+    pub contact: usize,
+}
+
+/// Wall-clock times in seconds.
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct RunTimes {
+    /// Generating and reading meshes.
+    pub mesh_s: f64,
+    /// Interface node insertion and assembly.
+    pub assembly_s: f64,
+    /// Linear or contact solves.
+    pub solve_s: f64,
+    /// Element fields and quality figures.
+    pub post_s: f64,
+    /// Writing the output files.
+    pub output_s: f64,
+    /// From meshing to the last file written.
+    pub total_s: f64,
+}
+
+/// The computed contact zone against Hertz's solution for a cylinder of radius R (body A) on
+/// a half-space (body B or a rigid flat), plane problem, for the computed load P per unit
+/// thickness: `a = sqrt(4 P R / (pi E*))`, `p0 = 2 P / (pi a)`, with
+/// `1/E* = (1 - nu_A^2)/E_A + (1 - nu_B^2)/E_B` in plane strain (`1/E_A + 1/E_B` in plane
+/// stress; a rigid counterpart contributes nothing).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct HertzComparison {
+    /// The contact pair (index in the scene).
+    pub pair: usize,
+    /// R.
+    pub radius: f64,
+    /// E*.
+    pub effective_modulus: f64,
+    /// P: the magnitude of the total contact force on body A.
+    pub load: f64,
+    /// Hertz's half-width a for P.
+    pub half_width: f64,
+    /// Hertz's peak pressure p0 for P.
+    pub peak_pressure: f64,
+    /// Computed half-width: half the length of the contact zone, whose ends are taken halfway
+    /// between the outermost node in contact and the next (open) node.
+    pub computed_half_width: f64,
+    /// Computed peak pressure: the largest nodal pressure.
+    pub computed_peak_pressure: f64,
+    /// Centre of the computed contact zone (for plots).
+    pub centre: [f64; 2],
+}
+
+impl HertzComparison {
+    fn new(
+        pair: usize,
+        radius: f64,
+        a: &ElasticBody,
+        b: Option<&ElasticBody>,
+        nodes: &[InterfaceNode],
+    ) -> Self {
+        let compliance = |body: &ElasticBody| match young_poisson(body) {
+            Some((e, nu)) if body.material().plane() == Some(Plane::Strain) => (1.0 - nu * nu) / e,
+            Some((e, _)) => 1.0 / e,
+            None => 0.0,
+        };
+        let effective_modulus = 1.0 / (compliance(a) + b.map_or(0.0, compliance));
+        let load = nodes
+            .iter()
+            .map(|n| n.friction_force - n.normal * n.normal_force)
+            .sum::<vem_mesh::Vector>()
+            .norm();
+        let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();
+        let peak_pressure = 2.0 * load / (std::f64::consts::PI * half_width);
+        let (computed_half_width, centre) = contact_zone(nodes);
+        Self {
+            pair,
+            radius,
+            effective_modulus,
+            load,
+            half_width,
+            peak_pressure,
+            computed_half_width,
+            computed_peak_pressure: nodes.iter().map(|n| n.pressure).fold(0.0, f64::max),
+            centre,
+        }
+    }
+
+    /// Relative error of the computed half-width.
+    pub fn half_width_error(&self) -> f64 {
+        self.computed_half_width / self.half_width - 1.0
+    }
+
+    /// Relative error of the computed peak pressure.
+    pub fn peak_pressure_error(&self) -> f64 {
+        self.computed_peak_pressure / self.peak_pressure - 1.0
+    }
+}
+
+/// Half-length and centre of the contact zone around the node of largest pressure: the run
+/// of consecutive nodes in contact, extended on each side halfway to the next open node.
+fn contact_zone(nodes: &[InterfaceNode]) -> (f64, [f64; 2]) {
+    let Some(peak) =
+        (0..nodes.len()).max_by(|&i, &j| nodes[i].pressure.total_cmp(&nodes[j].pressure))
+    else {
+        return (0.0, [0.0, 0.0]);
+    };
+    if nodes[peak].status == NodeStatus::Open {
+        return (0.0, [nodes[peak].position.x, nodes[peak].position.y]);
+    }
+    let active = |i: usize| nodes[i].status != NodeStatus::Open;
+    let mut first = peak;
+    while first > 0 && active(first - 1) {
+        first -= 1;
+    }
+    let mut last = peak;
+    while last + 1 < nodes.len() && active(last + 1) {
+        last += 1;
+    }
+    let end = |inner: usize, outer: Option<usize>| match outer {
+        Some(o) => nodes[inner].position + 0.5 * (nodes[o].position - nodes[inner].position),
+        None => nodes[inner].position,
+    };
+    let start = end(first, first.checked_sub(1));
+    let stop = end(last, (last + 1 < nodes.len()).then_some(last + 1));
+    let centre = start + 0.5 * (stop - start);
+    (0.5 * (stop - start).norm(), [centre.x, centre.y])
+}
+
+/// Young's modulus and Poisson's ratio of an isotropic body.
+pub fn young_poisson(body: &ElasticBody) -> Option<(f64, f64)> {
+    body.material().lame().map(|(lambda, mu)| {
+        (
+            mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu),
+            lambda / (2.0 * (lambda + mu)),
+        )
+    })
+}
+
+/// "E = 1, nu = 0.3, plane strain" (isotropic) for reports.
+pub fn describe_material(body: &ElasticBody) -> String {
+    let plane = match body.material().plane() {
+        Some(Plane::Strain) => "plane strain",
+        Some(Plane::Stress) => "plane stress",
+        None => "general",
+    };
+    match young_poisson(body) {
+        Some((e, nu)) => format!("E = {}, nu = {}, {plane}", short(e), short(nu)),
+        None => plane.to_string(),
+    }
+}
+
+/// A number to six significant digits without trailing zeros: "100", "0.3", "2.1e11".
+pub fn short(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 {
+        return "0".into();
+    }
+    let trim = |text: &str| {
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            text.to_string()
+        }
+    };
+    if (1e-3..1e6).contains(&magnitude) {
+        let digits = (5 - magnitude.log10().floor() as i32).max(0) as usize;
+        trim(&format!("{value:.digits$}"))
+    } else {
+        let text = format!("{value:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        format!("{}e{exponent}", trim(mantissa))
+    }
+}
+
+/// `value` with a negative zero turned into 0, so that reports do not print "-0".
+fn tidy(value: f64) -> f64 {
+    value + 0.0
+}
+
+fn node_counts(result: &ContactResult) -> NodeCounts {
+    let (open, stick, slip) = result.status_counts();
+    let frictionless = result.model.tangential_rows == 0;
+    NodeCounts {
+        total: result.nodes.len(),
+        open,
+        stick: if frictionless { 0 } else { stick },
+        slip: if frictionless { 0 } else { slip },
+        contact: if frictionless { slip + stick } else { 0 },
+    }
+}
+
+/// "initial gaps from g0 to g1 at its N nodes" for an interface without overlap.
+fn gap_range(nodes: &[vem_contact::ContactNode]) -> String {
+    let (lo, hi) = nodes
+        .iter()
+        .map(|n| n.initial_gap)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
+            (lo.min(g), hi.max(g))
+        });
+    if nodes.is_empty() {
+        "no interface nodes".to_string()
+    } else {
+        format!(
+            "initial gaps from {lo:.3e} to {hi:.3e} at its {} nodes",
+            nodes.len()
+        )
+    }
+}
+
+impl Model {
+    /// Solves the scene: the bodies in contact by the contact library (every pair together),
+    /// every other body as plain elasticity (assembly and sparse Cholesky). With a load
+    /// history, every step in order; the outcome is the last step's.
+    ///
+    /// # Errors
+    /// A [`SceneError`] at the key at fault where one is (a body's condition, a pair), at the
+    /// root otherwise (a solver's failure carries its figures in the message).
+    pub fn solve(&self) -> Result<Outcome, SceneError> {
+        let now = Instant::now();
+        let started = now.checked_sub(self.mesh_time).unwrap_or(now);
+        let scene = self.scene();
+        let mut slots: Vec<Option<(ElasticBody, Solution)>> = vec![None; self.bodies.len()];
+        let mut times = RunTimes {
+            mesh_s: self.mesh_time.as_secs_f64(),
+            ..RunTimes::default()
+        };
+        let mut contact = None;
+        let mut contact_bodies = Vec::new();
+        let mut history = Vec::new();
+        let located = |e: SceneError| SceneError {
+            path: self.written(&e.path),
+            ..e
+        };
+        if let Some((problem, indices)) = &self.problem {
+            let mut solver = self
+                .registries
+                .solvers
+                .make_choice(&self.solver)
+                .map_err(|e| located(crate::build::registry_error(e, &KeyPath::key("solver"))))?;
+            let start = Instant::now();
+            let discretisation = problem
+                .discretise()
+                .map_err(|e| located(locate_contact(scene, e)))?;
+            let steps = scene
+                .history
+                .as_ref()
+                .map_or_else(|| vec![1.0], |h| h.steps.clone());
+            let overlap = Warning::initial_overlap(
+                discretisation
+                    .nodes()
+                    .iter()
+                    .map(|n| (n.position, n.normal, n.initial_gap)),
+            );
+            let mut work = discretisation.work();
+            let mut last = None;
+            for &factor in &steps {
+                let result = discretisation
+                    .solve_scaled(solver.as_mut(), factor)
+                    .map_err(|e| match e {
+                        ContactError::Solver(source @ ContactSolverError::Unbounded { .. }) => {
+                            let pairs: Vec<&str> = self
+                                .contacts
+                                .iter()
+                                .map(|c| c.description.as_str())
+                                .collect();
+                            SceneError::at(
+                                KeyPath::key("contact"),
+                                format!(
+                                    "the contact of {} gives the body no support under its load \
+                                     ({}): hold the body by a Dirichlet condition, or check that \
+                                     the contact part faces its counterpart: {}",
+                                    pairs.join("; "),
+                                    overlap.as_ref().map_or_else(
+                                        || gap_range(discretisation.nodes()),
+                                        |o| o.to_string()
+                                    ),
+                                    one_line(&source)
+                                ),
+                            )
+                        }
+                        e => located(locate_contact(scene, e)),
+                    })?;
+                work += result.work;
+                history.push(StepSummary {
+                    load_factor: factor,
+                    normal_resultant: tidy(result.normal_resultant()),
+                    nodes: node_counts(&result),
+                });
+                last = Some(result);
+            }
+            let mut result = last.expect("a history has at least one step");
+            result.work = work;
+            result.model.total_time = start.elapsed();
+            let stages = result.work.times;
+            times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
+            times.solve_s += stages.contact_solve.as_secs_f64();
+            for (b, &index) in std::mem::take(&mut result.bodies).into_iter().zip(indices) {
+                slots[index] = Some((b.body, b.solution));
+            }
+            contact_bodies = indices.clone();
+            contact = Some(result);
+        }
+        let load_factor = scene
+            .history
+            .as_ref()
+            .and_then(|h| h.steps.last().copied())
+            .unwrap_or(1.0);
+        for (index, slot) in slots.iter_mut().enumerate() {
+            if slot.is_none() {
+                let body = &self.bodies[index].body;
+                let elastic =
+                    |e| located(locate_elastic(scene, e).unwrap_or_else(|text| {
+                        SceneError::at(KeyPath::key("body").index(index), text)
+                    }));
+                let start = Instant::now();
+                let system = body.assemble().map_err(elastic)?;
+                times.assembly_s += start.elapsed().as_secs_f64();
+                let start = Instant::now();
+                let solution = body
+                    .solve_system(&system, &mut CholeskySolver::default())
+                    .map_err(elastic)?;
+                // Linear elasticity: the answer at a load factor is the factor times the one
+                // at full load.
+                let solution = if load_factor == 1.0 {
+                    solution
+                } else {
+                    let scaled: Vec<f64> =
+                        solution.displacement().iter().map(|u| load_factor * u).collect();
+                    body.solution_scaled(&system, scaled, load_factor)
+                        .map_err(elastic)?
+                };
+                times.solve_s += start.elapsed().as_secs_f64();
+                *slot = Some((body.clone(), solution));
+            }
+        }
+        let start = Instant::now();
+        let bodies = slots
+            .into_iter()
+            .enumerate()
+            .map(|(index, slot)| {
+                let (body, solution) = slot.expect("every body is solved");
+                let elastic = |e| {
+                    located(locate_elastic(scene, e).unwrap_or_else(|text| {
+                        SceneError::at(KeyPath::key("body").index(index), text)
+                    }))
+                };
+                let fields = body.element_fields(solution.displacement()).map_err(elastic)?;
+                let qualities = vem_mesh::quality::element_qualities(body.mesh());
+                Ok(SolvedBody {
+                    body,
+                    solution,
+                    fields,
+                    qualities,
+                })
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        times.post_s = start.elapsed().as_secs_f64();
+        times.total_s = times.mesh_s + times.assembly_s + times.solve_s + times.post_s;
+        let summary = self.summarise(&bodies, contact.as_ref(), times, history);
+        Ok(Outcome {
+            bodies,
+            contact,
+            contact_bodies,
+            summary,
+            started,
+        })
+    }
+
+    fn summarise(
+        &self,
+        bodies: &[SolvedBody],
+        contact: Option<&ContactResult>,
+        times: RunTimes,
+        history: Vec<StepSummary>,
+    ) -> RunSummary {
+        let body_summaries = bodies
+            .iter()
+            .zip(&self.bodies)
+            .map(|(solved, built)| {
+                let mesh = solved.body.mesh();
+                let dofs = solved.body.dofs();
+                let displacements = solved.solution.vertex_displacements();
+                BodySummary {
+                    name: solved.body.name().to_string(),
+                    mesh: built.mesh_source.clone(),
+                    element: built.element.clone(),
+                    predicted_error: built.predicted_error,
+                    vertices: mesh.n_vertices(),
+                    inserted_vertices: mesh.n_vertices() - built.body.mesh().n_vertices(),
+                    polygons: mesh.n_polygons(),
+                    free_dofs: dofs.n_free(),
+                    prescribed_dofs: dofs.n_prescribed(),
+                    material: describe_material(&solved.body),
+                    mesh_size: solved
+                        .qualities
+                        .iter()
+                        .map(|q| q.diameter)
+                        .fold(0.0, f64::max),
+                    gamma: solved
+                        .qualities
+                        .iter()
+                        .map(ElementQuality::gamma)
+                        .fold(f64::INFINITY, f64::min),
+                    strain_energy: solved.solution.strain_energy(),
+                    max_displacement: displacements.iter().map(|u| u.norm()).fold(0.0, f64::max),
+                    max_von_mises: solved
+                        .fields
+                        .iter()
+                        .map(|f| f.von_mises)
+                        .fold(0.0, f64::max),
+                    reactions: solved
+                        .solution
+                        .reactions()
+                        .iter()
+                        .zip(solved.body.dirichlet())
+                        .map(|(r, condition)| ReactionSummary {
+                            rigid_plate: condition.is_rigid_plate(),
+                            part: r.part.clone(),
+                            components: match r.component {
+                                Component::All => "x, y".to_string(),
+                                other => other.name().to_string(),
+                            },
+                            force: r.force.iter().map(|&f| tidy(f)).collect(),
+                        })
+                        .collect(),
+                }
+            })
+            .collect();
+        let contact_summary = contact.map(|result| {
+            let force = result.force_on_body_a();
+            let hertz = self
+                .contacts
+                .iter()
+                .enumerate()
+                .filter_map(|(k, c)| {
+                    let radius = c.hertz_radius?;
+                    let a = &self.bodies[c.body].body;
+                    let b = c.other.map(|o| &self.bodies[o].body);
+                    Some(HertzComparison::new(k, radius, a, b, result.pair_nodes(k)))
+                })
+                .collect();
+            ContactSummary {
+                model: result.model.clone(),
+                solver: self.solver.clone(),
+                report: result.report.clone(),
+                work: result.work,
+                fixed_point: result.fixed_point.clone(),
+                resultants: Resultants {
+                    normal: tidy(result.normal_resultant()),
+                    friction: result.friction_resultant().iter().map(|&f| tidy(f)).collect(),
+                    force_on_body_a: force.iter().map(|&f| tidy(f)).collect(),
+                },
+                nodes: node_counts(result),
+                warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
+                hertz,
+                history: if history.len() > 1 { history } else { Vec::new() },
+            }
+        });
+        RunSummary {
+            title: self
+                .scene()
+                .title
+                .clone()
+                .unwrap_or_else(|| "scene".to_string()),
+            bodies: body_summaries,
+            contact: contact_summary,
+            deprecations: self.deprecations().to_vec(),
+            times,
+        }
+    }
+}
+
+/// "1 iteration", "3 iterations".
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+impl fmt::Display for RunSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "{}", self.title)?;
+        for note in &self.deprecations {
+            writeln!(f, "  note: {note}")?;
+        }
+        for b in &self.bodies {
+            let inserted = if b.inserted_vertices > 0 {
+                format!(" ({} inserted at the interface)", b.inserted_vertices)
+            } else {
+                String::new()
+            };
+            writeln!(
+                f,
+                "  body '{}': {}; {} vertices{inserted}, {} polygons, {} DOFs ({} prescribed); \
+                 h = {:.3e}, gamma = {:.3}",
+                b.name,
+                b.mesh,
+                b.vertices,
+                b.polygons,
+                b.free_dofs,
+                b.prescribed_dofs,
+                b.mesh_size,
+                b.gamma
+            )?;
+            if let Some(e) = b.predicted_error {
+                writeln!(
+                    f,
+                    "    predicted relative energy error E_grad/|u|_1 = {:.2} % (error model \
+                     C/n of docs/tradeoff.md)",
+                    100.0 * e
+                )?;
+            }
+            writeln!(
+                f,
+                "    {}; max |u| = {:.4e}, max von Mises = {:.4e}, strain energy = {:.4e}",
+                b.material, b.max_displacement, b.max_von_mises, b.strain_energy
+            )?;
+            for r in &b.reactions {
+                let what = if r.rigid_plate {
+                    "rigid plate force"
+                } else {
+                    "reaction"
+                };
+                let force: Vec<String> = r.force.iter().map(|v| format!("{v:.6e}")).collect();
+                writeln!(
+                    f,
+                    "    {what} on '{}' ({}): ({})",
+                    r.part,
+                    r.components,
+                    force.join(", ")
+                )?;
+            }
+        }
+        let Some(c) = &self.contact else {
+            writeln!(f, "  no contact: plain linear elasticity")?;
+            return self.write_times(f);
+        };
+        for pair in &c.model.pairs {
+            writeln!(f, "  contact: {}, {}", pair.description, pair.law)?;
+        }
+        let tangential = if c.model.tangential_rows == 0 {
+            "no tangential rows".to_string()
+        } else {
+            count(c.model.tangential_rows, "tangential row", "tangential rows")
+        };
+        writeln!(
+            f,
+            "    {}, {tangential}, {} inserted",
+            count(c.model.normal_rows, "normal row", "normal rows"),
+            count(c.model.inserted_nodes, "vertex", "vertices")
+        )?;
+        writeln!(
+            f,
+            "    solver {}: {}, {}",
+            c.report.solver,
+            c.report.status.describe(),
+            count(c.report.iterations, "iteration", "iterations")
+        )?;
+        let w = &c.work;
+        writeln!(
+            f,
+            "    work: {}, {}, {}, {}",
+            count(w.assemblies, "assembly", "assemblies"),
+            count(w.symbolic_analyses, "symbolic analysis", "symbolic analyses"),
+            count(w.numeric_factorisations, "numeric factorisation", "numeric factorisations"),
+            count(w.triangular_solves, "triangular solve", "triangular solves")
+        )?;
+        if let Some(fp) = &c.fixed_point {
+            writeln!(
+                f,
+                "    Coulomb fixed point: {}, last change {:.2e}, {} in all",
+                count(fp.steps, "Tresca solve", "Tresca solves"),
+                fp.residual,
+                count(fp.solver_iterations, "solver iteration", "solver iterations")
+            )?;
+        }
+        let r = &c.report.residuals;
+        writeln!(
+            f,
+            "    KKT residuals (relative to F = {:.3e}, U = {:.3e}): penetration {:.2e}, negative \
+             force {:.2e}, complementarity {:.2e}, stationarity {:.2e}",
+            r.scales.force,
+            r.scales.displacement,
+            r.max_penetration,
+            r.negative_normal_force,
+            r.complementarity,
+            r.stationarity
+        )?;
+        if c.model.tangential_rows > 0 {
+            writeln!(
+                f,
+                "                   friction bound {:.2e}, slip direction {:.2e}",
+                r.friction_bound_violation, r.slip_direction_violation
+            )?;
+        }
+        let force: Vec<String> = c
+            .resultants
+            .force_on_body_a
+            .iter()
+            .map(|v| format!("{v:.6e}"))
+            .collect();
+        writeln!(
+            f,
+            "    contact force on body A: ({}); sum of normal forces {:.6e}",
+            force.join(", "),
+            c.resultants.normal
+        )?;
+        let n = &c.nodes;
+        if c.model.tangential_rows == 0 {
+            writeln!(
+                f,
+                "    nodes: {} ({} open, {} in contact)",
+                n.total, n.open, n.contact
+            )?;
+        } else {
+            writeln!(
+                f,
+                "    nodes: {} ({} open, {} stick, {} slip)",
+                n.total, n.open, n.stick, n.slip
+            )?;
+        }
+        for step in &c.history {
+            writeln!(
+                f,
+                "    load factor {}: sum of normal forces {:.6e}, {} open",
+                step.load_factor, step.normal_resultant, step.nodes.open
+            )?;
+        }
+        for warning in &c.warnings {
+            writeln!(f, "    warning: {warning}")?;
+        }
+        for h in &c.hertz {
+            writeln!(
+                f,
+                "    Hertz (R = {}, E* = {:.6e}) for the load magnitude P = {:.6e}:",
+                h.radius, h.effective_modulus, h.load
+            )?;
+            writeln!(
+                f,
+                "      half-width a:     computed {:.5e}, Hertz {:.5e} ({:+.1}%)",
+                h.computed_half_width,
+                h.half_width,
+                100.0 * h.half_width_error()
+            )?;
+            writeln!(
+                f,
+                "      peak pressure p0: computed {:.5e}, Hertz {:.5e} ({:+.1}%)",
+                h.computed_peak_pressure,
+                h.peak_pressure,
+                100.0 * h.peak_pressure_error()
+            )?;
+        }
+        self.write_times(f)
+    }
+}
+
+impl RunSummary {
+    fn write_times(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let t = &self.times;
+        writeln!(
+            f,
+            "  times: mesh {:.3} s, assembly {:.3} s, solve {:.3} s, post {:.3} s, output {:.3} s, \
+             total {:.3} s",
+            t.mesh_s, t.assembly_s, t.solve_s, t.post_s, t.output_s, t.total_s
+        )
+    }
+}
