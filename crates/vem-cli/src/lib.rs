@@ -1,21 +1,21 @@
-//! The `vem` command as a library: contact scenes described in TOML, solved with the
-//! lowest-order virtual element method, written as files one can look at.
+//! The `vem` command as a library: contact scenes described in TOML (the problem description
+//! of `vem_scene`), solved with the lowest-order virtual element method, written as files one
+//! can look at.
 //!
 //! A run goes through four stages, each a public step so that tests and other programs use
 //! exactly what the binary uses:
 //!
-//! 1. [`Scene::load`] / [`Scene::parse`]: the TOML file, read with serde
-//!    (`deny_unknown_fields`) and checked; every error names the file, line and column;
-//! 2. [`Model::build`]: meshes generated or read from Gmsh files, part names checked against
-//!    them (an unknown part lists the parts that exist), elastic bodies, the contact problem
-//!    and solver; only what the scene requires (no contact pair: plain elasticity; a
-//!    frictionless law: no tangential rows; a rigid obstacle: a gap function, no mesh);
-//! 3. [`Model::solve`]: the [`Outcome`] with its [`RunSummary`];
+//! 1. [`Scene::load`] / [`Scene::parse`]: the TOML file read into a `vem_scene::Scene` and
+//!    checked; every error names the file, line and column;
+//! 2. [`Model::build`]: meshes generated or read, part names checked against them (an unknown
+//!    part lists the parts that exist), elastic bodies, the contact problem of every pair and
+//!    the solver; only what the scene requires;
+//! 3. [`Model::solve`]: the [`Outcome`] with its summary;
 //! 4. [`Outcome::write`]: `<body>.vtu`, `contact.csv`, `deformed.svg`, `pressure.svg`,
 //!    `slip.svg` (with friction) and `summary.json`, each written whole or not at all.
 //!
-//! [`run`] does all four with the built-in solvers and elements, [`run_with`] with the
-//! [`Registries`] of one's own (`vem_contact::SolverRegistry`, `vem_space::ElementRegistry`). The scene format is documented key by key in `docs/scenes.md`.
+//! [`run`] does all four with the built-in solvers, elements and laws, [`run_with`] with the
+//! [`Registries`] of one's own. The scene format is documented key by key in `docs/scenes.md`.
 //!
 //! # Example: a block pressed on a rigid line
 //!
@@ -28,6 +28,8 @@
 //! use vem_cli::{Model, Scene};
 //!
 //! let scene = Scene::parse("block.toml", r#"
+//!     solver = { name = "exact", tolerance = 1e-13 }  # forces are checked to 1e-6
+//!
 //!     [[body]]
 //!     name = "block"
 //!     mesh = { family = "voronoi", rectangle = [[0, 0], [2, 1]], n = 6, seed = 3 }
@@ -39,8 +41,6 @@
 //!     body = "block"
 //!     part = "bottom"
 //!     obstacle = { line = { point = [0, 0], normal = [0, 1] } }
-//!     solver = "exact"
-//!     tolerance = 1e-13  # tighter than the default 1e-10: forces are checked to 1e-6
 //! "#)?;
 //! let outcome = Model::build(&scene)?.solve()?;
 //! let contact = outcome.contact.as_ref().unwrap();
@@ -50,7 +50,7 @@
 //! assert!((contact.normal_resultant() / 0.02 - 1.0).abs() < 1e-6);
 //! // Frictionless against an obstacle: one body, normal rows only.
 //! assert_eq!(outcome.summary.bodies.len(), 1);
-//! assert_eq!(outcome.summary.contact.as_ref().unwrap().tangential_rows, 0);
+//! assert_eq!(outcome.summary.contact.as_ref().unwrap().model.tangential_rows, 0);
 //! # Ok::<(), vem_cli::CliError>(())
 //! ```
 #![deny(missing_docs)]
@@ -61,23 +61,18 @@ mod model;
 mod outcome;
 mod output;
 mod plot;
-pub mod resources;
 pub mod scene;
 
 use std::path::{Path, PathBuf};
 
 pub use error::{CliError, Location};
 pub use mesh_command::{convert_mesh, generate_mesh, generate_mesh_within, MeshReport};
-pub use model::{
-    CheckReport, CheckedBody, CheckedContact, Model, ModelBody, ModelContact, ModelCounterpart,
-    Registries,
-};
-pub use outcome::{
-    BodySummary, ContactSummary, FixedPointSummary, HertzComparison, NodeCounts, Outcome,
-    ReactionSummary, Residuals, Resultants, RunSummary, SolvedBody, Times, Work,
-};
+pub use model::{CheckReport, CheckedBody, CheckedContact, Model};
+pub use outcome::Outcome;
 pub use output::{status_label, CONTACT_COLUMNS, DEFAULT_WIDTH};
 pub use scene::Scene;
+pub use vem_scene::resources;
+pub use vem_scene::{Registries, RunSummary, SolvedBody};
 
 /// The default output directory of a scene: `out/<scene file stem>` under the current
 /// directory.

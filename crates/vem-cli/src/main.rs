@@ -123,7 +123,7 @@ fn load(path: &Path, memory_limit: Option<f64>) -> Result<Scene, CliError> {
 }
 
 fn command_line_limit(gib: f64) -> Result<MemoryLimit, CliError> {
-    MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine)
+    MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine).map_err(CliError::Usage)
 }
 
 fn run(scene: &Path, out: Option<PathBuf>, memory_limit: Option<f64>) -> Result<(), CliError> {

@@ -15,9 +15,9 @@ use vem_mesh::io::{
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
-use crate::outcome::{tidy, SolvedBody};
 use crate::plot;
 use crate::{CliError, Outcome};
+use vem_scene::SolvedBody;
 
 /// The columns of `contact.csv`, in order.
 pub const CONTACT_COLUMNS: &str =
@@ -81,14 +81,14 @@ impl Outcome {
             })
             .map_err(mesh_error(&path))?;
             written.push(path);
-            let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.as_ref());
+            let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.first());
             let path = dir.join("pressure.svg");
             plot::pressure(
                 &path,
                 &self.summary.title,
                 &contact.nodes,
                 hertz,
-                self.friction_bound(),
+                self.friction_bounds.clone(),
                 width,
             )?;
             written.push(path);
@@ -115,18 +115,6 @@ impl Outcome {
         self.output_width.unwrap_or(DEFAULT_WIDTH)
     }
 
-    /// The friction bound per unit length at each interface node, for plots: `g_F` (Tresca)
-    /// or `F p` (Coulomb); `None` when frictionless.
-    fn friction_bound(&self) -> Option<Vec<f64>> {
-        let contact = self.summary.contact.as_ref()?;
-        let nodes = &self.contact.as_ref()?.nodes;
-        match (contact.friction_bound, contact.coefficient) {
-            (Some(g), _) => Some(vec![g; nodes.len()]),
-            (None, Some(f)) => Some(nodes.iter().map(|n| f * n.pressure).collect()),
-            _ => None,
-        }
-    }
-
     /// For each body, a nodal value (`value` of each interface node) at its interface vertices
     /// (zero elsewhere).
     fn contact_pressure_at_vertices(
@@ -134,22 +122,22 @@ impl Outcome {
         value: impl Fn(&InterfaceNode) -> f64,
     ) -> Vec<Option<Vec<f64>>> {
         let mut pressure: Vec<Option<Vec<f64>>> = vec![None; self.bodies.len()];
-        let (Some(contact), Some(indices)) = (&self.contact, &self.contact_bodies) else {
+        let Some(contact) = &self.contact else {
             return pressure;
         };
-        for (side, &index) in indices.iter().enumerate() {
-            let mut values = vec![0.0; self.bodies[index].body.mesh().n_vertices()];
-            for node in &contact.nodes {
-                let vertex = if side == 0 {
-                    Some(node.vertex_a)
-                } else {
-                    node.vertex_b
+        for node in &contact.nodes {
+            let sides = [
+                (node.body_a, Some(node.vertex_a)),
+                (node.body_b.unwrap_or(usize::MAX), node.vertex_b),
+            ];
+            for (body, vertex) in sides {
+                let (Some(&index), Some(v)) = (self.contact_bodies.get(body), vertex) else {
+                    continue;
                 };
-                if let Some(v) = vertex {
-                    values[v] = value(node);
-                }
+                let values = pressure[index]
+                    .get_or_insert_with(|| vec![0.0; self.bodies[index].body.mesh().n_vertices()]);
+                values[v] = value(node);
             }
-            pressure[index] = Some(values);
         }
         pressure
     }
@@ -193,11 +181,12 @@ impl Outcome {
                     .with_cell_values(s)
             })
             .collect();
-        let obstacle = self
-            .obstacle
-            .as_ref()
-            .and_then(|o| obstacle_outline(o, min, max));
-        if let Some(mesh) = &obstacle {
+        let outlines: Vec<Mesh> = self
+            .obstacles
+            .iter()
+            .filter_map(|o| obstacle_outline(o, min, max))
+            .collect();
+        for mesh in &outlines {
             layers.push(SvgLayer::new(mesh).with_label("obstacle"));
         }
         let (lo, hi) = von_mises
@@ -438,18 +427,18 @@ fn write_contact_csv(
         writeln!(
             w,
             "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
-            tidy(n.position.x),
-            tidy(n.position.y),
-            tidy(n.normal.x),
-            tidy(n.normal.y),
-            tidy(n.initial_gap),
-            tidy(n.normal_jump),
-            tidy(n.normal_force),
-            tidy(n.pressure),
-            tidy(n.consistent_pressure),
-            tidy(n.friction_t()),
-            tidy(n.consistent_friction_t()),
-            tidy(n.slip_t()),
+            n.position.x + 0.0,
+            n.position.y + 0.0,
+            n.normal.x + 0.0,
+            n.normal.y + 0.0,
+            n.initial_gap + 0.0,
+            n.normal_jump + 0.0,
+            n.normal_force + 0.0,
+            n.pressure + 0.0,
+            n.consistent_pressure + 0.0,
+            n.friction_t() + 0.0,
+            n.consistent_friction_t() + 0.0,
+            n.slip_t() + 0.0,
             status_label(n.status, frictionless)
         )?;
     }

@@ -13,8 +13,8 @@ use plotters::prelude::*;
 use vem_contact::{InterfaceNode, NodeStatus};
 use vem_mesh::io::write_atomically;
 
-use crate::outcome::HertzComparison;
 use crate::CliError;
+use vem_scene::HertzComparison;
 
 /// Points of a curve.
 type Curve = Vec<(f64, f64)>;

@@ -31,8 +31,8 @@
 use std::fmt;
 use std::str::FromStr;
 
-use vem_space::Options;
 use crate::solver::SettingsError;
+use vem_space::Options;
 
 /// A named solver setting with the error it aims at (see the module docs). Ordered from the
 /// cheapest and least accurate to the most expensive and most accurate.

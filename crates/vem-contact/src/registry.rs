@@ -80,8 +80,10 @@ impl SolverRegistry {
             "condensed",
             "condensation onto the interface: one factorisation, exact dense interface problem",
             |o| {
-                Ok(Box::new(CondensedSolver::new(CondensedSettings::from_options(o)?))
-                    as Box<dyn ContactSolver>)
+                Ok(
+                    Box::new(CondensedSolver::new(CondensedSettings::from_options(o)?))
+                        as Box<dyn ContactSolver>,
+                )
             },
         )
         .expect("built-in names are valid and distinct");
@@ -89,15 +91,20 @@ impl SolverRegistry {
         r.register(
             "exact",
             "convex QP by Clarabel's interior point (tolerance: gap and feasibility)",
-            |o| Ok(Box::new(ExactSolver::new(ExactSettings::from_options(o)?)) as Box<dyn ContactSolver>),
+            |o| {
+                Ok(Box::new(ExactSolver::new(ExactSettings::from_options(o)?))
+                    as Box<dyn ContactSolver>)
+            },
         )
         .expect("built-in names are valid and distinct");
         r.register(
             "penalty",
             "penalty method, semismooth Newton with exact line search",
             |o| {
-                Ok(Box::new(PenaltySolver::new(PenaltySettings::from_options(o)?))
-                    as Box<dyn ContactSolver>)
+                Ok(
+                    Box::new(PenaltySolver::new(PenaltySettings::from_options(o)?))
+                        as Box<dyn ContactSolver>,
+                )
             },
         )
         .expect("built-in names are valid and distinct");
@@ -105,8 +112,10 @@ impl SolverRegistry {
             "active-set",
             "primal-dual active set on the exact KKT conditions",
             |o| {
-                Ok(Box::new(ActiveSetSolver::new(ActiveSetSettings::from_options(o)?))
-                    as Box<dyn ContactSolver>)
+                Ok(
+                    Box::new(ActiveSetSolver::new(ActiveSetSettings::from_options(o)?))
+                        as Box<dyn ContactSolver>,
+                )
             },
         )
         .expect("built-in names are valid and distinct");
@@ -231,10 +240,14 @@ impl<const D: usize> LawRegistry<D> {
     pub fn builtin() -> Self {
         let mut registry = Self::empty();
         let r = &mut registry.0;
-        r.register("frictionless", "frictionless (Signorini-type) contact, problem P1", |o| {
-            o.refuse_all("the frictionless law")?;
-            Ok(Arc::new(Frictionless) as Arc<dyn ContactLaw<D>>)
-        })
+        r.register(
+            "frictionless",
+            "frictionless (Signorini-type) contact, problem P1",
+            |o| {
+                o.refuse_all("the frictionless law")?;
+                Ok(Arc::new(Frictionless) as Arc<dyn ContactLaw<D>>)
+            },
+        )
         .expect("built-in names are valid and distinct");
         r.register(
             "tresca",
@@ -358,7 +371,10 @@ mod tests {
         let duplicate = registry.register("exact", "again", |_| {
             Ok(Box::new(ExactSolver::default()) as Box<dyn ContactSolver>)
         });
-        assert!(matches!(duplicate, Err(RegistryError::DuplicateName { .. })));
+        assert!(matches!(
+            duplicate,
+            Err(RegistryError::DuplicateName { .. })
+        ));
     }
 
     #[test]
@@ -383,12 +399,18 @@ mod tests {
             )
             .err()
             .unwrap();
-        assert_eq!(err.option_path(), Some("fixed_point.max_iterations"), "{err}");
+        assert_eq!(
+            err.option_path(),
+            Some("fixed_point.max_iterations"),
+            "{err}"
+        );
         let err = laws
             .make("tresca", &Options::new().with("friction_bound", -1.0))
             .err()
             .unwrap();
         assert_eq!(err.option_path(), Some("friction_bound"), "{err}");
-        assert!(laws.make("frictionless", &Options::new().with("coefficient", 1)).is_err());
+        assert!(laws
+            .make("frictionless", &Options::new().with("coefficient", 1))
+            .is_err());
     }
 }

@@ -520,7 +520,10 @@ mod tests {
         assert_eq!(value("t", 0.0, 0.0), 0.5);
         assert_eq!(value("1.5e-3 + 2E2", 0.0, 0.0), 200.0015);
         assert!((value("atan2(y, x) - pi / 4", 1.0, 1.0)).abs() < 1e-15);
-        assert_eq!(value("max(x, y) + min(x, y) + abs(-2) + sign(-3)", 1.0, 5.0), 7.0);
+        assert_eq!(
+            value("max(x, y) + min(x, y) + abs(-2) + sign(-3)", 1.0, 5.0),
+            7.0
+        );
         assert!((value("sqrt(x^2 + y^2)", 3.0, 4.0) - 5.0).abs() < 1e-15);
         assert!((value("ln(e) + log10(100) + exp(0) + cos(0)", 0.0, 0.0) - 5.0).abs() < 1e-15);
     }
@@ -553,7 +556,11 @@ mod tests {
         ];
         for (source, column, message) in cases {
             let err = Expression::parse(source).unwrap_err();
-            assert_eq!((err.column, err.message.as_str()), (column, message), "{source}");
+            assert_eq!(
+                (err.column, err.message.as_str()),
+                (column, message),
+                "{source}"
+            );
         }
     }
 

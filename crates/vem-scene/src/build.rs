@@ -18,8 +18,8 @@ use vem_space::{Choice, ElementRegistry, RegistryError, SpaceError};
 
 use crate::check::{body_index, list, Checked};
 use crate::description::{
-    BodyDescription, ContactDescription, NormalDescription, ObstacleDescription,
-    PlaneDescription, Scene,
+    BodyDescription, ContactDescription, NormalDescription, ObstacleDescription, PlaneDescription,
+    Scene,
 };
 use crate::error::one_line;
 use crate::resources::{Footprint, LimitOrigin, MemoryLimit};
@@ -155,16 +155,14 @@ impl Model {
         let mut contacts = Vec::with_capacity(scene.contacts.len());
         let mut pairs = Vec::with_capacity(scene.contacts.len());
         let mut in_problem: Vec<usize> = Vec::new();
-        let slot = |i: usize, in_problem: &mut Vec<usize>| match in_problem
-            .iter()
-            .position(|&j| j == i)
-        {
-            Some(k) => k,
-            None => {
-                in_problem.push(i);
-                in_problem.len() - 1
-            }
-        };
+        let slot =
+            |i: usize, in_problem: &mut Vec<usize>| match in_problem.iter().position(|&j| j == i) {
+                Some(k) => k,
+                None => {
+                    in_problem.push(i);
+                    in_problem.len() - 1
+                }
+            };
         for (k, spec) in scene.contacts.iter().enumerate() {
             let path = KeyPath::key("contact").index(k);
             let (contact, pair) = build_contact(scene, spec, &bodies, registries, &path)?;
@@ -174,9 +172,8 @@ impl Model {
             contacts.push(contact);
         }
         let problem = (!pairs.is_empty()).then(|| {
-            let mut problem = ContactProblem::new(
-                in_problem.iter().map(|&i| bodies[i].body.clone()).collect(),
-            );
+            let mut problem =
+                ContactProblem::new(in_problem.iter().map(|&i| bodies[i].body.clone()).collect());
             for pair in pairs {
                 problem = problem.with_pair(pair.pair);
             }
@@ -342,14 +339,17 @@ fn generated_size(
 }
 
 /// The rectangle and family of a generated mesh (checked by `check`).
-fn generator(spec: &BodyDescription, path: &KeyPath) -> Result<(MeshFamily, Rectangle), SceneError> {
+fn generator(
+    spec: &BodyDescription,
+    path: &KeyPath,
+) -> Result<(MeshFamily, Rectangle), SceneError> {
     let mesh = &spec.mesh;
     let (Some(family), Some(rectangle)) = (&mesh.family, &mesh.rectangle) else {
         return Err(SceneError::at(path.at("mesh"), "incomplete mesh"));
     };
-    let family: MeshFamily = family
-        .parse()
-        .map_err(|e: vem_mesh::MeshError| SceneError::at(path.at("mesh").at("family"), e.to_string()))?;
+    let family: MeshFamily = family.parse().map_err(|e: vem_mesh::MeshError| {
+        SceneError::at(path.at("mesh").at("family"), e.to_string())
+    })?;
     let corner = |k: usize| Point::new(rectangle[k][0], rectangle[k][1]);
     Ok((family, Rectangle::new(corner(0), corner(1))))
 }
@@ -407,7 +407,9 @@ fn check_memory_of_meshes(
 ) -> Result<(), SceneError> {
     let total = meshes
         .iter()
-        .fold(Footprint::default(), |sum, (mesh, _, _)| sum + Footprint::of_mesh(mesh));
+        .fold(Footprint::default(), |sum, (mesh, _, _)| {
+            sum + Footprint::of_mesh(mesh)
+        });
     limit
         .check(
             total.run_bytes(),
@@ -436,11 +438,12 @@ fn build_mesh(
             .map(str::to_ascii_lowercase);
         let read = match extension.as_deref() {
             Some("msh") => vem_mesh::io::read_gmsh(&full),
-            Some("vtu") | Some("vtk") => read_vtk(&full, &spec.mesh.part_names)
-                .map_err(|reason| vem_mesh::MeshError::Read {
+            Some("vtu") | Some("vtk") => {
+                read_vtk(&full, &spec.mesh.part_names).map_err(|reason| vem_mesh::MeshError::Read {
                     path: full.clone(),
                     reason,
-                }),
+                })
+            }
             Some("txt") | Some("poly") => vem_mesh::io::read_polymesher(&full),
             _ => {
                 return Err(SceneError::at(
@@ -543,13 +546,28 @@ fn build_body(
         |s| format!("{}: {s}", element.name()),
     );
     for (k, d) in spec.dirichlet.iter().enumerate() {
-        check_part(&mesh, &name, &d.part, &path.at("dirichlet").index(k).at("part"))?;
+        check_part(
+            &mesh,
+            &name,
+            &d.part,
+            &path.at("dirichlet").index(k).at("part"),
+        )?;
     }
     for (k, r) in spec.rigid_plate.iter().enumerate() {
-        check_part(&mesh, &name, &r.part, &path.at("rigid_plate").index(k).at("part"))?;
+        check_part(
+            &mesh,
+            &name,
+            &r.part,
+            &path.at("rigid_plate").index(k).at("part"),
+        )?;
     }
     for (k, t) in spec.traction.iter().enumerate() {
-        check_part(&mesh, &name, &t.part, &path.at("traction").index(k).at("part"))?;
+        check_part(
+            &mesh,
+            &name,
+            &t.part,
+            &path.at("traction").index(k).at("part"),
+        )?;
     }
     let t = load_time(scene);
     let mut pressures = Vec::new();
@@ -610,9 +628,9 @@ fn build_body(
             Vector::new(force.at(&at, t, 0), force.at(&at, t, 1))
         });
     }
-    let body = builder
-        .build()
-        .map_err(|e| locate_elastic(scene, e).unwrap_or_else(|e| SceneError::at(path.clone(), e)))?;
+    let body = builder.build().map_err(|e| {
+        locate_elastic(scene, e).unwrap_or_else(|e| SceneError::at(path.clone(), e))
+    })?;
     Ok(ModelBody {
         body,
         mesh_source,
@@ -657,7 +675,12 @@ fn build_contact(
             (Some(other), Some(other_part), _) => {
                 let b = body_index(scene, other, &path.at("other_body"))?;
                 let body_b = &bodies[b].body;
-                check_part(body_b.mesh(), body_b.name(), other_part, &path.at("other_part"))?;
+                check_part(
+                    body_b.mesh(),
+                    body_b.name(),
+                    other_part,
+                    &path.at("other_part"),
+                )?;
                 let description = format!(
                     "body '{}' part '{}' against body '{}' part '{other_part}'",
                     body_a.name(),
@@ -750,7 +773,9 @@ pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> Result<Scene
         Some(KeyPath::key("body").index(b).at(list).index(k))
     };
     let path = match &error {
-        ElasticError::Traction { body: b, part, .. } => body(b).and_then(|b| entry(b, "traction", part)),
+        ElasticError::Traction { body: b, part, .. } => {
+            body(b).and_then(|b| entry(b, "traction", part))
+        }
         ElasticError::NonFiniteDirichlet { body: b, part, .. }
         | ElasticError::ConflictingDirichlet {
             body: b,
@@ -779,8 +804,9 @@ pub(crate) fn locate_elastic(scene: &Scene, error: ElasticError) -> Result<Scene
 /// The contact layer's `error` at the scene entry it comes from.
 pub(crate) fn locate_contact(scene: &Scene, error: ContactError) -> SceneError {
     match error {
-        ContactError::Elastic(e) => locate_elastic(scene, e)
-            .unwrap_or_else(|text| SceneError::at(KeyPath::root(), text)),
+        ContactError::Elastic(e) => {
+            locate_elastic(scene, e).unwrap_or_else(|text| SceneError::at(KeyPath::root(), text))
+        }
         other => {
             // A pair's error names its index only through its context; the whole problem
             // otherwise.

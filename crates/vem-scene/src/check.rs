@@ -98,7 +98,10 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
     if let Some(history) = &scene.history {
         let path = KeyPath::key("history").at("steps");
         if history.steps.is_empty() {
-            return Err(SceneError::at(path, "a load history needs at least one step"));
+            return Err(SceneError::at(
+                path,
+                "a load history needs at least one step",
+            ));
         }
         for (k, &s) in history.steps.iter().enumerate() {
             number(s, &path.index(k), "a load factor")?;
@@ -155,10 +158,8 @@ fn fold_stabilisations(checked: &mut Checked) -> Result<(), SceneError> {
             }
         };
         let stabilisation = Choice::with_options(name, stabilisation);
-        let element = Choice::with_options(
-            "vem1",
-            Options::new().with("stabilisation", &stabilisation),
-        );
+        let element =
+            Choice::with_options("vem1", Options::new().with("stabilisation", &stabilisation));
         checked.deprecations.push(Deprecation {
             old: path.at("stabilisation").to_string(),
             new: format!("element = {}", inline(&element)),
@@ -587,7 +588,11 @@ fn check_contact(
                 exact_len(line.normal.len(), DIMENSION, &at.at("line").at("normal"))?;
             }
             if let Some(circle) = &obstacle.circle {
-                exact_len(circle.centre.len(), DIMENSION, &at.at("circle").at("centre"))?;
+                exact_len(
+                    circle.centre.len(),
+                    DIMENSION,
+                    &at.at("circle").at("centre"),
+                )?;
             }
             if let Some(points) = &obstacle.polyline {
                 for (k, p) in points.iter().enumerate() {

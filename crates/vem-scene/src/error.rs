@@ -142,9 +142,15 @@ mod tests {
 
     #[test]
     fn paths_read_as_written() {
-        let path = KeyPath::key("contact").index(0).at("law").join("fixed_point.tolerance");
+        let path = KeyPath::key("contact")
+            .index(0)
+            .at("law")
+            .join("fixed_point.tolerance");
         assert_eq!(path.to_string(), "contact[0].law.fixed_point.tolerance");
-        assert_eq!(KeyPath::key("body").join("[2].mesh").to_string(), "body[2].mesh");
+        assert_eq!(
+            KeyPath::key("body").join("[2].mesh").to_string(),
+            "body[2].mesh"
+        );
         let known = KeyPath::key("contact").index(0);
         assert_eq!(path.known_prefix(|p| *p == known), known);
         assert_eq!(

@@ -18,7 +18,6 @@ use std::fmt;
 use vem_mesh::generators::MeshSize;
 use vem_mesh::Mesh;
 
-
 /// Bytes per polygon corner of a mesh (its connectivity, edges, parts and the generator's
 /// scratch).
 pub const MESH_BYTES_PER_CORNER: f64 = 64.0;

@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 use vem_contact::{
-    ContactError, ContactResult, ContactSolverError, FixedPointReport, InterfaceNode,
-    ModelSummary, NodeStatus, SolveReport, Warning, WorkCounters,
+    ContactError, ContactResult, ContactSolverError, FixedPointReport, InterfaceNode, ModelSummary,
+    NodeStatus, SolveReport, Warning, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::quality::ElementQuality;
@@ -496,10 +496,11 @@ impl Model {
         for (index, slot) in slots.iter_mut().enumerate() {
             if slot.is_none() {
                 let body = &self.bodies[index].body;
-                let elastic =
-                    |e| located(locate_elastic(scene, e).unwrap_or_else(|text| {
+                let elastic = |e| {
+                    located(locate_elastic(scene, e).unwrap_or_else(|text| {
                         SceneError::at(KeyPath::key("body").index(index), text)
-                    }));
+                    }))
+                };
                 let start = Instant::now();
                 let system = body.assemble().map_err(elastic)?;
                 times.assembly_s += start.elapsed().as_secs_f64();
@@ -512,8 +513,11 @@ impl Model {
                 let solution = if load_factor == 1.0 {
                     solution
                 } else {
-                    let scaled: Vec<f64> =
-                        solution.displacement().iter().map(|u| load_factor * u).collect();
+                    let scaled: Vec<f64> = solution
+                        .displacement()
+                        .iter()
+                        .map(|u| load_factor * u)
+                        .collect();
                     body.solution_scaled(&system, scaled, load_factor)
                         .map_err(elastic)?
                 };
@@ -532,7 +536,9 @@ impl Model {
                         SceneError::at(KeyPath::key("body").index(index), text)
                     }))
                 };
-                let fields = body.element_fields(solution.displacement()).map_err(elastic)?;
+                let fields = body
+                    .element_fields(solution.displacement())
+                    .map_err(elastic)?;
                 let qualities = vem_mesh::quality::element_qualities(body.mesh());
                 Ok(SolvedBody {
                     body,
@@ -635,13 +641,21 @@ impl Model {
                 fixed_point: result.fixed_point.clone(),
                 resultants: Resultants {
                     normal: tidy(result.normal_resultant()),
-                    friction: result.friction_resultant().iter().map(|&f| tidy(f)).collect(),
+                    friction: result
+                        .friction_resultant()
+                        .iter()
+                        .map(|&f| tidy(f))
+                        .collect(),
                     force_on_body_a: force.iter().map(|&f| tidy(f)).collect(),
                 },
                 nodes: node_counts(result),
                 warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
                 hertz,
-                history: if history.len() > 1 { history } else { Vec::new() },
+                history: if history.len() > 1 {
+                    history
+                } else {
+                    Vec::new()
+                },
             }
         });
         RunSummary {
@@ -747,8 +761,16 @@ impl fmt::Display for RunSummary {
             f,
             "    work: {}, {}, {}, {}",
             count(w.assemblies, "assembly", "assemblies"),
-            count(w.symbolic_analyses, "symbolic analysis", "symbolic analyses"),
-            count(w.numeric_factorisations, "numeric factorisation", "numeric factorisations"),
+            count(
+                w.symbolic_analyses,
+                "symbolic analysis",
+                "symbolic analyses"
+            ),
+            count(
+                w.numeric_factorisations,
+                "numeric factorisation",
+                "numeric factorisations"
+            ),
             count(w.triangular_solves, "triangular solve", "triangular solves")
         )?;
         if let Some(fp) = &c.fixed_point {
@@ -757,7 +779,11 @@ impl fmt::Display for RunSummary {
                 "    Coulomb fixed point: {}, last change {:.2e}, {} in all",
                 count(fp.steps, "Tresca solve", "Tresca solves"),
                 fp.residual,
-                count(fp.solver_iterations, "solver iteration", "solver iterations")
+                count(
+                    fp.solver_iterations,
+                    "solver iteration",
+                    "solver iterations"
+                )
             )?;
         }
         let r = &c.report.residuals;

@@ -59,9 +59,9 @@ pub use error::SpaceError;
 pub use load::edge_traction_load;
 pub use material::{voigt_len, voigt_pairs, ElasticityTensor};
 pub use mesh_element::{DofLayout, FieldOf, MeshElement, PlanarElement};
+pub use options::{Options, OptionsError};
 pub use p1::LinearTriangle;
 pub use polygon::PolygonGeometry;
-pub use options::{Options, OptionsError};
 pub use registry::{
     Choice, ElementRegistry, Factory, Registry, RegistryError, StabilisationRegistry,
 };

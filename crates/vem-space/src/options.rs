@@ -173,7 +173,11 @@ mod tests {
         assert!(missing.message.contains("missing field `penalty`"));
         assert!(Options::from_value(Value::from(3)).is_err());
         assert_eq!(
-            Options::new().with("x", 1).refuse_all("p1").unwrap_err().to_string(),
+            Options::new()
+                .with("x", 1)
+                .refuse_all("p1")
+                .unwrap_err()
+                .to_string(),
             "`x`: p1 takes no settings"
         );
     }

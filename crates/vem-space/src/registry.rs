@@ -452,8 +452,10 @@ impl ElementRegistry {
         let fixed = |stabilisation: Arc<dyn Stabilisation>, what: &'static str| {
             move |o: &Options, _: &StabilisationRegistry| {
                 o.refuse_all(what)?;
-                Ok(Arc::new(LowestOrderVem::from_valid(Arc::clone(&stabilisation)))
-                    as Arc<dyn ElementSpace>)
+                Ok(
+                    Arc::new(LowestOrderVem::from_valid(Arc::clone(&stabilisation)))
+                        as Arc<dyn ElementSpace>,
+                )
             }
         };
         let elements = &mut registry.elements;
@@ -528,11 +530,14 @@ impl ElementRegistry {
     ) -> Result<&mut Self, RegistryError> {
         let name = name.into();
         let what = name.clone();
-        self.elements
-            .register_with(name, summary, move |o: &Options, _: &StabilisationRegistry| {
+        self.elements.register_with(
+            name,
+            summary,
+            move |o: &Options, _: &StabilisationRegistry| {
                 o.refuse_all(&what)?;
                 Ok(factory())
-            })?;
+            },
+        )?;
         Ok(self)
     }
 
@@ -636,12 +641,18 @@ mod tests {
         assert_eq!(err.option_path(), Some("stabilisation.scale"), "{err}");
         let unknown = Options::new().with("stabilisation", "dofi");
         let err = registry.make_with("vem1", &unknown).err().unwrap();
-        assert!(err.to_string().contains("unknown stabilisation 'dofi'"), "{err}");
+        assert!(
+            err.to_string().contains("unknown stabilisation 'dofi'"),
+            "{err}"
+        );
         let refused = Options::new().with("scale", 2.0);
         let err = registry.make_with("p1", &refused).err().unwrap();
         assert_eq!(err.option_path(), Some("scale"));
         let drecipe = Options::new().with("stabilisation", "drecipe");
-        assert_eq!(registry.make_with("vem1", &drecipe).unwrap().name(), "vem1-drecipe");
+        assert_eq!(
+            registry.make_with("vem1", &drecipe).unwrap().name(),
+            "vem1-drecipe"
+        );
     }
 
     #[test]

@@ -25,10 +25,10 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use vem_contact::SolverRegistry;
-use vem_space::Options;
 use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
 use vem_space::ElementSpace;
+use vem_space::Options;
 
 use crate::diagnostics::{contact_diagnostics, ContactDiagnostics};
 use crate::exact::ExactSolution;

@@ -116,8 +116,7 @@ pub(crate) fn checked_bounds<const D: usize>(
 
 /// Settings of a fixed point of Tresca problems (Coulomb); build them with
 /// [`FixedPointSettings::builder`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[derive(serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct FixedPointSettings {
     max_iterations: usize,

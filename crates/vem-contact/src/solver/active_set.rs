@@ -21,8 +21,8 @@
 //! penalty solver: a shifted factorisation and a free-mode test that reports rigid sliding or
 //! an unbounded energy.
 
-use vem_space::{Options, OptionsError};
 use std::time::Instant;
+use vem_space::{Options, OptionsError};
 
 use faer::Par;
 

@@ -40,8 +40,8 @@
 //! A body that stays singular with the shift (a part not connected to the interface) is
 //! handed to the [`ActiveSetSolver`], whose report then says so.
 
-use vem_space::{Options, OptionsError};
 use std::time::Instant;
+use vem_space::{Options, OptionsError};
 
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{

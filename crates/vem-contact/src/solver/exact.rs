@@ -8,8 +8,8 @@
 //! `z = (lambda_N, z_+, z_-)` the stationarity in `t` gives `z_+ + z_- = b`, so
 //! `lambda_T = z_+ - z_-` satisfies `|lambda_T| <= b` and has the sign of the slip.
 
-use vem_space::{Options, OptionsError};
 use std::time::Instant;
+use vem_space::{Options, OptionsError};
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{

@@ -29,8 +29,8 @@
 //! evaluation (`8 eps_mach || |K||u| + |f| + eps_N |B_N|'(|B_N||u| + |g|) + eps_T |B_T|'|B_T||u| ||_inf`,
 //! which dominates for very large penalties).
 
-use vem_space::{Options, OptionsError};
 use std::time::Instant;
+use vem_space::{Options, OptionsError};
 
 use faer::Par;
 
