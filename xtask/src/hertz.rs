@@ -253,7 +253,7 @@ fn friction_run(
     let full = problem(meshes, h, normal, law, FULL_SLIP_SHIFT)?.solve(&mut solver)?;
     let force = full.force_on_body_a();
     let full_slip_ratio = force.x.abs() / force.y;
-    let full_slip_stick_nodes = full.status_counts().1;
+    let full_slip_stick_nodes = full.status_counts().stick;
     let partial = problem(meshes, h, normal, law, PARTIAL_SHIFT)?.solve(&mut solver)?;
     let force = partial.force_on_body_a();
     let partial_ratio = force.x.abs() / (COEFFICIENT * force.y);

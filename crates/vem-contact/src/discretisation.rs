@@ -62,7 +62,7 @@ use crate::pairing::pair_geometry;
 use crate::problem::Counterpart;
 use crate::result::{
     classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
-    InterfaceNode, ModelSummary, PairSummary,
+    InterfaceNode, ModelSummary, PairSummary, TractionBound,
 };
 use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
@@ -671,12 +671,14 @@ impl<const D: usize> ContactDiscretisation<D> {
                     friction -= tangent * solution.tangential_force[t * i + k];
                 }
             }
+            let friction_bound = bounds
+                .filter(|_| self.pairs[node.pair].law.has_friction())
+                .map(|b| b[i]);
             let status = classify(
                 normal_force,
-                theta * forces.rows[i],
                 friction.norm(),
-                bounds.map(|b| b[i]),
-                self.pairs[node.pair].law.has_friction(),
+                friction_bound,
+                theta * forces.rows[i],
             );
             nodes.push(InterfaceNode {
                 pair: node.pair,
@@ -700,7 +702,10 @@ impl<const D: usize> ContactDiscretisation<D> {
         }
         for pair in &self.pairs {
             if pair.chain {
-                self.project_tractions(&mut nodes[pair.nodes.clone()]);
+                let friction_bounds = bounds
+                    .filter(|_| pair.law.has_friction())
+                    .map(|b| &b[pair.nodes.clone()]);
+                self.project_tractions(&mut nodes[pair.nodes.clone()], friction_bounds);
             }
         }
         let mut warnings = solution.report.warnings.clone();
@@ -754,8 +759,10 @@ impl<const D: usize> ContactDiscretisation<D> {
     }
 
     /// The consistent pressure and friction traction of the nodes of one planar pair, projected
-    /// along their chain ([`consistent_traction`]).
-    fn project_tractions(&self, nodes: &mut [InterfaceNode<D>]) {
+    /// along their chain ([`consistent_traction`]): the pressure non-negative, the friction
+    /// traction within the projection of the pair's nodal friction bounds `friction_bounds`
+    /// (`None` without friction: the friction traction stays zero).
+    fn project_tractions(&self, nodes: &mut [InterfaceNode<D>], friction_bounds: Option<&[f64]>) {
         if D != 2 {
             return;
         }
@@ -765,6 +772,20 @@ impl<const D: usize> ContactDiscretisation<D> {
             .collect();
         let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_measure).collect();
         let normal_forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
+        let support = self.projection_support(nodes);
+        let pressures = consistent_traction(
+            &positions,
+            &normal_forces,
+            &support,
+            &lengths,
+            TractionBound::NonNegative,
+        );
+        for (node, p) in nodes.iter_mut().zip(pressures) {
+            node.consistent_pressure = p;
+        }
+        let Some(friction_bounds) = friction_bounds else {
+            return;
+        };
         // The friction force along the tangent tau = (-nu_y, nu_x).
         let tangent = |n: &InterfaceNode<D>| {
             let mut tau = VectorD::<D>::zeros();
@@ -776,11 +797,14 @@ impl<const D: usize> ContactDiscretisation<D> {
             .iter()
             .map(|n| n.friction_force.dot(&tangent(n)))
             .collect();
-        let support = self.projection_support(nodes);
-        let pressures = consistent_traction(&positions, &normal_forces, &support, &lengths);
-        let tractions = consistent_traction(&positions, &friction_forces, &support, &lengths);
-        for ((node, p), t) in nodes.iter_mut().zip(pressures).zip(tractions) {
-            node.consistent_pressure = p;
+        let tractions = consistent_traction(
+            &positions,
+            &friction_forces,
+            &support,
+            &lengths,
+            TractionBound::Magnitude(friction_bounds),
+        );
+        for (node, t) in nodes.iter_mut().zip(tractions) {
             node.consistent_friction_traction = tangent(node) * t;
         }
     }
