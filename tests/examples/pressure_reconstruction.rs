@@ -1,28 +1,33 @@
 //! The consistent pressure and friction traction: reconstructions of nodal contact forces
 //! compared on the cases where the plain L2 projection dips below zero or crosses the friction
-//! bound (see docs/hertz.md, section 2). Run with
+//! bound (docs/contact.md, section 5.1; docs/hertz.md, section 2). Run with
 //!
 //! ```text
-//! cargo run --release -p vem-integration-tests --example pressure_reconstruction [-- --large]
+//! cargo run --release -p vem-integration-tests --example pressure_reconstruction [-- --large] [--verbose]
 //! ```
 //!
 //! Cases: the Hertz scene (`crates/vem-cli/scenes/hertz.toml`: a half-disc on a block,
-//! non-matching Gmsh meshes); a rigid cylinder (R = 1) on a Voronoi block `[-1, 1] x [-1, 0]`
-//! at n = 60 (and n = 300, 174 000 unknowns, with `--large`); an elastic flat punch on a block
-//! with Coulomb friction F = 0.3, pressed and sheared to slip at its edges; the Tresca scene
-//! (`crates/vem-cli/scenes/tresca.toml`). For each, the smallest reconstructed pressure against
-//! the peak and the largest friction traction against its bound, for
+//! non-matching Gmsh meshes) and the meshes of `cargo xtask hertz` (h_c = 0.08, 0.04, 0.02),
+//! against Hertz's peak and profile; a rigid cylinder (R = 1) on a Voronoi block
+//! `[-1, 1] x [-1, 0]` (seed 1, bottom pushed up by 0.01) at n = 60, five nodes in contact, and
+//! with `--large` at n = 300 (174 508 unknowns); an elastic flat punch on a block with Coulomb
+//! friction F = 0.3, pressed and sheared to slip at its edges; the Tresca scene
+//! (`crates/vem-cli/scenes/tresca.toml`). For each, the smallest reconstructed pressure over
+//! the peak and the largest friction traction against the same reconstruction of its bound,
+//! for
 //!
 //! * `l2`: the plain L2 projection (`TractionBound::Unbounded`), the former definition;
 //! * `lumped`: the row-sum (lumped) projection `p_k = r_k / int phi_k`, equal to the nodal
 //!   coefficients of Wohlmuth's dual (biorthogonal) basis;
 //! * `fct`: flux-corrected transport, the L2 projection limited towards the lumped one by
 //!   Zalesak's limiter (bounds: the lumped values of the neighbours);
-//! * `bounded`: the L2 projection onto the functions within the bound (`NonNegative`,
-//!   `Magnitude`), the library's `consistent_pressure` and `consistent_friction_traction`.
+//! * `bounded`: the L2 projection onto the functions within the bound with the forces'
+//!   resultant (`NonNegative`, `Magnitude`), the library's `consistent_pressure` and
+//!   `consistent_friction_traction`;
 //!
 //! and how each reproduces a linear traction from consistent forces (the largest nodal error
-//! relative to the traction's maximum, on the uneven polyline of the tests).
+//! relative to the traction's maximum, on the uneven polyline of the tests). `--verbose` prints
+//! the profiles at h_c = 0.02.
 
 use std::error::Error;
 use std::path::Path;
