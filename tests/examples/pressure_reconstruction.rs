@@ -10,8 +10,9 @@
 //! non-matching Gmsh meshes) and the meshes of `cargo xtask hertz` (h_c = 0.08, 0.04, 0.02),
 //! against Hertz's peak and profile; a rigid cylinder (R = 1) on a Voronoi block
 //! `[-1, 1] x [-1, 0]` (seed 1, bottom pushed up by 0.01) at n = 60, five nodes in contact, and
-//! with `--large` at n = 300 (174 508 unknowns); an elastic flat punch on a block with Coulomb
-//! friction F = 0.3, pressed and sheared to slip at its edges; the Tresca scene
+//! with `--large` at n = 300 (174 508 unknowns); an elastic flat punch on a block and a rigid
+//! flat punch (chamfered edges) in a block (n = 40, 80), with Coulomb friction F = 0.3, pressed
+//! and sheared to slip at the edges; the Tresca scene
 //! (`crates/vem-cli/scenes/tresca.toml`). For each, the smallest reconstructed pressure over
 //! the peak and the largest friction traction against the same reconstruction of its bound,
 //! for
@@ -487,6 +488,46 @@ fn punch() -> Res<()> {
     Ok(())
 }
 
+/// A rigid flat punch (`[-0.25, 0.25]`, chamfered edges rising by 0.1 over 0.25) pressed
+/// into a block `[-1, 1] x [-1, 0]` (quads, `n` across) and sheared: the block's bottom moves
+/// by `(0.004, 0.01)`, Coulomb F = 0.3.
+fn rigid_punch(n: usize) -> Res<()> {
+    let block_mesh = structured_quads(
+        &Rectangle::new(Point::new(-1.0, -1.0), Point::new(1.0, 0.0)),
+        n,
+        n / 2,
+    )?;
+    let element = Arc::new(LowestOrderVem::default());
+    let block = ElasticBody::builder("block", block_mesh, material(100.0)?, element)
+        .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
+            Vector::new(0.004, 0.01)
+        }))
+        .build()?;
+    let punch = Obstacle::Polyline(vec![
+        Point::new(0.5, 0.1),
+        Point::new(0.25, 0.0),
+        Point::new(-0.25, 0.0),
+        Point::new(-0.5, 0.1),
+    ]);
+    let result = ContactProblem::against_obstacle(block, "top", punch, Coulomb::try_new(0.3)?)
+        .solve(&mut CondensedSolver::default())?;
+    let bounds = result
+        .fixed_point
+        .as_ref()
+        .map(|f| f.final_bounds.clone())
+        .ok_or("Coulomb iterates")?;
+    let counts = result.status_counts();
+    println!(
+        "rigid punch n = {n}: {} stick, {} slip, {} open",
+        counts.stick, counts.slip, counts.open
+    );
+    report(
+        &format!("rigid punch n = {n}"),
+        &Interface::of(&result, &[0], Some(bounds)),
+    );
+    Ok(())
+}
+
 /// The Tresca scene (`crates/vem-cli/scenes/tresca.toml`).
 fn tresca() -> Res<()> {
     let element = Arc::new(LowestOrderVem::default());
@@ -600,6 +641,8 @@ fn main() -> Res<()> {
         cylinder(300, LIFT)?;
     }
     punch()?;
+    rigid_punch(40)?;
+    rigid_punch(80)?;
     tresca()?;
     Ok(())
 }

@@ -513,50 +513,76 @@ fn tresca_friction_stays_within_its_bound_and_open_nodes_carry_no_force() {
 
 #[test]
 fn coulomb_friction_stays_within_f_p_at_a_punch_edge() {
-    // An elastic punch pressed and sheared on a block: the pressure concentrates at the
-    // punch's edges and the friction there is at its bound.
+    // A rigid flat punch (chamfered edges) pressed into a block and sheared, Coulomb F = 0.3:
+    // the pressure peaks at the punch's edges, where the plain projections of the forces and
+    // of the bounds dip below zero and the friction traction crosses F p.
     let coefficient = 0.3;
-    let element = Arc::new(LowestOrderVem::default());
-    let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain).expect("material");
-    let punch_mesh = hexagons(
-        &Rectangle::new(Point::new(-0.25, 0.0), Point::new(0.25, 0.25)),
-        12,
-    )
-    .expect("mesh");
-    let block_mesh = MeshFamily::Quads
+    let block = MeshFamily::Quads
         .generate(
             &Rectangle::new(Point::new(-1.0, -1.0), Point::new(1.0, 0.0)),
             40,
             1,
         )
         .expect("mesh");
-    let punch = ElasticBody::builder("punch", punch_mesh, material, element.clone())
-        .dirichlet(Dirichlet::prescribed("top", Component::All, |_| {
-            Vector::new(0.002, -0.01)
-        }))
-        .build()
-        .expect("body");
-    let block = ElasticBody::builder("block", block_mesh, material, element)
-        .clamp("bottom")
-        .build()
-        .expect("body");
-    let result = ContactProblem::two_bodies(
-        punch,
-        "bottom",
+    let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain).expect("material");
+    let block = ElasticBody::builder(
+        "block",
+        block,
+        material,
+        Arc::new(LowestOrderVem::default()),
+    )
+    .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
+        Vector::new(0.004, 0.01)
+    }))
+    .build()
+    .expect("body");
+    let punch = Obstacle::Polyline(vec![
+        Point::new(0.5, 0.1),
+        Point::new(0.25, 0.0),
+        Point::new(-0.25, 0.0),
+        Point::new(-0.5, 0.1),
+    ]);
+    let result = ContactProblem::against_obstacle(
         block,
         "top",
+        punch,
         Coulomb::try_new(coefficient).expect("law"),
     )
     .solve(&mut CondensedSolver::default())
     .expect("solve");
     let counts = result.status_counts();
     assert!(counts.slip > 0 && counts.stick > 0, "{counts:?}");
-    let tolerance = result.fixed_point.as_ref().expect("Coulomb").tolerance;
-    let peak = result
-        .nodes
+    let nodes = &result.nodes;
+    let positions: Vec<Point> = nodes.iter().map(|n| n.position).collect();
+    let lengths: Vec<f64> = nodes.iter().map(|n| n.tributary_measure).collect();
+    let support = vec![true; nodes.len()];
+    let plain = |forces: &[f64]| {
+        consistent_traction(
+            &positions,
+            forces,
+            &support,
+            &lengths,
+            TractionBound::Unbounded,
+        )
+    };
+    let p_plain = plain(&nodes.iter().map(|n| n.normal_force).collect::<Vec<_>>());
+    let t_plain = plain(&nodes.iter().map(|n| n.friction_t()).collect::<Vec<_>>());
+    let peak = nodes
         .iter()
         .fold(0.0_f64, |m, n| m.max(n.consistent_pressure));
-    for n in &result.nodes {
+    let crossing = t_plain
+        .iter()
+        .zip(&p_plain)
+        .map(|(t, p)| t.abs() - coefficient * p)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        crossing > 0.1 * coefficient * peak,
+        "the plain projection crosses F p: {crossing}"
+    );
+    assert!(p_plain.iter().any(|&p| p < -0.2 * peak));
+    let tolerance = result.fixed_point.as_ref().expect("Coulomb").tolerance;
+    for n in nodes {
+        assert!(n.consistent_pressure >= 0.0, "{n:?}");
         let excess = n.consistent_friction_t().abs() - coefficient * n.consistent_pressure;
         assert!(excess <= 10.0 * tolerance * coefficient * peak, "{n:?}");
     }
