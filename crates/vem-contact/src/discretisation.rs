@@ -934,6 +934,8 @@ impl<const D: usize> ContactDiscretisation<D> {
                 if let Some((node, &bound)) = tied {
                     if bound > TIED_RATIO * force_scale && force_scale > 0.0 {
                         warnings.push(Warning::EffectivelyTied {
+                            body: name(pair.body),
+                            part: pair.part.clone(),
                             at: Location::of(&node.position),
                             bound,
                             ratio: bound / force_scale,

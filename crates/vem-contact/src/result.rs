@@ -658,9 +658,11 @@ pub struct ContactResult<const D: usize = 2> {
     /// What the call computed: assemblies (when it built the discretisation), symbolic
     /// analyses, numeric factorisations, triangular solves, and the time of each stage.
     pub work: WorkCounters,
-    /// What the user should know about this converged answer: the solver's warnings (also in
-    /// [`SolveReport::warnings`]) and those about the model (elements far outside A1, a
-    /// contact zone at a limit of the interface, an effectively tied friction bound).
+    /// What the user should know about this converged answer, each once: the solver's
+    /// warnings (also in [`SolveReport::warnings`]) and those about the model (elements far
+    /// outside A1, a contact zone cut short by a limit of the interface, a pair with no node
+    /// in contact, a normal force concentrated on one node, a large penetration, an initial
+    /// overlap, an effectively tied friction bound). A correct, well-resolved answer has none.
     pub warnings: Vec<Warning>,
 }
 

@@ -55,11 +55,16 @@ pub enum Warning {
     /// A friction bound exceeds every force of the problem by far: friction never reaches it,
     /// the interface is effectively tied (bonded) wherever it is in contact.
     #[error(
-        "friction bound b = {bound:.3e} at {at} is {ratio:.1e} times the largest force of \
-         the problem: the contact is effectively tied (no node can slip)"
+        "body '{body}' part '{part}': friction bound b = {bound:.3e} at {at} is {ratio:.1e} \
+         times the largest force of the problem: the contact is effectively tied (no node can \
+         slip)"
     )]
     EffectivelyTied {
-        /// Position of the node with the largest bound.
+        /// Body A of the pair.
+        body: String,
+        /// Its contact part.
+        part: String,
+        /// Position of the node in contact with the smallest bound.
         at: Location,
         /// Its nodal bound `b_i = l_i g_F(x_i)`.
         bound: f64,
