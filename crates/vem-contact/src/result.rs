@@ -278,7 +278,8 @@ impl TractionSpace {
         self.lengths.len() + 1
     }
 
-    /// `M_kk` and `M_k,k+1` of the consistent mass matrix of the support hats.
+    /// `M_kk`, the diagonal of the consistent mass matrix of the support hats (`M_k,k+1 =
+    /// L_k / 6` beside it).
     fn diagonal(&self, k: usize) -> f64 {
         let before = if k > 0 { self.lengths[k - 1] } else { 0.0 };
         let after = self.lengths.get(k).copied().unwrap_or(0.0);
