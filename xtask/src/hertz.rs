@@ -70,6 +70,8 @@ struct Frictionless {
     /// max |p / p_Hertz - 1| inside 0.8 a.
     profile_raw: f64,
     profile_consistent: f64,
+    /// The smallest consistent pressure over p0 (>= 0: it respects the sign).
+    min_consistent: f64,
     /// (x / a, p / p0) raw and consistent, for the plots.
     #[serde(skip)]
     curve: Vec<(f64, f64, f64)>,
@@ -109,12 +111,14 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         for normal in ContactNormal::ALL {
             let f = frictionless_run(&args.meshes, h, normal)?;
             eprintln!(
-                "h_c = {h} {:>8}: peak {:+.2}% (consistent {:+.2}%), profile {:.2}% ({:.2}%), a {:+.2}%",
+                "h_c = {h} {:>8}: peak {:+.2}% (consistent {:+.2}%), profile {:.2}% ({:.2}%), \
+                 min consistent {:+.2}%, a {:+.2}%",
                 normal.name(),
                 100.0 * f.peak_error_raw,
                 100.0 * f.peak_error_consistent,
                 100.0 * f.profile_raw,
                 100.0 * f.profile_consistent,
+                100.0 * f.min_consistent,
                 100.0 * f.half_width_error
             );
             frictionless.push(f);
@@ -230,6 +234,11 @@ fn frictionless_run(
         peak_error_consistent: peak(|n| n.consistent_pressure) / p0 - 1.0,
         profile_raw: profile(|n| n.pressure),
         profile_consistent: profile(|n| n.consistent_pressure),
+        min_consistent: nodes
+            .iter()
+            .map(|n| n.consistent_pressure)
+            .fold(f64::INFINITY, f64::min)
+            / p0,
         curve: nodes
             .iter()
             .map(|n| {
@@ -253,7 +262,7 @@ fn friction_run(
     let full = problem(meshes, h, normal, law, FULL_SLIP_SHIFT)?.solve(&mut solver)?;
     let force = full.force_on_body_a();
     let full_slip_ratio = force.x.abs() / force.y;
-    let full_slip_stick_nodes = full.status_counts().1;
+    let full_slip_stick_nodes = full.status_counts().stick;
     let partial = problem(meshes, h, normal, law, PARTIAL_SHIFT)?.solve(&mut solver)?;
     let force = partial.force_on_body_a();
     let partial_ratio = force.x.abs() / (COEFFICIENT * force.y);
@@ -340,16 +349,17 @@ fn markdown(f: &[Frictionless], c: &[Friction], args: &HertzArgs, seconds: f64) 
          E = {YOUNG}, nu = {POISSON}, plane strain; P the vertical force on the disc; Hertz's a \
          and p0 for that P. Pressure errors relative to p0 (peak) and to Hertz's p(x) (profile, \
          largest over the nodes with |x| <= {PROFILE_FRACTION} a); raw = lambda_N / l_x, \
-         consistent = L2 projection.\n"
+         consistent = the L2 projection onto the non-negative piecewise-linear functions with \
+         the forces' resultant; min = the smallest consistent pressure over p0.\n"
     );
     o.push_str(
-        "| h_c | normal | sum lambda_N / P - 1 | horizontal / P | a error | peak raw | peak consistent | profile raw | profile consistent |\n",
+        "| h_c | normal | sum lambda_N / P - 1 | horizontal / P | a error | peak raw | peak consistent | profile raw | profile consistent | min consistent |\n",
     );
-    o.push_str("|---|---|---|---|---|---|---|---|---|\n");
+    o.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
     for r in f {
         let _ = writeln!(
             o,
-            "| {} | {} | {:+.1e} | {:+.1e} | {:+.1}% | {:+.2}% | {:+.2}% | {:.2}% | {:.2}% |",
+            "| {} | {} | {:+.1e} | {:+.1e} | {:+.1}% | {:+.2}% | {:+.2}% | {:.2}% | {:.2}% | {:+.2}% |",
             r.h_c,
             r.normal,
             r.normal_sum_error,
@@ -358,7 +368,8 @@ fn markdown(f: &[Frictionless], c: &[Friction], args: &HertzArgs, seconds: f64) 
             100.0 * r.peak_error_raw,
             100.0 * r.peak_error_consistent,
             100.0 * r.profile_raw,
-            100.0 * r.profile_consistent
+            100.0 * r.profile_consistent,
+            100.0 * r.min_consistent
         );
     }
     let _ = writeln!(

@@ -66,7 +66,7 @@ pub use problem::{ContactNormal, ContactPair, ContactProblem, Counterpart};
 pub use registry::{LawRegistry, RegistryError, SolverRegistry};
 pub use result::{
     consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport, InterfaceNode,
-    ModelSummary, NodeStatus, PairSummary,
+    ModelSummary, NodeStatus, PairSummary, StatusCounts, TractionBound,
 };
 
 pub use warning::{Warning, ZoneLimit};

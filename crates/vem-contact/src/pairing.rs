@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use vem_elastic::ElasticBody;
-use vem_mesh::interface::{boundary_chain, insert_interface_nodes};
+use vem_mesh::interface::{boundary_chain, insert_interface_nodes, ChainNode};
 use vem_mesh::{BodyMesh, Mesh, PointD, VectorD};
 
 use crate::problem::{ContactPair, Counterpart};
@@ -17,13 +17,74 @@ use crate::warning::ZoneLimit;
 use crate::{ContactError, ContactNode, Location};
 
 /// What the geometry of one pair gives: its nodes (ordered along body A's part in 2D), the
-/// vertices inserted, the nodes at a limit of the modelled interface with what lies beyond,
+/// vertices inserted, the ends of the modelled interface that may cut a contact zone short,
 /// and whether the nodes form a chain (2D) along which the consistent traction is projected.
 pub(crate) struct PairGeometry<const D: usize> {
     pub(crate) nodes: Vec<ContactNode<D>>,
     pub(crate) inserted: usize,
-    pub(crate) zone_ends: Vec<(usize, ZoneLimit)>,
+    pub(crate) zone_ends: Vec<ZoneEnd>,
     pub(crate) chain: bool,
+}
+
+/// An end of a pair's modelled interface that is not a geometric end of the contact: the
+/// nodes beyond were left unpaired by the pairing limit, or a contact part ends there while
+/// its body's boundary goes on (no convex corner). A contact zone that reaches it may be
+/// clipped.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ZoneEnd {
+    /// The pair's node at the end.
+    pub(crate) node: usize,
+    /// What lies beyond.
+    pub(crate) limit: ZoneLimit,
+    /// The body whose part ends there (body A at the pairing limit).
+    pub(crate) body: usize,
+    /// That part.
+    pub(crate) part: String,
+}
+
+/// A contact part that ends where its body's boundary turns away by at least this angle (a
+/// convex corner: 45 degrees) ends where the contact must end; a part that ends where the
+/// boundary goes on straighter could be cut short by its own end.
+const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_4;
+
+/// The angle by which the boundary of `mesh` turns at the first (`at_start`) or last node of
+/// `chain` (a part, ordered along the counter-clockwise boundary), from the direction in which
+/// it arrives to that in which it leaves: positive for a left turn (a convex corner, the
+/// boundary beyond faces away from the part's outside), negative at a concave corner. `None`
+/// when the part has fewer than two nodes or no other boundary edge meets that node.
+fn boundary_turn(mesh: &Mesh, chain: &[ChainNode], at_start: bool) -> Option<f64> {
+    let n = chain.len();
+    if n < 2 {
+        return None;
+    }
+    let (v, inner) = if at_start {
+        (chain[0].vertex, chain[1].vertex)
+    } else {
+        (chain[n - 1].vertex, chain[n - 2].vertex)
+    };
+    let other = mesh
+        .boundary_edges()
+        .map(|e| mesh.edge(e).vertices)
+        .find(|&[a, b]| {
+            if at_start {
+                b == v && a != inner
+            } else {
+                a == v && b != inner
+            }
+        })?;
+    let p = |k: usize| mesh.vertex(k);
+    let (arriving, leaving) = if at_start {
+        (p(v) - p(other[0]), p(inner) - p(v))
+    } else {
+        (p(v) - p(inner), p(other[1]) - p(v))
+    };
+    Some(arriving.perp(&leaving).atan2(arriving.dot(&leaving)))
+}
+
+/// Whether the part `chain` of `mesh` ends at a convex corner of its body at its first
+/// (`at_start`) or last node: the contact cannot go on beyond it.
+fn ends_at_corner(mesh: &Mesh, chain: &[ChainNode], at_start: bool) -> bool {
+    boundary_turn(mesh, chain, at_start).is_some_and(|turn| turn >= CORNER_TURN)
 }
 
 /// `value` as a `U` when `T` and `U` are the same type (the same dimension).
@@ -132,39 +193,55 @@ fn two_bodies<const D: usize>(
                 source,
             })?;
     let inserted = interface.inserted_a + interface.inserted_b;
-    // A paired end that is not an end of body A's chain: the nodes beyond were left unpaired
-    // (beyond the pairing limit, or beyond the end of the other part).
+    // Body A's and body B's chains on the enlarged meshes: at each end of the paired range,
+    // the part that ends there (if any) and whether its body ends there too.
     let chain = boundary_chain(&interface.mesh_a, part).map_err(|source| ContactError::Mesh {
         context: format!("contact part of body '{name_a}'"),
         source,
     })?;
-    let chain_ends = [
-        chain.first().map(|c| c.vertex),
-        chain.last().map(|c| c.vertex),
-    ];
-    let beyond = |vertex: Option<usize>| {
-        if vertex.is_some() && chain_ends.contains(&vertex) {
-            ZoneLimit::EndOfPart
-        } else if pair.interface_options().max_distance().is_some() {
-            ZoneLimit::PairingLimit
-        } else {
-            ZoneLimit::EndOfPart
-        }
-    };
-    let n = interface.pairs.len();
-    let mut zone_ends = Vec::new();
-    if n > 0 {
-        zone_ends.push((0, beyond(interface.pairs.first().map(|p| p.node_a))));
-    }
-    if n > 1 {
-        zone_ends.push((n - 1, beyond(interface.pairs.last().map(|p| p.node_a))));
-    }
-    // Body B's outward nodal normals on its enlarged chain, for the normal choice.
     let chain_b =
         boundary_chain(&interface.mesh_b, other_part).map_err(|source| ContactError::Mesh {
             context: format!("contact part of body '{name_b}'"),
             source,
         })?;
+    let end_of = |chain: &[ChainNode], vertex: usize| {
+        if chain.first().is_some_and(|c| c.vertex == vertex) {
+            Some(true)
+        } else if chain.last().is_some_and(|c| c.vertex == vertex) {
+            Some(false)
+        } else {
+            None
+        }
+    };
+    let zone_end = |node: usize, p: &vem_mesh::interface::InterfacePair| {
+        let end_a = end_of(&chain, p.node_a);
+        let end_b = end_of(&chain_b, p.node_b);
+        let corner_a = end_a.is_some_and(|s| ends_at_corner(&interface.mesh_a, &chain, s));
+        let corner_b = end_b.is_some_and(|s| ends_at_corner(&interface.mesh_b, &chain_b, s));
+        let (limit, body, part) = match (end_a, end_b) {
+            // The body of a part that ends there ends too: the contact ends there.
+            _ if corner_a || corner_b => return None,
+            (Some(_), _) => (ZoneLimit::EndOfPart, a, part),
+            (None, Some(_)) => (ZoneLimit::EndOfPart, b, other_part),
+            // Both parts go on: the nodes beyond were left unpaired.
+            (None, None) => (ZoneLimit::PairingLimit, a, part),
+        };
+        Some(ZoneEnd {
+            node,
+            limit,
+            body,
+            part: part.to_string(),
+        })
+    };
+    let n = interface.pairs.len();
+    let mut zone_ends = Vec::new();
+    if let Some(first) = interface.pairs.first() {
+        zone_ends.extend(zone_end(0, first));
+    }
+    if let (Some(last), true) = (interface.pairs.last(), n > 1) {
+        zone_ends.extend(zone_end(n - 1, last));
+    }
+    // Body B's outward nodal normals on its enlarged chain, for the normal choice.
     let normal_b: HashMap<usize, vem_mesh::Vector> =
         chain_b.iter().map(|c| (c.vertex, c.normal)).collect();
     let choice = pair.normal();
@@ -244,13 +321,18 @@ fn obstacle_nodes<const D: usize>(
                 )
             })
             .collect();
+        // An end of the part where the body's boundary goes on may cut the zone short.
         let n = nodes.len();
-        let mut zone_ends = vec![(0, ZoneLimit::EndOfPart)];
-        if n > 1 {
-            zone_ends.push((n - 1, ZoneLimit::EndOfPart));
-        }
-        if n == 0 {
-            zone_ends.clear();
+        let mut zone_ends = Vec::new();
+        for (node, at_start) in [(0, true), (n.saturating_sub(1), false)] {
+            if n > 0 && (at_start || n > 1) && !ends_at_corner(mesh, &chain, at_start) {
+                zone_ends.push(ZoneEnd {
+                    node,
+                    limit: ZoneLimit::EndOfPart,
+                    body: body_index,
+                    part: part.to_string(),
+                });
+            }
         }
         return Ok(PairGeometry {
             nodes,
