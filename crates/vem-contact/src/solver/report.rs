@@ -50,7 +50,8 @@ pub struct KktScales {
     /// `F_b = max(||f_b||_inf, ||(K u)_b||_inf, ||(B_N' lambda_N + B_T' lambda_T)_b||_inf)`.
     /// Zero only for an unloaded problem with a zero answer.
     pub force: f64,
-    /// Displacement scale `U = max(||u||_inf, ||g||_inf, ||f||_inf / k)` with `k` the largest
+    /// Displacement scale `U = max(||u||_inf, ||g||_inf, ||s||_inf, ||f||_inf / k)` (`s` the
+    /// reference slip of [`Friction`](super::Friction)) with `k` the largest
     /// diagonal entry of `K` (the last term keeps `U` a scale of the problem when the answer
     /// and the gaps vanish).
     pub displacement: f64,
@@ -63,7 +64,7 @@ pub struct KktScales {
 ///
 /// Conventions (spec section 4): `(B_N u - g)_i > 0` is penetration; `lambda_N,i >= 0` is the
 /// compressive nodal contact force; the tangential force satisfies
-/// `lambda_T,i = b_i sign((B_T u)_i)` where node `i` slips.
+/// `lambda_T,i = b_i sign((B_T u - s0)_i)` where node `i` slips (`s0` the reference slip).
 ///
 /// The force scale of interface node `i`, `F_i`, is the smallest `F_b` of the bodies its rows
 /// touch: a contact force must be accurate relative to the forces of the softer (or less
@@ -93,9 +94,10 @@ pub struct KktResiduals {
     /// frictionless).
     pub friction_bound_violation: f64,
     /// `max_i |b_i |s_i| - lambda_T,i s_i| / (F_i U)` over the nodes that slip,
-    /// `|s_i| = |(B_T u)_i| > t U` (`t`: the acceptance tolerance, `1e-10` for
-    /// [`KktResiduals::evaluate`]): the failure of the tangential force to be `b_i` times the
-    /// slip direction (0 when frictionless). Slips below `t U` count as stick.
+    /// `|s_i| = |(B_T u)_i - s0_i| > t U` (`s0` the reference slip; `t`: the acceptance
+    /// tolerance, `1e-10` for [`KktResiduals::evaluate`]): the failure of the tangential
+    /// force to be `b_i` times the slip direction (0 when frictionless). Slips below `t U`
+    /// count as stick.
     pub slip_direction_violation: f64,
 }
 
@@ -311,8 +313,13 @@ impl KktResiduals {
         } else {
             0.0
         };
+        let reference_slip = system
+            .friction()
+            .and_then(|f| f.reference_slip())
+            .map_or(0.0, inf_norm);
         let u_scale = inf_norm(displacement)
             .max(inf_norm(system.gap()))
+            .max(reference_slip)
             .max(load_displacement);
         let constraint = system.normal_rows().apply(displacement);
         let mut r = Self {
@@ -336,7 +343,7 @@ impl KktResiduals {
                 .max(relative((normal_force[i] * c).abs(), f_i * u_scale));
         }
         if let Some(friction) = system.friction() {
-            let slip = friction.tangential_rows().apply(displacement);
+            let slip = friction.slip(displacement);
             for i in 0..m {
                 let (b, lt, s) = (friction.bounds()[i], tangential_force[i], slip[i]);
                 let f_i = forces.rows[i];
@@ -446,11 +453,15 @@ pub(crate) fn certify(
 }
 
 /// True when the answer is exactly `u = 0, lambda = 0`: no load and no gap closed by the
-/// prescribed displacements (`f = 0`, `g >= 0`). Then `u = 0` minimises the (non-negative)
+/// prescribed displacements (`f = 0`, `g >= 0`) and no reference slip. Then `u = 0` minimises the (non-negative)
 /// energy and every solver returns it without iterating, so a zero load gives exactly zero
 /// contact forces.
 pub(crate) fn unloaded(system: &ContactSystem<'_>) -> bool {
-    system.load().iter().all(|&f| f == 0.0) && system.gap().iter().all(|&g| g >= 0.0)
+    system.load().iter().all(|&f| f == 0.0)
+        && system.gap().iter().all(|&g| g >= 0.0)
+        && system
+            .friction()
+            .is_none_or(|f| f.reference_slip().is_none())
 }
 
 /// The answer of an [`unloaded`] system with its report.

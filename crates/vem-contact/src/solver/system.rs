@@ -307,13 +307,19 @@ impl ConstraintRows {
     }
 }
 
-/// Tresca friction data: tangential rows `B_T` and nodal friction bounds
-/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`).
-/// Owns its data or borrows it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
+/// Tresca friction data: tangential rows `B_T`, nodal friction bounds
+/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`)
+/// and the reference slip `s` from which the slip of the solve is measured: the friction term
+/// is `sum_i b_i |(B_T u)_i - s_i|`. The reference slip is zero for a problem solved from rest
+/// and the tangential jump at the end of the previous load step for a step of a load history
+/// (the friction functional on the increment of the tangential jump). Owns its data or borrows
+/// it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Friction<'a> {
     tangential_rows: Cow<'a, ConstraintRows>,
     bounds: Cow<'a, [f64]>,
+    /// `None`: zero.
+    reference_slip: Option<Cow<'a, [f64]>>,
 }
 
 impl<'a> Friction<'a> {
@@ -333,7 +339,29 @@ impl<'a> Friction<'a> {
         Ok(Self {
             tangential_rows,
             bounds,
+            reference_slip: None,
         })
+    }
+
+    /// The same friction data with the reference slip `s` (one value per tangential row): the
+    /// friction term becomes `sum_i b_i |(B_T u)_i - s_i|`.
+    ///
+    /// # Errors
+    /// [`ContactSystemError::DimensionMismatch`] if `slip.len()` is not the number of
+    /// tangential rows, [`ContactSystemError::NonFinite`] for a value that is not finite.
+    pub fn with_reference_slip(
+        mut self,
+        slip: impl Into<Cow<'a, [f64]>>,
+    ) -> Result<Self, ContactSystemError> {
+        let slip = slip.into();
+        check_len(
+            "reference slip vs tangential rows",
+            self.tangential_rows.nrows(),
+            slip.len(),
+        )?;
+        check_finite("reference slip", &slip)?;
+        self.reference_slip = slip.iter().any(|&s| s != 0.0).then_some(slip);
+        Ok(self)
     }
 
     /// The tangential rows `B_T`: `(B_T u)_i = [u]_1tau` at node `i`.
@@ -344,6 +372,36 @@ impl<'a> Friction<'a> {
     /// The nodal friction bounds `b_i`.
     pub fn bounds(&self) -> &[f64] {
         &self.bounds
+    }
+
+    /// The reference slip `s` (`None` when it is zero, the problem from rest).
+    pub fn reference_slip(&self) -> Option<&[f64]> {
+        self.reference_slip.as_deref()
+    }
+
+    /// The slips `(B_T u)_i - s_i` of the displacement `u`: the tangential jump since the
+    /// reference slip.
+    pub fn slip(&self, u: &[f64]) -> Vec<f64> {
+        let mut slip = self.tangential_rows.apply(u);
+        self.subtract_reference(&mut slip);
+        slip
+    }
+
+    /// `values_i -= s_i` (nothing when the reference slip is zero).
+    pub(crate) fn subtract_reference(&self, values: &mut [f64]) {
+        if let Some(s) = &self.reference_slip {
+            for (v, s) in values.iter_mut().zip(s.iter()) {
+                *v -= s;
+            }
+        }
+    }
+
+    /// The reference slip as a vector, zeros when there is none.
+    pub(crate) fn reference_or_zero(&self) -> Cow<'_, [f64]> {
+        match &self.reference_slip {
+            Some(s) => Cow::Borrowed(&s[..]),
+            None => Cow::Owned(vec![0.0; self.tangential_rows.nrows()]),
+        }
     }
 }
 
@@ -423,9 +481,11 @@ impl StiffnessBlock<'_> {
 /// The discrete contact problem (P1^h, or P2^h with nodal friction quadrature):
 ///
 /// ```text
-/// frictionless:  min 1/2 u'Ku - f'u                          s.t.  B_N u <= g
-/// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i|   s.t.  B_N u <= g
+/// frictionless:  min 1/2 u'Ku - f'u                                s.t.  B_N u <= g
+/// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i - s_i|   s.t.  B_N u <= g
 /// ```
+///
+/// with the reference slip `s` of [`Friction`] (zero from rest).
 ///
 /// `K` is symmetric positive semi-definite, block diagonal (one block per body, full symmetric
 /// storage); a singular `K` is allowed when the constraints (or friction) hold the rigid modes.
