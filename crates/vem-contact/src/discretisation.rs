@@ -66,12 +66,12 @@ use crate::result::{
     classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
     InterfaceNode, ModelSummary, PairSummary,
 };
-use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
+use crate::solver::{checked_block, matrix_diagonal};
 use crate::warning::{Warning, ZoneLimit};
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
-    ContactSolver, ContactSolverError, ContactSystem, FixedPointSettings, Friction, HistoryStep,
+    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings, Friction, HistoryStep,
     LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, NodeStatus, PatternId,
     WorkCounters,
 };
@@ -113,6 +113,11 @@ pub struct ContactDiscretisation<const D: usize = 2> {
     /// bounds of every solve when no law iterates.
     start_bounds: Option<Vec<f64>>,
     load: Vec<f64>,
+    /// The diagonal of every body's stiffness (its values checked finite).
+    diagonals: Vec<Vec<f64>>,
+    /// The warnings about element shapes (see
+    /// [`ContactDiscretisation::element_shape_warnings`]).
+    element_warnings: Vec<Warning>,
     work: WorkCounters,
 }
 
@@ -189,8 +194,11 @@ impl<const D: usize> ContactDiscretisation<D> {
             tangential_rows: None,
             start_bounds: None,
             load,
+            diagonals: Vec::new(),
+            element_warnings: Vec::new(),
             work,
         };
+        discretisation.diagonals = checked_diagonals(&discretisation.systems)?;
         let (normal_rows, normal_lifting) = discretisation.jump_rows(0)?;
         discretisation.normal_rows = normal_rows;
         discretisation.normal_lifting = normal_lifting;
@@ -206,6 +214,7 @@ impl<const D: usize> ContactDiscretisation<D> {
             discretisation.tangential_rows = Some(discretisation.tangential_rows_checked()?);
         }
         discretisation.start_bounds = discretisation.bounds(None)?;
+        discretisation.element_warnings = discretisation.element_shape_warnings();
         discretisation.work.times.assembly = start.elapsed();
         Ok(discretisation)
     }
@@ -329,7 +338,10 @@ impl<const D: usize> ContactDiscretisation<D> {
             .systems
             .iter()
             .zip(&self.offsets)
-            .map(|(system, &offset)| borrowed_block(offset, system.stiffness()))
+            .zip(&self.diagonals)
+            .map(|((system, &offset), diagonal)| {
+                checked_block(offset, system.stiffness(), diagonal)
+            })
             .collect();
         let friction = self.tangential_rows.as_ref().map(|rows| {
             let mut bounds = bounds.unwrap_or_else(|| Cow::Owned(vec![0.0; self.nodes.len()]));
@@ -366,18 +378,10 @@ impl<const D: usize> ContactDiscretisation<D> {
     /// stiffest unknown), far above any force of the problem, so that the node sticks.
     fn hold_bound(&self, load: &[f64], gap: &[f64], reference: Option<&[f64]>) -> f64 {
         let k = self
-            .systems
+            .diagonals
             .iter()
-            .map(|s| {
-                let m = s.stiffness();
-                let (rows, values) = (m.row_idx(), m.val());
-                (0..m.ncols()).fold(0.0f64, |a, j| {
-                    m.col_range(j)
-                        .find(|&p| rows[p] == j)
-                        .map_or(a, |p| a.max(values[p].abs()))
-                })
-            })
-            .fold(0.0f64, f64::max);
+            .flatten()
+            .fold(0.0f64, |a, d| a.max(d.abs()));
         let sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
         let scale = sum(load) + k * (sum(gap) + reference.map_or(0.0, sum));
         HOLD_RATIO * scale.max(f64::MIN_POSITIVE)
@@ -636,6 +640,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         let updated = current.with_material(material)?;
         updated.reassemble(Arc::make_mut(&mut self.systems[body]))?;
         self.bodies[body] = updated;
+        self.diagonals = checked_diagonals(&self.systems)?;
         self.load = concatenated_load(&self.systems);
         self.normal_lifting = self.jump_rows(0)?.1;
         self.stiffness_version += 1;
@@ -1109,15 +1114,9 @@ impl<const D: usize> ContactDiscretisation<D> {
         }
     }
 
-    /// Warnings about the model behind a converged answer: elements far outside A1, a contact
-    /// zone at a limit of the interface, an initial overlap, an effectively tied friction
-    /// bound.
-    fn model_warnings(
-        &self,
-        nodes: &[InterfaceNode<D>],
-        bounds: Option<&[f64]>,
-        force_scale: f64,
-    ) -> Vec<Warning> {
+    /// The elements far outside A1 (the five worst per body, [`Warning::ElementShape`]): they
+    /// depend on the meshes only, and are found once, when the discretisation is built.
+    fn element_shape_warnings(&self) -> Vec<Warning> {
         let mut warnings = Vec::new();
         for body in &self.bodies {
             let mesh = body.body_mesh();
@@ -1137,6 +1136,19 @@ impl<const D: usize> ContactDiscretisation<D> {
                 });
             }
         }
+        warnings
+    }
+
+    /// Warnings about the model behind a converged answer: elements far outside A1, a contact
+    /// zone at a limit of the interface, an initial overlap, an effectively tied friction
+    /// bound.
+    fn model_warnings(
+        &self,
+        nodes: &[InterfaceNode<D>],
+        bounds: Option<&[f64]>,
+        force_scale: f64,
+    ) -> Vec<Warning> {
+        let mut warnings = self.element_warnings.clone();
         for pair in &self.pairs {
             let pair_nodes = &nodes[pair.nodes.clone()];
             for &(k, limit) in &pair.zone_ends {
@@ -1187,6 +1199,25 @@ const TIED_RATIO: f64 = 1e6;
 /// The bound of a held node, relative to the force scale of
 /// [`ContactDiscretisation::hold_bound`].
 const HOLD_RATIO: f64 = 1e6;
+
+/// The diagonal of every body's stiffness, after checking that its values are finite.
+fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, ContactError> {
+    systems
+        .iter()
+        .map(|system| {
+            let k = system.stiffness();
+            if let Some((index, &value)) = k.val().iter().enumerate().find(|(_, v)| !v.is_finite())
+            {
+                return Err(ContactError::System(ContactSystemError::NonFinite {
+                    what: "stiffness values",
+                    index,
+                    value,
+                }));
+            }
+            Ok(matrix_diagonal(k.as_ref()))
+        })
+        .collect()
+}
 
 /// The load vectors of the bodies, one after the other.
 fn concatenated_load(systems: &[Arc<AssembledSystem>]) -> Vec<f64> {

@@ -61,7 +61,7 @@ use std::sync::Arc;
 use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 
 use super::active_set::ActiveSetSolver;
-use super::box_qp::{BoxQp, BoxQpOutcome};
+use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
@@ -221,6 +221,8 @@ struct Factors {
     spans: Vec<LoadSpan>,
     /// The multipliers of the last solve (warm start).
     multipliers: Option<Vec<f64>>,
+    /// The factor of the reduced Hessian of the last Newton step of the interface QP.
+    reduced: ReducedFactor,
 }
 
 #[derive(Debug)]
@@ -418,6 +420,7 @@ impl Factors {
             unconstrained: None,
             spans: Vec::new(),
             multipliers: None,
+            reduced: ReducedFactor::default(),
         }))
     }
 }
@@ -607,6 +610,7 @@ fn interface_qp(
     upper: &[f64],
     warm: &[f64],
     settings: &CondensedSettings,
+    kept: &mut ReducedFactor,
 ) -> BoxQpOutcome {
     // Rows that cannot carry a force do not set the scale: an open gap (d_i < 0 on a normal
     // row, whose lower bound is 0) and a tangential row beyond its bound.
@@ -629,10 +633,11 @@ fn interface_qp(
         lower,
         upper,
     }
-    .solve(
+    .solve_with(
         warm,
         settings.tolerance * force_scale,
         settings.max_iterations,
+        kept,
     )
 }
 
@@ -686,6 +691,7 @@ fn proximal_iteration(
             upper,
             &result.lambda,
             settings,
+            &mut factors.reduced,
         );
         result.iterations += outcome.iterations;
         result.lambda = outcome.x;
@@ -899,6 +905,7 @@ impl CondensedSolver {
                 &upper,
                 &warm,
                 &self.settings,
+                &mut factors.reduced,
             );
             Interface {
                 lambda: outcome.x,

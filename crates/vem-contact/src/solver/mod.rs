@@ -49,7 +49,7 @@ pub(crate) use report::ForceScales;
 pub use report::{
     KktResiduals, KktScales, KktTolerance, SolveReport, SolveStatus, StageTimes, WorkCounters,
 };
-pub(crate) use system::borrowed_block;
+pub(crate) use system::{checked_block, matrix_diagonal};
 pub use system::{
     ConstraintRows, ContactSystem, ContactSystemError, Friction, PatternId, StiffnessBlock,
 };

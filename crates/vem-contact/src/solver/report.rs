@@ -581,7 +581,7 @@ mod tests {
     use faer::sparse::{SparseColMat, Triplet};
 
     use super::*;
-    use crate::solver::borrowed_block;
+    use crate::solver::system::borrowed_block;
     use crate::solver::{ConstraintRows, PatternId};
 
     fn spring() -> SparseColMat<usize, f64> {

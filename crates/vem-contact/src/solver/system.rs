@@ -464,6 +464,9 @@ impl PatternId {
 pub struct StiffnessBlock<'a> {
     offset: usize,
     matrix: Cow<'a, SparseColMat<usize, f64>>,
+    /// Its diagonal, when the owner of the matrix keeps it (a discretisation: computed once
+    /// per stiffness, not once per system), and its values were checked finite there.
+    checked_diagonal: Option<&'a [f64]>,
 }
 
 impl StiffnessBlock<'_> {
@@ -533,6 +536,7 @@ impl ContactSystem<'static> {
             vec![StiffnessBlock {
                 offset: 0,
                 matrix: Cow::Owned(stiffness),
+                checked_diagonal: None,
             }],
             Cow::Owned(load),
             Cow::Owned(normal_rows),
@@ -565,7 +569,9 @@ impl<'a> ContactSystem<'a> {
                 });
             }
             check_len("stiffness block offset", n, block.offset)?;
-            check_finite("stiffness values", m.val())?;
+            if block.checked_diagonal.is_none() {
+                check_finite("stiffness values", m.val())?;
+            }
             n += m.ncols();
         }
         check_len("load", n, load.len())?;
@@ -730,9 +736,11 @@ impl<'a> ContactSystem<'a> {
     /// The diagonal of `K` (duplicates of unsorted storage summed).
     pub fn stiffness_diagonal(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.n];
-        for (i, j, v) in self.stiffness_entries() {
-            if i == j {
-                d[i] += v;
+        for block in &self.blocks {
+            let range = block.offset..block.offset + block.matrix().ncols();
+            match block.checked_diagonal {
+                Some(diagonal) => d[range].copy_from_slice(diagonal),
+                None => d[range].copy_from_slice(&matrix_diagonal(block.matrix())),
             }
         }
         d
@@ -793,6 +801,7 @@ impl<'a> ContactSystem<'a> {
 }
 
 /// A stiffness block borrowed from an assembled system.
+#[cfg(test)]
 pub(crate) fn borrowed_block(
     offset: usize,
     matrix: &SparseColMat<usize, f64>,
@@ -800,7 +809,47 @@ pub(crate) fn borrowed_block(
     StiffnessBlock {
         offset,
         matrix: Cow::Borrowed(matrix),
+        checked_diagonal: None,
     }
+}
+
+/// A block borrowed from an owner that checked its values finite and keeps its diagonal
+/// `diagonal`: systems made from it skip both the check and the diagonal's computation.
+pub(crate) fn checked_block<'a>(
+    offset: usize,
+    matrix: &'a SparseColMat<usize, f64>,
+    diagonal: &'a [f64],
+) -> StiffnessBlock<'a> {
+    debug_assert_eq!(diagonal.len(), matrix.ncols());
+    StiffnessBlock {
+        offset,
+        matrix: Cow::Borrowed(matrix),
+        checked_diagonal: Some(diagonal),
+    }
+}
+
+/// The diagonal of a sparse matrix (duplicates of unsorted storage summed), by bisection in
+/// columns whose rows are sorted.
+pub(crate) fn matrix_diagonal(k: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    let (rows, values) = (k.row_idx(), k.val());
+    (0..k.ncols())
+        .map(|j| {
+            let range = k.col_range(j);
+            let column = &rows[range.clone()];
+            if column.windows(2).all(|w| w[0] < w[1]) {
+                column
+                    .binary_search(&j)
+                    .map_or(0.0, |p| values[range.start + p])
+            } else {
+                column
+                    .iter()
+                    .zip(&values[range])
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, v)| v)
+                    .sum()
+            }
+        })
+        .collect()
 }
 
 fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), ContactSystemError> {
