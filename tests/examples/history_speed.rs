@@ -20,7 +20,9 @@ use vem_contact::{
     CondensedSolver, ContactProblem, Coulomb, LoadCondition, LoadCurve, LoadCurves, LoadHistory,
     LoadPath,
 };
-use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material, Plane};
+use vem_elastic::{
+    CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material, Plane,
+};
 use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::io::read_gmsh;
 use vem_mesh::Vector;

@@ -71,9 +71,9 @@ use crate::solver::{checked_block, matrix_diagonal};
 use crate::warning::{Warning, ZoneLimit};
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
-    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings, Friction, HistoryStep,
-    LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, NodeStatus, PatternId,
-    WorkCounters,
+    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings,
+    Friction, HistoryStep, LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, NodeStatus,
+    PatternId, WorkCounters,
 };
 
 /// One contact pair as discretised: its law, its nodes in the discretisation's list, and what
@@ -439,12 +439,8 @@ impl<const D: usize> ContactDiscretisation<D> {
             let values = pair
                 .law
                 .friction_bounds(&self.nodes[r.clone()], law_state.as_ref())?;
-            let values = crate::law::checked_bounds(
-                &self.nodes[r.clone()],
-                values,
-                "friction bound",
-                true,
-            )?;
+            let values =
+                crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound", true)?;
             bounds.extend(values);
         }
         Ok(Some(bounds))
@@ -547,7 +543,10 @@ impl<const D: usize> ContactDiscretisation<D> {
             for (index, traction) in body.tractions().iter().enumerate() {
                 conditions.push((
                     LoadCondition::Traction { body: b, index },
-                    format!("body '{name}': traction {index} on part '{}'", traction.part()),
+                    format!(
+                        "body '{name}': traction {index} on part '{}'",
+                        traction.part()
+                    ),
                 ));
             }
         }
@@ -758,8 +757,7 @@ impl<const D: usize> ContactDiscretisation<D> {
                         if value == 0.0 {
                             continue;
                         }
-                        let k = match parts.iter().position(|&(b, o, _)| b == body && o == owner)
-                        {
+                        let k = match parts.iter().position(|&(b, o, _)| b == body && o == owner) {
                             Some(k) => k,
                             None => {
                                 parts.push((body, owner, vec![0.0; self.nodes.len()]));

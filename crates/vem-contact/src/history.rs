@@ -408,9 +408,7 @@ impl LoadHistory {
                 ),
             });
         }
-        Ok((1..=steps)
-            .map(|k| end * k as f64 / steps as f64)
-            .collect())
+        Ok((1..=steps).map(|k| end * k as f64 / steps as f64).collect())
     }
 
     /// The steps.

@@ -61,8 +61,7 @@ pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
 pub use discretisation::ContactDiscretisation;
 pub use error::ContactError;
 pub use history::{
-    HistoryStep, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, LoadPath,
-    LoadStep,
+    HistoryStep, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, LoadPath, LoadStep,
 };
 pub use law::{
     ContactLaw, Coulomb, FixedPointSettings, FixedPointSettingsBuilder, FrictionBound,
@@ -81,10 +80,10 @@ pub use warning::{Warning, ZoneLimit};
 
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
-    ContactForces, ContactSolution, ContactSolver, ContactSolverError, ContactSystem, ContactSystemError,
-    Friction, KktResiduals, KktScales, KktTolerance, PatternId, PenaltyParameter, PenaltySettings,
-    PenaltySolver, SettingsError, SolveReport, SolveStatus, StageTimes, StiffnessBlock,
-    WorkCounters,
+    ContactForces, ContactSolution, ContactSolver, ContactSolverError, ContactSystem,
+    ContactSystemError, Friction, KktResiduals, KktScales, KktTolerance, PatternId,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
+    StageTimes, StiffnessBlock, WorkCounters,
 };
 #[cfg(feature = "clarabel")]
 pub use solver::{ExactSettings, ExactSolver};

@@ -267,7 +267,8 @@ impl LoadParts {
                         let mut k_pp_u = vec![0.0; dofs.n_prescribed()];
                         matvec_add(system.prescribed_block(), &owned, 1.0, &mut k_pp_u);
                         for (k, plate) in dofs.plates().iter().enumerate() {
-                            rhs[n_free + k] -= plate.members.iter().map(|&p| k_pp_u[p]).sum::<f64>();
+                            rhs[n_free + k] -=
+                                plate.members.iter().map(|&p| k_pp_u[p]).sum::<f64>();
                         }
                     }
                     nonzero = true;
@@ -319,7 +320,11 @@ impl LoadParts {
         }
         let mut lifting = vec![0.0; discretisation.nodes().len()];
         for (body, index, values) in &self.lifting {
-            axpy(factors.bodies[*body].dirichlet[*index], values, &mut lifting);
+            axpy(
+                factors.bodies[*body].dirichlet[*index],
+                values,
+                &mut lifting,
+            );
         }
         LoadLevel {
             load: Cow::Owned(load),

@@ -309,13 +309,13 @@ impl<const D: usize> ElasticBody<D> {
     ) -> Result<(), ElasticError> {
         let points = self.mesh.points();
         let mut facet_dofs = Vec::new();
-        let facets = self
-            .mesh
-            .part_facets(traction.part())
-            .map_err(|source| ElasticError::Mesh {
-                body: self.name.clone(),
-                source,
-            })?;
+        let facets =
+            self.mesh
+                .part_facets(traction.part())
+                .map_err(|source| ElasticError::Mesh {
+                    body: self.name.clone(),
+                    source,
+                })?;
         for facet in facets {
             let corners: Vec<PointD<D>> = facet.iter().map(|&v| points[v]).collect();
             let load = self

@@ -137,11 +137,11 @@ impl ReducedFactor {
                 y[j] = 0.0;
                 continue;
             }
-            let column = self.at(0, j);
-            y[j] /= self.l[column + j];
+            let column = &self.l[self.at(0, j)..self.at(n, j)];
+            y[j] /= column[j];
             let yj = y[j];
-            for i in j + 1..n {
-                y[i] -= self.l[column + i] * yj;
+            for (yi, lij) in y[j + 1..n].iter_mut().zip(&column[j + 1..]) {
+                *yi -= lij * yj;
             }
         }
     }
@@ -157,13 +157,17 @@ impl ReducedFactor {
         self.forward(&mut y);
         let h = column(v);
         let d2 = h - y.iter().map(|x| x * x).sum::<f64>();
-        if !(d2 > PIVOT_FLOOR * h.abs()) {
+        if d2.is_nan() || d2 <= PIVOT_FLOOR * h.abs() {
             return false;
         }
         let n = self.order.len();
         if n == self.capacity {
             let dead = n - self.live;
-            self.compact(if 4 * dead > n { self.capacity } else { 2 * self.capacity });
+            self.compact(if 4 * dead > n {
+                self.capacity
+            } else {
+                2 * self.capacity
+            });
             // Positions moved: the row of the new variable again.
             return self.append(v, column);
         }
@@ -191,12 +195,13 @@ impl ReducedFactor {
             if self.order[j] == DEAD {
                 continue;
             }
-            let column = self.at(0, j);
-            let mut sum = x[j];
-            for i in j + 1..n {
-                sum -= self.l[column + i] * x[i];
-            }
-            x[j] = sum / self.l[column + j];
+            let column = &self.l[self.at(0, j)..self.at(n, j)];
+            let below: f64 = column[j + 1..]
+                .iter()
+                .zip(&x[j + 1..n])
+                .map(|(l, x)| l * x)
+                .sum();
+            x[j] = (x[j] - below) / column[j];
         }
         self.order
             .iter()
@@ -261,7 +266,12 @@ impl BoxQp<'_> {
     /// at most `tolerance` (a force) or `max_iterations` steps were taken.
     #[cfg(test)]
     pub fn solve(&self, start: &[f64], tolerance: f64, max_iterations: usize) -> BoxQpOutcome {
-        self.solve_with(start, tolerance, max_iterations, &mut ReducedFactor::default())
+        self.solve_with(
+            start,
+            tolerance,
+            max_iterations,
+            &mut ReducedFactor::default(),
+        )
     }
 
     /// [`BoxQp::solve`] with the reduced factor `kept` of an earlier solve with the same `H`
@@ -536,7 +546,11 @@ mod tests {
         let x = factor.solve(&g);
         for &(i, _) in &x {
             let lhs: f64 = x.iter().map(|&(j, p)| h[(i, j)] * p).sum();
-            assert!((lhs + g[i]).abs() < 1e-12, "variable {i}: {lhs} vs {}", -g[i]);
+            assert!(
+                (lhs + g[i]).abs() < 1e-12,
+                "variable {i}: {lhs} vs {}",
+                -g[i]
+            );
         }
     }
 

@@ -369,7 +369,11 @@ impl Penalised<'_> {
         };
         add(sys.normal_rows(), self.eps_n, sys.gap());
         if let Some(f) = sys.friction() {
-            add(f.tangential_rows(), self.eps_t, f.reference_slip().unwrap_or(&[]));
+            add(
+                f.tangential_rows(),
+                self.eps_t,
+                f.reference_slip().unwrap_or(&[]),
+            );
         }
         out
     }

@@ -195,7 +195,9 @@ mod tests {
     fn resultant(hertz: &HertzContact, traction: impl Fn(f64) -> f64) -> f64 {
         let (a, n) = (hertz.half_width(), 200_000);
         let h = 2.0 * a / n as f64;
-        (0..n).map(|k| traction(-a + (k as f64 + 0.5) * h) * h).sum()
+        (0..n)
+            .map(|k| traction(-a + (k as f64 + 0.5) * h) * h)
+            .sum()
     }
 
     /// The unloading and reloading tractions carry the loads they are for, stay within
@@ -207,9 +209,17 @@ mod tests {
         let fp = f * hertz.load();
         for r in [0.8, 0.5, 0.0, -0.4, -0.8] {
             let unloaded = resultant(&hertz, |x| hertz.unloading_traction(x, f, peak, r));
-            assert!((unloaded / fp - r).abs() < 1e-4, "unloading to {r}: {}", unloaded / fp);
+            assert!(
+                (unloaded / fp - r).abs() < 1e-4,
+                "unloading to {r}: {}",
+                unloaded / fp
+            );
             let reloaded = resultant(&hertz, |x| hertz.reloading_traction(x, f, peak, r));
-            assert!((reloaded / fp - r).abs() < 1e-4, "reloading to {r}: {}", reloaded / fp);
+            assert!(
+                (reloaded / fp - r).abs() < 1e-4,
+                "reloading to {r}: {}",
+                reloaded / fp
+            );
             for k in 0..=100 {
                 let x = hertz.half_width() * (-1.0 + 0.02 * k as f64);
                 let bound = f * hertz.pressure(x) * (1.0 + 1e-12) + 1e-15;
