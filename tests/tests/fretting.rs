@@ -7,7 +7,8 @@
 //! Checked against the analytic solutions of `vem_verify::exact::HertzContact`: the stick zone
 //! `c = a sqrt(1 - Q/(F P))` of the loading, the zone `c' = a sqrt(1 - (Q* - Q)/(2 F P))` that
 //! sticks while unloading from Q* and reloading, each within one node spacing; the friction
-//! traction inside the zones within a few per cent of `F p0`; the loop closing at Q*; and the
+//! traction within 8 % of `F p0` two node spacings away from the zone ends (measured 1-8 %,
+//! the largest in the first loading steps); the loop closing at Q*; and the
 //! path dependence: pressed and sheared together (proportionally), the interface sticks
 //! everywhere with `q = (Q/P) p`, not Cattaneo-Mindlin's tractions, while frictionless contact
 //! reaches the same answer by every path.
@@ -113,7 +114,7 @@ fn hertz() -> HertzContact {
 }
 
 /// Half-width of the run of nodes with `inside` around x = 0 (its ends halfway to the next
-/// node outside) and the largest node spacing at its ends.
+/// node outside) and the larger node spacing at its ends.
 fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
     let centre = (0..nodes.len())
         .filter(|&i| inside(&nodes[i]))
@@ -212,7 +213,10 @@ fn loading_unloading_and_reloading_follow_cattaneo_mindlin_and_the_loop_closes()
         assert!((force.y - P).abs() < 1e-9 * P, "t = {t}: {force}");
         assert!((force.x + r * F * P).abs() < 1e-9 * P, "t = {t}: {force}");
         // The zone that sticks, its analytic half-width and the analytic traction.
-        let (c, spacing) = zone(&result.nodes, |n| n.status == NodeStatus::Stick);
+        // Measured in the node spacing of the contact zone (a zone end between two nearly
+        // coincident nodes of the two sides has a tiny local spacing).
+        let c = zone(&result.nodes, |n| n.status == NodeStatus::Stick).0;
+        let spacing = spacing_in(&result.nodes, hertz.half_width());
         let c_peak = hertz.stick_half_width(PEAK);
         let (expected, error) = if t <= 2.0 + 1e-9 {
             let c_exact = hertz.stick_half_width(r);
