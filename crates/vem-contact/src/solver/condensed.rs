@@ -56,6 +56,7 @@ use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Accum, Mat, MatMut, MatRef, Par};
+use rayon::prelude::*;
 use std::sync::Arc;
 
 use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError};
@@ -234,8 +235,11 @@ struct BodyFactor {
     _shared: Arc<BlockFactor>,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
-    /// Bodies with a singular stiffness: the shift, `L_GG`, `W = L_GG^-1 B_G'` and the
-    /// interface displacement `v` of the last solve (the start of the next proximal iteration).
+    /// `L_GG`, the trailing block of the factor (empty without interface unknowns): the
+    /// forward substitution of a right-hand side on the interface unknowns.
+    trailing: Mat<f64>,
+    /// Bodies with a singular stiffness: the shift, `W = L_GG^-1 B_G'` and the interface
+    /// displacement `v` of the last solve (the start of the next proximal iteration).
     proximal: Option<Proximal>,
 }
 
@@ -243,7 +247,6 @@ struct BodyFactor {
 struct Proximal {
     /// The shift `s` of the interface unknowns.
     shift: f64,
-    trailing: Mat<f64>,
     w: Mat<f64>,
     interface_displacement: Vec<f64>,
     /// The change of `v` in the last proximal step.
@@ -375,6 +378,7 @@ impl Factors {
             let shift = block_factor.shift;
             let cholesky = CholeskySolver::from_factor(settings.cholesky, factor);
             let mut proximal = None;
+            let mut trailing = Mat::<f64>::zeros(0, 0);
             if !interface.is_empty() {
                 // W = L_GG^-1 B_G' and H += W'W.
                 let mut w = Mat::<f64>::zeros(interface.len(), rows.len());
@@ -398,12 +402,12 @@ impl Factors {
                 if shift > 0.0 {
                     proximal = Some(Proximal {
                         shift,
-                        trailing: l,
                         w,
                         interface_displacement: vec![0.0; interface.len()],
                         last_step: vec![0.0; interface.len()],
                     });
                 }
+                trailing = l;
             }
             bodies.push(BodyFactor {
                 offset,
@@ -411,6 +415,7 @@ impl Factors {
                 cholesky,
                 _shared: block_factor,
                 interface,
+                trailing,
                 proximal,
             });
         }
@@ -474,16 +479,68 @@ fn factorise_or_shift(
 }
 
 impl Factors {
-    /// `K_s^-1 x`, body by body.
+    /// `K_s^-1 x`, the bodies in parallel (their blocks are independent).
     fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
         let start = Instant::now();
+        // The bodies' parts of x, in the order of the bodies (consecutive blocks).
+        let mut parts = Vec::with_capacity(self.bodies.len());
+        let mut rest = x;
+        let mut position = 0;
         for body in &self.bodies {
-            let part = &mut x[body.offset..body.offset + body.n];
-            body.cholesky
-                .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
-                .map_err(backend)?;
-            work.triangular_solves += 1;
+            let (_, tail) = rest.split_at_mut(body.offset - position);
+            let (part, tail) = tail.split_at_mut(body.n);
+            parts.push((body, part));
+            rest = tail;
+            position = body.offset + body.n;
         }
+        parts
+            .into_par_iter()
+            .map(|(body, part)| {
+                body.cholesky
+                    .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                    .map_err(backend)
+            })
+            .collect::<Result<Vec<()>, _>>()?;
+        work.triangular_solves += self.bodies.len();
+        work.times.solves += start.elapsed();
+        Ok(())
+    }
+
+    /// `K_s^-1 x` for an `x` that vanishes outside the interface unknowns, the bodies in
+    /// parallel: the forward substitution on the interface block (dense, with `L_GG`), then
+    /// the backward substitution of the body's factor
+    /// ([`CholeskySolver::solve_from_trailing`]), half a solve.
+    fn solve_on_interface(
+        &self,
+        x: &mut [f64],
+        work: &mut WorkCounters,
+    ) -> Result<(), ContactSolverError> {
+        let start = Instant::now();
+        let mut parts = Vec::with_capacity(self.bodies.len());
+        let mut rest = x;
+        let mut position = 0;
+        for body in &self.bodies {
+            let (_, tail) = rest.split_at_mut(body.offset - position);
+            let (part, tail) = tail.split_at_mut(body.n);
+            parts.push((body, part));
+            rest = tail;
+            position = body.offset + body.n;
+        }
+        parts
+            .into_par_iter()
+            .map(|(body, part)| {
+                if body.interface.is_empty() {
+                    part.fill(0.0);
+                    return Ok(());
+                }
+                let mut y =
+                    Mat::<f64>::from_fn(body.interface.len(), 1, |k, _| part[body.interface[k]]);
+                solve_lower_triangular_in_place(body.trailing.as_ref(), y.as_mut(), Par::Seq);
+                let y: Vec<f64> = (0..body.interface.len()).map(|k| y[(k, 0)]).collect();
+                body.cholesky.solve_from_trailing(&y, part).map_err(backend)
+            })
+            .collect::<Result<Vec<()>, _>>()?;
+        work.triangular_solves += self.bodies.len();
         work.times.solves += start.elapsed();
         Ok(())
     }
@@ -676,7 +733,7 @@ fn proximal_iteration(
                 let mut z = Mat::<f64>::from_fn(p.interface_displacement.len(), 1, |i, _| {
                     p.shift * p.interface_displacement[i]
                 });
-                solve_lower_triangular_in_place(p.trailing.as_ref(), z.as_mut(), Par::Seq);
+                solve_lower_triangular_in_place(body.trailing.as_ref(), z.as_mut(), Par::Seq);
                 let wz = p.w.transpose() * &z;
                 for (i, di) in d.iter_mut().enumerate() {
                     *di += wz[(i, 0)];
@@ -717,7 +774,7 @@ fn proximal_iteration(
                 -1.0,
                 Par::Seq,
             );
-            solve_upper_triangular_in_place(p.trailing.transpose(), z.as_mut(), Par::Seq);
+            solve_upper_triangular_in_place(body.trailing.transpose(), z.as_mut(), Par::Seq);
             let mut body_step = 0.0f64;
             for (k, &i) in body.interface.iter().enumerate() {
                 let v = u0[body.offset + i] + z[(k, 0)];
@@ -972,7 +1029,8 @@ impl CondensedSolver {
                 }
             }
         }
-        factors.solve(&mut correction, &mut work)?;
+        // The correction lies on the interface unknowns: half a solve per body.
+        factors.solve_on_interface(&mut correction, &mut work)?;
         let displacement: Vec<f64> = u0.iter().zip(&correction).map(|(a, b)| a - b).collect();
         let normal_force = lambda[..m].to_vec();
         let tangential_force = if system.friction().is_some() {

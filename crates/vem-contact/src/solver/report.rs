@@ -142,6 +142,39 @@ impl ForceScales {
         normal_force: &[f64],
         tangential_force: &[f64],
     ) -> Self {
+        let abs_u: Vec<f64> = displacement.iter().map(|x| x.abs()).collect();
+        let mut stiffness_magnitude = vec![0.0; system.n_dofs()];
+        system.stiffness_apply_with(&abs_u, &mut stiffness_magnitude, f64::abs);
+        Self::from_products(
+            system,
+            ku,
+            stiffness_magnitude,
+            normal_force,
+            tangential_force,
+        )
+    }
+
+    /// [`ForceScales::of`] with `K u` computed here, in the same pass over `K` as `|K||u|`;
+    /// returns `K u` too.
+    pub(crate) fn of_answer(
+        system: &ContactSystem<'_>,
+        displacement: &[f64],
+        normal_force: &[f64],
+        tangential_force: &[f64],
+    ) -> (Self, Vec<f64>) {
+        let (ku, magnitude) = system.stiffness_apply_and_magnitude(displacement);
+        let scales = Self::from_products(system, &ku, magnitude, normal_force, tangential_force);
+        (scales, ku)
+    }
+
+    /// The scales from `K u` and `|K||u|` (`stiffness_magnitude`).
+    fn from_products(
+        system: &ContactSystem<'_>,
+        ku: &[f64],
+        stiffness_magnitude: Vec<f64>,
+        normal_force: &[f64],
+        tangential_force: &[f64],
+    ) -> Self {
         let mut reaction = vec![0.0; system.n_dofs()];
         system
             .normal_rows()
@@ -153,9 +186,10 @@ impl ForceScales {
         }
         let load = system.load();
         // |K||u| + |f| + |B'||lambda|: what the evaluation of r rounds.
-        let mut magnitude: Vec<f64> = load.iter().map(|f| f.abs()).collect();
-        let abs_u: Vec<f64> = displacement.iter().map(|x| x.abs()).collect();
-        system.stiffness_apply_with(&abs_u, &mut magnitude, f64::abs);
+        let mut magnitude = stiffness_magnitude;
+        for (m, f) in magnitude.iter_mut().zip(load) {
+            *m += f.abs();
+        }
         let mut add_abs = |rows: &super::ConstraintRows, y: &[f64]| {
             for (i, &yi) in y.iter().enumerate() {
                 let (cols, vals) = rows.row(i);
@@ -302,8 +336,8 @@ impl KktResiduals {
             zeros = vec![0.0; m];
             &zeros
         };
-        let ku = system.stiffness_apply(displacement);
-        let forces = ForceScales::of(system, displacement, &ku, normal_force, tangential_force);
+        let (forces, _) =
+            ForceScales::of_answer(system, displacement, normal_force, tangential_force);
         let k_max = system
             .stiffness_diagonal()
             .into_iter()

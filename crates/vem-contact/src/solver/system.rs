@@ -717,6 +717,32 @@ impl<'a> ContactSystem<'a> {
 
     /// `y += g(K) x` entry by entry (`g(v) = |v|` gives `|K| x`): the hot loop of the Newton
     /// solvers, over plain slices block by block.
+    /// `(K x, |K||x|)` in one pass over `K`.
+    pub(crate) fn stiffness_apply_and_magnitude(&self, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (mut y, mut magnitude) = (vec![0.0; self.n], vec![0.0; self.n]);
+        for block in &self.blocks {
+            let k = block.matrix();
+            let (rows, values) = (k.row_idx(), k.val());
+            let (x, y, magnitude) = (
+                &x[block.offset..],
+                &mut y[block.offset..],
+                &mut magnitude[block.offset..],
+            );
+            for (j, &xj) in x.iter().take(k.ncols()).enumerate() {
+                if xj == 0.0 {
+                    continue;
+                }
+                let abs_xj = xj.abs();
+                for p in k.col_range(j) {
+                    let (i, v) = (rows[p], values[p]);
+                    y[i] += v * xj;
+                    magnitude[i] += v.abs() * abs_xj;
+                }
+            }
+        }
+        (y, magnitude)
+    }
+
     pub(crate) fn stiffness_apply_with(&self, x: &[f64], y: &mut [f64], g: impl Fn(f64) -> f64) {
         for block in &self.blocks {
             let k = block.matrix();
