@@ -826,8 +826,6 @@ impl<const D: usize> ContactDiscretisation<D> {
         };
         // The normal forces the bounds were made from (`None`: the laws' starting bounds).
         let mut source: Option<Vec<f64>> = warm.map(|p| p.normal_force.clone());
-        // The source and image of the step before (for the acceleration).
-        let mut earlier: Option<(Vec<f64>, Vec<f64>)> = None;
         let mut held = warm.is_none();
         let mut work = WorkCounters::default();
         let (mut iterations, mut steps) = (0, 0);
@@ -842,7 +840,6 @@ impl<const D: usize> ContactDiscretisation<D> {
                     held = true;
                     bounds = self.bounds(None)?;
                     source = None;
-                    earlier = None;
                     continue;
                 }
                 Err(ContactSolverError::RigidSliding {
@@ -919,15 +916,7 @@ impl<const D: usize> ContactDiscretisation<D> {
                     });
                 }
             }
-            // The next step's normal forces: this step's image, accelerated (Anderson, one
-            // earlier pair) once two steps are known.
-            let image = forces.normal_force;
-            let next_source = match (&source, &earlier) {
-                (Some(x), Some((x_prev, t_prev))) => {
-                    accelerated(x, &image, x_prev, t_prev).unwrap_or_else(|| image.clone())
-                }
-                _ => image.clone(),
-            };
+            let next_source = forces.normal_force;
             let mut normal_jump = forces.normal_rows;
             for (j, l) in normal_jump.iter_mut().zip(level.lifting.iter()) {
                 *j += l;
@@ -938,7 +927,6 @@ impl<const D: usize> ContactDiscretisation<D> {
                 normal_jump: &normal_jump,
                 slip: &forces.tangential_rows,
             }))?;
-            earlier = source.take().map(|x| (x, image));
             source = Some(next_source);
         }
     }
@@ -1208,31 +1196,6 @@ const TIED_RATIO: f64 = 1e6;
 /// The bound of a held node, relative to the force scale of
 /// [`ContactDiscretisation::hold_bound`].
 const HOLD_RATIO: f64 = 1e6;
-
-/// Anderson's acceleration with one earlier pair of the fixed point `x -> T(x)` of the normal
-/// forces: with the residuals `r = T(x) - x` and `r' = T(x') - x'`, the next source is
-/// `T(x) - gamma (T(x) - T(x'))`, `gamma = r.(r - r') / |r - r'|^2`, clamped to forces `>= 0`
-/// (`None` when `r = r'`). Along a Coulomb fixed point whose Tresca steps contract the change
-/// of the normal forces by a constant factor, it removes that factor's slowest direction.
-fn accelerated(x: &[f64], image: &[f64], x_prev: &[f64], t_prev: &[f64]) -> Option<Vec<f64>> {
-    let (mut numerator, mut denominator) = (0.0, 0.0);
-    for (((x, t), xp), tp) in x.iter().zip(image).zip(x_prev).zip(t_prev) {
-        let (r, rp) = (t - x, tp - xp);
-        numerator += r * (r - rp);
-        denominator += (r - rp) * (r - rp);
-    }
-    let gamma = numerator / denominator;
-    if !(denominator > 0.0 && gamma.is_finite()) {
-        return None;
-    }
-    Some(
-        image
-            .iter()
-            .zip(t_prev)
-            .map(|(t, tp)| (t - gamma * (t - tp)).max(0.0))
-            .collect(),
-    )
-}
 
 /// The diagonal of every body's stiffness, after checking that its values are finite.
 fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, ContactError> {
