@@ -735,6 +735,7 @@ fn markdown(
                 );
             }
             Some(message) => {
+                let message = message.replace('|', "\\|");
                 let _ = writeln!(o, "| {} | refused: {message} | | | | |", r.ratio);
             }
         }
