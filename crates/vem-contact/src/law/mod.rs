@@ -144,7 +144,7 @@ pub struct FixedPointSettings {
 }
 
 impl Default for FixedPointSettings {
-    /// At most 50 Tresca solves, tolerance `1e-8`.
+    /// At most 50 Tresca steps, tolerance `1e-8`.
     fn default() -> Self {
         Self {
             max_iterations: 50,
@@ -161,7 +161,8 @@ impl FixedPointSettings {
         }
     }
 
-    /// Largest number of Tresca solves.
+    /// Largest number of Tresca steps (solves with the bounds of a state; the solve of a held
+    /// start, from rest, is not counted).
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -205,7 +206,7 @@ pub struct FixedPointSettingsBuilder {
 }
 
 impl FixedPointSettingsBuilder {
-    /// Largest number of Tresca solves, `>= 1`.
+    /// Largest number of Tresca steps, `>= 1`.
     pub fn max_iterations(mut self, value: usize) -> Self {
         self.settings.max_iterations = value;
         self
