@@ -499,7 +499,9 @@ impl<const D: usize> ContactDiscretisation<D> {
     }
 
     /// Follows the load history `history` from rest, one step after the other, with friction
-    /// on the slip increments (see [`LoadPath`]); the answer of every step.
+    /// on the slip increments (see [`LoadPath`]); the answer of every step (each with the
+    /// body solutions: for a long history of a large model, step with
+    /// [`LoadPath::advance`] and keep what is needed).
     ///
     /// # Errors
     /// As [`LoadPath::run`].
