@@ -1,7 +1,11 @@
 //! `cargo xtask hertz`: the Hertz half-disc on a block (non-matching Gmsh meshes) at three
 //! contact mesh sizes with each contact normal choice, against Hertz's plane-strain solution;
 //! Coulomb friction at full slip (Q/P against F) and under a partial tangential shift against
-//! Cattaneo-Mindlin's stick half-width. See `docs/hertz.md`.
+//! Cattaneo-Mindlin's stick half-width; friction under force control and along load histories
+//! (the `fretting` section: loading, unloading, reloading, path dependence). See
+//! `docs/hertz.md`.
+
+mod fretting;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -35,6 +39,9 @@ pub struct HertzArgs {
     /// Contact mesh sizes h_c (the meshes must exist), comma separated.
     #[arg(long, value_delimiter = ',', default_value = "0.08,0.04,0.02")]
     sizes: Vec<String>,
+    /// Only the friction section (force control, load histories): `fretting.md`.
+    #[arg(long)]
+    friction_only: bool,
 }
 
 /// Young's modulus and Poisson's ratio of both bodies (plane strain).
@@ -105,6 +112,14 @@ struct Friction {
 pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let start = Instant::now();
     std::fs::create_dir_all(&args.out)?;
+    if args.friction_only {
+        fretting::run(args)?;
+        println!(
+            "wrote {0}/fretting.md, fretting.json and its SVG plots",
+            args.out.display()
+        );
+        return Ok(true);
+    }
     let mut frictionless = Vec::new();
     let mut friction = Vec::new();
     for h in &args.sizes {
@@ -161,8 +176,9 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
     {
         write_text(args.out.join("cattaneo_mindlin.svg"), &traction_svg(c)?)?;
     }
+    fretting::run(args)?;
     println!(
-        "wrote {0}/results.md, results.json and the SVG plots",
+        "wrote {0}/results.md, results.json, fretting.md, fretting.json and the SVG plots",
         args.out.display()
     );
     Ok(true)

@@ -57,19 +57,23 @@ use std::time::{Duration, Instant};
 use vem_elastic::{AssembledSystem, DofStatus, ElasticBody, Material};
 use vem_mesh::{Point, VectorD};
 
+use crate::history::{NodeState, PathState};
 use crate::law::LawState;
+use crate::load::{LoadLevel, LoadParts, Scaling};
 use crate::pairing::{pair_geometry, ZoneEnd};
 use crate::problem::Counterpart;
 use crate::result::{
     classify, consistent_traction, BodyResult, BodySummary, ContactResult, FixedPointReport,
     InterfaceNode, ModelSummary, PairSummary, TractionBound,
 };
-use crate::solver::borrowed_block;
 use crate::solver::ForceScales;
+use crate::solver::{checked_block, matrix_diagonal};
 use crate::warning::Warning;
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
-    ContactSolver, ContactSystem, FixedPointSettings, Friction, Location, PatternId, WorkCounters,
+    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings,
+    Friction, HistoryStep, LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, PatternId,
+    WorkCounters,
 };
 
 /// One contact pair as discretised: its law, its nodes in the discretisation's list, and what
@@ -112,6 +116,11 @@ pub struct ContactDiscretisation<const D: usize = 2> {
     /// bounds of every solve when no law iterates.
     start_bounds: Option<Vec<f64>>,
     load: Vec<f64>,
+    /// The diagonal of every body's stiffness (its values checked finite).
+    diagonals: Vec<Vec<f64>>,
+    /// The warnings about element shapes (see
+    /// [`ContactDiscretisation::element_shape_warnings`]).
+    element_warnings: Vec<Warning>,
     work: WorkCounters,
 }
 
@@ -190,8 +199,11 @@ impl<const D: usize> ContactDiscretisation<D> {
             tangential_rows: None,
             start_bounds: None,
             load,
+            diagonals: Vec::new(),
+            element_warnings: Vec::new(),
             work,
         };
+        discretisation.diagonals = checked_diagonals(&discretisation.systems)?;
         let (normal_rows, normal_lifting) = discretisation.jump_rows(0)?;
         discretisation.normal_rows = normal_rows;
         discretisation.normal_lifting = normal_lifting;
@@ -207,6 +219,7 @@ impl<const D: usize> ContactDiscretisation<D> {
             discretisation.tangential_rows = Some(discretisation.tangential_rows_checked()?);
         }
         discretisation.start_bounds = discretisation.bounds(None)?;
+        discretisation.element_warnings = discretisation.element_shape_warnings();
         discretisation.work.times.assembly = start.elapsed();
         Ok(discretisation)
     }
@@ -279,7 +292,7 @@ impl<const D: usize> ContactDiscretisation<D> {
 
     /// The gaps `g = h0 - (prescribed part of [u]_nu)` at full load.
     pub fn gap(&self) -> Vec<f64> {
-        self.gap_scaled(1.0)
+        self.gap_of(&self.normal_lifting)
     }
 
     /// What building and refilling this discretisation computed (assemblies, times).
@@ -287,34 +300,70 @@ impl<const D: usize> ContactDiscretisation<D> {
         self.work
     }
 
-    /// The contact system at full load with the laws' friction bounds of a first solve
-    /// (Tresca's bounds, zero for the first step of a Coulomb fixed point) or no friction.
+    /// The contact system at full load with the laws' friction bounds of a first solve from
+    /// rest (Tresca's bounds; the nodes of a Coulomb pair held, by a bound far above every force
+    /// of the problem: the start of its fixed point) or no friction.
     pub fn system(&self) -> ContactSystem<'_> {
-        self.system_with(1.0, self.start_bounds.as_deref().map(Cow::Borrowed))
+        self.system_from(
+            Cow::Borrowed(&self.load[..]),
+            self.gap_of(&self.normal_lifting),
+            self.start_bounds.as_deref().map(Cow::Borrowed),
+            None,
+        )
     }
 
-    /// The contact system with the loads and prescribed displacements scaled by `load_factor`
-    /// and the friction bounds `bounds` (ignored without tangential rows; zero bounds when
-    /// `None` and there are tangential rows).
-    fn system_with<'s>(
+    /// The contact system of the level `level` with the friction bounds `bounds` and the
+    /// reference slip `reference` (see [`ContactDiscretisation::system_from`]).
+    fn system_at<'s>(
         &'s self,
-        load_factor: f64,
+        level: &'s LoadLevel<'_>,
         bounds: Option<Cow<'s, [f64]>>,
+        reference: Option<&'s [f64]>,
+    ) -> ContactSystem<'s> {
+        self.system_from(
+            Cow::Borrowed(&level.load[..]),
+            self.gap_of(&level.lifting),
+            bounds,
+            reference,
+        )
+    }
+
+    /// The contact system with the load `load`, the gaps `gap`, the friction bounds `bounds`
+    /// (ignored without tangential rows; zero bounds when `None` and there are tangential rows;
+    /// an infinite bound, a held node, becomes [`ContactDiscretisation::hold_bound`]) and the
+    /// reference slip `reference` of the friction term (`None`: zero).
+    fn system_from<'s>(
+        &'s self,
+        load: Cow<'s, [f64]>,
+        gap: Vec<f64>,
+        bounds: Option<Cow<'s, [f64]>>,
+        reference: Option<&'s [f64]>,
     ) -> ContactSystem<'s> {
         let blocks = self
             .systems
             .iter()
             .zip(&self.offsets)
-            .map(|(system, &offset)| borrowed_block(offset, system.stiffness()))
+            .zip(&self.diagonals)
+            .map(|((system, &offset), diagonal)| {
+                checked_block(offset, system.stiffness(), diagonal)
+            })
             .collect();
-        let load = if load_factor == 1.0 {
-            Cow::Borrowed(&self.load[..])
-        } else {
-            Cow::Owned(self.load.iter().map(|f| load_factor * f).collect())
-        };
         let friction = self.tangential_rows.as_ref().map(|rows| {
-            let bounds = bounds.unwrap_or_else(|| Cow::Owned(vec![0.0; self.nodes.len()]));
-            Friction::try_new(rows, bounds).expect("bounds checked when they were made")
+            let mut bounds = bounds.unwrap_or_else(|| Cow::Owned(vec![0.0; self.nodes.len()]));
+            if bounds.iter().any(|b| b.is_infinite()) {
+                let hold = self.hold_bound(&load, &gap, reference);
+                for b in bounds.to_mut().iter_mut().filter(|b| b.is_infinite()) {
+                    *b = hold;
+                }
+            }
+            let friction =
+                Friction::try_new(rows, bounds).expect("bounds checked when they were made");
+            match reference {
+                Some(slip) => friction
+                    .with_reference_slip(slip)
+                    .expect("one finite reference slip per tangential row"),
+                None => friction,
+            }
         });
         ContactSystem::try_from_parts(
             self.pattern,
@@ -322,26 +371,62 @@ impl<const D: usize> ContactDiscretisation<D> {
             blocks,
             load,
             Cow::Borrowed(&self.normal_rows),
-            Cow::Owned(self.gap_scaled(load_factor)),
+            Cow::Owned(gap),
             friction,
         )
         .expect("a discretisation's parts are consistent")
     }
 
-    fn gap_scaled(&self, load_factor: f64) -> Vec<f64> {
+    /// The bound of a held node (a law's `+inf`): `1e6` times the force scale
+    /// `sum_j |f_j| + k (sum_i |g_i| + sum_i |s_i|)` (`k` the largest diagonal entry of the
+    /// stiffness: the forces that would close every gap and undo every reference slip at the
+    /// stiffest unknown), far above any force of the problem, so that the node sticks.
+    fn hold_bound(&self, load: &[f64], gap: &[f64], reference: Option<&[f64]>) -> f64 {
+        let k = self
+            .diagonals
+            .iter()
+            .flatten()
+            .fold(0.0f64, |a, d| a.max(d.abs()));
+        let sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+        let scale = sum(load) + k * (sum(gap) + reference.map_or(0.0, sum));
+        HOLD_RATIO * scale.max(f64::MIN_POSITIVE)
+    }
+
+    /// The gaps `g = h0 - (prescribed part of [u]_nu)` for the prescribed normal jumps
+    /// `lifting`.
+    fn gap_of(&self, lifting: &[f64]) -> Vec<f64> {
         self.nodes
             .iter()
-            .zip(&self.normal_lifting)
-            .map(|(node, lifting)| node.initial_gap - load_factor * lifting)
+            .zip(lifting)
+            .map(|(node, lifting)| node.initial_gap - lifting)
             .collect()
     }
 
-    /// The nodal friction bounds of every node from each pair's law (given the last solve's
-    /// `state`, `None` before any), or `None` without tangential rows.
-    fn bounds(
-        &self,
-        state: Option<(&ContactSolution, &[f64], &[f64])>,
-    ) -> Result<Option<Vec<f64>>, ContactError> {
+    /// The level with every load and prescribed displacement scaled by `load_factor`.
+    fn uniform_level(&self, load_factor: f64) -> LoadLevel<'_> {
+        let scaled = |v: &[f64]| v.iter().map(|x| load_factor * x).collect::<Vec<f64>>();
+        let (load, lifting) = if load_factor == 1.0 {
+            (
+                Cow::Borrowed(&self.load[..]),
+                Cow::Borrowed(&self.normal_lifting[..]),
+            )
+        } else {
+            (
+                Cow::Owned(scaled(&self.load)),
+                Cow::Owned(scaled(&self.normal_lifting)),
+            )
+        };
+        LoadLevel {
+            load,
+            lifting,
+            scaling: Scaling::Uniform(load_factor),
+        }
+    }
+
+    /// The nodal friction bounds of every node from each pair's law (given the state `state`
+    /// of every node, `None` before any solve), or `None` without tangential rows. A bound may
+    /// be `+inf` (a held node).
+    fn bounds(&self, state: Option<&NodeState<'_>>) -> Result<Option<Vec<f64>>, ContactError> {
         if self.tangential_rows.is_none() {
             return Ok(None);
         }
@@ -350,17 +435,17 @@ impl<const D: usize> ContactDiscretisation<D> {
         for pair in &self.pairs {
             let r = pair.nodes.clone();
             let tangential = t * r.start..t * r.end;
-            let law_state = state.map(|(solution, jumps, slips)| LawState {
-                normal_forces: &solution.normal_force[r.clone()],
-                tangential_forces: &solution.tangential_force[tangential.clone()],
-                normal_jumps: &jumps[r.clone()],
-                slips: &slips[tangential.clone()],
+            let law_state = state.map(|state| LawState {
+                normal_forces: &state.normal_force[r.clone()],
+                tangential_forces: &state.tangential_force[tangential.clone()],
+                normal_jumps: &state.normal_jump[r.clone()],
+                slips: &state.slip[tangential.clone()],
             });
             let values = pair
                 .law
                 .friction_bounds(&self.nodes[r.clone()], law_state.as_ref())?;
             let values =
-                crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound")?;
+                crate::law::checked_bounds(&self.nodes[r.clone()], values, "friction bound", true)?;
             bounds.extend(values);
         }
         Ok(Some(bounds))
@@ -375,12 +460,15 @@ impl<const D: usize> ContactDiscretisation<D> {
         self.solve_scaled(solver, 1.0)
     }
 
-    /// Solves with every load (body forces, tractions) and every prescribed displacement
-    /// scaled by `load_factor` (a load step; the gaps are not scaled). A law whose bounds
-    /// depend on the state (Coulomb) is iterated: Tresca solves with the bounds frozen from the
-    /// previous step (the first step with the laws' starting bounds) until the normal forces
-    /// settle. The result's [`work`](ContactResult::work) counts this solve only (no
-    /// assembly).
+    /// Solves from rest with every load (body forces, tractions, rigid-plate resultants) and
+    /// every prescribed displacement scaled by `load_factor` (the gaps are not scaled): the
+    /// static problem at that load, whatever was solved before (for a loading whose answer
+    /// depends on the path, follow a [`LoadHistory`](crate::LoadHistory) with
+    /// [`ContactDiscretisation::solve_history`]). A law whose bounds depend on the state
+    /// (Coulomb) is iterated: Tresca solves with the bounds frozen from the previous step (the
+    /// first step with the laws' starting bounds: a Coulomb pair's nodes held) until the
+    /// normal forces settle. The result's [`work`](ContactResult::work) counts this solve only
+    /// (no assembly).
     ///
     /// # Errors
     /// As [`ContactDiscretisation::solve`]; a non-finite `load_factor` is an
@@ -396,21 +484,120 @@ impl<const D: usize> ContactDiscretisation<D> {
             });
         }
         let start = Instant::now();
+        let level = self.uniform_level(load_factor);
+        let (mut result, _) = self.solve_level(solver, &level, None)?;
+        result.model.total_time = start.elapsed();
+        Ok(result)
+    }
+
+    /// Solves from rest with the loads and prescribed displacements of each condition scaled by
+    /// its factor in `factors` (a one-step history, see [`LoadPath`]).
+    ///
+    /// # Errors
+    /// As [`LoadPath::advance`].
+    pub fn solve_at(
+        &self,
+        solver: &mut dyn ContactSolver,
+        factors: &LoadFactors,
+    ) -> Result<ContactResult<D>, ContactError> {
+        LoadPath::new(self)?.advance(solver, 1.0, factors)
+    }
+
+    /// Follows the load history `history` from rest, one step after the other, with friction
+    /// on the slip increments (see [`LoadPath`]); the answer of every step (each with the
+    /// body solutions: for a long history of a large model, step with
+    /// [`LoadPath::advance`] and keep what is needed).
+    ///
+    /// # Errors
+    /// As [`LoadPath::run`].
+    pub fn solve_history(
+        &self,
+        solver: &mut dyn ContactSolver,
+        history: &LoadHistory,
+    ) -> Result<Vec<HistoryStep<D>>, ContactError> {
+        LoadPath::new(self)?.run(solver, history)
+    }
+
+    /// The conditions a load history can scale ([`LoadCondition`]), each with a description
+    /// naming its body, kind and part (`"body 'disc': Dirichlet condition 1 on part 'top'
+    /// (x)"`), in the order of the bodies and, per body, body force, Dirichlet conditions,
+    /// tractions.
+    pub fn load_conditions(&self) -> Vec<(LoadCondition, String)> {
+        let mut conditions = Vec::new();
+        for (b, body) in self.bodies.iter().enumerate() {
+            let name = body.name();
+            if body.has_body_force() {
+                conditions.push((
+                    LoadCondition::BodyForce { body: b },
+                    format!("body '{name}': body force"),
+                ));
+            }
+            for (index, condition) in body.dirichlet().iter().enumerate() {
+                let kind = if condition.is_rigid_plate() {
+                    "rigid plate"
+                } else {
+                    "Dirichlet condition"
+                };
+                conditions.push((
+                    LoadCondition::Dirichlet { body: b, index },
+                    format!(
+                        "body '{name}': {kind} {index} on part '{}' ({})",
+                        condition.part(),
+                        condition.component().name()
+                    ),
+                ));
+            }
+            for (index, traction) in body.tractions().iter().enumerate() {
+                conditions.push((
+                    LoadCondition::Traction { body: b, index },
+                    format!(
+                        "body '{name}': traction {index} on part '{}'",
+                        traction.part()
+                    ),
+                ));
+            }
+        }
+        conditions
+    }
+
+    /// The per-condition parts of the load and of the prescribed normal jumps.
+    pub(crate) fn load_parts(&self) -> Result<LoadParts, ContactError> {
+        LoadParts::new(&self.bodies, &self.systems, self.lifting_parts())
+    }
+
+    /// Solves at the level `level` from the state `previous` at the end of the last step
+    /// (`None`: from rest), with the friction on the slip since `previous`; the result and the
+    /// state at its end.
+    pub(crate) fn solve_level(
+        &self,
+        solver: &mut dyn ContactSolver,
+        level: &LoadLevel<'_>,
+        previous: Option<&PathState>,
+    ) -> Result<(ContactResult<D>, PathState), ContactError> {
+        let start = Instant::now();
+        let reference = previous
+            .filter(|_| self.tangential_rows.is_some())
+            .map(|p| &p.slip[..]);
         let iterated =
             FixedPointSettings::strictest(self.pairs.iter().filter_map(|p| p.law.fixed_point()));
         let (solution, fixed_point, mut work, bounds) = match iterated {
-            Some(settings) => self.fixed_point(solver, load_factor, &settings)?,
+            Some(settings) => self.fixed_point(solver, level, reference, previous, &settings)?,
             None => {
-                let system =
-                    self.system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed));
+                // A law that does not iterate sees the state at the end of the last step.
+                let bounds = match previous {
+                    Some(p) => self.bounds(Some(&p.node_state()))?,
+                    None => self.start_bounds.clone(),
+                };
+                let system = self.system_at(level, bounds.as_deref().map(Cow::Borrowed), reference);
                 let solution = solver.solve(&system)?;
                 let work = solution.report.work;
-                (solution, None, work, self.start_bounds.clone())
+                (solution, None, work, bounds)
             }
         };
+        let state = self.path_state(&solution, &level.lifting);
         let post = Instant::now();
         let mut result = self.collect(
-            load_factor,
+            level,
             solution,
             fixed_point,
             bounds.as_deref(),
@@ -419,7 +606,26 @@ impl<const D: usize> ContactDiscretisation<D> {
         work.times.post = post.elapsed();
         result.work = work;
         result.model.total_time = start.elapsed();
-        Ok(result)
+        Ok((result, state))
+    }
+
+    /// The state at the end of a step from its answer.
+    fn path_state(&self, solution: &ContactSolution, lifting: &[f64]) -> PathState {
+        let u = &solution.displacement;
+        let mut normal_jump = self.normal_rows.apply(u);
+        for (j, l) in normal_jump.iter_mut().zip(lifting) {
+            *j += l;
+        }
+        let (tangential_force, slip) = match &self.tangential_rows {
+            Some(rows) => (solution.tangential_force.clone(), rows.apply(u)),
+            None => (Vec::new(), Vec::new()),
+        };
+        PathState {
+            normal_force: solution.normal_force.clone(),
+            tangential_force,
+            normal_jump,
+            slip,
+        }
     }
 
     /// Replaces the material of body `body` and refills the stiffness and load values on the
@@ -440,6 +646,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         let updated = current.with_material(material)?;
         updated.reassemble(Arc::make_mut(&mut self.systems[body]))?;
         self.bodies[body] = updated;
+        self.diagonals = checked_diagonals(&self.systems)?;
         self.load = concatenated_load(&self.systems);
         self.normal_lifting = self.jump_rows(0)?.1;
         self.stiffness_version += 1;
@@ -536,6 +743,42 @@ impl<const D: usize> ContactDiscretisation<D> {
         Ok((rows, prescribed_jump))
     }
 
+    /// The prescribed part of `[u]_nu` at every node, per Dirichlet condition that prescribes
+    /// a value at an interface node: `(body, condition index, values)`. Their sum is
+    /// [`ContactDiscretisation::frame_rows`]' prescribed part of the normal rows.
+    fn lifting_parts(&self) -> Vec<(usize, usize, Vec<f64>)> {
+        let mut parts: Vec<(usize, usize, Vec<f64>)> = Vec::new();
+        for (i, node) in self.nodes.iter().enumerate() {
+            let normal = node.frame().column(0).into_owned();
+            let sides = [(node.body_a, node.vertex_a, 1.0)]
+                .into_iter()
+                .chain(node.body_b.zip(node.vertex_b).map(|(b, v)| (b, v, -1.0)));
+            for (body, vertex, sign) in sides {
+                let dofs = self.systems[body].dofs();
+                for (c, global) in dofs.vertex_dofs(vertex).enumerate() {
+                    if let (None, DofStatus::Prescribed(p)) =
+                        (dofs.unknown_index(global), dofs.status(global))
+                    {
+                        let owner = dofs.prescribed_owners()[p];
+                        let value = sign * normal[c] * dofs.prescribed_values()[p];
+                        if value == 0.0 {
+                            continue;
+                        }
+                        let k = match parts.iter().position(|&(b, o, _)| b == body && o == owner) {
+                            Some(k) => k,
+                            None => {
+                                parts.push((body, owner, vec![0.0; self.nodes.len()]));
+                                parts.len() - 1
+                            }
+                        };
+                        parts[k].2[i] += value;
+                    }
+                }
+            }
+        }
+        parts
+    }
+
     /// Tangential rows `[u]_tau` of the free unknowns. The prescribed part of the slip is not
     /// representable in `j_h(B_T u)`: it is rejected unless it vanishes.
     fn tangential_rows_checked(&self) -> Result<ConstraintRows, ContactError> {
@@ -554,14 +797,24 @@ impl<const D: usize> ContactDiscretisation<D> {
     }
 
     /// The fixed point of Tresca problems of the laws whose bounds depend on the state
-    /// (Coulomb: `b_i = F lambda_N,i` from the previous step), starting from the laws' starting
-    /// bounds. Every step solves a system of the same structure: the solver keeps its symbolic
-    /// work.
+    /// (Coulomb: `b_i = F lambda_N,i` from the previous solve) at the level `level`, with the
+    /// friction on the slip since `reference`.
+    ///
+    /// It starts from the laws' bounds of the state `previous` at the end of the last step (a
+    /// history's warm start) when that state carries a normal force, else from their starting
+    /// bounds (a Coulomb node held: the stick predictor, which gives the normal forces of the
+    /// first Coulomb bounds whatever holds the bodies sideways). A warm start whose bounds
+    /// cannot hold the new load starts again from the held state. The steps between the start
+    /// and the last solve ask the solver for the forces only
+    /// ([`ContactSolver::solve_forces`]); every step solves a system of the same structure, so
+    /// the solver keeps its factorisations.
     #[allow(clippy::type_complexity)]
     fn fixed_point(
         &self,
         solver: &mut dyn ContactSolver,
-        load_factor: f64,
+        level: &LoadLevel<'_>,
+        reference: Option<&[f64]>,
+        previous: Option<&PathState>,
         settings: &FixedPointSettings,
     ) -> Result<
         (
@@ -573,65 +826,116 @@ impl<const D: usize> ContactDiscretisation<D> {
         ContactError,
     > {
         let tolerance = settings.tolerance().max(solver.force_accuracy());
-        let mut solution = solver.solve(
-            &self.system_with(load_factor, self.start_bounds.as_deref().map(Cow::Borrowed)),
-        )?;
-        let mut work = solution.report.work;
-        let mut iterations = solution.report.iterations;
+        let warm = previous.filter(|p| p.normal_force.iter().any(|&f| f > 0.0));
+        let mut bounds = match warm {
+            Some(p) => self.bounds(Some(&p.node_state()))?,
+            None => self.bounds(None)?,
+        };
+        // The normal forces the bounds were made from (`None`: the laws' starting bounds).
+        let mut source: Option<Vec<f64>> = warm.map(|p| p.normal_force.clone());
+        let mut held = warm.is_none();
+        let mut work = WorkCounters::default();
+        let (mut iterations, mut steps) = (0, 0);
         let mut history = Vec::with_capacity(settings.max_iterations());
-        for step in 1..=settings.max_iterations() {
-            let jumps = self.normal_rows.apply(&solution.displacement);
-            let slips = self
-                .tangential_rows
-                .as_ref()
-                .map_or_else(Vec::new, |rows| rows.apply(&solution.displacement));
-            let bounds = self.bounds(Some((&solution, &jumps, &slips)))?;
-            let system = self.system_with(load_factor, bounds.as_deref().map(Cow::Borrowed));
-            let next = solver.solve(&system)?;
-            work += next.report.work;
-            iterations += next.report.iterations;
-            let scale = next
-                .normal_force
-                .iter()
-                .fold(0.0_f64, |m, &f| m.max(f.abs()))
-                .max(f64::MIN_POSITIVE);
-            let change = next
-                .normal_force
-                .iter()
-                .zip(&solution.normal_force)
-                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
-                / scale;
-            history.push(change);
-            solution = next;
-            if change <= tolerance {
-                if change > settings.tolerance() {
-                    solution
-                        .report
-                        .warnings
-                        .push(Warning::FixedPointAtForceFloor {
-                            solver: solution.report.solver,
-                            force_accuracy: solver.force_accuracy(),
-                            tolerance: settings.tolerance(),
-                            change,
-                        });
+        loop {
+            let system = self.system_at(level, bounds.as_deref().map(Cow::Borrowed), reference);
+            let forces = match solver.solve_forces(&system) {
+                Ok(forces) => forces,
+                Err(ContactSolverError::RigidSliding { .. }) if !held => {
+                    // The last step's normal forces cannot hold this step's load: start again
+                    // from the held state.
+                    held = true;
+                    bounds = self.bounds(None)?;
+                    source = None;
+                    continue;
                 }
-                let report = FixedPointReport {
-                    steps: step,
-                    residual: change,
-                    tolerance,
-                    history,
-                    solver_iterations: iterations,
-                    final_bounds: bounds.clone().unwrap_or_default(),
-                };
-                return Ok((solution, Some(report), work, bounds));
+                Err(ContactSolverError::RigidSliding {
+                    load_along_mode,
+                    friction_capacity,
+                    report,
+                }) if source.is_some() => {
+                    return Err(ContactError::FrictionCapacityExceeded {
+                        load_along_mode,
+                        friction_capacity,
+                        step: steps + 1,
+                        report,
+                    });
+                }
+                Err(e) => return Err(e.into()),
+            };
+            work += forces.work;
+            iterations += forces.iterations;
+            if let Some(source) = &source {
+                steps += 1;
+                let scale = forces
+                    .normal_force
+                    .iter()
+                    .fold(0.0_f64, |m, &f| m.max(f.abs()))
+                    .max(f64::MIN_POSITIVE);
+                let change = forces
+                    .normal_force
+                    .iter()
+                    .zip(source)
+                    .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+                    / scale;
+                history.push(change);
+                if change <= tolerance {
+                    let mut solution = match forces.solution {
+                        Some(solution) => solution,
+                        None => {
+                            let solution = solver.solve(&system)?;
+                            work += solution.report.work;
+                            solution
+                        }
+                    };
+                    if change > settings.tolerance() {
+                        solution
+                            .report
+                            .warnings
+                            .push(Warning::FixedPointAtForceFloor {
+                                solver: solution.report.solver,
+                                force_accuracy: solver.force_accuracy(),
+                                tolerance: settings.tolerance(),
+                                change,
+                            });
+                    }
+                    let report = FixedPointReport {
+                        steps,
+                        residual: change,
+                        tolerance,
+                        history,
+                        solver_iterations: iterations,
+                        final_bounds: bounds.clone().unwrap_or_default(),
+                    };
+                    return Ok((solution, Some(report), work, bounds));
+                }
+                if steps >= settings.max_iterations() {
+                    // The report of a complete solve of the last step.
+                    let report = match forces.solution {
+                        Some(solution) => solution.report,
+                        None => solver.solve(&system)?.report,
+                    };
+                    return Err(ContactError::FixedPointNotConverged {
+                        steps,
+                        residual: change,
+                        tolerance,
+                        report: Box::new(report),
+                    });
+                }
             }
+            let next_source = forces.normal_force;
+            let mut normal_jump = forces.normal_rows;
+            for (j, l) in normal_jump.iter_mut().zip(level.lifting.iter()) {
+                *j += l;
+            }
+            bounds = self.bounds(Some(&NodeState {
+                normal_force: &next_source,
+                tangential_force: &forces.tangential_force,
+                normal_jump: &normal_jump,
+                slip: &forces.tangential_rows,
+            }))?;
+            source = Some(next_source);
         }
-        Err(ContactError::FixedPointNotConverged {
-            steps: settings.max_iterations(),
-            residual: *history.last().unwrap_or(&f64::INFINITY),
-            tolerance,
-            report: Box::new(solution.report),
-        })
     }
 
     /// Per-body solutions, per-node results, resultants, warnings. Statuses are decided in
@@ -641,7 +945,7 @@ impl<const D: usize> ContactDiscretisation<D> {
     /// `theta = max(force_accuracy, 1e-8)` (the solver's force accuracy).
     fn collect(
         &self,
-        load_factor: f64,
+        level: &LoadLevel<'_>,
         solution: ContactSolution,
         fixed_point: Option<FixedPointReport>,
         bounds: Option<&[f64]>,
@@ -651,11 +955,10 @@ impl<const D: usize> ContactDiscretisation<D> {
         let u = &solution.displacement;
         let normal_jump_free = self.normal_rows.apply(u);
         let slip_free = self.tangential_rows.as_ref().map(|rows| rows.apply(u));
-        let system = self.system_with(load_factor, bounds.map(Cow::Borrowed));
-        let forces = ForceScales::of(
+        let system = self.system_at(level, bounds.map(Cow::Borrowed), None);
+        let (forces, _) = ForceScales::of_answer(
             &system,
             u,
-            &system.stiffness_apply(u),
             &solution.normal_force,
             &solution.tangential_force,
         );
@@ -664,7 +967,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         for (i, node) in self.nodes.iter().enumerate() {
             let frame = node.frame();
             // [u]_nu = B_N u_free + prescribed part.
-            let normal_jump = normal_jump_free[i] + load_factor * self.normal_lifting[i];
+            let normal_jump = normal_jump_free[i] + level.lifting[i];
             let normal_force = solution.normal_force[i];
             let (mut slip, mut friction) = (VectorD::<D>::zeros(), VectorD::<D>::zeros());
             if let Some(slips) = &slip_free {
@@ -717,8 +1020,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (k, (body, system)) in self.bodies.iter().zip(&self.systems).enumerate() {
             let free = &u[self.offsets[k]..self.offsets[k + 1]];
-            let displacement = system.expand_scaled(free, load_factor)?;
-            let body_solution = body.solution_scaled(system, displacement, load_factor)?;
+            let body_solution = level.body_solution(k, body, system, free)?;
             bodies.push(BodyResult {
                 body: body.clone(),
                 system: Arc::clone(system),
@@ -840,11 +1142,21 @@ impl<const D: usize> ContactDiscretisation<D> {
         }
     }
 
+    /// The elements far outside A1 (the five worst per body, [`Warning::ElementShape`]): they
+    /// depend on the meshes only, and are found once, when the discretisation is built.
+    fn element_shape_warnings(&self) -> Vec<Warning> {
+        let mut warnings = Vec::new();
+        for body in &self.bodies {
+            warnings.extend(element_warnings(body));
+        }
+        warnings
+    }
+
     /// Warnings about the model behind a converged answer, each once: elements far outside
-    /// A1, and per pair a contact zone at a limit of the interface that is not a geometric end
-    /// of the contact, no node in contact, the normal force concentrated on one node, a
-    /// penetration large against the displacement scale, an initial overlap, an effectively
-    /// tied friction bound.
+    /// A1 (found at build), and per pair a contact zone at a limit of the interface that is not
+    /// a geometric end of the contact, no node in contact, the normal force concentrated on one
+    /// node, a penetration large against the displacement scale, an initial overlap, an
+    /// effectively tied friction bound.
     fn model_warnings(
         &self,
         nodes: &[InterfaceNode<D>],
@@ -852,10 +1164,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         force_scale: f64,
         report: &crate::SolveReport,
     ) -> Vec<Warning> {
-        let mut warnings = Vec::new();
-        for body in &self.bodies {
-            warnings.extend(element_warnings(body));
-        }
+        let mut warnings = self.element_warnings.clone();
         let name = |body: usize| self.bodies[body].name().to_string();
         for pair in &self.pairs {
             let pair_nodes = &nodes[pair.nodes.clone()];
@@ -1007,6 +1316,28 @@ const CONCENTRATION_FRACTION: f64 = 0.5;
 const PENETRATION_RATIO: f64 = 1e-3;
 /// A friction bound this many times the force scale makes the contact effectively tied.
 const TIED_RATIO: f64 = 1e6;
+/// The bound of a held node, relative to the force scale of
+/// [`ContactDiscretisation::hold_bound`].
+const HOLD_RATIO: f64 = 1e6;
+
+/// The diagonal of every body's stiffness, after checking that its values are finite.
+fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, ContactError> {
+    systems
+        .iter()
+        .map(|system| {
+            let k = system.stiffness();
+            if let Some((index, &value)) = k.val().iter().enumerate().find(|(_, v)| !v.is_finite())
+            {
+                return Err(ContactError::System(ContactSystemError::NonFinite {
+                    what: "stiffness values",
+                    index,
+                    value,
+                }));
+            }
+            Ok(matrix_diagonal(k.as_ref()))
+        })
+        .collect()
+}
 
 /// The load vectors of the bodies, one after the other.
 fn concatenated_load(systems: &[Arc<AssembledSystem>]) -> Vec<f64> {

@@ -48,6 +48,25 @@ pub enum ContactError {
         /// What, and where.
         what: String,
     },
+    /// Coulomb friction cannot hold the load: a Tresca step with the bounds `F lambda_N` of the
+    /// normal forces found so far has no equilibrium, because along a rigid sliding mode `d`
+    /// (scaled so that its largest nodal slip is 1) the load exceeds the friction capacity.
+    #[error(
+        "Coulomb friction cannot hold the load: along the sliding mode the load \
+         {load_along_mode:.6e} exceeds the friction capacity {friction_capacity:.6e} \
+         (sum_i F lambda_N,i |slip_i| with the normal forces of fixed-point step {step}; {})",
+        report.solver
+    )]
+    FrictionCapacityExceeded {
+        /// `f . d` for the unit-slip mode `d`.
+        load_along_mode: f64,
+        /// `sum_i F lambda_N,i |(B_T d)_i|`.
+        friction_capacity: f64,
+        /// The fixed-point step whose bounds could not hold the load (from 1).
+        step: usize,
+        /// The report of that solve.
+        report: Box<SolveReport>,
+    },
     /// The fixed point of Tresca problems (Coulomb) did not converge.
     #[error(
         "Coulomb fixed point did not converge in {steps} steps: relative change of the normal \

@@ -5,7 +5,9 @@
 //! `D = 2` by default) and contact pairs ([`ContactPair`]: two bodies, or a body and a
 //! [`RigidObstacle`]), each with its [`ContactLaw`] ([`Frictionless`], [`Tresca`],
 //! [`Coulomb`], or one's own: the [`law`] module). It is discretised once
-//! ([`ContactDiscretisation`]) and solved as often as needed.
+//! ([`ContactDiscretisation`]) and solved as often as needed: statically, or step by step
+//! along a load history ([`LoadHistory`], [`LoadPath`]), where friction acts on the slip
+//! increments and the answer depends on the path.
 //!
 //! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
 //! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction
@@ -43,7 +45,9 @@
 pub mod accuracy;
 mod discretisation;
 mod error;
+mod history;
 pub mod law;
+mod load;
 mod node;
 mod obstacle;
 mod pairing;
@@ -56,6 +60,9 @@ mod warning;
 pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
 pub use discretisation::ContactDiscretisation;
 pub use error::ContactError;
+pub use history::{
+    HistoryStep, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, LoadPath, LoadStep,
+};
 pub use law::{
     ContactLaw, Coulomb, FixedPointSettings, FixedPointSettingsBuilder, FrictionBound,
     Frictionless, LawState, ScalarField, Tresca,
@@ -79,10 +86,10 @@ fn seconds<S: serde::Serializer>(d: &std::time::Duration, s: S) -> Result<S::Ok,
 
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
-    ContactSolution, ContactSolver, ContactSolverError, ContactSystem, ContactSystemError,
-    Friction, KktResiduals, KktScales, KktTolerance, PatternId, PenaltyParameter, PenaltySettings,
-    PenaltySolver, SettingsError, SolveReport, SolveStatus, StageTimes, StiffnessBlock,
-    WorkCounters,
+    ContactForces, ContactSolution, ContactSolver, ContactSolverError, ContactSystem,
+    ContactSystemError, Friction, KktResiduals, KktScales, KktTolerance, PatternId,
+    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
+    StageTimes, StiffnessBlock, WorkCounters,
 };
 #[cfg(feature = "clarabel")]
 pub use solver::{ExactSettings, ExactSolver};

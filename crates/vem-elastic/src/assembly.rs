@@ -326,6 +326,21 @@ impl AssembledSystem {
         Ok(reactions)
     }
 
+    /// The reactions `r_p = K_pf u_f + K_pp u_p - f_p` for the load vector `load` (every global
+    /// degree of freedom) in place of the assembled one.
+    pub fn reactions_with_load(
+        &self,
+        displacement: &[f64],
+        load: &[f64],
+    ) -> Result<Vec<f64>, ElasticError> {
+        self.check_length("load", load, self.dofs.n_dofs())?;
+        let mut reactions = self.reactions_scaled(displacement, 0.0)?;
+        for (r, &g) in reactions.iter_mut().zip(self.dofs.prescribed_dofs()) {
+            *r -= load[g];
+        }
+        Ok(reactions)
+    }
+
     /// The discrete strain energy `1/2 u^T K u = 1/2 a_h(u, u)` of the full displacement.
     pub fn strain_energy(&self, displacement: &[f64]) -> Result<f64, ElasticError> {
         self.check_length("displacement", displacement, self.dofs.n_dofs())?;

@@ -294,34 +294,75 @@ impl<const D: usize> ElasticBody<D> {
     fn fill(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
         system.clear_values();
         system.scatter_elements(|c| self.element_contribution(c))?;
-        let points = self.mesh.points();
-        let mut facet_dofs = Vec::new();
         for traction in &self.tractions {
-            let facets =
-                self.mesh
-                    .part_facets(traction.part())
-                    .map_err(|source| ElasticError::Mesh {
-                        body: self.name.clone(),
-                        source,
-                    })?;
-            for facet in facets {
-                let corners: Vec<PointD<D>> = facet.iter().map(|&v| points[v]).collect();
-                let load = self
-                    .element
-                    .facet_load(&corners, &|x| traction.value_at(x), self.traction_points)
-                    .map_err(|source| ElasticError::Traction {
-                        body: self.name.clone(),
-                        part: traction.part().to_string(),
-                        facet: facet.to_vec(),
-                        source,
-                    })?;
-                facet_dofs.clear();
-                self.dofs.cell_dofs(facet, &mut facet_dofs);
-                system.add_load(&facet_dofs, load.as_slice());
-            }
+            self.for_traction_facets(traction, |dofs, load| system.add_load(dofs, load))?;
         }
         system.finish_rhs();
         Ok(())
+    }
+
+    /// Calls `add(global dofs, load)` with the load of `traction` on each facet of its part.
+    fn for_traction_facets(
+        &self,
+        traction: &Traction<D>,
+        mut add: impl FnMut(&[usize], &[f64]),
+    ) -> Result<(), ElasticError> {
+        let points = self.mesh.points();
+        let mut facet_dofs = Vec::new();
+        let facets =
+            self.mesh
+                .part_facets(traction.part())
+                .map_err(|source| ElasticError::Mesh {
+                    body: self.name.clone(),
+                    source,
+                })?;
+        for facet in facets {
+            let corners: Vec<PointD<D>> = facet.iter().map(|&v| points[v]).collect();
+            let load = self
+                .element
+                .facet_load(&corners, &|x| traction.value_at(x), self.traction_points)
+                .map_err(|source| ElasticError::Traction {
+                    body: self.name.clone(),
+                    part: traction.part().to_string(),
+                    facet: facet.to_vec(),
+                    source,
+                })?;
+            facet_dofs.clear();
+            self.dofs.cell_dofs(facet, &mut facet_dofs);
+            add(&facet_dofs, load.as_slice());
+        }
+        Ok(())
+    }
+
+    /// The load vector (every global degree of freedom) of the traction `index` of
+    /// [`ElasticBody::tractions`] alone: the assembled load is the body force's plus the sum of
+    /// these (load histories scale each condition by its own factor).
+    ///
+    /// # Errors
+    /// An index out of range, a part that does not exist, an element failure.
+    pub fn traction_load(&self, index: usize) -> Result<Vec<f64>, ElasticError> {
+        let traction = self
+            .tractions
+            .get(index)
+            .ok_or_else(|| ElasticError::InvalidSetting {
+                reason: format!(
+                    "body '{}': traction index {index}, the body has {} tractions",
+                    self.name,
+                    self.tractions.len()
+                ),
+            })?;
+        let mut load = vec![0.0; self.dofs.n_dofs()];
+        self.for_traction_facets(traction, |dofs, values| {
+            for (&g, &v) in dofs.iter().zip(values) {
+                load[g] += v;
+            }
+        })?;
+        Ok(load)
+    }
+
+    /// True when the body carries a body force.
+    pub fn has_body_force(&self) -> bool {
+        self.body_force.is_some()
     }
 
     /// The local matrix `consistency + stabilisation` and body load of cell `c`.
@@ -553,6 +594,29 @@ impl<const D: usize> ElasticBody<D> {
             });
         }
         let nodal = system.reactions_scaled(&displacement, load_factor)?;
+        let reactions = self.gather_reactions(system, nodal);
+        let strain_energy = system.strain_energy(&displacement)?;
+        Ok(Solution::new(displacement, reactions, strain_energy))
+    }
+
+    /// [`ElasticBody::solution`] with the load vector `load` (every global degree of freedom)
+    /// in place of the assembled one: the reactions balance `load` (a step of a load history
+    /// whose body force and tractions carry different factors).
+    ///
+    /// # Errors
+    /// A system of another body, vectors of the wrong length.
+    pub fn solution_with_load(
+        &self,
+        system: &AssembledSystem,
+        displacement: Vec<f64>,
+        load: &[f64],
+    ) -> Result<Solution<D>, ElasticError> {
+        if !system.matches(&*self.mesh, &self.dofs) {
+            return Err(ElasticError::ForeignSystem {
+                body: self.name.clone(),
+            });
+        }
+        let nodal = system.reactions_with_load(&displacement, load)?;
         let reactions = self.gather_reactions(system, nodal);
         let strain_energy = system.strain_energy(&displacement)?;
         Ok(Solution::new(displacement, reactions, strain_energy))

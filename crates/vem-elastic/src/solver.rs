@@ -560,6 +560,80 @@ impl CholeskySolver {
     pub fn smallest_relative_pivot(&self) -> Option<f64> {
         self.factor.as_ref().map(|f| f.smallest_relative_pivot)
     }
+
+    /// Solves `K x = b` for a right-hand side `b` that vanishes outside the trailing unknowns
+    /// (those [`LinearSolver::analyse_with_trailing`] eliminated last), given
+    /// `y = L_GG^-1 b_G` in the trailing order (`L_GG` the [`LinearSolver::trailing_factor`]).
+    /// The forward substitution of such a `b` touches the trailing block only, which a caller
+    /// that keeps `L_GG` does densely; what is left is the backward substitution of the whole
+    /// factor, about half the work of [`LinearSolver::solve_in_place`]. `x` (length `n`)
+    /// receives the solution in the original numbering.
+    ///
+    /// # Errors
+    /// [`SolveError::OutOfOrder`] before a factorisation, [`SolveError::Mismatch`] for vectors
+    /// of the wrong length.
+    pub fn solve_from_trailing(&self, y: &[f64], x: &mut [f64]) -> Result<(), SolveError> {
+        let Some(factor) = &self.factor else {
+            return Err(SolveError::OutOfOrder {
+                reason: "solve before a successful factorise",
+            });
+        };
+        let analysis = &factor.analysis;
+        if y.len() != analysis.n_trailing || x.len() != analysis.n {
+            return Err(SolveError::Mismatch {
+                reason: format!(
+                    "{} trailing values and {} unknowns for a factor with {} trailing of {}",
+                    y.len(),
+                    x.len(),
+                    analysis.n_trailing,
+                    analysis.n
+                ),
+            });
+        }
+        let first = analysis.n - analysis.n_trailing;
+        let mut z = Mat::<f64>::zeros(analysis.n, 1);
+        for (p, &v) in y.iter().enumerate() {
+            z[(first + p, 0)] = v;
+        }
+        let par = self.settings.solve_parallelism;
+        match analysis.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let l = SparseColMatRef::new(s.factor(), &factor.values);
+                faer::sparse::linalg::triangular_solve::solve_lower_triangular_transpose_in_place(
+                    l,
+                    Conj::No,
+                    z.as_mut(),
+                    par,
+                );
+            }
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let mut scratch =
+                    MemBuffer::try_new(analysis.symbolic.solve_in_place_scratch::<f64>(1, par))
+                        .map_err(|_| backend("out of memory for the solve workspace"))?;
+                SupernodalLltRef::new(s, &factor.values).l_transpose_solve_with_conj(
+                    Conj::No,
+                    z.as_mut(),
+                    par,
+                    MemStack::new(&mut scratch),
+                );
+            }
+        }
+        match analysis.symbolic.perm() {
+            Some(perm) => {
+                // Position `new` of the factor holds the original unknown `forward[new]`.
+                let (forward, _) = perm.arrays();
+                for (new, &old) in forward.iter().enumerate() {
+                    x[old] = z[(new, 0)];
+                }
+            }
+            None => {
+                for (i, xi) in x.iter_mut().enumerate() {
+                    *xi = z[(i, 0)];
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Multiply-adds of the numeric factorisation: `sum_j c_j^2` over the stored columns.
@@ -1007,6 +1081,55 @@ mod tests {
         assert!(
             supernodal_seen,
             "the grid case must exercise the supernodal factor"
+        );
+    }
+
+    #[test]
+    fn a_right_hand_side_on_the_trailing_unknowns_is_solved_from_the_trailing_factor() {
+        let mut kinds = [false; 2];
+        for n in [6, 40, 120] {
+            let k = grid(n);
+            let size = k.nrows();
+            let trailing: Vec<usize> = (0..size).filter(|i| i % 7 == 3).collect();
+            for supernodal in [false, true] {
+                let mut solver = CholeskySolver::default();
+                solver
+                    .analyse_with_trailing(k.symbolic(), &trailing)
+                    .unwrap();
+                solver.factorise(k.as_ref()).unwrap();
+                if supernodal != solver.is_supernodal().unwrap() {
+                    continue;
+                }
+                kinds[usize::from(supernodal)] = true;
+                // b on the trailing unknowns; y = L_GG^-1 b_G by a dense forward substitution.
+                let b_g: Vec<f64> = (0..trailing.len())
+                    .map(|p| (p as f64 * 0.7).sin())
+                    .collect();
+                let mut b = vec![0.0; size];
+                for (&i, &v) in trailing.iter().zip(&b_g) {
+                    b[i] = v;
+                }
+                let l = solver.trailing_factor().unwrap();
+                let mut y = Mat::<f64>::from_fn(b_g.len(), 1, |p, _| b_g[p]);
+                faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+                    l.as_ref(),
+                    y.as_mut(),
+                    Par::Seq,
+                );
+                let y: Vec<f64> = (0..b_g.len()).map(|p| y[(p, 0)]).collect();
+                let mut x = vec![0.0; size];
+                solver.solve_from_trailing(&y, &mut x).unwrap();
+                let full = solver.solve(&b).unwrap();
+                let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for (a, e) in x.iter().zip(&full) {
+                    assert!((a - e).abs() < 1e-12 * scale, "{a} vs {e}");
+                }
+            }
+        }
+        assert_eq!(
+            kinds,
+            [true, true],
+            "both simplicial and supernodal factors"
         );
     }
 

@@ -3,7 +3,8 @@
 //!
 //! `DualGaussSeidel` solves the discrete contact problem on its dual: with the constraint
 //! rows `B = [B_N; B_T]` and `u = K^-1 (f - B' lambda)`, the multipliers minimise
-//! `1/2 lambda' S lambda - lambda' d` with `S = B K^-1 B'`, `d = B K^-1 f - (g, 0)`, over
+//! `1/2 lambda' S lambda - lambda' d` with `S = B K^-1 B'`, `d = B K^-1 f - (g, s)` (`s` the
+//! reference slip of a load history's step, zero from rest), over
 //! `lambda_N >= 0`, `|lambda_T| <= b` (frictionless: no `B_T`). It factorises `K` once
 //! (`vem_elastic::CholeskySolver`), forms the small dense `S` from one solve per interface
 //! row, and sweeps projected Gauss-Seidel over the multipliers until they stop changing,
@@ -161,8 +162,16 @@ impl ContactSolver for DualGaussSeidel {
         let s: Vec<Vec<f64>> = (0..r)
             .map(|i| (0..r).map(|j| dot_row(i, &k_inv_bt[j])).collect())
             .collect();
+        let reference = system.friction().and_then(|f| f.reference_slip());
         let d: Vec<f64> = (0..r)
-            .map(|i| dot_row(i, &u_free) - if i < m { system.gap()[i] } else { 0.0 })
+            .map(|i| {
+                dot_row(i, &u_free)
+                    - if i < m {
+                        system.gap()[i]
+                    } else {
+                        reference.map_or(0.0, |s| s[i - m])
+                    }
+            })
             .collect();
         // Projected Gauss-Seidel sweeps.
         let mut lambda = vec![0.0; r];

@@ -6,7 +6,16 @@ use crate::{ContactError, ContactNode, SettingsError};
 /// Coulomb friction `g_F = F |sigma_nu|`, by a fixed point of Tresca problems with the bound
 /// frozen at each step (the paper's remark): the nodal bound of a step is
 /// `b_i = F lambda_N,i` from the normal forces of the previous solve (the nodal form of
-/// `F |sigma_nu|` times the tributary measure); the first solve is frictionless.
+/// `F |sigma_nu|` times the tributary measure).
+///
+/// The fixed point starts from a state with friction capacity: from rest, the first solve
+/// holds the tangential motion of every node (`b_i = +inf`, the stick predictor) and gives
+/// the normal forces of the first Coulomb bounds, so that a body held sideways only by
+/// friction (a punch pushed and sheared by a rigid plate) is held from the first Tresca step
+/// on. In a load history ([`LoadPath`](crate::LoadPath)) a step starts from the bounds of the
+/// normal forces of the previous step. The same law serves a static problem (the one-step
+/// history) and every step of a history, where the friction acts on the increment of the
+/// tangential jump since the previous step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coulomb {
     coefficient: f64,
@@ -69,7 +78,7 @@ impl<const D: usize> ContactLaw<D> for Coulomb {
         state: Option<&LawState<'_>>,
     ) -> Result<Vec<f64>, ContactError> {
         Ok(match state {
-            None => vec![0.0; nodes.len()],
+            None => vec![f64::INFINITY; nodes.len()],
             Some(state) => state
                 .normal_forces
                 .iter()

@@ -10,7 +10,10 @@
 //! bounds frozen at each step, until the normal forces settle.
 //!
 //! Built in: [`Frictionless`] (problem P1), [`Tresca`] (P2, a constant or variable bound) and
-//! [`Coulomb`] (`g_F = F |sigma_nu|` by a fixed point of Tresca problems). A law of one's own is
+//! [`Coulomb`] (`g_F = F |sigma_nu|` by a fixed point of Tresca problems). In a load history
+//! ([`LoadPath`](crate::LoadPath)) every law acts on the increment of the tangential jump
+//! since the previous step (the solvers' reference slip), so that Tresca and Coulomb are
+//! path dependent there, as the physics asks. A law of one's own is
 //! one type implementing [`ContactLaw`] (and, to reach it from scene files, one entry in the
 //! law registry); `docs/extending.md` works one through.
 //!
@@ -23,8 +26,8 @@
 //!     position: Point::new(0.0, 0.0), normal: Vector::new(0.0, -1.0),
 //!     tributary_measure: 0.5, geometric_gap: 0.0, initial_gap: 0.0,
 //! };
-//! // Before any solve: no friction (the fixed point starts from the frictionless problem).
-//! assert_eq!(coulomb.friction_bounds(&[node], None)?, vec![0.0]);
+//! // Before any solve: the node is held (the fixed point starts from the stick predictor).
+//! assert_eq!(coulomb.friction_bounds(&[node], None)?, vec![f64::INFINITY]);
 //! // Then F times the nodal normal force of the last solve.
 //! let state = LawState { normal_forces: &[2.0], tangential_forces: &[0.1], normal_jumps: &[0.0], slips: &[0.0] };
 //! assert_eq!(coulomb.friction_bounds(&[node], Some(&state))?, vec![0.6]);
@@ -74,11 +77,14 @@ pub trait ContactLaw<const D: usize = 2>: Send + Sync + fmt::Debug {
     fn has_friction(&self) -> bool;
 
     /// The nodal friction bounds `b_i >= 0` (force; the disk radius in 3D) of the next solve at
-    /// the pair's nodes `nodes`, from their geometry and, after a first solve, the state of
-    /// the last one (`None` before). A law without friction returns zeros.
+    /// the pair's nodes `nodes`, from their geometry and, once a solve has been made, the
+    /// state of the last one (`None` before the first solve of a problem from rest). A law
+    /// without friction returns zeros. A bound `f64::INFINITY` holds the node: its tangential
+    /// motion is not allowed (the stick predictor; Coulomb's start, whose friction capacity
+    /// comes from normal forces not yet known).
     ///
     /// # Errors
-    /// A bound that is negative or not finite (naming the node), or the law's own check.
+    /// A bound that is negative or NaN (naming the node), or the law's own check.
     fn friction_bounds(
         &self,
         nodes: &[ContactNode<D>],
@@ -92,21 +98,34 @@ pub trait ContactLaw<const D: usize = 2>: Send + Sync + fmt::Debug {
     }
 }
 
-/// Checks that the nodal bounds `bounds` of `nodes` are finite and `>= 0`; the error names the
-/// first node that is not (`what` describes the bound).
+/// Checks that the nodal bounds `bounds` of `nodes` are finite and `>= 0` (or `+inf` too when
+/// `infinite` is true: a held node); the error names the first node that is not (`what`
+/// describes the bound).
 pub(crate) fn checked_bounds<const D: usize>(
     nodes: &[ContactNode<D>],
     bounds: Vec<f64>,
     what: &str,
+    infinite: bool,
 ) -> Result<Vec<f64>, ContactError> {
-    if let Some((node, b)) = nodes
-        .iter()
-        .zip(&bounds)
-        .find(|(_, b)| !(b.is_finite() && **b >= 0.0))
-    {
+    let valid = |b: f64| b >= 0.0 && (b.is_finite() || (infinite && b == f64::INFINITY));
+    if nodes.len() != bounds.len() {
         return Err(ContactError::InvalidSetting {
             reason: format!(
-                "{what} = {b} at {} must be finite and >= 0",
+                "{what}: {} values for {} interface nodes",
+                bounds.len(),
+                nodes.len()
+            ),
+        });
+    }
+    if let Some((node, b)) = nodes.iter().zip(&bounds).find(|(_, b)| !valid(**b)) {
+        let requirement = if infinite {
+            ">= 0 (finite, or +inf for a held node)"
+        } else {
+            "finite and >= 0"
+        };
+        return Err(ContactError::InvalidSetting {
+            reason: format!(
+                "{what} = {b} at {} must be {requirement}",
                 crate::Location::of(&node.position)
             ),
         });
@@ -124,7 +143,7 @@ pub struct FixedPointSettings {
 }
 
 impl Default for FixedPointSettings {
-    /// At most 50 Tresca solves, tolerance `1e-8`.
+    /// At most 50 Tresca steps, tolerance `1e-8`.
     fn default() -> Self {
         Self {
             max_iterations: 50,
@@ -141,7 +160,8 @@ impl FixedPointSettings {
         }
     }
 
-    /// Largest number of Tresca solves.
+    /// Largest number of Tresca steps (solves with the bounds of a state; the solve of a held
+    /// start, from rest, is not counted).
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -185,7 +205,7 @@ pub struct FixedPointSettingsBuilder {
 }
 
 impl FixedPointSettingsBuilder {
-    /// Largest number of Tresca solves, `>= 1`.
+    /// Largest number of Tresca steps, `>= 1`.
     pub fn max_iterations(mut self, value: usize) -> Self {
         self.settings.max_iterations = value;
         self

@@ -108,7 +108,7 @@ impl<const D: usize> ContactLaw<D> for Tresca<D> {
             FrictionBound::Field(g) => g(node.position),
         };
         let values: Vec<f64> = nodes.iter().map(g).collect();
-        let values = checked_bounds(nodes, values, "friction bound g_F")?;
+        let values = checked_bounds(nodes, values, "friction bound g_F", false)?;
         Ok(nodes
             .iter()
             .zip(values)

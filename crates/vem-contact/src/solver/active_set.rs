@@ -2,13 +2,13 @@
 //! conditions written with the complementarity functions
 //!
 //! ```text
-//! lambda_N = max(0, lambda_N + c (B_N u - g)),   lambda_T = proj_[-b, b](lambda_T + c B_T u)
+//! lambda_N = max(0, lambda_N + c (B_N u - g)),   lambda_T = proj_[-b, b](lambda_T + c (B_T u - s))
 //! ```
 //!
-//! ). From the current `(u, lambda)` the nodes are split into active
+//! with `s` the reference slip). From the current `(u, lambda)` the nodes are split into active
 //! (`lambda_N + c(B_N u - g) > 0`: `B_N u = g`) and inactive (`lambda_N = 0`), and, with
 //! friction, sticking
-//! (`|lambda_T + c B_T u| <= b`: `B_T u = 0`) and slipping (`lambda_T = b sign(...)`, known).
+//! (`|lambda_T + c (B_T u - s)| <= b`: `B_T u = s`) and slipping (`lambda_T = b sign(...)`, known).
 //! The equality-constrained subproblem of a split is solved exactly by an augmented
 //! Lagrangian (Uzawa) iteration on the SPD matrix `K + rho B_A'B_A + rho B_S'B_S`, factorised
 //! once per split on a symbolic analysis made once for the pattern of `K + B_N'B_N + B_T'B_T`:
@@ -73,7 +73,7 @@ impl ActiveSetSettings {
         self.augmentation
     }
 
-    /// Tolerance on the subproblem constraints `B_A u = g_A`, `B_S u = 0`, relative to
+    /// Tolerance on the subproblem constraints `B_A u = g_A`, `B_S u = s_S`, relative to
     /// `max(||u||_inf, ||g||_inf)`.
     pub fn tolerance(&self) -> f64 {
         self.tolerance
@@ -218,8 +218,8 @@ impl ActiveSetSolver {
 struct Split {
     /// Normal constraint active (`B_N u = g`).
     active: Vec<bool>,
-    /// Tangential state: `0` stick (`B_T u = 0`), `+1`/`-1` slip with that sign; empty when
-    /// frictionless.
+    /// Tangential state: `0` stick (`B_T u = s`, the reference slip), `+1`/`-1` slip with
+    /// that sign; empty when frictionless.
     slip: Vec<i8>,
 }
 
@@ -233,8 +233,7 @@ impl Split {
             .map(|((b, g), l)| l + c * (b - g) > 0.0)
             .collect();
         let slip = system.friction().map_or_else(Vec::new, |f| {
-            f.tangential_rows()
-                .apply(u)
+            f.slip(u)
                 .iter()
                 .zip(lt)
                 .zip(f.bounds())
@@ -330,8 +329,16 @@ impl ContactSolver for ActiveSetSolver {
                     .normal_rows()
                     .add_transpose_apply(&shifted_force, &mut rhs);
                 if let Some(f) = system.friction() {
-                    let minus_lt: Vec<f64> = lt.iter().map(|l| -l).collect();
-                    f.tangential_rows().add_transpose_apply(&minus_lt, &mut rhs);
+                    // Stick rows hold B_T u = s (the reference slip): + rho B_S' s.
+                    let reference = f.reference_or_zero();
+                    let shifted_friction: Vec<f64> = lt
+                        .iter()
+                        .zip(&wt)
+                        .zip(reference.iter())
+                        .map(|((l, w), s)| -l + w * s)
+                        .collect();
+                    f.tangential_rows()
+                        .add_transpose_apply(&shifted_friction, &mut rhs);
                 }
                 matrix.solve_in_place(&mut rhs);
                 u = rhs;
@@ -351,7 +358,7 @@ impl ContactSolver for ActiveSetSolver {
                     }
                 }
                 if let Some(f) = system.friction() {
-                    let bt = f.tangential_rows().apply(&u);
+                    let bt = f.slip(&u);
                     for i in 0..m {
                         if split.slip[i] == 0 {
                             lt[i] += rho * bt[i];

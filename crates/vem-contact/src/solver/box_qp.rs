@@ -28,6 +28,190 @@ pub(crate) struct BoxQp<'a> {
     pub upper: &'a [f64],
 }
 
+/// The Cholesky factor of the reduced Hessian `H_FF` of the last Newton step, kept from one
+/// step (and one solve with the same `H`) to the next and brought to the next step's free set
+/// `F` by rank-one updates: a variable that leaves `F` is deleted from the factor (a rank-one
+/// update of the rows after it), one that joins is appended (a triangular solve). A step whose
+/// free set differs from the last one's in a few variables, as along a Coulomb fixed point and
+/// the load steps of a history, then costs `O(k^2)` per change instead of a factorisation
+/// (`O(k^3 / 3)`, `k = |F|`); a factor that cannot be updated (a pivot below round-off, many
+/// changes) is made again.
+///
+/// Storage: `L` by columns with a leading dimension (the capacity) above its order, so that an
+/// append writes one row and a deletion only marks its position: the factor of the free set is
+/// `L` restricted to the live positions, in the order of the positions. The dead ones are
+/// squeezed out when they are many.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ReducedFactor {
+    /// The variable at each position (`usize::MAX` for a deleted one).
+    order: Vec<usize>,
+    /// Live positions.
+    live: usize,
+    /// Leading dimension of `l`.
+    capacity: usize,
+    /// `L` by columns (`capacity x capacity`, lower triangular on the positions).
+    l: Vec<f64>,
+}
+
+/// A factor is updated when the free set changes in at most this fraction of its size (or 8
+/// variables), and made again otherwise.
+const UPDATE_FRACTION: f64 = 0.25;
+/// An appended pivot `d^2 = h - |y|^2` below this fraction of `h` is round-off: the factor is
+/// made again (with the shift of a semidefinite `H_FF`).
+const PIVOT_FLOOR: f64 = 1e-10;
+/// Marks a deleted position.
+const DEAD: usize = usize::MAX;
+
+impl ReducedFactor {
+    /// The number of variables in the factor.
+    fn k(&self) -> usize {
+        self.live
+    }
+
+    /// A factor of the variables `order` from its `L` (`k x k`).
+    fn from_factor(order: &[usize], l: MatRef<'_, f64>) -> Self {
+        let k = order.len();
+        let capacity = (2 * k).max(16);
+        let mut data = vec![0.0; capacity * capacity];
+        for j in 0..k {
+            for i in j..k {
+                data[j * capacity + i] = l[(i, j)];
+            }
+        }
+        Self {
+            order: order.to_vec(),
+            live: k,
+            capacity,
+            l: data,
+        }
+    }
+
+    fn at(&self, i: usize, j: usize) -> usize {
+        j * self.capacity + i
+    }
+
+    /// Deletes the variable at position `p`: the live rows after it get the rank-one update
+    /// with the part of column `p` below the diagonal.
+    fn delete(&mut self, p: usize) {
+        let n = self.order.len();
+        let rows: Vec<usize> = (p + 1..n).filter(|&i| self.order[i] != DEAD).collect();
+        let mut x: Vec<f64> = rows.iter().map(|&i| self.l[self.at(i, p)]).collect();
+        for (jj, &j) in rows.iter().enumerate() {
+            let ljj = self.l[self.at(j, j)];
+            let r = ljj.hypot(x[jj]);
+            let (c, s) = (r / ljj, x[jj] / ljj);
+            let column = self.at(0, j);
+            self.l[column + j] = r;
+            for (ii, &i) in rows.iter().enumerate().skip(jj + 1) {
+                let lij = (self.l[column + i] + s * x[ii]) / c;
+                x[ii] = c * x[ii] - s * lij;
+                self.l[column + i] = lij;
+            }
+        }
+        self.order[p] = DEAD;
+        self.live -= 1;
+    }
+
+    /// Squeezes the deleted positions out (the live ones keep their order).
+    fn compact(&mut self, capacity: usize) {
+        let live: Vec<usize> = (0..self.order.len())
+            .filter(|&i| self.order[i] != DEAD)
+            .collect();
+        let mut data = vec![0.0; capacity * capacity];
+        for (jj, &j) in live.iter().enumerate() {
+            for (ii, &i) in live.iter().enumerate().skip(jj) {
+                data[jj * capacity + ii] = self.l[self.at(i, j)];
+            }
+        }
+        self.order = live.iter().map(|&i| self.order[i]).collect();
+        self.capacity = capacity;
+        self.l = data;
+    }
+
+    /// `y = L^-1 b` on the live positions (`b` and `y` indexed by position; the dead ones are
+    /// 0 on return).
+    fn forward(&self, y: &mut [f64]) {
+        let n = self.order.len();
+        for j in 0..n {
+            if self.order[j] == DEAD {
+                y[j] = 0.0;
+                continue;
+            }
+            let column = &self.l[self.at(0, j)..self.at(n, j)];
+            y[j] /= column[j];
+            let yj = y[j];
+            for (yi, lij) in y[j + 1..n].iter_mut().zip(&column[j + 1..]) {
+                *yi -= lij * yj;
+            }
+        }
+    }
+
+    /// Appends the variable `v` (column `h_v` of `H` given by `column`); `false` when its pivot
+    /// is below round-off (the factor is then unchanged).
+    fn append(&mut self, v: usize, column: impl Fn(usize) -> f64) -> bool {
+        let mut y: Vec<f64> = self
+            .order
+            .iter()
+            .map(|&i| if i == DEAD { 0.0 } else { column(i) })
+            .collect();
+        self.forward(&mut y);
+        let h = column(v);
+        let d2 = h - y.iter().map(|x| x * x).sum::<f64>();
+        if d2.is_nan() || d2 <= PIVOT_FLOOR * h.abs() {
+            return false;
+        }
+        let n = self.order.len();
+        if n == self.capacity {
+            let dead = n - self.live;
+            self.compact(if 4 * dead > n {
+                self.capacity
+            } else {
+                2 * self.capacity
+            });
+            // Positions moved: the row of the new variable again.
+            return self.append(v, column);
+        }
+        for (j, &yj) in y.iter().enumerate() {
+            let at = self.at(n, j);
+            self.l[at] = yj;
+        }
+        let at = self.at(n, n);
+        self.l[at] = d2.sqrt();
+        self.order.push(v);
+        self.live += 1;
+        true
+    }
+
+    /// `x = -(L L')^-1 g[order]` on the live positions, as `(variable, value)`.
+    fn solve(&self, g: &[f64]) -> Vec<(usize, f64)> {
+        let n = self.order.len();
+        let mut x: Vec<f64> = self
+            .order
+            .iter()
+            .map(|&i| if i == DEAD { 0.0 } else { -g[i] })
+            .collect();
+        self.forward(&mut x);
+        for j in (0..n).rev() {
+            if self.order[j] == DEAD {
+                continue;
+            }
+            let column = &self.l[self.at(0, j)..self.at(n, j)];
+            let below: f64 = column[j + 1..]
+                .iter()
+                .zip(&x[j + 1..n])
+                .map(|(l, x)| l * x)
+                .sum();
+            x[j] = (x[j] - below) / column[j];
+        }
+        self.order
+            .iter()
+            .zip(x)
+            .filter(|(&i, _)| i != DEAD)
+            .map(|(&i, x)| (i, x))
+            .collect()
+    }
+}
+
 /// The outcome of [`BoxQp::solve`].
 #[derive(Debug, Clone)]
 pub(crate) struct BoxQpOutcome {
@@ -38,6 +222,10 @@ pub(crate) struct BoxQpOutcome {
 }
 
 const ARMIJO: f64 = 1e-4;
+/// The bounds within `eps` of which a variable counts as binding, at most this fraction of its
+/// box width: a box narrower than the projected gradient (friction bounds of nodes with small
+/// normal forces) does not count both its bounds as binding at once.
+const EPS_WIDTH: f64 = 0.25;
 const MAX_HALVINGS: usize = 60;
 
 impl BoxQp<'_> {
@@ -76,7 +264,25 @@ impl BoxQp<'_> {
 
     /// Minimises from `start` (projected onto the box) until the scaled projected gradient is
     /// at most `tolerance` (a force) or `max_iterations` steps were taken.
+    #[cfg(test)]
     pub fn solve(&self, start: &[f64], tolerance: f64, max_iterations: usize) -> BoxQpOutcome {
+        self.solve_with(
+            start,
+            tolerance,
+            max_iterations,
+            &mut ReducedFactor::default(),
+        )
+    }
+
+    /// [`BoxQp::solve`] with the reduced factor `kept` of an earlier solve with the same `H`
+    /// (updated on return).
+    pub fn solve_with(
+        &self,
+        start: &[f64],
+        tolerance: f64,
+        max_iterations: usize,
+        kept: &mut ReducedFactor,
+    ) -> BoxQpOutcome {
         let m = self.linear.len();
         let diagonal: Vec<f64> = (0..m).map(|i| self.hessian[(i, i)]).collect();
         let largest = diagonal.iter().fold(0.0f64, |a, &d| a.max(d));
@@ -113,9 +319,9 @@ impl BoxQp<'_> {
             }
             outcome.iterations += 1;
             // Binding bounds: within eps of a bound, gradient pushing outward.
-            let eps = pg;
             let binding: Vec<bool> = (0..m)
                 .map(|i| {
+                    let eps = pg.min(EPS_WIDTH * (self.upper[i] - self.lower[i]));
                     (x[i] <= self.lower[i] + eps && g[i] > 0.0)
                         || (x[i] >= self.upper[i] - eps && g[i] < 0.0)
                 })
@@ -123,7 +329,7 @@ impl BoxQp<'_> {
             let free: Vec<usize> = (0..m).filter(|&i| !binding[i]).collect();
             let mut p: Vec<f64> = (0..m).map(|i| -g[i] * scaling[i]).collect();
             if !free.is_empty() {
-                if let Some(step) = self.reduced_newton_step(&free, &g) {
+                if let Some(step) = self.reduced_newton_step(&free, &g, kept) {
                     for (k, &i) in free.iter().enumerate() {
                         p[i] = step[k];
                     }
@@ -163,10 +369,58 @@ impl BoxQp<'_> {
         outcome
     }
 
-    /// `p_F = -H_FF^-1 g_F` by a dense Cholesky factorisation (shifted slightly if `H_FF` is
-    /// only semidefinite); `None` if even the shifted matrix cannot be factorised.
-    fn reduced_newton_step(&self, free: &[usize], g: &[f64]) -> Option<Vec<f64>> {
+    /// Brings `kept` to the free set `free` by deletions and appends; `false` (and `kept`
+    /// cleared) when too much changed or a pivot fell below round-off.
+    fn update(&self, free: &[usize], kept: &mut ReducedFactor) -> bool {
+        let m = self.linear.len();
+        let mut in_free = vec![false; m];
+        for &i in free {
+            in_free[i] = true;
+        }
+        let mut in_kept = vec![false; m];
+        for &i in kept.order.iter().filter(|&&i| i != DEAD) {
+            in_kept[i] = true;
+        }
+        let removed: Vec<usize> = (0..kept.order.len())
+            .filter(|&p| kept.order[p] != DEAD && !in_free[kept.order[p]])
+            .collect();
+        let added: Vec<usize> = free.iter().copied().filter(|&i| !in_kept[i]).collect();
+        let changes = removed.len() + added.len();
+        if changes as f64 > (UPDATE_FRACTION * free.len() as f64).max(8.0) {
+            *kept = ReducedFactor::default();
+            return false;
+        }
+        for &p in removed.iter().rev() {
+            kept.delete(p);
+        }
+        for v in added {
+            if !kept.append(v, |i| self.hessian[(i, v)]) {
+                *kept = ReducedFactor::default();
+                return false;
+            }
+        }
+        true
+    }
+
+    /// `p_F = -H_FF^-1 g_F`: by the factor `kept` brought to the free set `free` by rank-one
+    /// updates, or by a dense Cholesky factorisation (shifted slightly if `H_FF` is only
+    /// semidefinite; such a factor is not kept); `None` if even the shifted matrix cannot be
+    /// factorised.
+    fn reduced_newton_step(
+        &self,
+        free: &[usize],
+        g: &[f64],
+        kept: &mut ReducedFactor,
+    ) -> Option<Vec<f64>> {
         let k = free.len();
+        if kept.k() > 0 && self.update(free, kept) {
+            // Back to the order of `free`.
+            let mut step = vec![0.0; self.linear.len()];
+            for (i, x) in kept.solve(g) {
+                step[i] = x;
+            }
+            return Some(free.iter().map(|&i| step[i]).collect());
+        }
         let mut reduced = Mat::<f64>::from_fn(k, k, |a, b| self.hessian[(free[a], free[b])]);
         let trace = (0..k).map(|a| reduced[(a, a)]).sum::<f64>();
         let mut shift = 0.0;
@@ -174,6 +428,11 @@ impl BoxQp<'_> {
             if let Ok(llt) = reduced.llt(Side::Lower) {
                 let mut rhs = Mat::<f64>::from_fn(k, 1, |a, _| -g[free[a]]);
                 llt.solve_in_place(rhs.as_mut());
+                *kept = if shift == 0.0 {
+                    ReducedFactor::from_factor(free, llt.L())
+                } else {
+                    ReducedFactor::default()
+                };
                 return Some((0..k).map(|a| rhs[(a, 0)]).collect());
             }
             let next = if shift == 0.0 {
@@ -218,6 +477,80 @@ mod tests {
             assert!(out.converged);
             let expected = (d / h).max(lo).min(hi);
             assert!((out.x[0] - expected).abs() <= 1e-14 * expected.abs().max(1.0));
+        }
+    }
+
+    /// A factor brought from one free set to another by deletions and appends gives the
+    /// Newton step of the new set, as a factorisation made afresh does.
+    #[test]
+    fn updated_reduced_factors_solve_the_new_free_set() {
+        let mut seed = 11u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let n = 16;
+        let a = Mat::<f64>::from_fn(n, n, |_, _| next());
+        let h = &a * a.transpose() + Mat::<f64>::identity(n, n) * 0.5;
+        let g: Vec<f64> = (0..n).map(|_| next()).collect();
+        let zeros = vec![0.0; n];
+        let qp = BoxQp {
+            hessian: h.as_ref(),
+            linear: &zeros,
+            lower: &zeros,
+            upper: &zeros,
+        };
+        let sets: [&[usize]; 11] = [
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9],
+            &[0, 2, 3, 5, 6, 7, 8, 9, 10, 11],
+            &[1, 2, 3, 5, 6, 7, 9, 10, 11],
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11],
+            // From 2 variables (capacity 16), deletions and appends up to a compaction.
+            &[0, 1],
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9],
+            &[2, 3, 4, 5, 6, 7, 8, 9, 10],
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10],
+            &[2, 3, 4, 5, 6, 7, 8, 9, 10, 11],
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11],
+            &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14],
+        ];
+        let mut kept = ReducedFactor::default();
+        for free in sets {
+            let step = qp.reduced_newton_step(free, &g, &mut kept).unwrap();
+            assert_eq!(kept.k(), free.len());
+            // H_FF p_F = -g_F.
+            for (r, &i) in free.iter().enumerate() {
+                let lhs: f64 = free.iter().zip(&step).map(|(&j, p)| h[(i, j)] * p).sum();
+                assert!((lhs + g[i]).abs() < 1e-12, "row {r}: {lhs} vs {}", -g[i]);
+            }
+        }
+        // Appends and deletions past the capacity: the deleted positions are squeezed out, then
+        // the storage grows.
+        let start = h.as_ref().submatrix(0, 0, 1, 1).llt(Side::Lower).unwrap();
+        let mut factor = ReducedFactor::from_factor(&[0], start.L());
+        for v in 1..n {
+            assert!(factor.append(v, |i| h[(i, v)]));
+            if v % 3 == 0 {
+                let p = factor.order.iter().position(|&i| i == v - 2).unwrap();
+                factor.delete(p);
+            }
+        }
+        // The deleted variables back: past the capacity, a compaction.
+        for v in (1..n - 2).step_by(3) {
+            assert!(factor.append(v, |i| h[(i, v)]));
+        }
+        assert_eq!(factor.k(), n);
+        assert_eq!(factor.order.len(), n, "{:?}", factor.order);
+        let x = factor.solve(&g);
+        for &(i, _) in &x {
+            let lhs: f64 = x.iter().map(|&(j, p)| h[(i, j)] * p).sum();
+            assert!(
+                (lhs + g[i]).abs() < 1e-12,
+                "variable {i}: {lhs} vs {}",
+                -g[i]
+            );
         }
     }
 

@@ -11,16 +11,24 @@
 //!
 //! ```text
 //! minimise 1/2 lambda' H lambda - d' lambda,   H = B S^-1 B' = W'W,  W = L_GG^-1 B_G',
-//!                                               d = B u0 - [g; 0],
-//! subject to  lambda_N >= 0,  -b <= lambda_T <= b.
+//!                                               d = B u0 - [g; s],
+//! subject to  lambda_N >= 0,  -b <= lambda_T <= b,
 //! ```
+//!
+//! with `s` the reference slip of the friction term (zero from rest; the tangential jump of the
+//! previous load step in a load history).
 //!
 //! Tresca friction is a box constraint in the dual; a Coulomb fixed point changes only the
 //! box, and a load step only `d`. The QP is solved by projected Newton steps with an Armijo
 //! search (globally convergent; it cannot cycle, unlike a plain primal-dual active set), then
 //! `u` follows from one more solve. Per structure (the [`PatternId`] and the stiffness values)
-//! the solver keeps the factorisations and `H`; per solve it does two triangular solve pairs
-//! per body and dense interface work. The multipliers of the last solve start the next one.
+//! the solver keeps the factorisations and `H`; per solve it does dense interface work and
+//! one triangular solve pair per body for `u`, and one more for `u0` only when the load
+//! leaves the span of the loads solved before (the same load again: a Coulomb step; a
+//! combination of earlier loads: the steps of a load history, whose loads are combinations of
+//! a few per-condition loads). The multipliers of the last solve start the next one.
+//! [`ContactSolver::solve_forces`] stops before the back substitution: the steps of a Coulomb
+//! fixed point cost interface work only.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
@@ -37,8 +45,9 @@
 //! the contact or friction holds the body, and otherwise move along the free mode by a
 //! constant step, which is reported as [`ContactSolverError::RigidSliding`] or
 //! [`ContactSolverError::Unbounded`]. The answer is `u = K_s^-1 (f - B' lambda + s E_G v)`.
-//! A body that stays singular with the shift (a part not connected to the interface) is
-//! handed to the [`ActiveSetSolver`], whose report then says so.
+//! A body that stays singular with the shift (a part not connected to the interface), or
+//! proximal steps that converge too slowly, are handed to the [`ActiveSetSolver`]; the report
+//! (and the error) of such a solve names the condensed solver and the handover.
 
 use std::time::Instant;
 use vem_space::{Options, OptionsError};
@@ -48,12 +57,13 @@ use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Accum, Mat, MatMut, MatRef, Par};
+use rayon::prelude::*;
 use std::sync::Arc;
 
 use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError};
 
 use super::active_set::ActiveSetSolver;
-use super::box_qp::{BoxQp, BoxQpOutcome};
+use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
@@ -61,9 +71,13 @@ use super::report::{
 };
 use super::shared::{self, BlockFactor, BlockKey, BlockOrder, FactorKey};
 use super::system::{ContactSystem, PatternId};
-use super::{ContactSolution, ContactSolver};
+use super::{ContactForces, ContactSolution, ContactSolver};
 
 const NAME: &str = "condensed (interface Schur complement)";
+/// The name in the reports of the solves the condensed solver hands over to the active-set
+/// solver: the solver the user chose, and who solved.
+const HANDED_OVER: &str =
+    "condensed (interface Schur complement), handed over to the active set (primal-dual)";
 
 /// Settings of [`CondensedSolver`]; build them with [`CondensedSettings::builder`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -231,8 +245,12 @@ struct Factors {
     hessian: Mat<f64>,
     /// The load of the last solve and `u0 = K_s^-1 f` for it.
     unconstrained: Option<(Vec<f64>, Vec<f64>)>,
+    /// Per body, the loads solved for so far (see [`LoadSpan`]).
+    spans: Vec<LoadSpan>,
     /// The multipliers of the last solve (warm start).
     multipliers: Option<Vec<f64>>,
+    /// The factor of the reduced Hessian of the last Newton step of the interface QP.
+    reduced: ReducedFactor,
 }
 
 #[derive(Debug)]
@@ -244,8 +262,11 @@ struct BodyFactor {
     _shared: Arc<BlockFactor>,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
-    /// Bodies with a singular stiffness: the shift, `L_GG`, `W = L_GG^-1 B_G'` and the
-    /// interface displacement `v` of the last solve (the start of the next proximal iteration).
+    /// `L_GG`, the trailing block of the factor (empty without interface unknowns): the
+    /// forward substitution of a right-hand side on the interface unknowns.
+    trailing: Mat<f64>,
+    /// Bodies with a singular stiffness: the shift, `W = L_GG^-1 B_G'` and the interface
+    /// displacement `v` of the last solve (the start of the next proximal iteration).
     proximal: Option<Proximal>,
 }
 
@@ -253,7 +274,6 @@ struct BodyFactor {
 struct Proximal {
     /// The shift `s` of the interface unknowns.
     shift: f64,
-    trailing: Mat<f64>,
     w: Mat<f64>,
     interface_displacement: Vec<f64>,
     /// The change of `v` in the last proximal step.
@@ -385,6 +405,7 @@ impl Factors {
             let shift = block_factor.shift;
             let cholesky = CholeskySolver::from_factor(settings.cholesky, factor);
             let mut proximal = None;
+            let mut trailing = Mat::<f64>::zeros(0, 0);
             if !interface.is_empty() {
                 // W = L_GG^-1 B_G' and H += W'W.
                 let mut w = Mat::<f64>::zeros(interface.len(), rows.len());
@@ -408,12 +429,12 @@ impl Factors {
                 if shift > 0.0 {
                     proximal = Some(Proximal {
                         shift,
-                        trailing: l,
                         w,
                         interface_displacement: vec![0.0; interface.len()],
                         last_step: vec![0.0; interface.len()],
                     });
                 }
+                trailing = l;
             }
             bodies.push(BodyFactor {
                 offset,
@@ -421,6 +442,7 @@ impl Factors {
                 cholesky,
                 _shared: block_factor,
                 interface,
+                trailing,
                 proximal,
             });
         }
@@ -428,7 +450,9 @@ impl Factors {
             bodies,
             hessian,
             unconstrained: None,
+            spans: Vec::new(),
             multipliers: None,
+            reduced: ReducedFactor::default(),
         }))
     }
 }
@@ -482,16 +506,68 @@ fn factorise_or_shift(
 }
 
 impl Factors {
-    /// `K_s^-1 x`, body by body.
+    /// `K_s^-1 x`, the bodies in parallel (their blocks are independent).
     fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
         let start = Instant::now();
+        // The bodies' parts of x, in the order of the bodies (consecutive blocks).
+        let mut parts = Vec::with_capacity(self.bodies.len());
+        let mut rest = x;
+        let mut position = 0;
         for body in &self.bodies {
-            let part = &mut x[body.offset..body.offset + body.n];
-            body.cholesky
-                .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
-                .map_err(backend)?;
-            work.triangular_solves += 1;
+            let (_, tail) = rest.split_at_mut(body.offset - position);
+            let (part, tail) = tail.split_at_mut(body.n);
+            parts.push((body, part));
+            rest = tail;
+            position = body.offset + body.n;
         }
+        parts
+            .into_par_iter()
+            .map(|(body, part)| {
+                body.cholesky
+                    .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                    .map_err(backend)
+            })
+            .collect::<Result<Vec<()>, _>>()?;
+        work.triangular_solves += self.bodies.len();
+        work.times.solves += start.elapsed();
+        Ok(())
+    }
+
+    /// `K_s^-1 x` for an `x` that vanishes outside the interface unknowns, the bodies in
+    /// parallel: the forward substitution on the interface block (dense, with `L_GG`), then
+    /// the backward substitution of the body's factor
+    /// ([`CholeskySolver::solve_from_trailing`]), half a solve.
+    fn solve_on_interface(
+        &self,
+        x: &mut [f64],
+        work: &mut WorkCounters,
+    ) -> Result<(), ContactSolverError> {
+        let start = Instant::now();
+        let mut parts = Vec::with_capacity(self.bodies.len());
+        let mut rest = x;
+        let mut position = 0;
+        for body in &self.bodies {
+            let (_, tail) = rest.split_at_mut(body.offset - position);
+            let (part, tail) = tail.split_at_mut(body.n);
+            parts.push((body, part));
+            rest = tail;
+            position = body.offset + body.n;
+        }
+        parts
+            .into_par_iter()
+            .map(|(body, part)| {
+                if body.interface.is_empty() {
+                    part.fill(0.0);
+                    return Ok(());
+                }
+                let mut y =
+                    Mat::<f64>::from_fn(body.interface.len(), 1, |k, _| part[body.interface[k]]);
+                solve_lower_triangular_in_place(body.trailing.as_ref(), y.as_mut(), Par::Seq);
+                let y: Vec<f64> = (0..body.interface.len()).map(|k| y[(k, 0)]).collect();
+                body.cholesky.solve_from_trailing(&y, part).map_err(backend)
+            })
+            .collect::<Result<Vec<()>, _>>()?;
+        work.triangular_solves += self.bodies.len();
         work.times.solves += start.elapsed();
         Ok(())
     }
@@ -499,11 +575,108 @@ impl Factors {
     fn is_shifted(&self) -> bool {
         self.bodies.iter().any(|b| b.proximal.is_some())
     }
+
+    /// `u0 = K_s^-1 f` for the load `load`: the last one again, or body by body from the span
+    /// of the loads solved before (one triangular solve pair only for a body whose load leaves
+    /// that span).
+    fn unconstrained(
+        &mut self,
+        load: &[f64],
+        work: &mut WorkCounters,
+    ) -> Result<Vec<f64>, ContactSolverError> {
+        if let Some((last, u0)) = &self.unconstrained {
+            if last == load {
+                return Ok(u0.clone());
+            }
+        }
+        let start = Instant::now();
+        self.spans.resize_with(self.bodies.len(), LoadSpan::default);
+        let mut u0 = vec![0.0; load.len()];
+        for (body, span) in self.bodies.iter().zip(&mut self.spans) {
+            let range = body.offset..body.offset + body.n;
+            let (direction, residual) = span.combine(&load[range.clone()], &mut u0[range.clone()]);
+            if let Some(mut direction) = direction {
+                // A new direction: K_s^-1 of it, kept with it.
+                let mut z = direction.clone();
+                body.cholesky
+                    .solve_in_place(MatMut::from_column_major_slice_mut(&mut z, body.n, 1))
+                    .map_err(backend)?;
+                work.triangular_solves += 1;
+                for (u, zi) in u0[range].iter_mut().zip(&z) {
+                    *u += residual * zi;
+                }
+                if span.basis.len() == SPAN_SIZE {
+                    span.basis.clear();
+                }
+                direction.shrink_to_fit();
+                span.basis.push((direction, z));
+            }
+        }
+        work.times.solves += start.elapsed();
+        self.unconstrained = Some((load.to_vec(), u0.clone()));
+        Ok(u0)
+    }
+}
+
+/// The loads a body has been solved for, as an orthonormal basis `q_k` with `z_k = K_s^-1 q_k`:
+/// a load `f = sum_k a_k q_k + r` has `K_s^-1 f = sum_k a_k z_k + K_s^-1 r`, and the last term
+/// is needed only when `r` is not round-off. Along a load history (a few conditions scaled by
+/// their factors) the loads of the steps span a space of the dimension of the number of
+/// conditions: after the first steps, `u0` costs no triangular solve.
+#[derive(Debug, Default)]
+struct LoadSpan {
+    basis: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
+/// Largest number of directions kept per body (the basis starts again when full).
+const SPAN_SIZE: usize = 8;
+/// A load whose part outside the span is below this fraction of it lies in the span: the
+/// equations are then solved to this relative residual (the acceptance test checks them at
+/// `1e-9` or above).
+const SPAN_TOLERANCE: f64 = 1e-13;
+
+impl LoadSpan {
+    /// Adds `sum_k a_k z_k` to `u` for the coefficients `a_k` of `f` on the basis (Gram-Schmidt
+    /// twice) and returns the unit direction of the rest with its norm, when the rest is not
+    /// round-off (`None` then: `u` is `K_s^-1 f`).
+    fn combine(&self, f: &[f64], u: &mut [f64]) -> (Option<Vec<f64>>, f64) {
+        let norm = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            return (None, 0.0);
+        }
+        let mut rest = f.to_vec();
+        let mut coefficients = vec![0.0; self.basis.len()];
+        for _ in 0..2 {
+            for ((q, _), a) in self.basis.iter().zip(&mut coefficients) {
+                let c: f64 = q.iter().zip(&rest).map(|(q, r)| q * r).sum();
+                for (r, qi) in rest.iter_mut().zip(q) {
+                    *r -= c * qi;
+                }
+                *a += c;
+            }
+        }
+        for ((_, z), &a) in self.basis.iter().zip(&coefficients) {
+            for (ui, zi) in u.iter_mut().zip(z) {
+                *ui += a * zi;
+            }
+        }
+        let residual = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if residual <= SPAN_TOLERANCE * norm {
+            return (None, 0.0);
+        }
+        for r in &mut rest {
+            *r /= residual;
+        }
+        (Some(rest), residual)
+    }
 }
 
 /// What the interface iteration returns.
 struct Interface {
     lambda: Vec<f64>,
+    /// The linear term `d` of the last interface QP solved (`d0`, or the last proximal
+    /// step's): `B u = [g; s] + d - H lambda` for the answer `u` of `lambda`.
+    d: Vec<f64>,
     iterations: usize,
     converged: bool,
     /// The proximal steps moved along a free mode instead of converging.
@@ -521,6 +694,7 @@ fn interface_qp(
     upper: &[f64],
     warm: &[f64],
     settings: &CondensedSettings,
+    kept: &mut ReducedFactor,
 ) -> BoxQpOutcome {
     // Rows that cannot carry a force do not set the scale: an open gap (d_i < 0 on a normal
     // row, whose lower bound is 0) and a tangential row beyond its bound.
@@ -543,10 +717,11 @@ fn interface_qp(
         lower,
         upper,
     }
-    .solve(
+    .solve_with(
         warm,
         settings.tolerance * force_scale,
         settings.max_iterations,
+        kept,
     )
 }
 
@@ -569,6 +744,7 @@ fn proximal_iteration(
 ) -> Interface {
     let mut result = Interface {
         lambda: warm,
+        d: d0.to_vec(),
         iterations: 0,
         converged: false,
         free_mode: false,
@@ -584,7 +760,7 @@ fn proximal_iteration(
                 let mut z = Mat::<f64>::from_fn(p.interface_displacement.len(), 1, |i, _| {
                     p.shift * p.interface_displacement[i]
                 });
-                solve_lower_triangular_in_place(p.trailing.as_ref(), z.as_mut(), Par::Seq);
+                solve_lower_triangular_in_place(body.trailing.as_ref(), z.as_mut(), Par::Seq);
                 let wz = p.w.transpose() * &z;
                 for (i, di) in d.iter_mut().enumerate() {
                     *di += wz[(i, 0)];
@@ -599,9 +775,11 @@ fn proximal_iteration(
             upper,
             &result.lambda,
             settings,
+            &mut factors.reduced,
         );
         result.iterations += outcome.iterations;
         result.lambda = outcome.x;
+        result.d = d;
         if !outcome.converged {
             return result;
         }
@@ -623,7 +801,7 @@ fn proximal_iteration(
                 -1.0,
                 Par::Seq,
             );
-            solve_upper_triangular_in_place(p.trailing.transpose(), z.as_mut(), Par::Seq);
+            solve_upper_triangular_in_place(body.trailing.transpose(), z.as_mut(), Par::Seq);
             let mut body_step = 0.0f64;
             for (k, &i) in body.interface.iter().enumerate() {
                 let v = u0[body.offset + i] + z[(k, 0)];
@@ -693,28 +871,58 @@ fn approaches_a_constraint(
         })
 }
 
-/// Solves with the active-set solver (its report names it), adding the work done so far.
+/// Solves with the active-set solver, adding the work done so far; its report, and the
+/// report of its failure, name the condensed solver and the handover.
 fn fall_back(
     fallback: &mut Option<ActiveSetSolver>,
     system: &ContactSystem<'_>,
     work: WorkCounters,
 ) -> Result<ContactSolution, ContactSolverError> {
-    let mut solution = fallback
+    match fallback
         .get_or_insert_with(ActiveSetSolver::default)
-        .solve(system)?;
-    solution.report.work += work;
-    Ok(solution)
+        .solve(system)
+    {
+        Ok(mut solution) => {
+            solution.report.work += work;
+            solution.report.solver = HANDED_OVER;
+            Ok(solution)
+        }
+        Err(mut error) => {
+            match &mut error {
+                ContactSolverError::NotConverged { report }
+                | ContactSolverError::RigidSliding { report, .. }
+                | ContactSolverError::Unbounded { report, .. }
+                | ContactSolverError::Infeasible { report } => {
+                    report.work += work;
+                    report.solver = HANDED_OVER;
+                }
+                ContactSolverError::Backend { solver, .. } => *solver = HANDED_OVER,
+            }
+            Err(error)
+        }
+    }
 }
 
-impl ContactSolver for CondensedSolver {
-    fn name(&self) -> &'static str {
-        NAME
-    }
+/// Where a solve stands after the interface problem.
+enum Stage {
+    /// Answered without the interface problem (unloaded, or handed over).
+    Done(ContactSolution),
+    /// The interface answer, before the back substitution.
+    Interface {
+        interface: Interface,
+        u0: Vec<f64>,
+        start: Instant,
+        work: WorkCounters,
+    },
+}
 
-    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
+impl CondensedSolver {
+    /// Everything up to the interface answer: the factors (kept per structure), `u0`, the
+    /// interface QP (with the proximal steps of shifted bodies).
+    fn interface_stage(&mut self, system: &ContactSystem<'_>) -> Result<Stage, ContactSolverError> {
         let start = Instant::now();
         if unloaded(system) {
-            return Ok(unloaded_solution(system, NAME, start));
+            return Ok(Stage::Done(unloaded_solution(system, NAME, start)));
         }
         let mut work = WorkCounters::default();
         if !self.structure.as_ref().is_some_and(|s| s.fits(system)) {
@@ -728,29 +936,25 @@ impl ContactSolver for CondensedSolver {
         let Some(factors) = structure.factors.as_mut() else {
             // Singular even with the interface shifted: the active-set solver's shifted
             // factorisation and free-mode test handle it.
-            return fall_back(&mut self.fallback, system, work);
+            return fall_back(&mut self.fallback, system, work).map(Stage::Done);
         };
-        let (n, m) = (system.n_dofs(), system.n_constraints());
+        let m = system.n_constraints();
         let rows = all_rows(system);
 
-        // u0 = K_s^-1 f (kept while the load does not change: Coulomb steps).
-        let unconstrained = match factors.unconstrained.take() {
-            Some((load, u0)) if load == system.load() => (load, u0),
-            _ => {
-                let mut u0 = system.load().to_vec();
-                factors.solve(&mut u0, &mut work)?;
-                (system.load().to_vec(), u0)
-            }
-        };
-        let u0 = &unconstrained.1;
+        // u0 = K_s^-1 f (the last one again for the same load, Coulomb steps; from the span of
+        // the loads solved before, load steps).
+        let u0 = factors.unconstrained(system.load(), &mut work)?;
         let apply_rows = |x: &[f64]| -> Vec<f64> {
             rows.iter()
                 .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * x[c]).sum())
                 .collect()
         };
-        let mut d0 = apply_rows(u0);
+        let mut d0 = apply_rows(&u0);
         for (di, g) in d0.iter_mut().zip(system.gap()) {
             *di -= g;
+        }
+        if let Some(friction) = system.friction() {
+            friction.subtract_reference(&mut d0[m..]);
         }
         let mut lower = vec![0.0; rows.len()];
         let mut upper = vec![f64::INFINITY; rows.len()];
@@ -770,7 +974,7 @@ impl ContactSolver for CondensedSolver {
                 factors,
                 system,
                 &rows,
-                u0,
+                &u0,
                 &d0,
                 &lower,
                 &upper,
@@ -785,21 +989,48 @@ impl ContactSolver for CondensedSolver {
                 &upper,
                 &warm,
                 &self.settings,
+                &mut factors.reduced,
             );
             Interface {
                 lambda: outcome.x,
+                d: d0,
                 iterations: outcome.iterations,
                 converged: outcome.converged,
                 free_mode: false,
             }
         };
         if !interface.converged && !interface.free_mode && factors.is_shifted() {
-            factors.unconstrained = Some(unconstrained);
             // The proximal steps converge too slowly (a floating body held by a much softer
             // one): the active-set solver's shifted factorisation of the whole system does not
             // depend on the shift's size in the same way.
-            return fall_back(&mut self.fallback, system, work);
+            return fall_back(&mut self.fallback, system, work).map(Stage::Done);
         }
+        factors.multipliers = Some(interface.lambda.clone());
+        Ok(Stage::Interface {
+            interface,
+            u0,
+            start,
+            work,
+        })
+    }
+
+    /// The displacement of the interface answer (one back substitution), its certification
+    /// and report.
+    fn finish(
+        &mut self,
+        system: &ContactSystem<'_>,
+        interface: Interface,
+        u0: Vec<f64>,
+        start: Instant,
+        mut work: WorkCounters,
+    ) -> Result<ContactSolution, ContactSolverError> {
+        let factors = self
+            .structure
+            .as_mut()
+            .and_then(|s| s.factors.as_mut())
+            .expect("an interface answer has factors");
+        let (n, m) = (system.n_dofs(), system.n_constraints());
+        let rows = all_rows(system);
         let lambda = interface.lambda;
 
         // u = K_s^-1 (f - B' lambda + s E_G v) = u0 - K_s^-1 (B' lambda - s E_G v).
@@ -825,7 +1056,8 @@ impl ContactSolver for CondensedSolver {
                 }
             }
         }
-        factors.solve(&mut correction, &mut work)?;
+        // The correction lies on the interface unknowns: half a solve per body.
+        factors.solve_on_interface(&mut correction, &mut work)?;
         let displacement: Vec<f64> = u0.iter().zip(&correction).map(|(a, b)| a - b).collect();
         let normal_force = lambda[..m].to_vec();
         let tangential_force = if system.friction().is_some() {
@@ -833,8 +1065,6 @@ impl ContactSolver for CondensedSolver {
         } else {
             vec![0.0; m]
         };
-        factors.multipliers = Some(lambda);
-        factors.unconstrained = Some(unconstrained);
 
         let (status, residuals) = if interface.converged {
             match certify(
@@ -898,5 +1128,93 @@ impl ContactSolver for CondensedSolver {
                 report: Box::new(report),
             })
         }
+    }
+}
+
+impl ContactSolver for CondensedSolver {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
+        match self.interface_stage(system)? {
+            Stage::Done(solution) => Ok(solution),
+            Stage::Interface {
+                interface,
+                u0,
+                start,
+                work,
+            } => self.finish(system, interface, u0, start, work),
+        }
+    }
+
+    /// The forces of the interface answer and `B u = [g; s] + d - H lambda` (the gap and the
+    /// reference slip less the dual gradient), without the back substitution: interface work
+    /// only once `u0` is known.
+    fn solve_forces(
+        &mut self,
+        system: &ContactSystem<'_>,
+    ) -> Result<ContactForces, ContactSolverError> {
+        let (interface, u0, start, mut work) = match self.interface_stage(system)? {
+            Stage::Done(solution) => return Ok(ContactForces::of_solution(system, solution)),
+            Stage::Interface {
+                interface,
+                u0,
+                start,
+                work,
+            } => (interface, u0, start, work),
+        };
+        if !interface.converged || interface.free_mode {
+            // The complete solve's error, with its report.
+            return self
+                .finish(system, interface, u0, start, work)
+                .map(|solution| ContactForces::of_solution(system, solution));
+        }
+        let factors = self
+            .structure
+            .as_ref()
+            .and_then(|s| s.factors.as_ref())
+            .expect("an interface answer has factors");
+        let m = system.n_constraints();
+        let lambda = &interface.lambda;
+        let h = factors.hessian.as_ref();
+        let mut values = interface.d.clone();
+        for (j, &l) in lambda.iter().enumerate() {
+            if l != 0.0 {
+                for (v, hij) in values.iter_mut().zip(h.col(j).iter()) {
+                    *v -= hij * l;
+                }
+            }
+        }
+        for (v, g) in values.iter_mut().zip(system.gap()) {
+            *v += g;
+        }
+        let (normal_rows, tangential_rows) = match system.friction() {
+            Some(friction) => {
+                let mut tangential = values.split_off(m);
+                if let Some(slip) = friction.reference_slip() {
+                    for (v, s) in tangential.iter_mut().zip(slip) {
+                        *v += s;
+                    }
+                }
+                (values, tangential)
+            }
+            None => (values, Vec::new()),
+        };
+        let tangential_force = if system.friction().is_some() {
+            lambda[m..].to_vec()
+        } else {
+            vec![0.0; m]
+        };
+        work.times.contact_solve = start.elapsed();
+        Ok(ContactForces {
+            normal_force: lambda[..m].to_vec(),
+            tangential_force,
+            normal_rows,
+            tangential_rows,
+            iterations: interface.iterations,
+            work,
+            solution: None,
+        })
     }
 }

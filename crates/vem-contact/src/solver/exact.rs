@@ -3,8 +3,8 @@
 //! Frictionless (P1^h): `min 1/2 u'Ku - f'u` s.t. `B_N u + s = g, s >= 0`.
 //!
 //! Tresca (P2^h with nodal quadrature): the variables are `(u, t)` with epigraph variables
-//! `t_i >= |(B_T u)_i|` written as the two linear inequalities `B_T u - t <= 0` and
-//! `-B_T u - t <= 0` (no cone in 2D); the objective gains `sum_i b_i t_i`. With multipliers
+//! `t_i >= |(B_T u - s)_i|` (`s` the reference slip, zero from rest) written as the two linear
+//! inequalities `B_T u - t <= s` and `-B_T u - t <= -s` (no cone in 2D); the objective gains `sum_i b_i t_i`. With multipliers
 //! `z = (lambda_N, z_+, z_-)` the stationarity in `t` gives `z_+ + z_- = b`, so
 //! `lambda_T = z_+ - z_-` satisfies `|lambda_T| <= b` and has the sign of the slip.
 
@@ -242,7 +242,8 @@ impl ExactSolver {
 }
 
 /// The units in which the QP is handed to Clarabel: a stiffness `k` (largest constrained
-/// diagonal entry of `K`), a length `L = max(||g||_inf, ||f||_inf / k)` and the force `k L`.
+/// diagonal entry of `K`), a length `L = max(||g||_inf, ||s||_inf, ||f||_inf / k)` (`s` the
+/// reference slip) and the force `k L`.
 /// Clarabel normalises its residuals and duality gap by `max(1, .)`, so on data far from 1 its
 /// relative tolerances become absolute; in these units the data are of order 1 and the answer
 /// does not depend on the units of the problem.
@@ -262,7 +263,13 @@ impl Units {
             stiffness = 1.0;
         }
         let inf = super::report::inf_norm;
-        let length = inf(system.gap()).max(inf(system.load()) / stiffness);
+        let reference_slip = system
+            .friction()
+            .and_then(|f| f.reference_slip())
+            .map_or(0.0, inf);
+        let length = inf(system.gap())
+            .max(reference_slip)
+            .max(inf(system.load()) / stiffness);
         Self {
             stiffness,
             length: if length > 0.0 { length } else { 1.0 },
@@ -349,7 +356,7 @@ fn build_qp(system: &ContactSystem<'_>, units: Units) -> QpData {
         for i in 0..m {
             let (cols, vals) = tangential.row(i);
             for (&c, &v) in cols.iter().zip(vals) {
-                // B_T u - t <= 0 (rows m..2m) and -B_T u - t <= 0 (rows 2m..3m).
+                // B_T u - t <= s (rows m..2m) and -B_T u - t <= -s (rows 2m..3m).
                 ai.extend([m + i, 2 * m + i]);
                 aj.extend([c, c]);
                 av.extend([v, -v]);
@@ -358,7 +365,14 @@ fn build_qp(system: &ContactSystem<'_>, units: Units) -> QpData {
             aj.extend([n + i, n + i]);
             av.extend([-1.0, -1.0]);
         }
-        b.extend(std::iter::repeat_n(0.0, 2 * m));
+        // The reference slip s: B_T u - t <= s and -B_T u - t <= -s.
+        match fr.reference_slip() {
+            Some(slip) => {
+                b.extend(slip.iter().map(|s| s / length));
+                b.extend(slip.iter().map(|s| -s / length));
+            }
+            None => b.extend(std::iter::repeat_n(0.0, 2 * m)),
+        }
     }
     let a = CscMatrix::new_from_triplets(b.len(), n_var, ai, aj, av);
     QpData { p, q, a, b }

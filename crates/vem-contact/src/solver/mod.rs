@@ -13,13 +13,17 @@
 //! ```text
 //! K u - f + B_N' lambda_N + B_T' lambda_T = 0
 //! lambda_N >= 0,  B_N u - g <= 0,  lambda_N,i (B_N u - g)_i = 0
-//! |lambda_T,i| <= b_i,  lambda_T,i = b_i sign((B_T u)_i)  where (B_T u)_i != 0
+//! |lambda_T,i| <= b_i,  lambda_T,i = b_i sign((B_T u - s)_i)  where (B_T u - s)_i != 0
 //! ```
+//!
+//! with `s` the reference slip of [`Friction`] (zero for a problem from rest, the tangential
+//! jump of the previous step in a load history).
 //!
 //! * `normal_force[i] = lambda_N,i >= 0` is the compressive nodal contact force at interface
 //!   node `i` (divide by the tributary length for the pressure `p = -sigma_nu`).
 //! * `tangential_force[i] = lambda_T,i` is the nodal friction force conjugate to the slip
-//!   `(B_T u)_i = [u]_1tau`: it has the sign of the slip, and `-lambda_T,i` (times the tangent
+//!   `(B_T u - s)_i` (the tangential jump `[u]_1tau` since the reference slip): it has the
+//!   sign of the slip, and `-lambda_T,i` (times the tangent
 //!   of body 1) is the friction force acting on body 1, opposing its slip.
 //!   For frictionless systems it is all zeros.
 
@@ -45,7 +49,7 @@ pub(crate) use report::ForceScales;
 pub use report::{
     KktResiduals, KktScales, KktTolerance, SolveReport, SolveStatus, StageTimes, WorkCounters,
 };
-pub(crate) use system::borrowed_block;
+pub(crate) use system::{checked_block, matrix_diagonal};
 pub use system::{
     ConstraintRows, ContactSystem, ContactSystemError, Friction, PatternId, StiffnessBlock,
 };
@@ -64,6 +68,46 @@ pub struct ContactSolution {
     pub report: SolveReport,
 }
 
+/// The forces of a contact solve and the values of the constraint rows at its displacement,
+/// without the displacement itself: what an outer fixed point (Coulomb) needs between its
+/// steps ([`ContactSolver::solve_forces`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactForces {
+    /// `lambda_N` (length `m`).
+    pub normal_force: Vec<f64>,
+    /// `lambda_T` (length `m`; zeros for a frictionless system).
+    pub tangential_force: Vec<f64>,
+    /// `B_N u` (length `m`).
+    pub normal_rows: Vec<f64>,
+    /// `B_T u` (length `m`; empty for a frictionless system).
+    pub tangential_rows: Vec<f64>,
+    /// Iterations of the solver.
+    pub iterations: usize,
+    /// What the solve computed.
+    pub work: WorkCounters,
+    /// The complete answer, when the solver formed it anyway (the default
+    /// [`ContactSolver::solve_forces`] does): a caller that needs it then solves no more.
+    pub solution: Option<ContactSolution>,
+}
+
+impl ContactForces {
+    /// The forces of a complete answer `solution` of `system` (which it keeps).
+    pub fn of_solution(system: &ContactSystem<'_>, solution: ContactSolution) -> Self {
+        let u = &solution.displacement;
+        Self {
+            normal_force: solution.normal_force.clone(),
+            tangential_force: solution.tangential_force.clone(),
+            normal_rows: system.normal_rows().apply(u),
+            tangential_rows: system
+                .friction()
+                .map_or_else(Vec::new, |f| f.tangential_rows().apply(u)),
+            iterations: solution.report.iterations,
+            work: solution.report.work,
+            solution: Some(solution),
+        }
+    }
+}
+
 /// A contact solver. Object safe: assembly code holds a `Box<dyn ContactSolver>` and new
 /// solvers are added without touching it.
 ///
@@ -80,6 +124,23 @@ pub trait ContactSolver {
     /// [`ContactSolverError`]: no convergence, rigid sliding, unbounded energy, infeasible
     /// constraints or a backend failure; run failures carry their [`SolveReport`].
     fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError>;
+
+    /// The forces of the answer and the values `B_N u`, `B_T u` of its constraint rows, for the
+    /// steps of an outer fixed point (Coulomb), whose last step is a [`ContactSolver::solve`].
+    /// A solver that condenses onto the interface returns them without forming `u` (the
+    /// condensed solver: interface work only); the default solves completely and keeps the
+    /// answer in [`ContactForces::solution`]. These forces are not certified: the complete
+    /// solve is.
+    ///
+    /// # Errors
+    /// As [`ContactSolver::solve`].
+    fn solve_forces(
+        &mut self,
+        system: &ContactSystem<'_>,
+    ) -> Result<ContactForces, ContactSolverError> {
+        let solution = self.solve(system)?;
+        Ok(ContactForces::of_solution(system, solution))
+    }
 
     /// Relative accuracy of the nodal forces this solver guarantees (`0` for solvers whose
     /// forces are exact up to rounding). Outer fixed points (Coulomb) cannot resolve changes of

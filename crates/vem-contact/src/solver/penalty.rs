@@ -2,13 +2,14 @@
 //! energy
 //!
 //! ```text
-//! Pi(u) = 1/2 u'Ku - f'u + eps_N/2 sum_i ((B_N u - g)_i)_+^2 + sum_i psi_i((B_T u)_i)
+//! Pi(u) = 1/2 u'Ku - f'u + eps_N/2 sum_i ((B_N u - g)_i)_+^2 + sum_i psi_i((B_T u - s0)_i)
 //! ```
 //!
-//! where `psi_i` is the Huber regularisation of `b_i |s|` (quadratic `eps_T s^2 / 2` for
-//! `|eps_T s| <= b_i`, then `b_i |s| - b_i^2 / (2 eps_T)`). Its minimiser gives the forces
-//! `lambda_N = eps_N (B_N u - g)_+` and `lambda_T = clamp(eps_T B_T u, -b, b)`; the penetration
-//! and the elastic stick slip are O(1/eps), which is the penalty error.
+//! where `s0` is the reference slip of the friction term (zero from rest) and `psi_i` the
+//! Huber regularisation of `b_i |s|` (quadratic `eps_T s^2 / 2` for `|eps_T s| <= b_i`, then
+//! `b_i |s| - b_i^2 / (2 eps_T)`). Its minimiser gives the forces
+//! `lambda_N = eps_N (B_N u - g)_+` and `lambda_T = clamp(eps_T (B_T u - s0), -b, b)`; the
+//! penetration and the elastic stick slip are O(1/eps), which is the penalty error.
 //!
 //! `Pi` is convex, C^1 and piecewise quadratic. Each Newton step solves with
 //! `H = K + eps_N B_A'B_A + eps_T B_S'B_S` (`A`: penetrating nodes, `S`: sticking nodes) on a
@@ -337,9 +338,7 @@ impl Penalised<'_> {
             .map(|(bu, g)| bu - g)
             .collect();
         let normal_force: Vec<f64> = constraint.iter().map(|c| self.eps_n * c.max(0.0)).collect();
-        let slip = sys
-            .friction()
-            .map_or_else(Vec::new, |f| f.tangential_rows().apply(u));
+        let slip = sys.friction().map_or_else(Vec::new, |f| f.slip(u));
         let tangential_force: Vec<f64> = if slip.is_empty() {
             vec![0.0; m]
         } else {
@@ -420,7 +419,11 @@ impl Penalised<'_> {
         };
         add(sys.normal_rows(), self.eps_n, sys.gap());
         if let Some(f) = sys.friction() {
-            add(f.tangential_rows(), self.eps_t, &[]);
+            add(
+                f.tangential_rows(),
+                self.eps_t,
+                f.reference_slip().unwrap_or(&[]),
+            );
         }
         out
     }
@@ -617,12 +620,23 @@ impl ContactSolver for PenaltySolver {
                     .map(|&b| if b > 0.0 { p.eps_t } else { 0.0 })
                     .collect();
                 if let Some(false) = guard.factorise(matrix, system, &all_normal, &all_stick) {
-                    // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v|^2.
+                    // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v - s0|^2.
                     let mut v = system.load().to_vec();
                     let weighted_gap: Vec<f64> = system.gap().iter().map(|g| p.eps_n * g).collect();
                     system
                         .normal_rows()
                         .add_transpose_apply(&weighted_gap, &mut v);
+                    if let Some(f) = system.friction() {
+                        if let Some(reference) = f.reference_slip() {
+                            let weighted_slip: Vec<f64> = reference
+                                .iter()
+                                .zip(&all_stick)
+                                .map(|(s, w)| w * s)
+                                .collect();
+                            f.tangential_rows()
+                                .add_transpose_apply(&weighted_slip, &mut v);
+                        }
+                    }
                     matrix.solve_in_place(&mut v);
                     let d: Vec<f64> = v.iter().zip(&u).map(|(a, b)| a - b).collect();
                     if d.iter().all(|x| x.is_finite()) && energy_change(&p, &state, &d) < 0.0 {

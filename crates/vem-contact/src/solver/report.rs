@@ -52,7 +52,8 @@ pub struct KktScales {
     /// `F_b = max(||f_b||_inf, ||(K u)_b||_inf, ||(B_N' lambda_N + B_T' lambda_T)_b||_inf)`.
     /// Zero only for an unloaded problem with a zero answer.
     pub force: f64,
-    /// Displacement scale `U = max(||u||_inf, ||g||_inf, ||f||_inf / k)` with `k` the largest
+    /// Displacement scale `U = max(||u||_inf, ||g||_inf, ||s||_inf, ||f||_inf / k)` (`s` the
+    /// reference slip of [`Friction`](super::Friction)) with `k` the largest
     /// diagonal entry of `K` (the last term keeps `U` a scale of the problem when the answer
     /// and the gaps vanish).
     pub displacement: f64,
@@ -65,7 +66,7 @@ pub struct KktScales {
 ///
 /// Conventions (spec section 4): `(B_N u - g)_i > 0` is penetration; `lambda_N,i >= 0` is the
 /// compressive nodal contact force; the tangential force satisfies
-/// `lambda_T,i = b_i sign((B_T u)_i)` where node `i` slips.
+/// `lambda_T,i = b_i sign((B_T u - s0)_i)` where node `i` slips (`s0` the reference slip).
 ///
 /// The force scale of interface node `i`, `F_i`, is the smallest `F_b` of the bodies its rows
 /// touch: a contact force must be accurate relative to the forces of the softer (or less
@@ -96,9 +97,10 @@ pub struct KktResiduals {
     /// frictionless).
     pub friction_bound_violation: f64,
     /// `max_i |b_i |s_i| - lambda_T,i s_i| / (F_i U)` over the nodes that slip,
-    /// `|s_i| = |(B_T u)_i| > t U` (`t`: the acceptance tolerance, `1e-10` for
-    /// [`KktResiduals::evaluate`]): the failure of the tangential force to be `b_i` times the
-    /// slip direction (0 when frictionless). Slips below `t U` count as stick.
+    /// `|s_i| = |(B_T u)_i - s0_i| > t U` (`s0` the reference slip; `t`: the acceptance
+    /// tolerance, `1e-10` for [`KktResiduals::evaluate`]): the failure of the tangential
+    /// force to be `b_i` times the slip direction (0 when frictionless). Slips below `t U`
+    /// count as stick.
     pub slip_direction_violation: f64,
 }
 
@@ -143,6 +145,39 @@ impl ForceScales {
         normal_force: &[f64],
         tangential_force: &[f64],
     ) -> Self {
+        let abs_u: Vec<f64> = displacement.iter().map(|x| x.abs()).collect();
+        let mut stiffness_magnitude = vec![0.0; system.n_dofs()];
+        system.stiffness_apply_with(&abs_u, &mut stiffness_magnitude, f64::abs);
+        Self::from_products(
+            system,
+            ku,
+            stiffness_magnitude,
+            normal_force,
+            tangential_force,
+        )
+    }
+
+    /// [`ForceScales::of`] with `K u` computed here, in the same pass over `K` as `|K||u|`;
+    /// returns `K u` too.
+    pub(crate) fn of_answer(
+        system: &ContactSystem<'_>,
+        displacement: &[f64],
+        normal_force: &[f64],
+        tangential_force: &[f64],
+    ) -> (Self, Vec<f64>) {
+        let (ku, magnitude) = system.stiffness_apply_and_magnitude(displacement);
+        let scales = Self::from_products(system, &ku, magnitude, normal_force, tangential_force);
+        (scales, ku)
+    }
+
+    /// The scales from `K u` and `|K||u|` (`stiffness_magnitude`).
+    fn from_products(
+        system: &ContactSystem<'_>,
+        ku: &[f64],
+        stiffness_magnitude: Vec<f64>,
+        normal_force: &[f64],
+        tangential_force: &[f64],
+    ) -> Self {
         let mut reaction = vec![0.0; system.n_dofs()];
         system
             .normal_rows()
@@ -154,9 +189,10 @@ impl ForceScales {
         }
         let load = system.load();
         // |K||u| + |f| + |B'||lambda|: what the evaluation of r rounds.
-        let mut magnitude: Vec<f64> = load.iter().map(|f| f.abs()).collect();
-        let abs_u: Vec<f64> = displacement.iter().map(|x| x.abs()).collect();
-        system.stiffness_apply_with(&abs_u, &mut magnitude, f64::abs);
+        let mut magnitude = stiffness_magnitude;
+        for (m, f) in magnitude.iter_mut().zip(load) {
+            *m += f.abs();
+        }
         let mut add_abs = |rows: &super::ConstraintRows, y: &[f64]| {
             for (i, &yi) in y.iter().enumerate() {
                 let (cols, vals) = rows.row(i);
@@ -303,8 +339,8 @@ impl KktResiduals {
             zeros = vec![0.0; m];
             &zeros
         };
-        let ku = system.stiffness_apply(displacement);
-        let forces = ForceScales::of(system, displacement, &ku, normal_force, tangential_force);
+        let (forces, _) =
+            ForceScales::of_answer(system, displacement, normal_force, tangential_force);
         let k_max = system
             .stiffness_diagonal()
             .into_iter()
@@ -314,8 +350,13 @@ impl KktResiduals {
         } else {
             0.0
         };
+        let reference_slip = system
+            .friction()
+            .and_then(|f| f.reference_slip())
+            .map_or(0.0, inf_norm);
         let u_scale = inf_norm(displacement)
             .max(inf_norm(system.gap()))
+            .max(reference_slip)
             .max(load_displacement);
         let constraint = system.normal_rows().apply(displacement);
         let mut r = Self {
@@ -339,7 +380,7 @@ impl KktResiduals {
                 .max(relative((normal_force[i] * c).abs(), f_i * u_scale));
         }
         if let Some(friction) = system.friction() {
-            let slip = friction.tangential_rows().apply(displacement);
+            let slip = friction.slip(displacement);
             for i in 0..m {
                 let (b, lt, s) = (friction.bounds()[i], tangential_force[i], slip[i]);
                 let f_i = forces.rows[i];
@@ -449,11 +490,15 @@ pub(crate) fn certify(
 }
 
 /// True when the answer is exactly `u = 0, lambda = 0`: no load and no gap closed by the
-/// prescribed displacements (`f = 0`, `g >= 0`). Then `u = 0` minimises the (non-negative)
+/// prescribed displacements (`f = 0`, `g >= 0`) and no reference slip. Then `u = 0` minimises the (non-negative)
 /// energy and every solver returns it without iterating, so a zero load gives exactly zero
 /// contact forces.
 pub(crate) fn unloaded(system: &ContactSystem<'_>) -> bool {
-    system.load().iter().all(|&f| f == 0.0) && system.gap().iter().all(|&g| g >= 0.0)
+    system.load().iter().all(|&f| f == 0.0)
+        && system.gap().iter().all(|&g| g >= 0.0)
+        && system
+            .friction()
+            .is_none_or(|f| f.reference_slip().is_none())
 }
 
 /// The answer of an [`unloaded`] system with its report.
@@ -584,7 +629,7 @@ mod tests {
     use faer::sparse::{SparseColMat, Triplet};
 
     use super::*;
-    use crate::solver::borrowed_block;
+    use crate::solver::system::borrowed_block;
     use crate::solver::{ConstraintRows, PatternId};
 
     fn spring() -> SparseColMat<usize, f64> {

@@ -307,13 +307,19 @@ impl ConstraintRows {
     }
 }
 
-/// Tresca friction data: tangential rows `B_T` and nodal friction bounds
-/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`).
-/// Owns its data or borrows it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
+/// Tresca friction data: tangential rows `B_T`, nodal friction bounds
+/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`)
+/// and the reference slip `s` from which the slip of the solve is measured: the friction term
+/// is `sum_i b_i |(B_T u)_i - s_i|`. The reference slip is zero for a problem solved from rest
+/// and the tangential jump at the end of the previous load step for a step of a load history
+/// (the friction functional on the increment of the tangential jump). Owns its data or borrows
+/// it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Friction<'a> {
     tangential_rows: Cow<'a, ConstraintRows>,
     bounds: Cow<'a, [f64]>,
+    /// `None`: zero.
+    reference_slip: Option<Cow<'a, [f64]>>,
 }
 
 impl<'a> Friction<'a> {
@@ -333,7 +339,29 @@ impl<'a> Friction<'a> {
         Ok(Self {
             tangential_rows,
             bounds,
+            reference_slip: None,
         })
+    }
+
+    /// The same friction data with the reference slip `s` (one value per tangential row): the
+    /// friction term becomes `sum_i b_i |(B_T u)_i - s_i|`.
+    ///
+    /// # Errors
+    /// [`ContactSystemError::DimensionMismatch`] if `slip.len()` is not the number of
+    /// tangential rows, [`ContactSystemError::NonFinite`] for a value that is not finite.
+    pub fn with_reference_slip(
+        mut self,
+        slip: impl Into<Cow<'a, [f64]>>,
+    ) -> Result<Self, ContactSystemError> {
+        let slip = slip.into();
+        check_len(
+            "reference slip vs tangential rows",
+            self.tangential_rows.nrows(),
+            slip.len(),
+        )?;
+        check_finite("reference slip", &slip)?;
+        self.reference_slip = slip.iter().any(|&s| s != 0.0).then_some(slip);
+        Ok(self)
     }
 
     /// The tangential rows `B_T`: `(B_T u)_i = [u]_1tau` at node `i`.
@@ -344,6 +372,36 @@ impl<'a> Friction<'a> {
     /// The nodal friction bounds `b_i`.
     pub fn bounds(&self) -> &[f64] {
         &self.bounds
+    }
+
+    /// The reference slip `s` (`None` when it is zero, the problem from rest).
+    pub fn reference_slip(&self) -> Option<&[f64]> {
+        self.reference_slip.as_deref()
+    }
+
+    /// The slips `(B_T u)_i - s_i` of the displacement `u`: the tangential jump since the
+    /// reference slip.
+    pub fn slip(&self, u: &[f64]) -> Vec<f64> {
+        let mut slip = self.tangential_rows.apply(u);
+        self.subtract_reference(&mut slip);
+        slip
+    }
+
+    /// `values_i -= s_i` (nothing when the reference slip is zero).
+    pub(crate) fn subtract_reference(&self, values: &mut [f64]) {
+        if let Some(s) = &self.reference_slip {
+            for (v, s) in values.iter_mut().zip(s.iter()) {
+                *v -= s;
+            }
+        }
+    }
+
+    /// The reference slip as a vector, zeros when there is none.
+    pub(crate) fn reference_or_zero(&self) -> Cow<'_, [f64]> {
+        match &self.reference_slip {
+            Some(s) => Cow::Borrowed(&s[..]),
+            None => Cow::Owned(vec![0.0; self.tangential_rows.nrows()]),
+        }
     }
 }
 
@@ -406,6 +464,9 @@ impl PatternId {
 pub struct StiffnessBlock<'a> {
     offset: usize,
     matrix: Cow<'a, SparseColMat<usize, f64>>,
+    /// Its diagonal, when the owner of the matrix keeps it (a discretisation: computed once
+    /// per stiffness, not once per system), and its values were checked finite there.
+    checked_diagonal: Option<&'a [f64]>,
 }
 
 impl StiffnessBlock<'_> {
@@ -423,9 +484,11 @@ impl StiffnessBlock<'_> {
 /// The discrete contact problem (P1^h, or P2^h with nodal friction quadrature):
 ///
 /// ```text
-/// frictionless:  min 1/2 u'Ku - f'u                          s.t.  B_N u <= g
-/// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i|   s.t.  B_N u <= g
+/// frictionless:  min 1/2 u'Ku - f'u                                s.t.  B_N u <= g
+/// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i - s_i|   s.t.  B_N u <= g
 /// ```
+///
+/// with the reference slip `s` of [`Friction`] (zero from rest).
 ///
 /// `K` is symmetric positive semi-definite, block diagonal (one block per body, full symmetric
 /// storage); a singular `K` is allowed when the constraints (or friction) hold the rigid modes.
@@ -473,6 +536,7 @@ impl ContactSystem<'static> {
             vec![StiffnessBlock {
                 offset: 0,
                 matrix: Cow::Owned(stiffness),
+                checked_diagonal: None,
             }],
             Cow::Owned(load),
             Cow::Owned(normal_rows),
@@ -505,7 +569,9 @@ impl<'a> ContactSystem<'a> {
                 });
             }
             check_len("stiffness block offset", n, block.offset)?;
-            check_finite("stiffness values", m.val())?;
+            if block.checked_diagonal.is_none() {
+                check_finite("stiffness values", m.val())?;
+            }
             n += m.ncols();
         }
         check_len("load", n, load.len())?;
@@ -651,6 +717,32 @@ impl<'a> ContactSystem<'a> {
 
     /// `y += g(K) x` entry by entry (`g(v) = |v|` gives `|K| x`): the hot loop of the Newton
     /// solvers, over plain slices block by block.
+    /// `(K x, |K||x|)` in one pass over `K`.
+    pub(crate) fn stiffness_apply_and_magnitude(&self, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (mut y, mut magnitude) = (vec![0.0; self.n], vec![0.0; self.n]);
+        for block in &self.blocks {
+            let k = block.matrix();
+            let (rows, values) = (k.row_idx(), k.val());
+            let (x, y, magnitude) = (
+                &x[block.offset..],
+                &mut y[block.offset..],
+                &mut magnitude[block.offset..],
+            );
+            for (j, &xj) in x.iter().take(k.ncols()).enumerate() {
+                if xj == 0.0 {
+                    continue;
+                }
+                let abs_xj = xj.abs();
+                for p in k.col_range(j) {
+                    let (i, v) = (rows[p], values[p]);
+                    y[i] += v * xj;
+                    magnitude[i] += v.abs() * abs_xj;
+                }
+            }
+        }
+        (y, magnitude)
+    }
+
     pub(crate) fn stiffness_apply_with(&self, x: &[f64], y: &mut [f64], g: impl Fn(f64) -> f64) {
         for block in &self.blocks {
             let k = block.matrix();
@@ -670,9 +762,11 @@ impl<'a> ContactSystem<'a> {
     /// The diagonal of `K` (duplicates of unsorted storage summed).
     pub fn stiffness_diagonal(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.n];
-        for (i, j, v) in self.stiffness_entries() {
-            if i == j {
-                d[i] += v;
+        for block in &self.blocks {
+            let range = block.offset..block.offset + block.matrix().ncols();
+            match block.checked_diagonal {
+                Some(diagonal) => d[range].copy_from_slice(diagonal),
+                None => d[range].copy_from_slice(&matrix_diagonal(block.matrix())),
             }
         }
         d
@@ -733,6 +827,7 @@ impl<'a> ContactSystem<'a> {
 }
 
 /// A stiffness block borrowed from an assembled system.
+#[cfg(test)]
 pub(crate) fn borrowed_block(
     offset: usize,
     matrix: &SparseColMat<usize, f64>,
@@ -740,7 +835,47 @@ pub(crate) fn borrowed_block(
     StiffnessBlock {
         offset,
         matrix: Cow::Borrowed(matrix),
+        checked_diagonal: None,
     }
+}
+
+/// A block borrowed from an owner that checked its values finite and keeps its diagonal
+/// `diagonal`: systems made from it skip both the check and the diagonal's computation.
+pub(crate) fn checked_block<'a>(
+    offset: usize,
+    matrix: &'a SparseColMat<usize, f64>,
+    diagonal: &'a [f64],
+) -> StiffnessBlock<'a> {
+    debug_assert_eq!(diagonal.len(), matrix.ncols());
+    StiffnessBlock {
+        offset,
+        matrix: Cow::Borrowed(matrix),
+        checked_diagonal: Some(diagonal),
+    }
+}
+
+/// The diagonal of a sparse matrix (duplicates of unsorted storage summed), by bisection in
+/// columns whose rows are sorted.
+pub(crate) fn matrix_diagonal(k: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    let (rows, values) = (k.row_idx(), k.val());
+    (0..k.ncols())
+        .map(|j| {
+            let range = k.col_range(j);
+            let column = &rows[range.clone()];
+            if column.windows(2).all(|w| w[0] < w[1]) {
+                column
+                    .binary_search(&j)
+                    .map_or(0.0, |p| values[range.start + p])
+            } else {
+                column
+                    .iter()
+                    .zip(&values[range])
+                    .filter(|(&i, _)| i == j)
+                    .map(|(_, v)| v)
+                    .sum()
+            }
+        })
+        .collect()
 }
 
 fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), ContactSystemError> {

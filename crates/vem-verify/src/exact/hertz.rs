@@ -18,6 +18,19 @@
 //!        term only inside the stick zone), q = F p in the slip zones c <= |x| <= a.
 //! ```
 //!
+//! Call this distribution `q_c(x)` (`q_a = 0`, `q_0 = F p`). Unloading from `Q*` (ratio
+//! `r* = Q*/(F P)`) to `Q` (ratio `r`, `-r* <= r <= r*`) slips backwards in the outer zones
+//! `c' <= |x| <= a` and sticks inside (Johnson, Contact Mechanics, 7.6; Mindlin and
+//! Deresiewicz): the change is minus twice a Cattaneo-Mindlin distribution,
+//!
+//! ```text
+//! c' = a sqrt(1 - (r* - r) / 2),    q(x) = q_c*(x) - 2 q_c'(x),
+//! ```
+//!
+//! and reloading from `-Q*` back to `Q` is its mirror image, `q(x) = -q_c*(x) + 2 q_c''(x)`
+//! with `c'' = a sqrt(1 - (r* + r) / 2)`: at `Q = Q*` it is `q_c*` again, the hysteresis loop
+//! closes. Tractions are signed along the first load `Q*`.
+//!
 //! ```
 //! use vem_verify::exact::HertzContact;
 //!
@@ -117,7 +130,11 @@ impl HertzContact {
     /// Cattaneo-Mindlin: the magnitude of the tangential traction at `x` for the coefficient
     /// `coefficient` and `q_ratio = Q/(F P)` (module docs).
     pub fn tangential_traction(&self, x: f64, coefficient: f64, q_ratio: f64) -> f64 {
-        let c = self.stick_half_width(q_ratio);
+        self.stick_distribution(x, coefficient, self.stick_half_width(q_ratio))
+    }
+
+    /// `q_c(x)`: the Cattaneo-Mindlin traction with the stick half-width `c` (module docs).
+    fn stick_distribution(&self, x: f64, coefficient: f64, c: f64) -> f64 {
         let slip = coefficient * self.pressure(x);
         if x.abs() < c {
             let s = x / c;
@@ -127,6 +144,98 @@ impl HertzContact {
                 * (1.0 - s * s).max(0.0).sqrt()
         } else {
             slip
+        }
+    }
+
+    /// Unloading from `Q*` (`peak_ratio = Q*/(F P)`, in `[0, 1]`) to `Q` (`q_ratio = Q/(F P)`,
+    /// clamped to `[-peak_ratio, peak_ratio]`): the half-width `c' = a sqrt(1 - (r* - r)/2)`
+    /// of the zone that sticks, outside which the contact slips backwards (module docs).
+    pub fn counter_slip_half_width(&self, peak_ratio: f64, q_ratio: f64) -> f64 {
+        let peak = peak_ratio.clamp(0.0, 1.0);
+        let r = q_ratio.clamp(-peak, peak);
+        self.half_width() * (1.0 - 0.5 * (peak - r)).sqrt()
+    }
+
+    /// Unloading from `Q*` to `Q` (ratios as in
+    /// [`HertzContact::counter_slip_half_width`]): the tangential traction at `x`, signed along
+    /// `Q*`, `q_c*(x) - 2 q_c'(x)`.
+    pub fn unloading_traction(
+        &self,
+        x: f64,
+        coefficient: f64,
+        peak_ratio: f64,
+        q_ratio: f64,
+    ) -> f64 {
+        let c_peak = self.stick_half_width(peak_ratio);
+        let c_back = self.counter_slip_half_width(peak_ratio, q_ratio);
+        self.stick_distribution(x, coefficient, c_peak)
+            - 2.0 * self.stick_distribution(x, coefficient, c_back)
+    }
+
+    /// Reloading from `-Q*` to `Q` (ratios as in [`HertzContact::counter_slip_half_width`]),
+    /// after unloading from `Q*` to `-Q*`: the tangential traction at `x`, signed along `Q*`,
+    /// `-q_c*(x) + 2 q_c''(x)` with `c'' = a sqrt(1 - (r* + r)/2)`; the zone that sticks is
+    /// `counter_slip_half_width(peak_ratio, -q_ratio)`.
+    pub fn reloading_traction(
+        &self,
+        x: f64,
+        coefficient: f64,
+        peak_ratio: f64,
+        q_ratio: f64,
+    ) -> f64 {
+        -self.unloading_traction(x, coefficient, peak_ratio, -q_ratio)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The integral of a traction over the contact zone (midpoint rule).
+    fn resultant(hertz: &HertzContact, traction: impl Fn(f64) -> f64) -> f64 {
+        let (a, n) = (hertz.half_width(), 200_000);
+        let h = 2.0 * a / n as f64;
+        (0..n)
+            .map(|k| traction(-a + (k as f64 + 0.5) * h) * h)
+            .sum()
+    }
+
+    /// The unloading and reloading tractions carry the loads they are for, stay within
+    /// `F p`, and reloading to `Q*` closes the loop.
+    #[test]
+    fn unloading_and_reloading_carry_their_loads_and_close_the_loop() {
+        let hertz = HertzContact::try_new(1.0, 100.0, 2.0).unwrap();
+        let (f, peak) = (0.3, 0.8);
+        let fp = f * hertz.load();
+        for r in [0.8, 0.5, 0.0, -0.4, -0.8] {
+            let unloaded = resultant(&hertz, |x| hertz.unloading_traction(x, f, peak, r));
+            assert!(
+                (unloaded / fp - r).abs() < 1e-4,
+                "unloading to {r}: {}",
+                unloaded / fp
+            );
+            let reloaded = resultant(&hertz, |x| hertz.reloading_traction(x, f, peak, r));
+            assert!(
+                (reloaded / fp - r).abs() < 1e-4,
+                "reloading to {r}: {}",
+                reloaded / fp
+            );
+            for k in 0..=100 {
+                let x = hertz.half_width() * (-1.0 + 0.02 * k as f64);
+                let bound = f * hertz.pressure(x) * (1.0 + 1e-12) + 1e-15;
+                assert!(hertz.unloading_traction(x, f, peak, r).abs() <= bound);
+                assert!(hertz.reloading_traction(x, f, peak, r).abs() <= bound);
+            }
+        }
+        // Unloading to -Q*: the counter-slip zone reaches the stick zone of the loading.
+        let c = hertz.stick_half_width(peak);
+        assert!((hertz.counter_slip_half_width(peak, -peak) - c).abs() < 1e-15);
+        for k in 0..=100 {
+            let x = hertz.half_width() * (-1.0 + 0.02 * k as f64);
+            let loaded = hertz.tangential_traction(x, f, peak);
+            assert!((hertz.unloading_traction(x, f, peak, peak) - loaded).abs() < 1e-14);
+            assert!((hertz.reloading_traction(x, f, peak, peak) - loaded).abs() < 1e-14);
+            assert!((hertz.unloading_traction(x, f, peak, -peak) + loaded).abs() < 1e-14);
         }
     }
 }

@@ -1,0 +1,932 @@
+//! The friction section of `cargo xtask hertz`: Coulomb friction under force control and
+//! followed along load histories, against Cattaneo-Mindlin (Johnson, Contact Mechanics,
+//! 7.5-7.6). Writes `fretting.md`, `fretting.json` and the plots `fretting_tractions.svg`,
+//! `fretting_loop.svg`, `fretting_paths.svg` (see `docs/hertz.md`, section 4).
+//!
+//! 1. The half-disc on the block (h_c = 0.02), its top a rigid plate pushed with P = 0.5 and
+//!    sheared with Q: held sideways by friction alone, stick zone against `a sqrt(1 - Q/(F P))`,
+//!    and the refusal beyond `F P`.
+//! 2. Two flat blocks with the gap `x^2 / (2R)` (the upper one the mirror image of a block
+//!    mesh: h_c = 0.01 over 0.005, and 0.005 over 0.0025), pushed then sheared through the
+//!    cycle `0 -> Q* -> -Q* -> Q*` (`Q* = 0.8 F P`): the zone that sticks against `c` and `c'`,
+//!    the tractions against the loading, unloading and reloading solutions, the loop.
+//! 3. Two paths to the same load (proportional, and pushed then sheared): different tractions
+//!    with friction, the same answer without.
+//! 4. The friction traction that pushing alone leaves on the curved disc (its surface tilts by
+//!    `x / R` against the flat block's normal), absent from Cattaneo-Mindlin's half-planes.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use plotters::prelude::*;
+use serde::Serialize;
+use vem_contact::{
+    CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless,
+    InterfaceNode, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, NodeStatus,
+};
+use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_mesh::interface::InterfaceOptions;
+use vem_mesh::io::read_gmsh;
+use vem_mesh::{Mesh, Point, Vector};
+use vem_space::LowestOrderVem;
+use vem_verify::exact::HertzContact;
+use vem_verify::report::write_text;
+
+use super::{HertzArgs, COEFFICIENT as F, POISSON, RADIUS, YOUNG};
+
+/// The push P of the force-controlled problems.
+const PUSH: f64 = 0.5;
+/// The peak of the tangential cycle, `Q* / (F P)`.
+const PEAK: f64 = 0.8;
+/// The scene meshes (h_c = 0.01).
+const SCENES: &str = "crates/vem-cli/scenes";
+
+type Failure = Box<dyn std::error::Error>;
+/// A labelled profile: computed points and the analytic curve, `(x / a, q / (F p0))`.
+type Profile = (String, Vec<(f64, f64)>, Vec<(f64, f64)>);
+
+/// One ratio of the disc under force control.
+#[derive(Debug, Serialize)]
+struct DiscRow {
+    ratio: f64,
+    /// `Q` and `P` carried by the contact, relative to the plate's.
+    shear_error: f64,
+    push_error: f64,
+    stick_half_width: f64,
+    cattaneo_mindlin: f64,
+    spacing: f64,
+    /// The refusal beyond the capacity.
+    refusal: Option<String>,
+}
+
+/// One step of a cycle.
+#[derive(Debug, Serialize)]
+struct CycleRow {
+    time: f64,
+    branch: &'static str,
+    ratio: f64,
+    stick_half_width: f64,
+    analytic: f64,
+    spacing: f64,
+    /// Largest `|q - q_exact| / (F p0)` two spacings away from the zone ends.
+    traction_error: f64,
+    plate_x: f64,
+    seconds: f64,
+}
+
+/// A cycle on one mesh pair.
+#[derive(Debug, Serialize)]
+struct Cycle {
+    meshes: String,
+    unknowns: usize,
+    nodes: usize,
+    rows: Vec<CycleRow>,
+    /// Largest zone-end error in node spacings (the largest spacing of the interface nodes in
+    /// the contact zone), largest traction error.
+    zone_error: f64,
+    traction_error: f64,
+    /// Back at Q* after the cycle: plate displacement change (relative), rms traction change.
+    closure_plate: f64,
+    closure_traction: f64,
+    /// Largest `|x_down(Q) + x_up(-Q)| / x(Q*)` (Masing).
+    masing: f64,
+    #[serde(skip)]
+    profiles: Vec<Profile>,
+    #[serde(skip)]
+    loop_curve: Vec<(f64, f64)>,
+}
+
+/// The path-dependence study.
+#[derive(Debug, Serialize)]
+struct Paths {
+    /// rms of `q - (Q/P) p` (proportional) and of `q - q_CM` (pushed then sheared) inside
+    /// 0.9 a, in `F p0`, and the largest difference between the two paths.
+    proportional_rms: f64,
+    sequential_rms: f64,
+    difference: f64,
+    /// Frictionless: the largest difference of the normal forces between three paths and the
+    /// static answer, relative.
+    frictionless_difference: f64,
+    #[serde(skip)]
+    profiles: Vec<Profile>,
+}
+
+/// Runs the section and writes its files into `args.out`; returns the markdown.
+pub(super) fn run(args: &HertzArgs) -> Result<String, Failure> {
+    let start = Instant::now();
+    let hertz = hertz(PUSH)?;
+    let disc = disc_rows(args, &hertz)?;
+    let mut cycles = Vec::new();
+    for (upper, lower) in [
+        (format!("{SCENES}/hertz_block.msh"), "block_hc0.005.msh"),
+        (
+            args.meshes.join("block_hc0.005.msh").display().to_string(),
+            "block_hc0.0025.msh",
+        ),
+    ] {
+        let lower = args.meshes.join(lower).display().to_string();
+        let cycle = cycle(&upper, &lower, &hertz)?;
+        eprintln!(
+            "cycle {}: zone ends within {:.2} spacings, tractions within {:.3} F p0, closure \
+             {:.1e} / {:.1e}",
+            cycle.meshes,
+            cycle.zone_error,
+            cycle.traction_error,
+            cycle.closure_plate,
+            cycle.closure_traction
+        );
+        cycles.push(cycle);
+    }
+    let lower = args.meshes.join("block_hc0.005.msh").display().to_string();
+    let paths = paths(&format!("{SCENES}/hertz_block.msh"), &lower, &hertz)?;
+    let pushing = pushing_alone(args, &hertz)?;
+    let md = markdown(
+        &disc,
+        &cycles,
+        &paths,
+        &pushing,
+        start.elapsed().as_secs_f64(),
+    );
+    write_text(args.out.join("fretting.md"), &md)?;
+    let json = serde_json::json!({
+        "disc": disc, "cycles": cycles, "paths": paths, "pushing_alone": pushing,
+    });
+    write_text(
+        args.out.join("fretting.json"),
+        &serde_json::to_string_pretty(&json)?,
+    )?;
+    let finest = cycles.last().ok_or("no cycle")?;
+    write_text(
+        args.out.join("fretting_tractions.svg"),
+        &profile_svg(
+            &format!(
+                "Cattaneo-Mindlin cycle, {}: friction traction",
+                finest.meshes
+            ),
+            &finest.profiles,
+            -1.75..1.15,
+        )?,
+    )?;
+    write_text(args.out.join("fretting_loop.svg"), &loop_svg(&cycles)?)?;
+    write_text(
+        args.out.join("fretting_paths.svg"),
+        &profile_svg(
+            "Two paths to Q = 0.5 F P: friction traction",
+            &paths.profiles,
+            -0.1..1.0,
+        )?,
+    )?;
+    Ok(md)
+}
+
+fn hertz(push: f64) -> Result<HertzContact, Failure> {
+    let e_star = HertzContact::plane_strain_modulus(YOUNG, POISSON, YOUNG, POISSON);
+    Ok(HertzContact::try_new(RADIUS, e_star, push)?)
+}
+
+fn material() -> Result<Material, Failure> {
+    Ok(Material::from_young_poisson(YOUNG, POISSON, Plane::Strain)?)
+}
+
+fn interface() -> Result<InterfaceOptions, Failure> {
+    Ok(InterfaceOptions::builder().max_distance(0.05).build()?)
+}
+
+/// The half-disc and the block of the study at h_c = `h`, the disc's top a rigid plate with
+/// the resultant `(shear, -push)` (one condition, or two when `split`: push then shear).
+fn disc_problem(
+    disc: &Path,
+    block: &Path,
+    push: f64,
+    shear: f64,
+) -> Result<ContactProblem, Failure> {
+    let element = Arc::new(LowestOrderVem::default());
+    let disc = ElasticBody::builder("disc", read_gmsh(disc)?, material()?, element.clone())
+        .dirichlet(Dirichlet::rigid_plate(
+            "top",
+            Component::Y,
+            Vector::new(0.0, -push),
+        ))
+        .dirichlet(Dirichlet::rigid_plate(
+            "top",
+            Component::X,
+            Vector::new(shear, 0.0),
+        ))
+        .build()?;
+    let block = ElasticBody::builder("block", read_gmsh(block)?, material()?, element)
+        .clamp("bottom")
+        .build()?;
+    Ok(
+        ContactProblem::two_bodies(disc, "arc", block, "top", Coulomb::try_new(F)?)
+            .with_interface_options(interface()?),
+    )
+}
+
+fn disc_rows(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<DiscRow>, Failure> {
+    let (disc, block) = (
+        args.meshes.join("disc_hc0.02.msh"),
+        args.meshes.join("block_hc0.02.msh"),
+    );
+    let mut rows = Vec::new();
+    for ratio in [0.01, 0.2, 0.5, 0.8, 0.99, 1.01] {
+        let shear = ratio * F * PUSH;
+        match disc_problem(&disc, &block, PUSH, shear)?.solve(&mut CondensedSolver::default()) {
+            Ok(result) => {
+                let force = result.force_on_body_a();
+                let (c, spacing) = zone(&result.nodes, |n| n.status == NodeStatus::Stick);
+                rows.push(DiscRow {
+                    ratio,
+                    shear_error: (force.x + shear).abs() / shear,
+                    push_error: (force.y - PUSH).abs() / PUSH,
+                    stick_half_width: c,
+                    cattaneo_mindlin: hertz.stick_half_width(ratio),
+                    spacing,
+                    refusal: None,
+                });
+            }
+            Err(e) => rows.push(DiscRow {
+                ratio,
+                shear_error: f64::NAN,
+                push_error: f64::NAN,
+                stick_half_width: f64::NAN,
+                cattaneo_mindlin: f64::NAN,
+                spacing: f64::NAN,
+                refusal: Some(e.to_string()),
+            }),
+        }
+    }
+    Ok(rows)
+}
+
+/// The mirror image `(x, y) -> (x, -y)` of a mesh.
+fn mirrored(mesh: &Mesh) -> Result<Mesh, Failure> {
+    let vertices: Vec<Point> = mesh
+        .vertices()
+        .iter()
+        .map(|p| Point::new(p.x, -p.y))
+        .collect();
+    let polygons: Vec<Vec<usize>> = mesh
+        .polygons()
+        .map(|p| p.iter().rev().copied().collect())
+        .collect();
+    Ok(Mesh::from_polygons(vertices, &polygons, mesh.part_specs())?)
+}
+
+/// How the upper block's top is driven.
+#[derive(Clone, Copy)]
+enum Drive {
+    /// A rigid plate with the resultant `(F P, -P)` (conditions: 0 the push, 1 the shear).
+    Force,
+    /// Prescribed displacements `(dx, -dy)` (conditions: 0 the press, 1 the shift).
+    Displacement(f64, f64),
+}
+
+/// The two flat blocks: the mirror image of `upper` on `lower`, the gap of a cylinder.
+fn blocks(
+    upper: &str,
+    lower: &str,
+    drive: Drive,
+    law: impl ContactLaw + 'static,
+) -> Result<ContactProblem, Failure> {
+    let element = Arc::new(LowestOrderVem::default());
+    let upper = mirrored(&read_gmsh(upper)?)?;
+    let upper = ElasticBody::builder("upper", upper, material()?, element.clone());
+    // The mirrored block's "bottom" is its top side, y = 2.
+    let upper = match drive {
+        Drive::Force => upper
+            .dirichlet(Dirichlet::rigid_plate(
+                "bottom",
+                Component::Y,
+                Vector::new(0.0, -PUSH),
+            ))
+            .dirichlet(Dirichlet::rigid_plate(
+                "bottom",
+                Component::X,
+                Vector::new(F * PUSH, 0.0),
+            )),
+        Drive::Displacement(dx, dy) => upper
+            .dirichlet(Dirichlet::prescribed("bottom", Component::Y, move |_| {
+                Vector::new(0.0, -dy)
+            }))
+            .dirichlet(Dirichlet::prescribed("bottom", Component::X, move |_| {
+                Vector::new(dx, 0.0)
+            })),
+    }
+    .build()?;
+    let lower = ElasticBody::builder("lower", read_gmsh(lower)?, material()?, element)
+        .clamp("bottom")
+        .build()?;
+    Ok(ContactProblem::two_bodies(upper, "top", lower, "top", law)
+        .with_imposed_gap(|x| x.x * x.x / (2.0 * RADIUS))
+        .with_interface_options(interface()?))
+}
+
+const FIRST: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 0 };
+const SECOND: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 1 };
+
+/// The friction traction on the lower body along +x (signed along the shear).
+fn traction(n: &InterfaceNode) -> f64 {
+    -n.consistent_friction_t()
+}
+
+fn spacing_in(nodes: &[InterfaceNode], a: f64) -> f64 {
+    nodes
+        .windows(2)
+        .filter(|w| w[0].position.x.abs() < a)
+        .map(|w| (w[1].position.x - w[0].position.x).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Half-width of the run of nodes with `inside` around x = 0 (ends halfway to the next node)
+/// and the larger node spacing at its ends.
+fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
+    let Some(centre) = (0..nodes.len())
+        .filter(|&i| inside(&nodes[i]))
+        .min_by(|&i, &j| {
+            nodes[i]
+                .position
+                .x
+                .abs()
+                .total_cmp(&nodes[j].position.x.abs())
+        })
+    else {
+        return (0.0, 0.0);
+    };
+    let (mut first, mut last) = (centre, centre);
+    while first > 0 && inside(&nodes[first - 1]) {
+        first -= 1;
+    }
+    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
+        last += 1;
+    }
+    let x = |i: usize| nodes[i].position.x;
+    if first == 0 || last + 1 == nodes.len() {
+        return ((x(last) - x(first)) / 2.0, 0.0);
+    }
+    let (start, stop) = (
+        0.5 * (x(first) + x(first - 1)),
+        0.5 * (x(last) + x(last + 1)),
+    );
+    let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
+    (0.5 * (stop - start), spacing)
+}
+
+/// Largest `|q - exact| / (F p0)` two spacings away from the contact edge and from `ends`.
+fn traction_error(
+    result: &ContactResult,
+    hertz: &HertzContact,
+    exact: impl Fn(f64) -> f64,
+    ends: &[f64],
+) -> f64 {
+    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
+    let h = spacing_in(&result.nodes, a);
+    result
+        .nodes
+        .iter()
+        .filter(|n| {
+            let x = n.position.x.abs();
+            x < a - 2.0 * h && ends.iter().all(|e| (x - e).abs() > 2.0 * h)
+        })
+        .map(|n| (traction(n) - exact(n.position.x)).abs() / (F * p0))
+        .fold(0.0, f64::max)
+}
+
+/// rms of `(q - exact) / (F p0)` over the nodes inside 0.9 a.
+fn traction_rms(result: &ContactResult, hertz: &HertzContact, exact: impl Fn(f64) -> f64) -> f64 {
+    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
+    let inside: Vec<&InterfaceNode> = result
+        .nodes
+        .iter()
+        .filter(|n| n.position.x.abs() < 0.9 * a)
+        .collect();
+    (inside
+        .iter()
+        .map(|n| ((traction(n) - exact(n.position.x)) / (F * p0)).powi(2))
+        .sum::<f64>()
+        / inside.len().max(1) as f64)
+        .sqrt()
+}
+
+fn plate_x(result: &ContactResult) -> Result<f64, Failure> {
+    let upper = &result.bodies[0];
+    let top = upper.body.mesh().part_vertices("bottom")?;
+    Ok(upper.solution.vertex_displacement(top[0]).x)
+}
+
+/// `(x / a, q / (F p0))` computed, and the analytic curve `exact`.
+#[allow(clippy::type_complexity)]
+fn profile(
+    result: &ContactResult,
+    hertz: &HertzContact,
+    exact: impl Fn(f64) -> f64,
+) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
+    let computed = result
+        .nodes
+        .iter()
+        .filter(|n| n.position.x.abs() <= 1.3 * a)
+        .map(|n| (n.position.x / a, traction(n) / (F * p0)))
+        .collect();
+    let analytic = (0..=400)
+        .map(|k| {
+            let s = -1.2 + 2.4 * k as f64 / 400.0;
+            (s, exact(s * a) / (F * p0))
+        })
+        .collect();
+    (computed, analytic)
+}
+
+fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failure> {
+    let name = |p: &str| {
+        Path::new(p)
+            .file_name()
+            .map_or(p.to_string(), |f| f.to_string_lossy().to_string())
+    };
+    let d = blocks(upper, lower, Drive::Force, Coulomb::try_new(F)?)?.into_discretisation()?;
+    let curves = LoadCurves::default()
+        .with(FIRST, LoadCurve::try_new(vec![(0.0, 0.0), (1.0, 1.0)])?)
+        .with(
+            SECOND,
+            LoadCurve::try_new(vec![(1.0, 0.0), (2.0, PEAK), (4.0, -PEAK), (6.0, PEAK)])?,
+        );
+    let mut times = vec![0.5, 1.0];
+    times.extend((1..=40).map(|k| 1.0 + 0.125 * k as f64));
+    let history = LoadHistory::from_curves(times, &curves)?;
+    let mut path = vem_contact::LoadPath::new(&d)?;
+    let mut solver = CondensedSolver::default();
+    let c_peak = hertz.stick_half_width(PEAK);
+    let (mut rows, mut profiles, mut loop_curve) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut at_peak, mut last) = (None, None);
+    for step in history.steps() {
+        let t0 = Instant::now();
+        let result = path.advance(&mut solver, step.time, &step.factors)?;
+        let seconds = t0.elapsed().as_secs_f64();
+        let (t, r) = (step.time, step.factors.factor(SECOND));
+        if t <= 1.0 {
+            continue;
+        }
+        let (branch, analytic, error, exact): (_, _, _, Box<dyn Fn(f64) -> f64>) =
+            if t <= 2.0 + 1e-9 {
+                let c = hertz.stick_half_width(r);
+                let exact = move |x| hertz.tangential_traction(x, F, r);
+                (
+                    "loading",
+                    c,
+                    traction_error(&result, hertz, exact, &[c]),
+                    Box::new(exact),
+                )
+            } else if t <= 4.0 + 1e-9 {
+                let c = hertz.counter_slip_half_width(PEAK, r);
+                let exact = move |x| hertz.unloading_traction(x, F, PEAK, r);
+                let e = traction_error(&result, hertz, exact, &[c, c_peak]);
+                ("unloading", c, e, Box::new(exact))
+            } else {
+                let c = hertz.counter_slip_half_width(PEAK, -r);
+                let exact = move |x| hertz.reloading_traction(x, F, PEAK, r);
+                let e = traction_error(&result, hertz, exact, &[c, c_peak]);
+                ("reloading", c, e, Box::new(exact))
+            };
+        let c = zone(&result.nodes, |n| n.status == NodeStatus::Stick).0;
+        let spacing = spacing_in(&result.nodes, hertz.half_width());
+        let x = plate_x(&result)?;
+        loop_curve.push((x, r));
+        if [2.0, 3.0, 4.0, 5.0].iter().any(|s| (t - s).abs() < 1e-9) {
+            let (computed, analytic) = profile(&result, hertz, &exact);
+            profiles.push((format!("{branch}, Q/(F P) = {r:+.1}"), computed, analytic));
+        }
+        rows.push(CycleRow {
+            time: t,
+            branch,
+            ratio: r,
+            stick_half_width: c,
+            analytic,
+            spacing,
+            traction_error: error,
+            plate_x: x,
+            seconds,
+        });
+        if (t - 2.0).abs() < 1e-9 {
+            at_peak = Some(result.clone());
+        }
+        last = Some(result);
+    }
+    let (first, last) = (at_peak.ok_or("no peak")?, last.ok_or("no step")?);
+    let (x1, x2) = (plate_x(&first)?, plate_x(&last)?);
+    let p0 = hertz.peak_pressure();
+    let closure_traction = (first
+        .nodes
+        .iter()
+        .zip(&last.nodes)
+        .map(|(a, b)| ((traction(a) - traction(b)) / (F * p0)).powi(2))
+        .sum::<f64>()
+        / first.nodes.len() as f64)
+        .sqrt();
+    let down: Vec<&CycleRow> = rows.iter().filter(|r| r.branch == "unloading").collect();
+    let up: Vec<&CycleRow> = rows.iter().filter(|r| r.branch == "reloading").collect();
+    let masing = down
+        .iter()
+        .zip(&up)
+        .map(|(a, b)| (a.plate_x + b.plate_x).abs() / x1.abs())
+        .fold(0.0, f64::max);
+    Ok(Cycle {
+        meshes: format!("{} mirrored over {}", name(upper), name(lower)),
+        unknowns: d.n_dofs(),
+        nodes: d.nodes().len(),
+        zone_error: rows
+            .iter()
+            .map(|r| (r.stick_half_width - r.analytic).abs() / r.spacing)
+            .fold(0.0, f64::max),
+        traction_error: rows.iter().map(|r| r.traction_error).fold(0.0, f64::max),
+        closure_plate: (x1 - x2).abs() / x1.abs(),
+        closure_traction,
+        masing,
+        rows,
+        profiles,
+        loop_curve,
+    })
+}
+
+fn paths(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Paths, Failure> {
+    let d = blocks(upper, lower, Drive::Force, Coulomb::try_new(F)?)?.into_discretisation()?;
+    let ratio = 0.5;
+    let together = LoadHistory::from_steps(
+        (1..=32)
+            .map(|k| {
+                let s = k as f64 / 32.0;
+                LoadFactors::uniform(1.0)
+                    .with(FIRST, s)
+                    .with(SECOND, ratio * s)
+            })
+            .collect(),
+    );
+    let mut sequential: Vec<LoadFactors> = (1..=4)
+        .map(|k| {
+            LoadFactors::uniform(1.0)
+                .with(FIRST, k as f64 / 4.0)
+                .with(SECOND, 0.0)
+        })
+        .collect();
+    sequential
+        .extend((1..=4).map(|k| LoadFactors::uniform(1.0).with(SECOND, ratio * k as f64 / 4.0)));
+    let last = |history: &LoadHistory| -> Result<ContactResult, Failure> {
+        Ok(d.solve_history(&mut CondensedSolver::default(), history)?
+            .pop()
+            .ok_or("no step")?
+            .result)
+    };
+    let proportional = last(&together)?;
+    let sequential = last(&LoadHistory::from_steps(sequential))?;
+    let proportional_exact = |x: f64| F * ratio * hertz.pressure(x);
+    let sequential_exact = |x: f64| hertz.tangential_traction(x, F, ratio);
+    let a = hertz.half_width();
+    let p0 = hertz.peak_pressure();
+    let difference = proportional
+        .nodes
+        .iter()
+        .zip(&sequential.nodes)
+        .filter(|(n, _)| n.position.x.abs() < 0.9 * a)
+        .map(|(x, y)| (traction(x) - traction(y)).abs() / (F * p0))
+        .fold(0.0, f64::max);
+    let (p_computed, p_analytic) = profile(&proportional, hertz, proportional_exact);
+    let (s_computed, s_analytic) = profile(&sequential, hertz, sequential_exact);
+    // Frictionless: three paths of the displacement-driven problem and the static answer.
+    let d = blocks(
+        upper,
+        lower,
+        Drive::Displacement(0.004, 0.012),
+        Frictionless,
+    )?
+    .into_discretisation()?;
+    let statically = d.solve(&mut CondensedSolver::default())?;
+    let scale = statically
+        .nodes
+        .iter()
+        .fold(0.0f64, |m, n| m.max(n.normal_force));
+    let mut frictionless_difference = 0.0f64;
+    for steps in [
+        vec![(0.5, 0.5), (1.0, 1.0)],
+        vec![(1.0, 0.0), (1.0, 1.0)],
+        vec![(1.0, 0.0), (1.0, 2.0), (1.0, -1.0), (1.0, 1.0)],
+    ] {
+        let history = LoadHistory::from_steps(
+            steps
+                .iter()
+                .map(|&(a, b)| LoadFactors::uniform(1.0).with(FIRST, a).with(SECOND, b))
+                .collect(),
+        );
+        let answer = last_of(&d, &history)?;
+        for (x, y) in answer.nodes.iter().zip(&statically.nodes) {
+            frictionless_difference =
+                frictionless_difference.max((x.normal_force - y.normal_force).abs() / scale);
+        }
+    }
+    Ok(Paths {
+        proportional_rms: traction_rms(&proportional, hertz, proportional_exact),
+        sequential_rms: traction_rms(&sequential, hertz, sequential_exact),
+        difference,
+        frictionless_difference,
+        profiles: vec![
+            (
+                "pushed and sheared together (32 steps): (Q/P) p".to_string(),
+                p_computed,
+                p_analytic,
+            ),
+            (
+                "pushed, then sheared (4 + 4 steps): Cattaneo-Mindlin".to_string(),
+                s_computed,
+                s_analytic,
+            ),
+        ],
+    })
+}
+
+fn last_of(
+    d: &vem_contact::ContactDiscretisation,
+    history: &LoadHistory,
+) -> Result<ContactResult, Failure> {
+    Ok(d.solve_history(&mut CondensedSolver::default(), history)?
+        .pop()
+        .ok_or("no step")?
+        .result)
+}
+
+/// Pushing alone (4 steps to P, no shear): the largest consistent friction traction it
+/// leaves, in `F p0`, on the curved disc and on the flat blocks.
+fn pushing_alone(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<(String, f64)>, Failure> {
+    let history = LoadHistory::from_steps(
+        (1..=4)
+            .map(|k| {
+                LoadFactors::uniform(1.0)
+                    .with(FIRST, k as f64 / 4.0)
+                    .with(SECOND, 0.0)
+            })
+            .collect(),
+    );
+    let p0 = hertz.peak_pressure();
+    let largest =
+        |r: &ContactResult| r.nodes.iter().fold(0.0f64, |m, n| m.max(traction(n).abs())) / (F * p0);
+    let mut rows = Vec::new();
+    for (label, disc, block) in [
+        (
+            "half-disc on the block, h_c = 0.02",
+            args.meshes.join("disc_hc0.02.msh"),
+            args.meshes.join("block_hc0.02.msh"),
+        ),
+        (
+            "half-disc on the block, h_c = 0.01",
+            Path::new(SCENES).join("hertz_disc.msh"),
+            Path::new(SCENES).join("hertz_block.msh"),
+        ),
+    ] {
+        let d = disc_problem(&disc, &block, PUSH, F * PUSH)?.into_discretisation()?;
+        rows.push((label.to_string(), largest(&last_of(&d, &history)?)));
+    }
+    let lower = args.meshes.join("block_hc0.005.msh").display().to_string();
+    let d = blocks(
+        &format!("{SCENES}/hertz_block.msh"),
+        &lower,
+        Drive::Force,
+        Coulomb::try_new(F)?,
+    )?
+    .into_discretisation()?;
+    rows.push((
+        "flat blocks, h_c = 0.01 over 0.005".to_string(),
+        largest(&last_of(&d, &history)?),
+    ));
+    Ok(rows)
+}
+
+fn markdown(
+    disc: &[DiscRow],
+    cycles: &[Cycle],
+    paths: &Paths,
+    pushing: &[(String, f64)],
+    seconds: f64,
+) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "Generated by `cargo xtask hertz` (friction section, {seconds:.0} s). Coulomb F = {F}, \
+         E = {YOUNG}, nu = {POISSON}, plane strain, R = {RADIUS}.\n"
+    );
+    let _ = writeln!(
+        o,
+        "### The half-disc held sideways by friction alone\n\nh_c = 0.02; the disc's top a \
+         rigid plate pushed with P = {PUSH} and sheared with Q (force control); c the run of \
+         sticking nodes around the centre, against Cattaneo-Mindlin's a sqrt(1 - Q/(F P)) with \
+         Hertz's a.\n"
+    );
+    o.push_str("| Q/(F P) | Q carried, error | P carried, error | c | a sqrt(1 - Q/(F P)) | node spacing |\n");
+    o.push_str("|---|---|---|---|---|---|\n");
+    for r in disc {
+        match &r.refusal {
+            None => {
+                let _ = writeln!(
+                    o,
+                    "| {} | {:.1e} | {:.1e} | {:.4} | {:.4} | {:.4} |",
+                    r.ratio,
+                    r.shear_error,
+                    r.push_error,
+                    r.stick_half_width,
+                    r.cattaneo_mindlin,
+                    r.spacing
+                );
+            }
+            Some(message) => {
+                let message = message.replace('|', "\\|");
+                let _ = writeln!(o, "| {} | refused: {message} | | | | |", r.ratio);
+            }
+        }
+    }
+    let _ = writeln!(
+        o,
+        "\n### The Cattaneo-Mindlin cycle on flat blocks\n\nPushed with P = {PUSH} (2 steps), \
+         sheared 0 -> Q* -> -Q* -> Q* (Q* = {PEAK} F P, 8 + 16 + 16 steps). The zone that sticks \
+         against c (loading) and c' (unloading, reloading), in node spacings (the largest spacing of \
+         the interface nodes in the contact zone); tractions: the largest \
+         |q - q_exact| / (F p0) over the nodes two spacings away from the contact edge and the \
+         zone ends; closure: back at Q*, the change of the plate's displacement (relative) and \
+         the rms change of the tractions; Masing: the largest |x_unloading(Q) + x_reloading(-Q)| \
+         / x(Q*).\n"
+    );
+    o.push_str("| meshes | unknowns | interface nodes | zone ends (spacings) | tractions (F p0) | closure: plate | closure: tractions (rms, F p0) | Masing |\n");
+    o.push_str("|---|---|---|---|---|---|---|---|\n");
+    for c in cycles {
+        let _ = writeln!(
+            o,
+            "| {} | {} | {} | {:.2} | {:.3} | {:.1e} | {:.1e} | {:.1e} |",
+            c.meshes,
+            c.unknowns,
+            c.nodes,
+            c.zone_error,
+            c.traction_error,
+            c.closure_plate,
+            c.closure_traction,
+            c.masing
+        );
+    }
+    if let Some(c) = cycles.last() {
+        let _ = writeln!(o, "\nSteps of the cycle on {}:\n", c.meshes);
+        o.push_str("| t | branch | Q/(F P) | zone that sticks | analytic | node spacing in the zone | tractions (F p0) | plate x | seconds |\n");
+        o.push_str("|---|---|---|---|---|---|---|---|---|\n");
+        for r in &c.rows {
+            let _ = writeln!(
+                o,
+                "| {:.3} | {} | {:+.2} | {:.4} | {:.4} | {:.4} | {:.3} | {:.4e} | {:.3} |",
+                r.time,
+                r.branch,
+                r.ratio,
+                r.stick_half_width,
+                r.analytic,
+                r.spacing,
+                r.traction_error,
+                r.plate_x,
+                r.seconds
+            );
+        }
+    }
+    let _ = writeln!(
+        o,
+        "\n### Two paths to the same load\n\nThe flat blocks (h_c = 0.01 over 0.005) at P = \
+         {PUSH}, Q = 0.5 F P. Pushed and sheared together (32 proportional steps): rms \
+         |q - (Q/P) p| = {:.3} F p0 inside 0.9 a. Pushed, then sheared: rms |q - q_CM| = {:.3} \
+         F p0. The two tractions differ by up to {:.2} F p0. Without friction (the same blocks \
+         driven by displacements, three paths): normal forces within {:.1e} of the static \
+         answer.\n",
+        paths.proportional_rms,
+        paths.sequential_rms,
+        paths.difference,
+        paths.frictionless_difference
+    );
+    let _ = writeln!(
+        o,
+        "### What pushing alone leaves\n\nPushed to P = {PUSH} in 4 steps without shear: the \
+         largest consistent friction traction (F p0).\n"
+    );
+    o.push_str("| problem | largest friction traction |\n|---|---|\n");
+    for (label, value) in pushing {
+        let _ = writeln!(o, "| {label} | {value:.3} |");
+    }
+    o
+}
+
+type Plot = Result<String, Failure>;
+
+/// Distinct colours, readable on white.
+const COLOURS: [RGBColor; 4] = [
+    RGBColor(200, 30, 60),
+    RGBColor(40, 150, 60),
+    RGBColor(220, 140, 0),
+    RGBColor(30, 90, 200),
+];
+
+/// Computed dots and analytic lines of several profiles, `q / (F p0)` against `x / a`.
+fn profile_svg(title: &str, series: &[Profile], y: std::ops::Range<f64>) -> Plot {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
+        let draw = |e: &dyn std::fmt::Display| format!("plot: {e}");
+        root.fill(&WHITE).map_err(|e| draw(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(-1.25..1.25, y)
+            .map_err(|e| draw(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("x / a")
+            .y_desc("q / (F p0)")
+            .draw()
+            .map_err(|e| draw(&e))?;
+        for (k, (label, computed, analytic)) in series.iter().enumerate() {
+            let colour = COLOURS[k % COLOURS.len()];
+            chart
+                .draw_series(LineSeries::new(analytic.clone(), colour.stroke_width(2)))
+                .map_err(|e| draw(&e))?
+                .label(format!("{label}: analytic"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            chart
+                .draw_series(computed.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .map_err(|e| draw(&e))?
+                .label(format!("{label}: computed (consistent)"))
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, colour.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| draw(&e))?;
+        root.present().map_err(|e| draw(&e))?;
+    }
+    Ok(svg)
+}
+
+/// The hysteresis loop: `Q / (F P)` against the plate's displacement less its stick part
+/// `C0 Q` (`C0` the compliance of the first shear step, where nearly the whole interface
+/// sticks), one curve per cycle.
+fn loop_svg(cycles: &[Cycle]) -> Plot {
+    let curves: Vec<Vec<(f64, f64)>> = cycles
+        .iter()
+        .map(|c| {
+            let (x0, r0) = c.loop_curve.first().copied().unwrap_or((0.0, 1.0));
+            let compliance = x0 / r0;
+            c.loop_curve
+                .iter()
+                .map(|&(x, r)| (x - compliance * r, r))
+                .collect()
+        })
+        .collect();
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
+        let draw = |e: &dyn std::fmt::Display| format!("plot: {e}");
+        root.fill(&WHITE).map_err(|e| draw(&e))?;
+        let extent = curves
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, p| m.max(p.0.abs()))
+            * 1.1;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                "Cattaneo-Mindlin cycle on flat blocks: tangential load against the plate's displacement",
+                ("sans-serif", 18),
+            )
+            .margin(15)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(-extent..extent, -1.0..1.0)
+            .map_err(|e| draw(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("plate displacement in x less C0 Q (the slip part)")
+            .y_desc("Q / (F P)")
+            .draw()
+            .map_err(|e| draw(&e))?;
+        for (k, (c, curve)) in cycles.iter().zip(&curves).enumerate() {
+            let colour = COLOURS[k % COLOURS.len()];
+            chart
+                .draw_series(LineSeries::new(curve.clone(), colour.stroke_width(2)))
+                .map_err(|e| draw(&e))?
+                .label(c.meshes.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            chart
+                .draw_series(curve.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .map_err(|e| draw(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| draw(&e))?;
+        root.present().map_err(|e| draw(&e))?;
+    }
+    Ok(svg)
+}
