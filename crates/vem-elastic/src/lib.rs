@@ -91,6 +91,7 @@ mod error;
 mod material;
 mod ordering;
 mod post;
+mod solid;
 mod solver;
 
 pub use assembly::AssembledSystem;
