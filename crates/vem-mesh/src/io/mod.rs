@@ -24,6 +24,8 @@
 #[cfg(feature = "gmsh")]
 mod gmsh;
 #[cfg(feature = "gmsh")]
+mod gmsh3d;
+#[cfg(feature = "gmsh")]
 mod msh;
 mod polymesher;
 #[cfg(feature = "svg")]
@@ -39,6 +41,8 @@ mod vtu;
 
 #[cfg(feature = "gmsh")]
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
+#[cfg(feature = "gmsh")]
+pub use gmsh3d::{read_gmsh_polyhedral, read_gmsh_polyhedral_bytes};
 #[cfg(feature = "gmsh")]
 pub use msh::{
     element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,
