@@ -148,3 +148,15 @@ fn the_load_of_a_linear_force_is_exact_on_every_standard_polyhedron() {
         );
     }
 }
+
+#[test]
+fn on_a_tetrahedron_the_vem_load_of_a_linear_force_is_the_p1_load() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let force = |x: Point3| Vector3::new(1.0 + x.y, -2.0 * x.x + x.z, 0.5 - x.z);
+    for _ in 0..20 {
+        let tet = random_tetrahedron(&mut rng);
+        let vem = PolyhedralVem::default().body_load(&tet, &force).unwrap();
+        let p1 = LinearTetrahedron.body_load(&tet, &force).unwrap();
+        assert!((&vem - &p1).norm() < 1e-13 * p1.norm(), "{vem} {p1}");
+    }
+}
