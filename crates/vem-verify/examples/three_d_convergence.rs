@@ -5,6 +5,7 @@
 //! ```text
 //! cargo run --release -p vem-verify --example three_d_convergence              # n = 4, 8, 16
 //! cargo run --release -p vem-verify --example three_d_convergence -- 4,8,16,24 vem1-bbar
+//! cargo run --release -p vem-verify --example three_d_convergence -- 8,16,32 vem1 tetrahedra,voronoi
 //! ```
 //!
 //! Material: `lambda = 2`, `mu = 1` (the reference of docs/manufactured.md). Rates are fitted by
@@ -47,7 +48,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Arc::new(SmoothSolid::new(lame)),
         Arc::new(DivergenceFreeSolid::new(lame)),
     ];
-    let families = PolyhedralFamily::all();
+    let families: Vec<PolyhedralFamily> = match args.get(2) {
+        Some(list) => list
+            .split(',')
+            .map(|s| s.parse())
+            .collect::<Result<_, _>>()?,
+        None => PolyhedralFamily::all().to_vec(),
+    };
     let runs = three_d_convergence(&cases, &families, &sizes, Arc::clone(&element))?;
     let rates = solid_rates(&runs, 3);
     println!("{}", solid_markdown(&runs, &rates));

@@ -38,6 +38,8 @@ mod vtk;
 mod vtk_read;
 #[cfg(feature = "vtu")]
 mod vtu;
+#[cfg(feature = "vtu")]
+mod vtu_polyhedral;
 
 #[cfg(feature = "gmsh")]
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
@@ -62,6 +64,8 @@ pub use vtk_read::{
 };
 #[cfg(feature = "vtu")]
 pub use vtu::{write_vtu, write_vtu_with, DataArray, VtuData};
+#[cfg(feature = "vtu")]
+pub use vtu_polyhedral::{write_polyhedral_vtu, write_polyhedral_vtu_with};
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
