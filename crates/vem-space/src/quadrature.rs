@@ -7,8 +7,8 @@
 //! - [`polygon_rule`]: a rule on a polygon from the fan of triangles joining the centroid to each
 //!   edge (weights carry the signed sub-triangle areas, so polynomials up to the rule's degree
 //!   are integrated exactly on any simple polygon, convex or not).
-//! - In space: [`TetrahedronRule`] (a 4-point degree-2 rule and the conical products of
-//!   Gauss–Legendre rules, degree `2p - 3`), [`polyhedron_rule`] (the rule on the signed
+//! - In space: [`TetrahedronRule`] (a 4-point degree-2 rule, Walkington's 14-point degree-5
+//!   rule and the conical products of Gauss–Legendre rules, degree `2p - 3`), [`polyhedron_rule`] (the rule on the signed
 //!   tetrahedra joining the centroid to the fan triangles of every face, exact on any polyhedron
 //!   with planar faces, convex or not) and [`face_rule`] (a triangle rule on the fan triangles of
 //!   a face in space).
@@ -403,6 +403,34 @@ impl TetrahedronRule {
         }
     }
 
+    /// Walkington's symmetric 14-point rule of degree 5 ("Quadrature on simplices of arbitrary
+    /// dimension", CMU 2000): positive weights, interior points; the orbits
+    /// `(a, a, a, 1 - 3a)` for `a = 0.31088591926330061` and `a = 0.092735250310891226`, and
+    /// `(b, b, 1/2 - b, 1/2 - b)` for `b = 0.045503704125649649`. The rule of the error norms.
+    pub fn degree5() -> Self {
+        let mut points = Vec::with_capacity(14);
+        for (a, w) in [
+            (0.310_885_919_263_300_6, 0.112_687_925_718_015_85),
+            (0.092_735_250_310_891_23, 0.073_493_043_116_361_95),
+        ] {
+            for k in 0..4 {
+                let mut l = [a; 4];
+                l[k] = 1.0 - 3.0 * a;
+                points.push((l, w));
+            }
+        }
+        let (b, w) = (0.045_503_704_125_649_65, 0.042_546_020_777_081_466);
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let mut l = [b; 4];
+                l[i] = 0.5 - b;
+                l[j] = 0.5 - b;
+                points.push((l, w));
+            }
+        }
+        Self { points, degree: 5 }
+    }
+
     /// The conical product of `p`-point Gauss–Legendre rules (`p^3` points, positive weights,
     /// interior points), exact for polynomials of degree `2p - 3`: the collapsed coordinates
     /// `x = u`, `y = (1 - u) v`, `z = (1 - u)(1 - v) w` with the Jacobian `(1 - u)^2 (1 - v)`.
@@ -466,7 +494,8 @@ impl TetrahedronRule {
 }
 
 /// A rule on the polyhedron `polyhedron` (faces oriented outward): `rule` on each signed
-/// tetrahedron joining the centroid to a fan triangle `(x_k, x_{k+1}, xbar_F)` of a face. The
+/// tetrahedron joining the centroid to a fan triangle `(x_k, x_{k+1}, xbar_F)` of a face (on a
+/// tetrahedron, `rule` on the tetrahedron itself). The
 /// weights carry the signed volumes, so the rule is exact for polynomials of degree
 /// `rule.degree()` on any polyhedron with planar faces (and on the fan-defined body of warped
 /// faces); points lie outside a polyhedron that is not star-shaped with respect to its centroid.
@@ -474,6 +503,15 @@ pub fn polyhedron_rule(
     polyhedron: &vem_mesh::polyhedral::geometry::Polyhedron,
     rule: &TetrahedronRule,
 ) -> Vec<QuadraturePoint<3>> {
+    // A tetrahedron is its own decomposition: the rule once instead of on twelve pieces.
+    if let ([a, b, c, d], 4) = (polyhedron.points(), polyhedron.n_faces()) {
+        if polyhedron.faces().all(|f| f.len() == 3) {
+            let volume = (b - a).cross(&(c - a)).dot(&(d - a));
+            // Corners in a right-handed order, so that the weights are positive.
+            let (b, c) = if volume >= 0.0 { (*b, *c) } else { (*c, *b) };
+            return rule.on_tetrahedron(*a, b, c, *d).collect();
+        }
+    }
     let centre = polyhedron.centroid();
     let mut points = Vec::new();
     for k in 0..polyhedron.n_faces() {
@@ -566,7 +604,7 @@ mod solid_tests {
 
     #[test]
     fn tetrahedron_rules_are_exact_to_their_degree() {
-        let mut rules = vec![TetrahedronRule::degree2()];
+        let mut rules = vec![TetrahedronRule::degree2(), TetrahedronRule::degree5()];
         for p in 2..=GaussLegendre::MAX_POINTS {
             rules.push(TetrahedronRule::conical(p).unwrap());
         }

@@ -46,6 +46,13 @@ pub trait ExactSolution3d: Send + Sync {
         &[]
     }
 
+    /// The displacement and its gradient together (default: [`Self::displacement`] and
+    /// [`Self::gradient`]; solutions that share work between them override it). The error
+    /// norms call this at every quadrature point.
+    fn displacement_and_gradient(&self, x: Point3) -> (Vector3, Matrix3<f64>) {
+        (self.displacement(x), self.gradient(x))
+    }
+
     /// The stress `lambda tr(eps) I + 2 mu eps`.
     fn stress(&self, x: Point3) -> Matrix3<f64> {
         let lame = self.lame();
@@ -81,7 +88,7 @@ impl Factor {
                 coefficients,
                 derivative,
             } => {
-                let full: Jet<6> = Jet::polynomial(coefficients, t);
+                let full: Jet<5> = Jet::polynomial(coefficients, t);
                 Jet(std::array::from_fn(|j| full.0[j + derivative]))
             }
         }
@@ -109,54 +116,84 @@ struct Separable {
 }
 
 impl Separable {
-    fn evaluate(&self, i: usize, x: Point3) -> Evaluated {
-        let mut out = Evaluated {
-            value: 0.0,
-            gradient: Vector3::zeros(),
-            hessian: Matrix3::zeros(),
+    /// Value, gradient and Hessian of every component at `x`, each distinct one-dimensional
+    /// factor evaluated once.
+    fn evaluate_all(&self, x: Point3) -> [Evaluated; 3] {
+        let coordinates = [x.x, x.y, x.z];
+        let mut cache: Vec<(usize, Factor, Jet<4>)> = Vec::with_capacity(9);
+        let mut jet = |axis: usize, factor: Factor| -> Jet<4> {
+            if let Some(&(_, _, j)) = cache.iter().find(|(a, f, _)| *a == axis && *f == factor) {
+                return j;
+            }
+            let j = factor.jet(coordinates[axis]);
+            cache.push((axis, factor, j));
+            j
         };
-        for term in &self.components[i] {
-            let jets = [
-                term.factors[0].jet(x.x),
-                term.factors[1].jet(x.y),
-                term.factors[2].jet(x.z),
-            ];
-            // d^(a+b+c) / dx^a dy^b dz^c of the product.
-            let d = |orders: [usize; 3]| {
-                term.coefficient * jets[0][orders[0]] * jets[1][orders[1]] * jets[2][orders[2]]
+        std::array::from_fn(|i| {
+            let mut out = Evaluated {
+                value: 0.0,
+                gradient: Vector3::zeros(),
+                hessian: Matrix3::zeros(),
             };
-            out.value += d([0, 0, 0]);
-            for j in 0..3 {
-                let mut orders = [0; 3];
-                orders[j] = 1;
-                out.gradient[j] += d(orders);
-                for k in 0..3 {
+            for term in &self.components[i] {
+                let jets = [
+                    jet(0, term.factors[0]),
+                    jet(1, term.factors[1]),
+                    jet(2, term.factors[2]),
+                ];
+                // d^(a+b+c) / dx^a dy^b dz^c of the product.
+                let d = |orders: [usize; 3]| {
+                    term.coefficient
+                        * jets[0][orders[0]]
+                        * jets[1][orders[1]]
+                        * jets[2][orders[2]]
+                };
+                out.value += d([0, 0, 0]);
+                for j in 0..3 {
                     let mut orders = [0; 3];
-                    orders[j] += 1;
-                    orders[k] += 1;
-                    out.hessian[(j, k)] += d(orders);
+                    orders[j] = 1;
+                    out.gradient[j] += d(orders);
+                    for k in j..3 {
+                        let mut orders = [0; 3];
+                        orders[j] += 1;
+                        orders[k] += 1;
+                        let value = d(orders);
+                        out.hessian[(j, k)] += value;
+                        if k != j {
+                            out.hessian[(k, j)] += value;
+                        }
+                    }
                 }
             }
-        }
-        out
+            out
+        })
     }
 
     fn displacement(&self, x: Point3) -> Vector3 {
-        Vector3::from_fn(|i, _| self.evaluate(i, x).value)
+        let e = self.evaluate_all(x);
+        Vector3::new(e[0].value, e[1].value, e[2].value)
     }
 
     fn gradient(&self, x: Point3) -> Matrix3<f64> {
-        let rows: Vec<Vector3> = (0..3).map(|i| self.evaluate(i, x).gradient).collect();
-        Matrix3::from_fn(|i, j| rows[i][j])
+        let e = self.evaluate_all(x);
+        Matrix3::from_fn(|i, j| e[i].gradient[j])
+    }
+
+    fn displacement_and_gradient(&self, x: Point3) -> (Vector3, Matrix3<f64>) {
+        let e = self.evaluate_all(x);
+        (
+            Vector3::new(e[0].value, e[1].value, e[2].value),
+            Matrix3::from_fn(|i, j| e[i].gradient[j]),
+        )
     }
 
     /// `-[(lambda + mu) grad div u + mu Laplace u]`.
     fn body_force(&self, lame: Lame, x: Point3) -> Vector3 {
-        let hessians: Vec<Matrix3<f64>> = (0..3).map(|i| self.evaluate(i, x).hessian).collect();
+        let e = self.evaluate_all(x);
         Vector3::from_fn(|i, _| {
             // d_i div u = sum_j d_i d_j u_j.
-            let grad_div: f64 = (0..3).map(|j| hessians[j][(i, j)]).sum();
-            let laplace = hessians[i].trace();
+            let grad_div: f64 = (0..3).map(|j| e[j].hessian[(i, j)]).sum();
+            let laplace = e[i].hessian.trace();
             -((lame.lambda() + lame.mu()) * grad_div + lame.mu() * laplace)
         })
     }
@@ -262,6 +299,10 @@ impl ExactSolution3d for SmoothSolid {
         self.field.gradient(x)
     }
 
+    fn displacement_and_gradient(&self, x: Point3) -> (Vector3, Matrix3<f64>) {
+        self.field.displacement_and_gradient(x)
+    }
+
     fn body_force(&self, x: Point3) -> Vector3 {
         self.field.body_force(self.lame, x)
     }
@@ -342,6 +383,10 @@ impl ExactSolution3d for DivergenceFreeSolid {
 
     fn gradient(&self, x: Point3) -> Matrix3<f64> {
         self.field.gradient(x)
+    }
+
+    fn displacement_and_gradient(&self, x: Point3) -> (Vector3, Matrix3<f64>) {
+        self.field.displacement_and_gradient(x)
     }
 
     fn body_force(&self, x: Point3) -> Vector3 {
