@@ -197,3 +197,57 @@ fn every_family_converges_at_the_optimal_rates() {
         }
     }
 }
+
+#[test]
+fn the_loads_are_the_formulas_of_the_documentation() {
+    // docs/manufactured.md, section 11, typed in by hand.
+    let (lambda, mu) = (2.0, 1.0);
+    let lame = Lame::try_new(lambda, mu).unwrap();
+    let pi = std::f64::consts::PI;
+    let s = |k: f64, t: f64| (k * pi * t).sin();
+    let c = |k: f64, t: f64| (k * pi * t).cos();
+    let e1 = |p: Point3| {
+        let (x, y, z) = (p.x, p.y, p.z);
+        let pi2 = pi * pi;
+        Vector3::new(
+            3.0 * mu * pi2 * s(1.0, x) * s(1.0, y) * s(1.0, z)
+                - (lambda + mu)
+                    * pi2
+                    * (-s(1.0, x) * s(1.0, y) * s(1.0, z)
+                        + 2.0 * c(2.0, x) * c(1.0, y) * s(1.0, z)
+                        + 2.0 * c(1.0, x) * s(1.0, y) * c(2.0, z)),
+            6.0 * mu * pi2 * s(2.0, x) * s(1.0, y) * s(1.0, z)
+                - (lambda + mu)
+                    * pi2
+                    * (c(1.0, x) * c(1.0, y) * s(1.0, z) - s(2.0, x) * s(1.0, y) * s(1.0, z)
+                        + 2.0 * s(1.0, x) * c(1.0, y) * c(2.0, z)),
+            6.0 * mu * pi2 * s(1.0, x) * s(1.0, y) * s(2.0, z)
+                - (lambda + mu)
+                    * pi2
+                    * (c(1.0, x) * s(1.0, y) * c(1.0, z) + s(2.0, x) * c(1.0, y) * c(1.0, z)
+                        - 4.0 * s(1.0, x) * s(1.0, y) * s(2.0, z)),
+        )
+    };
+    let p = |t: f64| t * t * (1.0 - t) * (1.0 - t);
+    let p1 = |t: f64| 2.0 * t - 6.0 * t * t + 4.0 * t.powi(3);
+    let p2 = |t: f64| 2.0 - 12.0 * t + 12.0 * t * t;
+    let p3 = |t: f64| -12.0 + 24.0 * t;
+    let a = DivergenceFreeSolid::AMPLITUDE;
+    let f_x = |x: f64, y: f64, z: f64| {
+        -mu * a
+            * (p2(x) * p1(y) * p(z) + p(x) * p3(y) * p(z) + p(x) * p1(y) * p2(z)
+                - p2(x) * p(y) * p1(z)
+                - p(x) * p2(y) * p1(z)
+                - p(x) * p(y) * p3(z))
+    };
+    let e2 = |q: Point3| {
+        Vector3::new(f_x(q.x, q.y, q.z), f_x(q.y, q.z, q.x), f_x(q.z, q.x, q.y))
+    };
+    let (smooth, free) = (SmoothSolid::new(lame), DivergenceFreeSolid::new(lame));
+    for x in interior_points() {
+        let (a, b) = (smooth.body_force(x), e1(x));
+        assert!((a - b).norm() < 1e-12 * (1.0 + b.norm()), "E1-3D at {x}: {a} vs {b}");
+        let (a, b) = (free.body_force(x), e2(x));
+        assert!((a - b).norm() < 1e-12 * (1.0 + b.norm()), "E2-3D at {x}: {a} vs {b}");
+    }
+}
