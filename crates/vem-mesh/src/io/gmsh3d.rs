@@ -19,7 +19,8 @@
 //! Errors name the file and, where they can, the element by its tag and entity and the node by
 //! its tag: a repeated node in an element, a degenerate (flat) element, two elements with the
 //! same nodes, a face shared by more than two elements, a surface element that is not a boundary
-//! face. What the mesh validation finds beyond that (non-conforming faces, folded warped faces,
+//! face. A warped quadrangle (a bilinear face) is read as the mesh layer takes it, a fan surface,
+//! unless its fan folds over or it crosses itself (a hexahedron with its nodes out of order). What the mesh validation finds beyond that (non-conforming faces, folded warped faces,
 //! ...) is reported with the cells and vertices it names translated into element and node tags.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -50,6 +51,7 @@ const POINT: i32 = 15;
 
 /// Volumes at most this fraction of the cube of an element's diameter count as zero.
 const VOLUME_TOLERANCE: f64 = 1e-12;
+
 
 /// The faces of Gmsh's reference elements as loops of local node indices, oriented outward
 /// (right-hand normal out of the element) for the reference numbering.
@@ -494,6 +496,19 @@ mod tests {
         assert!(message.contains("element type 11 (Tet10) in volume entity 1: higher-order"), "{message}");
         let message = error(&cube_msh("1\n7 15 2 1 1 1\n", ""));
         assert!(message.starts_with("cube.msh: the file contains no 3D elements"), "{message}");
+    }
+
+    #[test]
+    fn elements_with_nodes_out_of_order_are_located() {
+        // Nodes 3 and 4 swapped, and 7 and 8: the bottom and the top cross themselves.
+        let message = error(&cube_msh("1\n7 5 2 1 1 1 2 4 3 5 6 8 7\n", ""));
+        assert!(message.contains("volume element 7 (Hex8)"), "{message}");
+        // The top turned by half a turn: the four sides cross themselves.
+        let message = error(&cube_msh("1\n7 5 2 1 1 1 2 3 4 7 8 5 6\n", ""));
+        assert!(
+            message.contains("face 2 has the nodes [1, 2, 7, 8] and bounds the volume elements [7]"),
+            "{message}"
+        );
     }
 
     #[test]
