@@ -21,7 +21,9 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::{Mat, Side};
-use vem_elastic::{CholeskySettings, CholeskySolver, ElasticBody, LinearSolver, Material, Ordering};
+use vem_elastic::{
+    CholeskySettings, CholeskySolver, ElasticBody, LinearSolver, Material, Ordering,
+};
 use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
 use vem_mesh::Vector3;
 use vem_space::PolyhedralVem;

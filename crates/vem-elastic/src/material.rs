@@ -41,6 +41,9 @@ pub struct Material {
     kind: Kind,
 }
 
+// A material is a small value copied once per body: the 6 x 6 law inline (288 bytes) keeps it
+// `Copy`, which a boxed variant would not.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kind {
     /// Three-dimensional Lame parameters and the plane reduction.
@@ -435,7 +438,17 @@ mod tests {
             m.out_of_plane_stress(&strain),
             max_relative = 1e-14
         );
-        let not_definite = Matrix6::from_fn(|i, j| if i == j { if i == 4 { -1.0 } else { 1.0 } } else { 0.0 });
+        let not_definite = Matrix6::from_fn(|i, j| {
+            if i == j {
+                if i == 4 {
+                    -1.0
+                } else {
+                    1.0
+                }
+            } else {
+                0.0
+            }
+        });
         let err = Material::general_3d(not_definite).unwrap_err();
         assert!(err.to_string().contains("positive definite"), "{err}");
     }

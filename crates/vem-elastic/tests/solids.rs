@@ -64,7 +64,11 @@ fn a_box_on_rollers_under_a_uniform_traction_takes_the_exact_uniform_state() {
         // Every cell carries the uniform stress.
         for field in body.element_fields(solution.displacement()).unwrap() {
             let expected = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, t);
-            assert!((field.stress - expected).amax() < 1e-9 * t, "{}", family.name());
+            assert!(
+                (field.stress - expected).amax() < 1e-9 * t,
+                "{}",
+                family.name()
+            );
             assert!((field.von_mises - t).abs() < 1e-9 * t);
         }
         // The rollers carry the load: the bottom pushes down with t |top| = t 1 x 2.
@@ -156,7 +160,11 @@ fn a_rigid_plate_on_top_moves_the_box_by_the_exact_amount() {
         let expected = -force * height / (area * E);
         for v in body.mesh().part_vertices("top").unwrap() {
             let uz = solution.displacement()[3 * v + 2];
-            assert!((uz - expected).abs() < 1e-10 * expected.abs(), "{}", family.name());
+            assert!(
+                (uz - expected).abs() < 1e-10 * expected.abs(),
+                "{}",
+                family.name()
+            );
         }
         let plate = solution.reaction("top").unwrap();
         assert!((plate.z + force).abs() < 1e-9 * force, "{plate}");
@@ -193,10 +201,11 @@ fn the_linear_tetrahedron_is_the_vem_on_tetrahedra_and_refuses_other_cells() {
     let scale = p1.displacement().iter().fold(0.0f64, |m, a| m.max(a.abs()));
     assert!(difference < 1e-12 * scale, "{difference:e}");
     let hexahedra = families[0].1.clone();
-    let err = ElasticBody::builder_polyhedral("box", hexahedra, material, Arc::new(LinearTetrahedron))
-        .clamp("bottom")
-        .build()
-        .unwrap_err();
+    let err =
+        ElasticBody::builder_polyhedral("box", hexahedra, material, Arc::new(LinearTetrahedron))
+            .clamp("bottom")
+            .build()
+            .unwrap_err();
     assert_eq!(
         err.to_string(),
         "body 'box': element 'p1' does not support polygon 0 with 8 vertices"

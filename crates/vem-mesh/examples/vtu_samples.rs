@@ -146,7 +146,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let polyhedra = UnstructuredGrid::from_polyhedral_mesh(&cells3d)
         .with_point_data(VtkArray::vectors(
             "displacement",
-            &(0..n3).map(|k| [f(k), -f(k + 1), f(k + 2) * 1e-7]).collect::<Vec<_>>(),
+            &(0..n3)
+                .map(|k| [f(k), -f(k + 1), f(k + 2) * 1e-7])
+                .collect::<Vec<_>>(),
         ))
         .with_cell_data(VtkArray::symmetric_tensors(
             "stress",

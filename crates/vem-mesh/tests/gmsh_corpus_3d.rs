@@ -58,8 +58,10 @@ fn every_3d_corpus_file_reads_as_gmsh_reads_it() {
     }
 }
 
-/// The volume, the number of cells of each size (vertices) and, per part, its area and the
-/// outward direction every face of it must have (`None` for a part on several sides).
+/// The number of cells of each size (vertices), and each part's name and area.
+type Shape = (BTreeMap<usize, usize>, Vec<(String, f64)>);
+
+/// The volume, the number of cells of each size (vertices) and each part's name and area.
 fn describe(mesh: &PolyhedralMesh) -> (f64, BTreeMap<usize, usize>, Vec<(String, f64)>) {
     let volume = (0..mesh.n_cells()).map(|c| mesh.volume(c)).sum();
     let mut kinds = BTreeMap::new();
@@ -92,8 +94,7 @@ fn side_normal(part: &str) -> Option<Vector3> {
 
 #[test]
 fn every_3d_corpus_file_becomes_a_mesh_of_the_unit_cube() {
-    let mut by_model: BTreeMap<String, (BTreeMap<usize, usize>, Vec<(String, f64)>)> =
-        BTreeMap::new();
+    let mut by_model: BTreeMap<String, Shape> = BTreeMap::new();
     for file in corpus() {
         let name = file.file_name().unwrap().to_string_lossy().to_string();
         let mesh = read_gmsh_polyhedral_bytes(&std::fs::read(&file).unwrap(), &name)
@@ -106,7 +107,11 @@ fn every_3d_corpus_file_becomes_a_mesh_of_the_unit_cube() {
         for part in mesh.parts() {
             if let Some(normal) = side_normal(&part.name) {
                 for &f in &part.faces {
-                    assert!((mesh.face_normal(f) - normal).norm() < 1e-12, "{name}: {}", part.name);
+                    assert!(
+                        (mesh.face_normal(f) - normal).norm() < 1e-12,
+                        "{name}: {}",
+                        part.name
+                    );
                 }
             }
         }
@@ -116,7 +121,10 @@ fn every_3d_corpus_file_becomes_a_mesh_of_the_unit_cube() {
                 "sides" => 4.0,
                 _ => 1.0,
             };
-            assert!((area - expected).abs() < 1e-12, "{name}: part {part} area {area}");
+            assert!(
+                (area - expected).abs() < 1e-12,
+                "{name}: part {part} area {area}"
+            );
         }
         // Variants of one model (version, encoding, numbering) give the same mesh.
         let model = name.split('_').take(2).collect::<Vec<_>>().join("_");

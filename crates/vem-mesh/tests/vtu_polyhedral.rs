@@ -21,7 +21,11 @@ fn every_family_round_trips_through_vtu() {
         let data = VtuData::new()
             .with_point_vectors_3d("u", &u)
             .with_cell_scalars("cell", (0..mesh.n_cells()).map(|c| c as f64).collect());
-        for encoding in [VtuEncoding::Ascii, VtuEncoding::Binary, VtuEncoding::Compressed] {
+        for encoding in [
+            VtuEncoding::Ascii,
+            VtuEncoding::Binary,
+            VtuEncoding::Compressed,
+        ] {
             let path = dir.join(format!("{}-{}.vtu", family.name(), encoding.name()));
             write_polyhedral_vtu_with(&path, &mesh, &data, encoding).unwrap();
             let grid = read_vtu(&path).unwrap();

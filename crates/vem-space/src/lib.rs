@@ -66,16 +66,16 @@ pub use load::edge_traction_load;
 pub use material::{voigt_len, voigt_pairs, ElasticityTensor};
 pub use mesh_element::{DofLayout, FieldOf, MeshElement, PlanarElement};
 pub use p1::LinearTriangle;
-pub use polygon::PolygonGeometry;
-pub use registry::{ElementFactory, ElementRegistry, RegistryError};
-pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
-pub use vem::LowestOrderVem;
 pub use p1_tetrahedron::LinearTetrahedron;
+pub use polygon::PolygonGeometry;
 pub use polyhedral::{face_traction_load, PolyhedralElement, SolidElement, SpaceField};
 pub use polyhedron::PolyhedronGeometry;
+pub use registry::{ElementFactory, ElementRegistry, RegistryError};
+pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
 pub use stabilisation3::{
     bulk_modulus_3d, deviatoric_part, stabilisation_length, PolyhedralStabilisation,
 };
+pub use vem::LowestOrderVem;
 pub use vem3::PolyhedralVem;
 
 use nalgebra::{DMatrix, DVector, SMatrix};

@@ -7,8 +7,7 @@ use vem_mesh::{Point3, Vector3};
 
 use crate::quadrature::TetrahedronRule;
 use crate::{
-    ElasticityTensor, EnergyProjection, LocalStiffness, PolyhedralElement, SpaceError,
-    SpaceField,
+    ElasticityTensor, EnergyProjection, LocalStiffness, PolyhedralElement, SpaceError, SpaceField,
 };
 
 /// The linear tetrahedron ("p1"): barycentric gradients from the inverse of the edge matrix
@@ -49,10 +48,7 @@ impl Tetrahedron {
             vertices: polyhedron.points().len(),
             faces: polyhedron.n_faces(),
         };
-        let corners: [Point3; 4] = polyhedron
-            .points()
-            .try_into()
-            .map_err(|_| unsupported())?;
+        let corners: [Point3; 4] = polyhedron.points().try_into().map_err(|_| unsupported())?;
         if polyhedron.n_faces() != 4 || polyhedron.faces().any(|f| f.len() != 3) {
             return Err(unsupported());
         }
@@ -78,7 +74,7 @@ impl Tetrahedron {
                 "volume {volume:e} is not positive for diameter {scale:e}"
             )));
         }
-        if !((oriented - volume).abs() <= 1e-10 * volume) {
+        if !(oriented.is_finite() && (oriented - volume).abs() <= 1e-10 * volume) {
             return Err(degenerate(format!(
                 "the faces are not oriented outward (their signed volume is {oriented:e}, the \
                  corners span {volume:e})"

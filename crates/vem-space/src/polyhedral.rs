@@ -25,8 +25,7 @@ use vem_mesh::{BodyMesh, Point3, PointD, Vector3};
 
 use crate::quadrature::{conical_triangle_rule, face_rule};
 use crate::{
-    DofLayout, ElasticityTensor, EnergyProjection, FieldOf, LocalStiffness, MeshElement,
-    SpaceError,
+    DofLayout, ElasticityTensor, EnergyProjection, FieldOf, LocalStiffness, MeshElement, SpaceError,
 };
 
 /// A body force or traction in space.
@@ -130,13 +129,14 @@ pub fn face_traction_load(
     }
     let area = geometry::face_area(face);
     let diameter = geometry::diameter(face);
-    if !(area > 1e-14 * diameter * diameter) {
+    if !(area.is_finite() && area > 1e-14 * diameter * diameter) {
         return Err(degenerate(format!(
             "area {area:e} is zero for diameter {diameter:e}"
         )));
     }
     crate::quadrature::GaussLegendre::try_new(points)?;
-    let rule = conical_triangle_rule((points + 1).min(crate::quadrature::GaussLegendre::MAX_POINTS))?;
+    let rule =
+        conical_triangle_rule((points + 1).min(crate::quadrature::GaussLegendre::MAX_POINTS))?;
     let mut load = DVector::zeros(3 * n);
     let mean_weight = 1.0 / n as f64;
     for (k, l, q) in face_rule(face, &rule) {
@@ -239,7 +239,8 @@ impl MeshElement<3> for SolidElement {
         cell: usize,
         force: FieldOf<'_, 3>,
     ) -> Result<DVector<f64>, SpaceError> {
-        self.0.body_load(&Self::polyhedron(mesh, cell)?, &|x| force(x))
+        self.0
+            .body_load(&Self::polyhedron(mesh, cell)?, &|x| force(x))
     }
 
     fn facet_load(
@@ -305,14 +306,28 @@ mod tests {
 
     #[test]
     fn degenerate_faces_and_loads_are_errors() {
-        let line = [Point3::origin(), Point3::new(1.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0)];
+        let line = [
+            Point3::origin(),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(2.0, 0.0, 0.0),
+        ];
         let err = face_traction_load(&line, &|_| Vector3::zeros(), 2).unwrap_err();
         assert!(err.to_string().contains("area 0"), "{err}");
-        let triangle = [Point3::origin(), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)];
-        let err = face_traction_load(&triangle, &|_| Vector3::new(f64::NAN, 0.0, 0.0), 2)
-            .unwrap_err();
-        assert!(matches!(err, SpaceError::NonFiniteLoadInSpace { .. }), "{err}");
+        let triangle = [
+            Point3::origin(),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(0.0, 1.0, 0.0),
+        ];
+        let err =
+            face_traction_load(&triangle, &|_| Vector3::new(f64::NAN, 0.0, 0.0), 2).unwrap_err();
+        assert!(
+            matches!(err, SpaceError::NonFiniteLoadInSpace { .. }),
+            "{err}"
+        );
         let err = face_traction_load(&triangle, &|_| Vector3::zeros(), 0).unwrap_err();
-        assert!(matches!(err, SpaceError::UnsupportedQuadrature { .. }), "{err}");
+        assert!(
+            matches!(err, SpaceError::UnsupportedQuadrature { .. }),
+            "{err}"
+        );
     }
 }

@@ -145,10 +145,7 @@ impl PolyhedronGeometry {
             let vector_area = geometry::face_vector_area(&face_points);
             closure += vector_area;
             total_area += vector_area.norm();
-            for (&v, w) in face
-                .iter()
-                .zip(geometry::face_vertex_weights(&face_points))
-            {
+            for (&v, w) in face.iter().zip(geometry::face_vertex_weights(&face_points)) {
                 q[v] += w / volume;
             }
         }
@@ -165,7 +162,7 @@ impl PolyhedronGeometry {
             .map(|(r, q)| r * q.transpose())
             .sum();
         let defect = (identity - Matrix3::identity()).amax();
-        if !(defect <= Self::CLOSURE_TOLERANCE) {
+        if !(defect.is_finite() && defect <= Self::CLOSURE_TOLERANCE) {
             return Err(degenerate(format!(
                 "the faces are not a consistently oriented closed surface: the divergence \
                  theorem for v = x is off by {defect:.3e}"
@@ -308,13 +305,16 @@ mod tests {
         assert!(err.to_string().contains("do not close"), "{err}");
         let mut faces = cube_faces();
         faces[0] = vec![0, 4, 4, 2];
-        let err = PolyhedronGeometry::try_new(&Polyhedron::new(points.clone(), &faces))
-            .unwrap_err();
-        assert!(err.to_string().contains("face 0 lists vertex 4 twice"), "{err}");
+        let err =
+            PolyhedronGeometry::try_new(&Polyhedron::new(points.clone(), &faces)).unwrap_err();
+        assert!(
+            err.to_string().contains("face 0 lists vertex 4 twice"),
+            "{err}"
+        );
         let mut faces = cube_faces();
         faces[5] = vec![4, 5, 9];
-        let err = PolyhedronGeometry::try_new(&Polyhedron::new(points.clone(), &faces))
-            .unwrap_err();
+        let err =
+            PolyhedronGeometry::try_new(&Polyhedron::new(points.clone(), &faces)).unwrap_err();
         assert!(err.to_string().contains("vertex 9"), "{err}");
         let mut nan = points;
         nan[3].y = f64::NAN;

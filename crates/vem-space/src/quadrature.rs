@@ -547,7 +547,9 @@ pub fn face_rule<'a>(
                 k,
                 l,
                 QuadraturePoint {
-                    point: PointD::<3>::from(l[0] * a.coords + l[1] * b.coords + l[2] * mean.coords),
+                    point: PointD::<3>::from(
+                        l[0] * a.coords + l[1] * b.coords + l[2] * mean.coords,
+                    ),
                     weight: w * signed_area,
                 },
             )

@@ -105,9 +105,8 @@ impl PolyhedralStabilisation for DofiDofi {
         material: &ElasticityTensor<3>,
         consistency: &DMatrix<f64>,
     ) -> Result<DVector<f64>, SpaceError> {
-        let alpha = self.scale()
-            * constant_3d(self.scaling(), material)
-            * stabilisation_length(geometry);
+        let alpha =
+            self.scale() * constant_3d(self.scaling(), material) * stabilisation_length(geometry);
         Ok(DVector::from_element(consistency.nrows(), alpha))
     }
 }
@@ -128,7 +127,10 @@ impl BBar {
     /// `alpha / l_E * 6` on a polyhedron: `min(trace(C), 3 trace(C_dev)) / 8` with the 3D
     /// deviatoric part (module docs of the polyhedral stabilisations).
     pub fn polyhedral_alpha(material: &ElasticityTensor<3>) -> f64 {
-        Self::SCALE * material.trace().min(3.0 * deviatoric_part(material).trace())
+        Self::SCALE
+            * material
+                .trace()
+                .min(3.0 * deviatoric_part(material).trace())
     }
 }
 
@@ -182,11 +184,17 @@ mod tests {
         for lambda in [0.0, 1.0, 4.0] {
             let c = isotropic(lambda, 1.0);
             let default = DofiDofi::DEFAULT_SCALE * c.trace();
-            assert!((BBar::polyhedral_alpha(&c) - default).abs() < 1e-14, "{lambda}");
+            assert!(
+                (BBar::polyhedral_alpha(&c) - default).abs() < 1e-14,
+                "{lambda}"
+            );
         }
         for lambda in [4.5, 1e3, 1e9] {
             let c = isotropic(lambda, 1.0);
-            assert!((BBar::polyhedral_alpha(&c) - 21.0 / 8.0).abs() < 1e-6, "{lambda}");
+            assert!(
+                (BBar::polyhedral_alpha(&c) - 21.0 / 8.0).abs() < 1e-6,
+                "{lambda}"
+            );
         }
     }
 }

@@ -67,7 +67,9 @@ fn convex_faces(points: &[Point3], normals: &[Vector3]) -> Vec<Vec<usize>> {
             let mut face: Vec<usize> = (0..points.len())
                 .filter(|&k| (points[k].coords.dot(n) - top).abs() < 1e-12)
                 .collect();
-            let centre = face.iter().fold(Vector3::zeros(), |s, &k| s + points[k].coords)
+            let centre = face
+                .iter()
+                .fold(Vector3::zeros(), |s, &k| s + points[k].coords)
                 / face.len() as f64;
             let u = (points[face[0]].coords - centre).normalize();
             let v = n.normalize().cross(&u);
@@ -155,7 +157,12 @@ pub fn standard_polyhedra() -> Vec<TestPolyhedron> {
     // The unit cube with its top corners moved in x and y: the side faces warp (each is the
     // fan of four triangles about its vertex mean), the bottom and top stay planar.
     let mut warped = box_points(Vector3::zeros(), 1.0, 1.0, 1.0);
-    for (k, d) in [(4, (0.1, -0.05)), (5, (0.0, 0.1)), (6, (-0.1, 0.05)), (7, (0.05, 0.0))] {
+    for (k, d) in [
+        (4, (0.1, -0.05)),
+        (5, (0.0, 0.1)),
+        (6, (-0.1, 0.05)),
+        (7, (0.05, 0.0)),
+    ] {
         warped[k].x += d.0;
         warped[k].y += d.1;
     }
@@ -177,14 +184,27 @@ pub fn standard_polyhedra() -> Vec<TestPolyhedron> {
         name: "pyramid",
         polyhedron: Polyhedron::new(
             pyramid,
-            &[vec![0, 2, 3, 1], vec![0, 1, 4], vec![1, 3, 4], vec![3, 2, 4], vec![2, 0, 4]],
+            &[
+                vec![0, 2, 3, 1],
+                vec![0, 1, 4],
+                vec![1, 3, 4],
+                vec![3, 2, 4],
+                vec![2, 0, 4],
+            ],
         ),
         volume: 0.8 / 3.0,
     });
     set.push(TestPolyhedron {
         name: "L-shaped prism",
         polyhedron: prism(
-            &[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)],
+            &[
+                (0.0, 0.0),
+                (2.0, 0.0),
+                (2.0, 1.0),
+                (1.0, 1.0),
+                (1.0, 2.0),
+                (0.0, 2.0),
+            ],
             0.5,
         ),
         volume: 3.0 * 0.5,
@@ -222,7 +242,14 @@ pub fn standard_polyhedra() -> Vec<TestPolyhedron> {
     // Truncated octahedron: the permutations of (0, +-1, +-2), edge sqrt 2, volume 8 sqrt 2
     // (sqrt 2)^3 = 32; faces: 6 squares (normals +-e_i), 8 hexagons (normals (+-1, +-1, +-1)).
     let mut points = Vec::new();
-    for perm in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+    for perm in [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ] {
         for s1 in [-1.0, 1.0] {
             for s2 in [-1.0, 1.0] {
                 let values = [0.0, s1, 2.0 * s2];
@@ -255,7 +282,12 @@ pub fn standard_polyhedra() -> Vec<TestPolyhedron> {
     set.push(TestPolyhedron {
         name: "small cube far from the origin",
         polyhedron: Polyhedron::new(
-            box_points(Vector3::new(1024.0, -2048.0, 512.0), 1.0 / 64.0, 1.0 / 64.0, 1.0 / 64.0),
+            box_points(
+                Vector3::new(1024.0, -2048.0, 512.0),
+                1.0 / 64.0,
+                1.0 / 64.0,
+                1.0 / 64.0,
+            ),
             &box_faces(),
         ),
         volume: 1.0 / 262_144.0,
@@ -271,7 +303,10 @@ fn divergence_volume(polyhedron: &Polyhedron) -> f64 {
     let mut volume = 0.0;
     for face in polyhedron.faces() {
         let m = face.len();
-        let centre = face.iter().fold(Vector3::zeros(), |s, &v| s + points[v].coords) / m as f64;
+        let centre = face
+            .iter()
+            .fold(Vector3::zeros(), |s, &v| s + points[v].coords)
+            / m as f64;
         for k in 0..m {
             let (a, b) = (points[face[k]].coords, points[face[(k + 1) % m]].coords);
             let area_z = 0.5 * (a - centre).cross(&(b - centre)).z;
@@ -309,8 +344,14 @@ pub fn linear_fields() -> Vec<(Vector3, Matrix3<f64>)> {
             Vector3::new(0.1, 0.2, -0.3),
             Matrix3::new(0.2, 0.3, -0.1, 0.4, -0.2, 0.5, 0.1, 0.6, 0.3),
         ),
-        (Vector3::new(-1.0, 0.5, 0.0), Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)),
-        (Vector3::zeros(), Matrix3::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0)),
+        (
+            Vector3::new(-1.0, 0.5, 0.0),
+            Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+        ),
+        (
+            Vector3::zeros(),
+            Matrix3::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0),
+        ),
         (
             Vector3::new(2.0, -3.0, 1.0),
             Matrix3::new(0.0, -1.0, 0.5, 1.0, 0.0, -2.0, -0.5, 2.0, 0.0),
@@ -371,9 +412,15 @@ pub fn boundary_load_of_constant_stress(
     let mut load = DVector::zeros(3 * points.len());
     for face in polyhedron.faces() {
         let m = face.len();
-        let centre = face.iter().fold(Vector3::zeros(), |s, &v| s + points[v].coords) / m as f64;
+        let centre = face
+            .iter()
+            .fold(Vector3::zeros(), |s, &v| s + points[v].coords)
+            / m as f64;
         for k in 0..m {
-            let (a, b) = (points[face[k]].coords - centre, points[face[(k + 1) % m]].coords - centre);
+            let (a, b) = (
+                points[face[k]].coords - centre,
+                points[face[(k + 1) % m]].coords - centre,
+            );
             let third = sigma * (0.5 * a.cross(&b)) / 3.0;
             for c in 0..3 {
                 load[3 * face[k] + c] += third[c];
@@ -435,7 +482,9 @@ pub fn rank(
     polyhedron: &Polyhedron,
     material: &ElasticityTensor<3>,
 ) -> Result<usize, SpaceError> {
-    Ok(numerical_rank(&element.stiffness(polyhedron, material)?.total()))
+    Ok(numerical_rank(
+        &element.stiffness(polyhedron, material)?.total(),
+    ))
 }
 
 /// `max(|K - K^T|, |K_s - K_s^T|) / |K|`.

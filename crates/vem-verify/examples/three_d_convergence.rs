@@ -24,9 +24,9 @@ use vem_verify::three_d::{
 fn element(name: &str) -> Result<Arc<dyn PolyhedralElement>, Box<dyn std::error::Error>> {
     Ok(Arc::new(match name {
         "vem1" => PolyhedralVem::default(),
-        "vem1-shear" => PolyhedralVem::try_new(Arc::new(DofiDofi::new(
-            StabilisationScaling::ShearModulus,
-        )))?,
+        "vem1-shear" => {
+            PolyhedralVem::try_new(Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)))?
+        }
         "vem1-drecipe" => PolyhedralVem::try_new(Arc::new(DRecipe))?,
         "vem1-bbar" => PolyhedralVem::try_new(Arc::new(BBar))?,
         other => return Err(format!("unknown element {other:?}").into()),

@@ -80,12 +80,18 @@ fn the_solutions_have_their_hand_values_and_boundary_data() {
     let centre = Point3::new(0.5, 0.5, 0.5);
     assert!((smooth.displacement(centre) - Vector3::new(1.0, 0.0, 0.0)).norm() < 1e-15);
     let f = smooth.body_force(centre);
-    assert!((f - Vector3::new(6.0 * pi2, 0.0, 0.0)).norm() < 1e-12, "{f}");
+    assert!(
+        (f - Vector3::new(6.0 * pi2, 0.0, 0.0)).norm() < 1e-12,
+        "{f}"
+    );
     // Its traction on the top at (1/2, 1/2, 1): sigma_xz = -pi mu, sigma_yz = 0,
     // sigma_zz = 2 pi (lambda + 2 mu).
     let pi = std::f64::consts::PI;
     let top = smooth.stress(Point3::new(0.5, 0.5, 1.0)) * Vector3::z();
-    assert!((top - Vector3::new(-pi, 0.0, 8.0 * pi)).norm() < 1e-12, "{top}");
+    assert!(
+        (top - Vector3::new(-pi, 0.0, 8.0 * pi)).norm() < 1e-12,
+        "{top}"
+    );
     // E2-3D: divergence free, lambda-free, zero on the boundary; at (1/4, 1/2, 3/4):
     // P(1/4) = P(3/4) = 9/256, P(1/2) = 1/16, P'(1/4) = 3/16, P'(1/2) = 0, P'(3/4) = -3/16, so
     // u_x = A (P P' P - P P P') = A (9/256) (1/16) (3/16) = 100 * 27/65536.
@@ -240,14 +246,18 @@ fn the_loads_are_the_formulas_of_the_documentation() {
                 - p(x) * p2(y) * p1(z)
                 - p(x) * p(y) * p3(z))
     };
-    let e2 = |q: Point3| {
-        Vector3::new(f_x(q.x, q.y, q.z), f_x(q.y, q.z, q.x), f_x(q.z, q.x, q.y))
-    };
+    let e2 = |q: Point3| Vector3::new(f_x(q.x, q.y, q.z), f_x(q.y, q.z, q.x), f_x(q.z, q.x, q.y));
     let (smooth, free) = (SmoothSolid::new(lame), DivergenceFreeSolid::new(lame));
     for x in interior_points() {
         let (a, b) = (smooth.body_force(x), e1(x));
-        assert!((a - b).norm() < 1e-12 * (1.0 + b.norm()), "E1-3D at {x}: {a} vs {b}");
+        assert!(
+            (a - b).norm() < 1e-12 * (1.0 + b.norm()),
+            "E1-3D at {x}: {a} vs {b}"
+        );
         let (a, b) = (free.body_force(x), e2(x));
-        assert!((a - b).norm() < 1e-12 * (1.0 + b.norm()), "E2-3D at {x}: {a} vs {b}");
+        assert!(
+            (a - b).norm() < 1e-12 * (1.0 + b.norm()),
+            "E2-3D at {x}: {a} vs {b}"
+        );
     }
 }

@@ -52,7 +52,6 @@ const POINT: i32 = 15;
 /// Volumes at most this fraction of the cube of an element's diameter count as zero.
 const VOLUME_TOLERANCE: f64 = 1e-12;
 
-
 /// The faces of Gmsh's reference elements as loops of local node indices, oriented outward
 /// (right-hand normal out of the element) for the reference numbering.
 fn reference_faces(element_type: i32) -> &'static [&'static [usize]] {
@@ -73,7 +72,13 @@ fn reference_faces(element_type: i32) -> &'static [&'static [usize]] {
             &[1, 2, 5, 4],
             &[2, 0, 3, 5],
         ],
-        PYRAMID => &[&[0, 3, 2, 1], &[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[3, 0, 4]],
+        PYRAMID => &[
+            &[0, 3, 2, 1],
+            &[0, 1, 4],
+            &[1, 2, 4],
+            &[2, 3, 4],
+            &[3, 0, 4],
+        ],
         _ => &[],
     }
 }
@@ -198,10 +203,7 @@ fn convert(msh: &MshFile) -> Result<PolyhedralMesh, String> {
             }
             let v = compact[position];
             if local.contains(&v) {
-                return Err(format!(
-                    "{} lists node {node} twice",
-                    volume.describe()
-                ));
+                return Err(format!("{} lists node {node} twice", volume.describe()));
             }
             local.push(v);
         }
@@ -225,7 +227,7 @@ fn convert(msh: &MshFile) -> Result<PolyhedralMesh, String> {
             .collect();
         let cell = Polyhedron::new(points, &local_faces);
         let (signed, diameter) = (cell.volume(), cell.diameter());
-        if !(signed.abs() > VOLUME_TOLERANCE * diameter.powi(3)) {
+        if !(signed.is_finite() && signed.abs() > VOLUME_TOLERANCE * diameter.powi(3)) {
             return Err(format!(
                 "{} is degenerate: volume {signed:e} for diameter {diameter:e}",
                 volume.describe()
@@ -306,7 +308,9 @@ fn locate(
         MeshError::InvertedCell { cell: c, .. }
         | MeshError::DegenerateCell { cell: c, .. }
         | MeshError::CellNotClosed { cell: c, .. } => vec![cell(*c)],
-        MeshError::DisconnectedCell { cell: c, face: f, .. } => vec![cell(*c), face(*f)],
+        MeshError::DisconnectedCell {
+            cell: c, face: f, ..
+        } => vec![cell(*c), face(*f)],
         MeshError::HangingVertex {
             vertex: v, face: f, ..
         } => vec![vertex(*v), face(*f)],
@@ -371,7 +375,9 @@ fn boundary_parts(
                 let boundary = loop_.filter(|l| {
                     let mut key = l.clone();
                     key.sort_unstable();
-                    cells_of_face.get(&key).is_some_and(|cells| cells.len() == 1)
+                    cells_of_face
+                        .get(&key)
+                        .is_some_and(|cells| cells.len() == 1)
                 });
                 let loop_ = boundary.ok_or_else(|| {
                     format!(
@@ -450,7 +456,10 @@ mod tests {
         let names = "$PhysicalNames\n1\n2 4 \"bottom face\"\n$EndPhysicalNames\n";
         let text = cube_msh("2\n7 5 2 1 1 1 2 3 4 5 6 7 8\n8 3 2 4 1 1 4 3 2\n", names);
         let mesh = read_gmsh_polyhedral_bytes(text.as_bytes(), "cube.msh").unwrap();
-        assert_eq!((mesh.n_cells(), mesh.n_vertices(), mesh.n_faces()), (1, 8, 6));
+        assert_eq!(
+            (mesh.n_cells(), mesh.n_vertices(), mesh.n_faces()),
+            (1, 8, 6)
+        );
         assert!((mesh.volume(0) - 1.0).abs() < 1e-15);
         assert_eq!(mesh.part_names(), ["bottom face"]);
         let face = mesh.part_faces("bottom face").unwrap()[0];
@@ -482,7 +491,10 @@ mod tests {
         // Three tetrahedra on the face (1, 2, 5).
         let three = "3\n7 4 2 1 1 1 2 4 5\n8 4 2 1 1 1 2 5 7\n9 4 2 1 1 1 2 5 8\n";
         let message = error(&cube_msh(three, ""));
-        assert!(message.contains("is a face of the volume elements [7, 8, 9]"), "{message}");
+        assert!(
+            message.contains("is a face of the volume elements [7, 8, 9]"),
+            "{message}"
+        );
         // A surface element that is not a boundary face.
         let names = "$PhysicalNames\n1\n2 4 \"inside\"\n$EndPhysicalNames\n";
         let two = "3\n7 4 2 1 1 1 2 4 5\n8 4 2 1 1 2 3 4 7\n9 2 2 4 2 2 4 9\n";
@@ -493,9 +505,15 @@ mod tests {
         );
         // Second order and unknown types.
         let message = error(&cube_msh("1\n7 11 2 1 1 1 2 3 4 5 6 7 8 9 1\n", ""));
-        assert!(message.contains("element type 11 (Tet10) in volume entity 1: higher-order"), "{message}");
+        assert!(
+            message.contains("element type 11 (Tet10) in volume entity 1: higher-order"),
+            "{message}"
+        );
         let message = error(&cube_msh("1\n7 15 2 1 1 1\n", ""));
-        assert!(message.starts_with("cube.msh: the file contains no 3D elements"), "{message}");
+        assert!(
+            message.starts_with("cube.msh: the file contains no 3D elements"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -506,7 +524,8 @@ mod tests {
         // The top turned by half a turn: the four sides cross themselves.
         let message = error(&cube_msh("1\n7 5 2 1 1 1 2 3 4 7 8 5 6\n", ""));
         assert!(
-            message.contains("face 2 has the nodes [1, 2, 7, 8] and bounds the volume elements [7]"),
+            message
+                .contains("face 2 has the nodes [1, 2, 7, 8] and bounds the volume elements [7]"),
             "{message}"
         );
     }
@@ -514,7 +533,9 @@ mod tests {
     #[test]
     fn an_unnamed_surface_group_is_an_error() {
         let text = cube_msh("2\n7 5 2 1 1 1 2 3 4 5 6 7 8\n8 3 2 4 1 1 4 3 2\n", "");
-        assert!(error(&text).contains("physical surface group 4 (surface entities [1]) has no name"));
+        assert!(
+            error(&text).contains("physical surface group 4 (surface entities [1]) has no name")
+        );
     }
 
     #[test]

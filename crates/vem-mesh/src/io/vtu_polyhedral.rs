@@ -49,7 +49,11 @@ impl UnstructuredGrid {
 impl DataArray {
     /// A vector array in space: one vector per point or cell.
     pub fn vectors_3d(name: impl Into<String>, values: &[Vector3]) -> Self {
-        Self::new(name, 3, values.iter().flat_map(|v| [v.x, v.y, v.z]).collect())
+        Self::new(
+            name,
+            3,
+            values.iter().flat_map(|v| [v.x, v.y, v.z]).collect(),
+        )
     }
 }
 

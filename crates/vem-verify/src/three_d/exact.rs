@@ -143,10 +143,7 @@ impl Separable {
                 ];
                 // d^(a+b+c) / dx^a dy^b dz^c of the product.
                 let d = |orders: [usize; 3]| {
-                    term.coefficient
-                        * jets[0][orders[0]]
-                        * jets[1][orders[1]]
-                        * jets[2][orders[2]]
+                    term.coefficient * jets[0][orders[0]] * jets[1][orders[1]] * jets[2][orders[2]]
                 };
                 out.value += d([0, 0, 0]);
                 for j in 0..3 {

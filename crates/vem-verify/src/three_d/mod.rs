@@ -32,8 +32,8 @@ mod norms;
 mod study;
 
 pub use exact::{
-    solid_case_by_name, DivergenceFreeSolid, ExactSolution3d, LinearSolid, SmoothSolid,
-    CUBE_PARTS, SOLID_CASE_NAMES,
+    solid_case_by_name, DivergenceFreeSolid, ExactSolution3d, LinearSolid, SmoothSolid, CUBE_PARTS,
+    SOLID_CASE_NAMES,
 };
 pub use norms::{body_errors_3d, energy_error_3d, nodal_interpolant_3d, projection_errors_3d};
 pub use study::{

@@ -125,14 +125,18 @@ pub fn run_solid(
     let (body, displacement, errors) = solve_solid(Arc::clone(&exact), mesh, element)?;
     let interpolant = nodal_interpolant_3d(&*exact, body.mesh());
     let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, f64::max);
-    let difference = largest(&mut interpolant
-        .chunks(3)
-        .zip(displacement.chunks(3))
-        .map(|(a, b)| Vector3::from_column_slice(a) - Vector3::from_column_slice(b))
-        .map(|d| d.norm()));
-    let scale = largest(&mut interpolant
-        .chunks(3)
-        .map(|a| Vector3::from_column_slice(a).norm()));
+    let difference = largest(
+        &mut interpolant
+            .chunks(3)
+            .zip(displacement.chunks(3))
+            .map(|(a, b)| Vector3::from_column_slice(a) - Vector3::from_column_slice(b))
+            .map(|d| d.norm()),
+    );
+    let scale = largest(
+        &mut interpolant
+            .chunks(3)
+            .map(|a| Vector3::from_column_slice(a).norm()),
+    );
     Ok(SolidRun {
         case: exact.name().to_string(),
         family: family.name().to_string(),
@@ -144,7 +148,11 @@ pub fn run_solid(
         h,
         spacing: (1.0 / cells as f64).cbrt(),
         errors,
-        nodal_error: if scale > 0.0 { difference / scale } else { difference },
+        nodal_error: if scale > 0.0 {
+            difference / scale
+        } else {
+            difference
+        },
         seconds: start.elapsed().as_secs_f64(),
     })
 }
@@ -168,7 +176,12 @@ pub fn three_d_convergence(
     for case in cases {
         for &family in families {
             for &n in sizes {
-                runs.push(run_solid(Arc::clone(case), family, n, Arc::clone(&element))?);
+                runs.push(run_solid(
+                    Arc::clone(case),
+                    family,
+                    n,
+                    Arc::clone(&element),
+                )?);
             }
         }
     }
