@@ -1,6 +1,6 @@
 //! The convergence study in space: the exact solutions E1-3D (smooth, a traction side) and
 //! E2-3D (divergence free) and the patch test PT0-3D on every polyhedral family, with the
-//! lowest-order VEM; prints the runs and the fitted rates as Markdown (docs/convergence.md).
+//! lowest-order VEM; prints the runs and the fitted rates as Markdown (docs/convergence-3d.md).
 //!
 //! ```text
 //! cargo run --release -p vem-verify --example three_d_convergence              # n = 4, 8, 16

@@ -165,7 +165,7 @@ fn the_patch_test_is_exact_on_every_family_with_every_stabilisation() {
 #[test]
 fn every_family_converges_at_the_optimal_rates() {
     // For each family the two smallest sizes (n, then the finer one) already in the asymptotic
-    // range of both solutions (docs/convergence.md, "Three dimensions": coarser pairs give the
+    // range of both solutions (docs/convergence-3d.md: coarser pairs give the
     // lower pre-asymptotic slopes listed there); rates against the mean cell size.
     let plan = [
         (PolyhedralFamily::Hexahedra, [6, 12]),
