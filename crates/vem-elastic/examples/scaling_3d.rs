@@ -40,12 +40,12 @@ fn peak_memory_mib() -> f64 {
 
 /// The size parameter of `family` that gives about `dofs` unknowns (bottom clamped).
 fn size_for(family: PolyhedralFamily, dofs: f64) -> usize {
-    // Vertices per cell of the families (measured at n = 16): about 1 for the boxes, 6.7 for
-    // Voronoi, 4.6 for the octree, 2.2 for the chevron prisms.
+    // Vertices per n^3 of the families (measured at n = 12 and 17): 1 for the boxes, 5 for
+    // Voronoi, 8.3 for the octree, 2.3 for the chevron prisms.
     let vertices_per_cell = match family {
-        PolyhedralFamily::Voronoi => 6.7,
-        PolyhedralFamily::Octree => 4.6,
-        PolyhedralFamily::NonConvex => 2.2,
+        PolyhedralFamily::Voronoi => 5.0,
+        PolyhedralFamily::Octree => 8.3,
+        PolyhedralFamily::NonConvex => 2.3,
         _ => 1.0,
     };
     ((dofs / (3.0 * vertices_per_cell)).cbrt().round() as usize).max(2)

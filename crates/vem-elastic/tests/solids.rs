@@ -222,3 +222,50 @@ fn plane_stress_materials_are_refused_in_space() {
         .unwrap_err();
     assert!(matches!(err, ElasticError::InvalidMaterial { .. }), "{err}");
 }
+
+#[test]
+fn auto_orders_elasticity_in_space_by_nested_dissection_from_ten_thousand_unknowns() {
+    use vem_elastic::{elimination_order, Ordering};
+    // A cube of 14^3 hexahedra clamped at the bottom: 3 x 15 x 15 x 14 = 9450 unknowns (AMD),
+    // and of 15^3: 11520 (nested dissection). A planar body of 11552 unknowns stays with AMD.
+    let material = Material::isotropic(E, NU).unwrap();
+    let cube = |n: usize| {
+        let mesh = PolyhedralFamily::Hexahedra
+            .generate(&Cuboid::unit_cube(), n, 0)
+            .unwrap();
+        let body = ElasticBody::builder_polyhedral("cube", mesh, material, vem())
+            .clamp("bottom")
+            .build()
+            .unwrap();
+        let system = body.assemble().unwrap();
+        elimination_order(system.stiffness().symbolic(), &[], Ordering::Auto)
+            .unwrap()
+            .1
+    };
+    let expected = if Ordering::nested_dissection_available() {
+        Ordering::NestedDissection
+    } else {
+        Ordering::Amd
+    };
+    assert_eq!(cube(14), Ordering::Amd);
+    assert_eq!(cube(15), expected);
+    let square = vem_mesh::generators::structured_quads(
+        &vem_mesh::generators::Rectangle::unit_square(),
+        76,
+        76,
+    )
+    .unwrap();
+    let plate = ElasticBody::builder(
+        "plate",
+        square,
+        Material::from_lame(2.0, 1.0, vem_elastic::Plane::Strain).unwrap(),
+        Arc::new(vem_space::LowestOrderVem::default()),
+    )
+    .clamp("bottom")
+    .build()
+    .unwrap();
+    assert!(plate.dofs().n_free() > 11_000);
+    let system = plate.assemble().unwrap();
+    let (_, used) = elimination_order(system.stiffness().symbolic(), &[], Ordering::Auto).unwrap();
+    assert_eq!(used, Ordering::Amd);
+}
