@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p vem-elastic --example scaling_3d -- [--family hexahedra|voronoi|...]
-//!     [--dofs 1e5] [--ordering auto|amd|nd] [--faer]
+//!     [--dofs 1e5 | --n N] [--ordering auto|amd|nd] [--faer | --faer-nd]
 //! ```
 //!
 //! The unit cube meshed by `family` (about `dofs` unknowns), clamped at its bottom, a traction
@@ -12,15 +12,25 @@
 //! post-processing times (the steps of `ElasticBody::solve`), the stored entries of `K_ff` and
 //! of the factor, and the peak resident memory (VmHWM) after each phase. With `--faer` the same
 //! matrix is assembled and then solved by faer alone (`SymbolicLlt::try_new`,
-//! `Llt::try_new_with_symbolic`, `solve`, with faer's own defaults) instead. Run one size and
-//! mode per process so that the peak memory belongs to it.
+//! `Llt::try_new_with_symbolic`, `solve`, with faer's own defaults: its AMD ordering) instead;
+//! with `--faer-nd` by faer's symbolic and numeric Cholesky called directly
+//! (`factorize_symbolic_cholesky` with the nested-dissection order of `elimination_order`,
+//! `factorize_numeric_llt`, `solve_in_place_with_conj`), the same ordering as the project's
+//! solver: what remains is the cost of the project's layers. Run one size and mode per process
+//! so that the peak memory belongs to it.
 
 use std::sync::Arc;
 use std::time::Instant;
 
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::solvers::Solve;
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering,
+};
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::{Mat, Side};
+use faer::{Conj, Mat, Par, Side};
 use vem_elastic::{
     CholeskySettings, CholeskySolver, ElasticBody, LinearSolver, Material, Ordering,
 };
@@ -53,8 +63,9 @@ fn size_for(family: PolyhedralFamily, dofs: f64) -> usize {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (mut family, mut dofs, mut ordering, mut faer_only) =
-        (PolyhedralFamily::Hexahedra, 1e5, Ordering::Auto, false);
+    let (mut family, mut dofs, mut ordering, mut faer_only, mut faer_nd) =
+        (PolyhedralFamily::Hexahedra, 1e5, Ordering::Auto, false, false);
+    let mut size: Option<usize> = None;
     let mut i = 0;
     while i < args.len() {
         match (args[i].as_str(), args.get(i + 1)) {
@@ -63,8 +74,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 i += 1;
                 continue;
             }
+            ("--faer-nd", _) => {
+                faer_nd = true;
+                i += 1;
+                continue;
+            }
             ("--family", Some(name)) => family = name.parse()?,
             ("--dofs", Some(value)) => dofs = value.parse()?,
+            ("--n", Some(value)) => size = Some(value.parse()?),
             ("--ordering", Some(name)) => {
                 ordering = match name.as_str() {
                     "auto" => Ordering::Auto,
@@ -77,7 +94,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         i += 2;
     }
-    let n = size_for(family, dofs);
+    let n = size.unwrap_or_else(|| size_for(family, dofs));
     let clock = Instant::now();
     let mesh = family.generate(&Cuboid::unit_cube(), n, 1)?;
     let t_mesh = clock.elapsed().as_secs_f64();
@@ -113,6 +130,72 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "  assembly          {t_assembly:8.3} s   nnz(K_ff) = {nnz}   peak {:.0} MiB",
         peak_memory_mib()
     );
+
+    if faer_nd {
+        let k = system.stiffness().as_ref();
+        let n = k.nrows();
+        let clock = Instant::now();
+        let (order, _) = vem_elastic::elimination_order(
+            k.symbolic(),
+            &[],
+            Ordering::NestedDissection,
+        )?;
+        let t_order = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let mut inverse = vec![0usize; n];
+        for (new, &old) in order.iter().enumerate() {
+            inverse[old] = new;
+        }
+        let symbolic = factorize_symbolic_cholesky(
+            k.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(&order, &inverse, n)),
+            CholeskySymbolicParams::default(),
+        )?;
+        let t_symbolic = clock.elapsed().as_secs_f64();
+        let par = Par::rayon(0);
+        let clock = Instant::now();
+        let mut values = vec![0.0f64; symbolic.len_val()];
+        let mut scratch = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )?;
+        let llt = symbolic.factorize_numeric_llt(
+            &mut values,
+            k,
+            Side::Lower,
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        )?;
+        let t_numeric = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let mut x = Mat::from_fn(n, 1, |i, _| system.rhs()[i]);
+        let mut scratch =
+            MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))?;
+        llt.solve_in_place_with_conj(Conj::No, x.as_mut(), Par::Seq, MemStack::new(&mut scratch));
+        let t_solve = clock.elapsed().as_secs_f64();
+        let u: Vec<f64> = (0..n).map(|i| x[(i, 0)]).collect();
+        let energy = system.strain_energy(&system.expand(&u)?)?;
+        println!(
+            "  order (ND)        {t_order:8.3} s
+  faer symbolic     {t_symbolic:8.3} s   factor entries {}
+  faer numeric      {t_numeric:8.3} s   peak {:.0} MiB
+  faer solve        {t_solve:8.3} s   strain energy {energy:.9e}",
+            symbolic.len_val(),
+            peak_memory_mib()
+        );
+        let faer = t_order + t_symbolic + t_numeric + t_solve;
+        println!(
+            "| {} | {} | faer, ND order | {t_mesh:.2} | {t_assembly:.2} | {:.2} | {t_numeric:.2} | {t_solve:.3} | - | {faer:.2} | {:.3e} | {:.2} |",
+            family.name(),
+            body.dofs().n_unknowns(),
+            t_order + t_symbolic,
+            symbolic.len_val() as f64,
+            peak_memory_mib() / 1024.0
+        );
+        return Ok(());
+    }
 
     if faer_only {
         let k = system.stiffness().as_ref();
