@@ -63,8 +63,13 @@ fn size_for(family: PolyhedralFamily, dofs: f64) -> usize {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (mut family, mut dofs, mut ordering, mut faer_only, mut faer_nd) =
-        (PolyhedralFamily::Hexahedra, 1e5, Ordering::Auto, false, false);
+    let (mut family, mut dofs, mut ordering, mut faer_only, mut faer_nd) = (
+        PolyhedralFamily::Hexahedra,
+        1e5,
+        Ordering::Auto,
+        false,
+        false,
+    );
     let mut size: Option<usize> = None;
     let mut i = 0;
     while i < args.len() {
@@ -135,11 +140,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let k = system.stiffness().as_ref();
         let n = k.nrows();
         let clock = Instant::now();
-        let (order, _) = vem_elastic::elimination_order(
-            k.symbolic(),
-            &[],
-            Ordering::NestedDissection,
-        )?;
+        let (order, _) =
+            vem_elastic::elimination_order(k.symbolic(), &[], Ordering::NestedDissection)?;
         let t_order = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let mut inverse = vec![0usize; n];
@@ -171,8 +173,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t_numeric = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let mut x = Mat::from_fn(n, 1, |i, _| system.rhs()[i]);
-        let mut scratch =
-            MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))?;
+        let mut scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))?;
         llt.solve_in_place_with_conj(Conj::No, x.as_mut(), Par::Seq, MemStack::new(&mut scratch));
         let t_solve = clock.elapsed().as_secs_f64();
         let u: Vec<f64> = (0..n).map(|i| x[(i, 0)]).collect();
