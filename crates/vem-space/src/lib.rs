@@ -1,5 +1,5 @@
-//! The lowest-order virtual element on one polygon: geometry, energy projection,
-//! stabilisation, load term.
+//! The lowest-order virtual element on one polygon or one polyhedron: geometry, energy
+//! projection, stabilisation, load term.
 //!
 //! This is the place where a contributor adds a new element type: implement [`ElementSpace`]
 //! for it. The global assembly (`vem-elastic`) sees elements only through that trait.
@@ -18,6 +18,14 @@
 //! rules for others to reuse in [`quadrature`]. With the cargo feature `testkit`, the module
 //! `testkit` checks any [`ElementSpace`] on a standard set of polygons (rigid motions,
 //! consistency, rank, symmetry, patch test); `docs/elements.md` shows how to add an element.
+//!
+//! In three dimensions: [`PolyhedralElement`] is the element on one polyhedron
+//! (`vem_mesh::polyhedral::geometry::Polyhedron`), [`PolyhedralVem`] the lowest-order VEM on
+//! polyhedra (Gain, Talischi, Paulino 2014) with the same stabilisations
+//! ([`PolyhedralStabilisation`]), [`LinearTetrahedron`] the P1 tetrahedron written independently,
+//! [`PolyhedronGeometry`] the validated geometry, [`SolidElement`] the [`MeshElement<3>`] of any
+//! of them, [`face_traction_load`] the load of a traction on a face; the module `testkit3d`
+//! (feature `testkit`) checks a polyhedral element on a standard set of polyhedra.
 //!
 //! ```
 //! use nalgebra::DVector;
