@@ -3,8 +3,10 @@
 with meshio, and compares points, cells and arrays with FILE.json written beside it by
 vem-mesh (crates/vem-mesh/examples/vtu_samples.rs): values bit for bit, cell types, array types
 and numbers of components. Files whose JSON says "meshio": false (poly-lines, polyhedra: meshio
-does not read them) are checked with VTK only. A .pvd file in the folder is checked too: every
-dataset it names exists and VTK reads it.
+does not read them) are checked with VTK only; where the JSON gives a "volume", VTK's own cell
+volumes (vtkCellSizeFilter) must be positive and add up to it (to "volume_tolerance", relative,
+1e-10 by default). A .pvd file in the folder is
+checked too: every dataset it names exists and VTK reads it.
 
     cargo run --release -p vem-mesh --example vtu_samples -- target/vtu-check
     "$(scripts/install-vtu-check.sh | tail -n 1)" scripts/check-vtu.py target/vtu-check
@@ -83,6 +85,22 @@ def check_vtk(path, expected):
             stream = [ids.GetId(k) for k in range(ids.GetNumberOfIds())]
             start = 0 if c == 0 else max([o for o in expected["face_offsets"][:c] if o >= 0], default=0)
             same(f"VTK: faces of cell {c}", expected["faces"][start:expected["face_offsets"][c]], stream)
+    if expected.get("volume") is not None:
+        # VTK's own cell volumes (its polyhedra triangulate their faces themselves).
+        sizes = vtk.vtkCellSizeFilter()
+        sizes.SetInputData(grid)
+        sizes.ComputeVertexCountOff()
+        sizes.ComputeLengthOff()
+        sizes.ComputeAreaOff()
+        sizes.ComputeVolumeOn()
+        sizes.Update()
+        volumes = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume"))
+        if not (volumes > 0).all():
+            raise Mismatch(f"VTK: cell {int(numpy.argmin(volumes))} has volume {volumes.min()!r}")
+        tolerance = expected.get("volume_tolerance", 1e-10)
+        if abs(volumes.sum() - expected["volume"]) > tolerance * expected["volume"]:
+            raise Mismatch(f"VTK: the cells' volumes add up to {volumes.sum()!r}, "
+                           f"expected {expected['volume']!r}")
     for group, data in [("point_data", grid.GetPointData()), ("cell_data", grid.GetCellData())]:
         for array in expected[group]:
             found = data.GetArray(array["name"])

@@ -11,10 +11,12 @@
 //! - `interface`: interface node insertion (`insert_interface_nodes`) between two text meshes
 //!   (a first line `parts A B`, the meshes separated by a line `---`); seeds: pairs of generated
 //!   meshes of different sizes facing each other.
-//! - `polyhedral`: polyhedral mesh validation (`PolyhedralMesh::from_polyhedra`) and cell
-//!   quality on meshes written as text (`v x y z` vertices, `f i j k ...` faces of the current
-//!   cell, `c` ending a cell, `b part i j k ...` part faces); seeds: generated polyhedral
-//!   meshes of every family.
+//! - `polyhedral`: polyhedral mesh validation (`PolyhedralMesh::from_polyhedra`), cell quality
+//!   and the element on polyhedra (`PolyhedralVem`) on meshes written as text (`v x y z`
+//!   vertices, `f i j k ...` faces of the current cell, `c` ending a cell, `b part i j k ...`
+//!   part faces), and the 3D Gmsh reader (`read_gmsh_polyhedral_bytes`) on inputs that start
+//!   with `$MeshFormat`; seeds: generated polyhedral meshes of every family and the 3D Gmsh
+//!   corpus.
 //!
 //! Each input is a seed changed by one to four byte or structure mutations (bit flips, random
 //! bytes, deletions, duplications, splices with another seed, lines deleted, duplicated or
@@ -352,19 +354,41 @@ fn generated_meshes() -> Vec<Mesh> {
 }
 
 fn run_polyhedral(input: &[u8]) -> Verdict {
+    if input.starts_with(b"$MeshFormat") {
+        return match vem_mesh::io::read_gmsh_polyhedral_bytes(input, "fuzz.msh") {
+            Ok(mesh) => check_polyhedral(&mesh),
+            Err(_) => Verdict::Rejected,
+        };
+    }
     let (vertices, cells, parts) = decode_polyhedral(&String::from_utf8_lossy(input));
-    let mesh = match vem_mesh::PolyhedralMesh::from_polyhedra(vertices, &cells, parts) {
-        Ok(mesh) => mesh,
-        Err(_) => return Verdict::Rejected,
-    };
+    match vem_mesh::PolyhedralMesh::from_polyhedra(vertices, &cells, parts) {
+        Ok(mesh) => check_polyhedral(&mesh),
+        Err(_) => Verdict::Rejected,
+    }
+}
+
+/// Every cell of an accepted polyhedral mesh has a finite positive volume, finite quality
+/// figures, and a finite local stiffness of the element (or a clear element error).
+fn check_polyhedral(mesh: &vem_mesh::PolyhedralMesh) -> Verdict {
+    use vem_space::PolyhedralElement;
+    let element = vem_space::PolyhedralVem::default();
+    let identity = vem_verify::nalgebra::DMatrix::identity(6, 6);
+    let material = vem_space::ElasticityTensor::<3>::try_from_voigt_matrix(&identity)
+        .expect("the identity is an admissible tensor");
     for c in 0..mesh.n_cells() {
-        let (volume, centroid) = mesh.cell_polyhedron(c).volume_and_centroid();
+        let polyhedron = mesh.cell_polyhedron(c);
+        let (volume, centroid) = polyhedron.volume_and_centroid();
         if !(volume.is_finite() && volume > 0.0 && centroid.iter().all(|x| x.is_finite())) {
             return Verdict::NonFinite(format!("cell {c}: volume {volume}, centroid {centroid}"));
         }
         let quality = mesh.cell_quality(c);
         if !(quality.gamma().is_finite() && quality.face_warping.is_finite()) {
             return Verdict::NonFinite(format!("cell {c}: quality {quality:?}"));
+        }
+        if let Ok(local) = element.stiffness(&polyhedron, &material) {
+            if !local.total().iter().all(|k| k.is_finite()) {
+                return Verdict::NonFinite(format!("cell {c}: the local stiffness"));
+            }
         }
     }
     Verdict::Accepted
@@ -380,6 +404,10 @@ fn polyhedral_seeds() -> Vec<Vec<u8>> {
                 .expect("seed mesh");
             encode_polyhedral(&mesh).into_bytes()
         })
+        .chain(files_with_extension(
+            &workspace_root().join("crates/vem-mesh/tests/data/gmsh-corpus-3d"),
+            "msh",
+        ))
         .collect()
 }
 

@@ -46,6 +46,7 @@ impl NodeStatus {
 
 /// How many interface nodes are in each [`NodeStatus`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct StatusCounts {
     /// Open nodes.
     pub open: usize,

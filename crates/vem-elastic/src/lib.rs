@@ -30,6 +30,10 @@
 //!   free ([`ElasticBody::holds_rigid_motions`]); a held body with badly shaped elements is
 //!   solved if it can be to `1e-8`, else [`ElasticError::IllConditioned`] names the worst
 //!   element.
+//! - Bodies in space: [`ElasticBody::builder_polyhedral`] on a `vem_mesh::PolyhedralMesh` with a
+//!   `vem_space::PolyhedralElement` (parts are sets of boundary faces; tractions are integrated
+//!   over the faces against the element's trace); [`Material::isotropic`] and
+//!   [`Material::general_3d`] are the laws of a body in space.
 //! - Post-processing ([`Solution`], [`ElasticBody::element_fields`]): displacements, strain and
 //!   stress of `Pi u_h` per element, von Mises stress (plane strain includes
 //!   `sigma_zz = lambda tr eps`), strain energy `1/2 u^T K u`, reactions per Dirichlet part.
@@ -91,6 +95,7 @@ mod error;
 mod material;
 mod ordering;
 mod post;
+mod solid;
 mod solver;
 
 pub use assembly::AssembledSystem;

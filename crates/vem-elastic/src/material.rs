@@ -1,6 +1,7 @@
-//! Linear elastic materials: isotropic (plane strain or plane stress) and general anisotropic.
+//! Linear elastic materials: isotropic (plane strain or plane stress in 2D, the full law in
+//! 3D) and general anisotropic (a 3 x 3 plane law, or a 6 x 6 law in space).
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix6, Vector3};
 use vem_space::ElasticityTensor;
 
 use crate::ElasticError;
@@ -18,6 +19,13 @@ pub enum Plane {
 
 /// A linear elastic material, validated when built (spec (2.8)).
 ///
+/// In three dimensions ([`Material::elasticity_tensor`] with `D = 3`) an isotropic material is
+/// the full law of its Lame parameters: [`Material::isotropic`] builds one without naming a
+/// plane reduction (the reduction only matters for a planar body, where such a material is in
+/// plane strain, the exact restriction of the 3D law to `eps_zz = 0`); a material built with
+/// [`Plane::Stress`] describes a thin plate and is refused in 3D rather than silently taken as
+/// the 3D law. [`Material::general_3d`] is an anisotropic law in space (6 x 6 Voigt matrix).
+///
 /// ```
 /// use vem_elastic::{Material, Plane};
 /// let steel = Material::from_young_poisson(210e9, 0.3, Plane::Strain)?;
@@ -33,12 +41,18 @@ pub struct Material {
     kind: Kind,
 }
 
+// A material is a small value copied once per body: the 6 x 6 law inline (288 bytes) keeps it
+// `Copy`, which a boxed variant would not.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kind {
     /// Three-dimensional Lame parameters and the plane reduction.
     Isotropic { lambda: f64, mu: f64, plane: Plane },
     /// A general symmetric positive definite Voigt tensor.
     General { voigt: Matrix3<f64> },
+    /// A general symmetric positive definite Voigt tensor in space
+    /// (`[xx, yy, zz, yz, xz, xy]`, engineering shears).
+    General3 { voigt: Matrix6<f64> },
 }
 
 impl Material {
@@ -58,6 +72,37 @@ impl Material {
         let mu = e / (2.0 * (1.0 + nu));
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         Self::from_lame(lambda, mu, plane)
+    }
+
+    /// An isotropic material of a body in space from Young's modulus `e > 0` and Poisson's
+    /// ratio `nu` in (-1, 1/2): the full three-dimensional law, with no plane reduction to
+    /// choose. Used by a planar body it is in plane strain (the exact restriction of the 3D law
+    /// to `eps_zz = 0`), as [`Material::from_young_poisson`] with [`Plane::Strain`].
+    ///
+    /// ```
+    /// use vem_elastic::Material;
+    /// let steel = Material::isotropic(210e9, 0.3)?;
+    /// let c = steel.elasticity_tensor::<3>()?;
+    /// let (lambda, mu) = steel.lame().unwrap();
+    /// assert!((c.voigt_matrix()[(2, 2)] - (lambda + 2.0 * mu)).abs() < 1e-3);
+    /// assert!((c.voigt_matrix()[(3, 3)] - mu).abs() < 1e-3);
+    /// # Ok::<(), vem_elastic::ElasticError>(())
+    /// ```
+    pub fn isotropic(e: f64, nu: f64) -> Result<Self, ElasticError> {
+        Self::from_young_poisson(e, nu, Plane::Strain)
+    }
+
+    /// A general anisotropic material of a body in space from its 6 x 6 Voigt matrix
+    /// (`sigma = C eps`, `eps = [eps_xx, eps_yy, eps_zz, 2 eps_yz, 2 eps_xz, 2 eps_xy]`): finite,
+    /// symmetric, positive definite. Used by a planar body it is in plane strain: the in-plane
+    /// law is the block of rows and columns `[xx, yy, xy]`, and `sigma_zz` follows from the
+    /// row `zz`.
+    pub fn general_3d(voigt: Matrix6<f64>) -> Result<Self, ElasticError> {
+        let matrix = nalgebra::DMatrix::from_column_slice(6, 6, voigt.as_slice());
+        ElasticityTensor::<3>::try_from_voigt_matrix(&matrix).map_err(space_invalid)?;
+        Ok(Self {
+            kind: Kind::General3 { voigt },
+        })
     }
 
     /// An isotropic material from the three-dimensional Lame parameters: `mu > 0` and a
@@ -107,7 +152,7 @@ impl Material {
     pub fn lame(&self) -> Option<(f64, f64)> {
         match self.kind {
             Kind::Isotropic { lambda, mu, .. } => Some((lambda, mu)),
-            Kind::General { .. } => None,
+            Kind::General { .. } | Kind::General3 { .. } => None,
         }
     }
 
@@ -115,7 +160,7 @@ impl Material {
     pub fn plane(&self) -> Option<Plane> {
         match self.kind {
             Kind::Isotropic { plane, .. } => Some(plane),
-            Kind::General { .. } => None,
+            Kind::General { .. } | Kind::General3 { .. } => None,
         }
     }
 
@@ -124,7 +169,7 @@ impl Material {
     pub fn in_plane_lame(&self) -> Option<(f64, f64)> {
         match self.kind {
             Kind::Isotropic { lambda, mu, plane } => Some(in_plane(lambda, mu, plane)),
-            Kind::General { .. } => None,
+            Kind::General { .. } | Kind::General3 { .. } => None,
         }
     }
 
@@ -136,16 +181,33 @@ impl Material {
                 ElasticityTensor::try_isotropic(lambda, mu)
             }
             Kind::General { voigt } => ElasticityTensor::try_from_voigt(voigt),
+            Kind::General3 { voigt } => {
+                ElasticityTensor::try_from_voigt(plane_strain_block(&voigt))
+            }
         };
         tensor.map_err(space_invalid)
     }
 
     /// The elasticity tensor of a body in `D` dimensions: the in-plane tensor of
-    /// [`Material::tensor`] in 2D; in 3D the isotropic tensor of the Lame parameters (a general
-    /// tensor is a two-dimensional law and is refused).
+    /// [`Material::tensor`] in 2D; in 3D the isotropic tensor of the Lame parameters or the
+    /// 6 x 6 tensor of [`Material::general_3d`]. Refused in 3D: a general 2D Voigt tensor (a
+    /// plane law) and an isotropic material in plane stress (a thin-plate law).
     pub fn elasticity_tensor<const D: usize>(&self) -> Result<ElasticityTensor<D>, ElasticError> {
         let voigt = match (D, self.kind) {
             (2, _) => self.tensor()?.voigt_matrix(),
+            (
+                3,
+                Kind::Isotropic {
+                    plane: Plane::Stress,
+                    ..
+                },
+            ) => {
+                return Err(invalid(
+                    "a plane-stress material describes a thin plate, not a body in 3 \
+                     dimensions; build it with Material::isotropic (or Plane::Strain)"
+                        .into(),
+                ))
+            }
             (3, Kind::Isotropic { lambda, mu, .. }) => {
                 let mut c = nalgebra::DMatrix::zeros(6, 6);
                 for i in 0..3 {
@@ -155,6 +217,9 @@ impl Material {
                     c[(i + 3, i + 3)] = mu;
                 }
                 c
+            }
+            (3, Kind::General3 { voigt }) => {
+                nalgebra::DMatrix::from_column_slice(6, 6, voigt.as_slice())
             }
             _ => {
                 return Err(invalid(format!(
@@ -223,9 +288,19 @@ impl Material {
                 plane: Plane::Strain,
                 ..
             } => lambda * (strain[0] + strain[1]),
+            // Plane strain of a 3D law: the zz row on [xx, yy, xy].
+            Kind::General3 { voigt } => {
+                voigt[(2, 0)] * strain[0] + voigt[(2, 1)] * strain[1] + voigt[(2, 5)] * strain[2]
+            }
             _ => 0.0,
         }
     }
+}
+
+/// The plane-strain block `[xx, yy, xy]` of a 6 x 6 Voigt matrix.
+fn plane_strain_block(voigt: &Matrix6<f64>) -> Matrix3<f64> {
+    const IN_PLANE: [usize; 3] = [0, 1, 5];
+    Matrix3::from_fn(|i, j| voigt[(IN_PLANE[i], IN_PLANE[j])])
 }
 
 /// The in-plane Lame pair of a three-dimensional isotropic material.
@@ -336,6 +411,46 @@ mod tests {
             assert!(matches!(err, ElasticError::InvalidMaterial { .. }));
             assert!(err.to_string().contains(needle), "{err} lacks {needle}");
         }
+    }
+
+    #[test]
+    fn materials_in_space() {
+        // The isotropic law without a plane: lambda, mu from E, nu; the 3D tensor.
+        let m = Material::isotropic(8.0 / 3.0, 1.0 / 3.0).unwrap();
+        let c = m.elasticity_tensor::<3>().unwrap();
+        assert_relative_eq!(c.trace(), 3.0 * 2.0 + 9.0, max_relative = 1e-14);
+        // In a planar body it is plane strain.
+        let plane_strain = Material::from_young_poisson(8.0 / 3.0, 1.0 / 3.0, Plane::Strain);
+        assert_eq!(m.tensor().unwrap(), plane_strain.unwrap().tensor().unwrap());
+        // Plane stress is a thin-plate law: refused in space.
+        let plate = Material::from_lame(2.0, 1.0, Plane::Stress).unwrap();
+        let err = plate.elasticity_tensor::<3>().unwrap_err();
+        assert!(err.to_string().contains("thin plate"), "{err}");
+        // A general 3D law: the isotropic one entered by hand gives the same tensor, and its
+        // plane-strain block and sigma_zz are those of plane strain.
+        let voigt = Matrix6::from_fn(|i, j| c.voigt_matrix()[(i, j)]);
+        let general = Material::general_3d(voigt).unwrap();
+        assert_eq!(general.elasticity_tensor::<3>().unwrap(), c);
+        assert_eq!(general.tensor().unwrap(), m.tensor().unwrap());
+        let strain = Vector3::new(0.1, -0.2, 0.3);
+        assert_relative_eq!(
+            general.out_of_plane_stress(&strain),
+            m.out_of_plane_stress(&strain),
+            max_relative = 1e-14
+        );
+        let not_definite = Matrix6::from_fn(|i, j| {
+            if i == j {
+                if i == 4 {
+                    -1.0
+                } else {
+                    1.0
+                }
+            } else {
+                0.0
+            }
+        });
+        let err = Material::general_3d(not_definite).unwrap_err();
+        assert!(err.to_string().contains("positive definite"), "{err}");
     }
 
     #[test]

@@ -22,12 +22,17 @@ use crate::SolveError;
 /// `docs/benchmarks.md`): nested dissection gives the smaller factor and the fewer flops at
 /// every size from 10^4 unknowns on, and the gap grows with the size (factor 6 % smaller at
 /// 10^4, 20 % at 10^5, 30 % at 10^6, 34 % at 8·10^6; flops 10 %, 40 %, 55-60 %, 58 %), but
-/// it takes 2-3x AMD's time to compute. [`Ordering::Auto`] chooses by size.
+/// it takes 2-3x AMD's time to compute. In 3D (elasticity on polyhedra) nested dissection is
+/// 1.4x faster than AMD from 10^4 unknowns and 3-4x at 10^5. [`Ordering::Auto`] chooses by size
+/// and, below the 2D threshold, by the size of the supervariables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Ordering {
     /// [`Ordering::NestedDissection`] for at least
-    /// [`Ordering::NESTED_DISSECTION_MIN_UNKNOWNS`] unknowns to order (when it is available,
-    /// see [`Ordering::nested_dissection_available`]), [`Ordering::Amd`] below (the default).
+    /// [`Ordering::NESTED_DISSECTION_MIN_UNKNOWNS`] unknowns to order, or for at least
+    /// [`Ordering::NESTED_DISSECTION_MIN_UNKNOWNS_3D`] when the unknowns come in groups of three
+    /// with the same neighbours (the supervariables of an elasticity problem in space), when
+    /// nested dissection is available ([`Ordering::nested_dissection_available`]);
+    /// [`Ordering::Amd`] otherwise (the default).
     #[default]
     Auto,
     /// Approximate minimum degree (faer's built-in AMD) of the compressed graph.
@@ -48,13 +53,22 @@ impl Ordering {
     /// `docs/benchmarks.md`).
     pub const NESTED_DISSECTION_MIN_UNKNOWNS: usize = 200_000;
 
+    /// Unknowns to order from which [`Ordering::Auto`] takes nested dissection for a graph of
+    /// three-component supervariables (elasticity in space, the mean supervariable size at
+    /// least 2.5): there the separators are surfaces, AMD's fill grows much faster, and nested
+    /// dissection's analysis plus one factorisation is shorter from 10^4 unknowns on (hexahedra
+    /// 0.12 s against 0.17 s, Voronoi cells 0.26 against 0.36 s; at 10^5 3.9 against 13.2 s and
+    /// 10.2 against 29.7 s: `docs/benchmarks.md`, "Three dimensions").
+    pub const NESTED_DISSECTION_MIN_UNKNOWNS_3D: usize = 10_000;
+
     /// Whether [`Ordering::NestedDissection`] is compiled in (the `metis` feature).
     pub const fn nested_dissection_available() -> bool {
         cfg!(feature = "metis")
     }
 
-    /// The ordering used for `n` unknowns to order: [`Ordering::Auto`] resolved, the others as
-    /// they are.
+    /// The ordering used for `n` unknowns to order: [`Ordering::Auto`] resolved by the size
+    /// alone, the others as they are. ([`elimination_order`], which sees the graph, also applies
+    /// the rule of three-component supervariables of [`Ordering::Auto`].)
     pub fn resolve(self, n: usize) -> Ordering {
         match self {
             Ordering::Auto
@@ -115,7 +129,7 @@ pub fn elimination_order(
     for (k, &i) in leading.iter().enumerate() {
         local[i] = k;
     }
-    let used = ordering.resolve(leading.len());
+    let mut used = ordering.resolve(leading.len());
     let mut order = match used {
         Ordering::Natural | Ordering::Auto => leading.clone(),
         Ordering::Amd | Ordering::NestedDissection => {
@@ -123,6 +137,16 @@ pub fn elimination_order(
             drop(local);
             let (supervariables, quotient) = graph.compress();
             drop(graph);
+            // Auto below the 2D threshold: a graph of three-component supervariables.
+            let groups = supervariables.ptr.len().saturating_sub(1).max(1);
+            if ordering == Ordering::Auto
+                && used == Ordering::Amd
+                && Ordering::nested_dissection_available()
+                && leading.len() >= Ordering::NESTED_DISSECTION_MIN_UNKNOWNS_3D
+                && leading.len() as f64 >= 2.5 * groups as f64
+            {
+                used = Ordering::NestedDissection;
+            }
             let order = if used == Ordering::Amd {
                 quotient.amd()?
             } else {

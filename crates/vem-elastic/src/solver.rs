@@ -824,8 +824,19 @@ impl LinearSolver for CholeskySolver {
             SymbolicSparseColMatRef::new_unsorted_checked(n, n, &col_ptr, None, &row_idx),
             &permuted,
         );
+        // The factor is the largest allocation of a solve: ask for it first, so that a
+        // problem too large for the machine is an error naming the size, not an abort.
+        let needed = symbolic.len_val();
         values.clear();
-        values.resize(symbolic.len_val(), 0.0);
+        values
+            .try_reserve_exact(needed)
+            .map_err(|_| SolveError::Backend {
+                reason: format!(
+                    "cannot allocate the Cholesky factor: {needed} values ({:.1} GiB)",
+                    needed as f64 * 8.0 / f64::from(1u32 << 30)
+                ),
+            })?;
+        values.resize(needed, 0.0);
         let non_positive = |LltError::NonPositivePivot { index }| SolveError::NotPositiveDefinite {
             step: index.saturating_sub(1),
         };

@@ -25,8 +25,8 @@
 //! | feature | what it adds | extra dependencies |
 //! | --- | --- | --- |
 //! | `generators` | [`generators`]: structured, hexagonal, Voronoi, perturbed, ... meshes | `rand`, `rand_chacha` |
-//! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input | none |
-//! | `vtu` | `io::write_vtu`, `io::UnstructuredGrid`, `io::PvdCollection`: VTK `.vtu` output (ASCII, binary, zlib) and `.pvd` collections; `io::read_vtu`, `io::read_legacy_vtk`, `io::read_vtk_mesh`: VTK input | `miniz_oxide`, `roxmltree` |
+//! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input; `io::read_gmsh_polyhedral`: 3D meshes of tetrahedra, hexahedra, prisms and pyramids | none |
+//! | `vtu` | `io::write_vtu`, `io::write_polyhedral_vtu`, `io::UnstructuredGrid`, `io::PvdCollection`: VTK `.vtu` output (ASCII, binary, zlib; polygons and polyhedra) and `.pvd` collections; `io::read_vtu`, `io::read_legacy_vtk`, `io::read_vtk_mesh`: VTK input | `miniz_oxide`, `roxmltree` |
 //! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes (large ones with an embedded PNG) | `miniz_oxide` |
 //!
 //! `io::read_polymesher` (PolyMesher/mVEM meshes exported as text) needs no feature.
@@ -37,7 +37,8 @@
 //! space, polygonal faces stored once with their one or two cells, cells as lists of oriented
 //! faces, derived edges and named boundary parts made of boundary faces; its generators (hexahedra,
 //! tetrahedra, perturbed hexahedra, Voronoi, non-convex prisms, octree cubes with hanging nodes)
-//! are in `generators::polyhedral` behind the `generators` feature.
+//! are in `generators::polyhedral` behind the `generators` feature. It is the [`BodyMesh<3>`]
+//! of a body in space.
 #![deny(missing_docs)]
 
 mod body_mesh;

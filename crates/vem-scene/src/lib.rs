@@ -72,8 +72,7 @@ pub use build::{BuildOptions, Model, ModelBody, ModelContact, Registries};
 pub use description::Scene;
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
 pub use solve::{
-    describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison,
-    NodeCounts, Outcome, ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody,
-    StepSummary,
+    describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison, Outcome,
+    ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody, StepSummary,
 };
 pub use value::{ScalarFunction, ScalarValue, VectorValue};

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 use vem_contact::{
     ContactError, ContactResult, ContactSolverError, FixedPointReport, InterfaceNode, ModelSummary,
-    NodeStatus, SolveReport, Warning, WorkCounters,
+    NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::quality::ElementQuality;
@@ -145,7 +145,7 @@ pub struct ContactSummary {
     /// Resultant contact forces.
     pub resultants: Resultants,
     /// Node statuses.
-    pub nodes: NodeCounts,
+    pub nodes: StatusCounts,
     /// Warnings about the answer (solver and model), one sentence each.
     pub warnings: Vec<String>,
     /// The Hertz comparison of every pair that asks for it.
@@ -162,7 +162,7 @@ pub struct StepSummary {
     /// Sum of the nodal normal forces.
     pub normal_resultant: f64,
     /// Node statuses.
-    pub nodes: NodeCounts,
+    pub nodes: StatusCounts,
 }
 
 /// Resultant contact forces.
@@ -176,21 +176,6 @@ pub struct Resultants {
     /// The total contact force on body A of the first pair (a vector; its y component is the
     /// load `P` of a body pressed down onto its counterpart).
     pub force_on_body_a: Vec<f64>,
-}
-
-/// Interface node statuses.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct NodeCounts {
-    /// All interface nodes.
-    pub total: usize,
-    /// Open (no contact force).
-    pub open: usize,
-    /// Stick.
-    pub stick: usize,
-    /// Slip (friction at its bound).
-    pub slip: usize,
-    /// In contact without friction (frictionless laws).
-    pub contact: usize,
 }
 
 /// Wall-clock times in seconds.
@@ -365,18 +350,6 @@ fn tidy(value: f64) -> f64 {
     value + 0.0
 }
 
-fn node_counts(result: &ContactResult) -> NodeCounts {
-    let (open, stick, slip) = result.status_counts();
-    let frictionless = result.model.tangential_rows == 0;
-    NodeCounts {
-        total: result.nodes.len(),
-        open,
-        stick: if frictionless { 0 } else { stick },
-        slip: if frictionless { 0 } else { slip },
-        contact: if frictionless { slip + stick } else { 0 },
-    }
-}
-
 /// "initial gaps from g0 to g1 at its N nodes" for an interface without overlap.
 fn gap_range(nodes: &[vem_contact::ContactNode]) -> String {
     let (lo, hi) = nodes
@@ -472,7 +445,7 @@ impl Model {
                 history.push(StepSummary {
                     load_factor: factor,
                     normal_resultant: tidy(result.normal_resultant()),
-                    nodes: node_counts(&result),
+                    nodes: result.status_counts(),
                 });
                 last = Some(result);
             }
@@ -648,7 +621,7 @@ impl Model {
                         .collect(),
                     force_on_body_a: force.iter().map(|&f| tidy(f)).collect(),
                 },
-                nodes: node_counts(result),
+                nodes: result.status_counts(),
                 warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
                 hertz,
                 history: if history.len() > 1 {
@@ -822,13 +795,18 @@ impl fmt::Display for RunSummary {
             writeln!(
                 f,
                 "    nodes: {} ({} open, {} in contact)",
-                n.total, n.open, n.contact
+                n.total(),
+                n.open,
+                n.contact
             )?;
         } else {
             writeln!(
                 f,
                 "    nodes: {} ({} open, {} stick, {} slip)",
-                n.total, n.open, n.stick, n.slip
+                n.total(),
+                n.open,
+                n.stick,
+                n.slip
             )?;
         }
         for step in &c.history {

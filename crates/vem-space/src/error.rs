@@ -56,6 +56,47 @@ pub enum SpaceError {
         /// Largest tabulated number of points.
         max: usize,
     },
+    /// The polyhedron cannot carry an element (too few vertices or faces, faces that do not
+    /// close or are not consistently oriented, a volume that is not positive, ...).
+    #[error("degenerate polyhedron with {vertices} vertices and {faces} faces: {reason}")]
+    DegeneratePolyhedron {
+        /// Number of vertices.
+        vertices: usize,
+        /// Number of faces.
+        faces: usize,
+        /// What is wrong, naming the vertex or face.
+        reason: String,
+    },
+    /// The element type cannot handle this polyhedron (e.g. a linear tetrahedron given a
+    /// hexahedron).
+    #[error("element '{element}' does not support a polyhedron with {vertices} vertices and {faces} faces")]
+    UnsupportedPolyhedron {
+        /// Name of the element type.
+        element: String,
+        /// Number of vertices of the polyhedron.
+        vertices: usize,
+        /// Number of faces of the polyhedron.
+        faces: usize,
+    },
+    /// A body force or traction returned a non-finite value at a point of space.
+    #[error("non-finite load value at ({x}, {y}, {z})")]
+    NonFiniteLoadInSpace {
+        /// x of the evaluation point.
+        x: f64,
+        /// y of the evaluation point.
+        y: f64,
+        /// z of the evaluation point.
+        z: f64,
+    },
+    /// A boundary face (of a traction) has fewer than three vertices, non-finite vertices or
+    /// zero area.
+    #[error("degenerate face with {vertices} vertices: {reason}")]
+    DegenerateFace {
+        /// Number of vertices.
+        vertices: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// The stabilisation's settings or values are not admissible (a non-positive or non-finite
     /// scale, a diagonal of the wrong length or with a non-positive entry).
     #[error("invalid stabilisation '{stabilisation}': {reason}")]

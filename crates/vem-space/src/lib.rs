@@ -1,5 +1,5 @@
-//! The lowest-order virtual element on one polygon: geometry, energy projection,
-//! stabilisation, load term.
+//! The lowest-order virtual element on one polygon or one polyhedron: geometry, energy
+//! projection, stabilisation, load term.
 //!
 //! This is the place where a contributor adds a new element type: implement [`ElementSpace`]
 //! for it. The global assembly (`vem-elastic`) sees elements only through that trait.
@@ -18,6 +18,14 @@
 //! rules for others to reuse in [`quadrature`]. With the cargo feature `testkit`, the module
 //! `testkit` checks any [`ElementSpace`] on a standard set of polygons (rigid motions,
 //! consistency, rank, symmetry, patch test); `docs/elements.md` shows how to add an element.
+//!
+//! In three dimensions: [`PolyhedralElement`] is the element on one polyhedron
+//! (`vem_mesh::polyhedral::geometry::Polyhedron`), [`PolyhedralVem`] the lowest-order VEM on
+//! polyhedra (Gain, Talischi, Paulino 2014) with the same stabilisations
+//! ([`PolyhedralStabilisation`]), [`LinearTetrahedron`] the P1 tetrahedron written independently,
+//! [`PolyhedronGeometry`] the validated geometry, [`SolidElement`] the [`MeshElement<3>`] of any
+//! of them, [`face_traction_load`] the load of a traction on a face; the module `testkit3d`
+//! (feature `testkit`) checks a polyhedral element on a standard set of polyhedra.
 //!
 //! ```
 //! use nalgebra::DVector;
@@ -47,13 +55,20 @@ mod material;
 mod mesh_element;
 mod options;
 mod p1;
+mod p1_tetrahedron;
 mod polygon;
+mod polyhedral;
+mod polyhedron;
 pub mod quadrature;
 mod registry;
 mod stabilisation;
+mod stabilisation3;
 #[cfg(feature = "testkit")]
 pub mod testkit;
+#[cfg(feature = "testkit")]
+pub mod testkit3d;
 mod vem;
+mod vem3;
 
 pub use error::SpaceError;
 pub use load::edge_traction_load;
@@ -61,15 +76,22 @@ pub use material::{voigt_len, voigt_pairs, ElasticityTensor};
 pub use mesh_element::{DofLayout, FieldOf, MeshElement, PlanarElement};
 pub use options::{Options, OptionsError};
 pub use p1::LinearTriangle;
+pub use p1_tetrahedron::LinearTetrahedron;
 pub use polygon::PolygonGeometry;
+pub use polyhedral::{face_traction_load, PolyhedralElement, SolidElement, SpaceField};
+pub use polyhedron::PolyhedronGeometry;
 pub use registry::{
     Choice, ElementRegistry, Factory, Registry, RegistryError, StabilisationRegistry,
 };
 pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
+pub use stabilisation3::{
+    bulk_modulus_3d, deviatoric_part, stabilisation_length, PolyhedralStabilisation,
+};
 pub use vem::LowestOrderVem;
+pub use vem3::PolyhedralVem;
 
-use nalgebra::{DMatrix, DVector, Matrix2, SMatrix};
-pub use vem_mesh::{Point, PointD, Vector, VectorD};
+use nalgebra::{DMatrix, DVector, SMatrix};
+pub use vem_mesh::{Point, Point3, PointD, Vector, Vector3, VectorD};
 
 /// The local stiffness of one polygon, split into its two parts
 /// `K_T = consistency + stabilisation` (spec section 2).
@@ -88,38 +110,54 @@ impl LocalStiffness {
     }
 }
 
-/// The energy projection `Pi: V_h(T) -> P1(T)^2` of one polygon as a linear map of the local
-/// degrees of freedom: `Pi v (x) = value_at_reference + gradient (x - reference)`.
+/// The energy projection `Pi: V_h(E) -> P1(E)^D` of one cell (a polygon in 2D, a polyhedron in
+/// 3D; `D = 2` by default) as a linear map of the local degrees of freedom:
+/// `Pi v (x) = value_at_reference + gradient (x - reference)`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct EnergyProjection {
+pub struct EnergyProjection<const D: usize = 2> {
     /// The point about which the projected polynomial is expanded.
-    pub reference: Point,
-    /// Rows: `[value_x, value_y, d_x v_x, d_y v_x, d_x v_y, d_y v_y]` of `Pi v`, as a linear map of
-    /// the 2n local DOFs (a 6 x 2n matrix).
+    pub reference: PointD<D>,
+    /// Rows: the `D` values of `Pi v` at the reference point, then its gradient row by row
+    /// (`d_j (Pi v)_i` in row `D + D i + j`), as a linear map of the local DOFs: in 2D
+    /// `[value_x, value_y, d_x v_x, d_y v_x, d_x v_y, d_y v_y]` (6 x 2n), in 3D 12 x 3n.
     pub coefficients: DMatrix<f64>,
 }
 
-impl EnergyProjection {
+impl<const D: usize> EnergyProjection<D> {
     /// The projected polynomial of the DOF vector `dofs`, evaluated at `x`.
-    pub fn evaluate(&self, dofs: &DVector<f64>, x: Point) -> Vector {
+    pub fn evaluate(&self, dofs: &DVector<f64>, x: PointD<D>) -> VectorD<D> {
         let c = &self.coefficients * dofs;
         let d = x - self.reference;
-        Vector::new(
-            c[0] + c[2] * d.x + c[3] * d.y,
-            c[1] + c[4] * d.x + c[5] * d.y,
-        )
+        VectorD::<D>::from_fn(|i, _| c[i] + (0..D).map(|j| c[D + D * i + j] * d[j]).sum::<f64>())
     }
 
     /// The (constant) gradient of `Pi v`: entry (i, j) is d_j (Pi v)_i.
-    pub fn gradient(&self, dofs: &DVector<f64>) -> Matrix2<f64> {
+    pub fn gradient(&self, dofs: &DVector<f64>) -> SMatrix<f64, D, D> {
         let c = &self.coefficients * dofs;
-        Matrix2::new(c[2], c[3], c[4], c[5])
+        SMatrix::<f64, D, D>::from_fn(|i, j| c[D + D * i + j])
     }
+}
 
+impl EnergyProjection<2> {
     /// The (constant) strain of `Pi v` in Voigt notation `[xx, yy, 2 xy]`.
     pub fn strain(&self, dofs: &DVector<f64>) -> SMatrix<f64, 3, 1> {
         let g = self.gradient(dofs);
         SMatrix::<f64, 3, 1>::new(g[(0, 0)], g[(1, 1)], g[(0, 1)] + g[(1, 0)])
+    }
+}
+
+impl EnergyProjection<3> {
+    /// The (constant) strain of `Pi v` in Voigt notation `[xx, yy, zz, 2 yz, 2 xz, 2 xy]`.
+    pub fn strain(&self, dofs: &DVector<f64>) -> SMatrix<f64, 6, 1> {
+        let g = self.gradient(dofs);
+        SMatrix::<f64, 6, 1>::from_column_slice(&[
+            g[(0, 0)],
+            g[(1, 1)],
+            g[(2, 2)],
+            g[(1, 2)] + g[(2, 1)],
+            g[(0, 2)] + g[(2, 0)],
+            g[(0, 1)] + g[(1, 0)],
+        ])
     }
 }
 

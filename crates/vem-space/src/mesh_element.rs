@@ -3,8 +3,10 @@
 //! projection.
 //!
 //! Element types are written per dimension, where the geometry differs: [`ElementSpace`] on a
-//! polygon in 2D. [`MeshElement<D>`] is the seam the layers above program against, once for
-//! `d = 2` and `d = 3`; [`PlanarElement`] makes every [`ElementSpace`] one for `D = 2`.
+//! polygon in 2D, [`PolyhedralElement`] on a polyhedron in 3D. [`MeshElement<D>`] is the seam
+//! the layers above program against, once for `d = 2` and `d = 3`; [`PlanarElement`] makes every
+//! [`ElementSpace`] one for `D = 2`, [`crate::SolidElement`] every [`PolyhedralElement`] one for
+//! `D = 3`.
 
 use std::fmt;
 use std::sync::Arc;
@@ -12,7 +14,10 @@ use std::sync::Arc;
 use nalgebra::{DVector, SMatrix};
 use vem_mesh::{BodyMesh, Point, PointD, VectorD};
 
-use crate::{edge_traction_load, ElasticityTensor, ElementSpace, LocalStiffness, SpaceError};
+use crate::{
+    edge_traction_load, ElasticityTensor, ElementSpace, LocalStiffness, PolyhedralElement,
+    SpaceError,
+};
 
 /// The local degrees of freedom an element declares on one cell, in its local order.
 ///
@@ -101,6 +106,12 @@ pub trait MeshElement<const D: usize>: Send + Sync {
     /// The polygonal element behind this one, when it is one (`D = 2`): for the code that
     /// needs its energy projection as a polynomial (error norms).
     fn as_planar(&self) -> Option<&dyn ElementSpace> {
+        None
+    }
+
+    /// The polyhedral element behind this one, when it is one (`D = 3`): for the code that
+    /// needs its energy projection as a polynomial (error norms).
+    fn as_polyhedral(&self) -> Option<&dyn PolyhedralElement> {
         None
     }
 }

@@ -14,7 +14,9 @@
 //! - [`diagnostics`]: resultants, switch points and expected sets of contact solutions;
 //! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
 //! - [`cases`]: the registry of cases by name (built-in and a user's own) the tools run;
-//! - [`report`]: Markdown tables, log-log SVG plots and JSON.
+//! - [`report`]: Markdown tables, log-log SVG plots and JSON;
+//! - [`three_d`]: the same in space: exact solutions on the unit cube, errors on polyhedral
+//!   meshes, the patch test and the convergence study on every polyhedral family.
 //!
 //! ```
 //! use vem_verify::{all_cases, BodyId, ExactSolution, Lame};
@@ -46,6 +48,7 @@ pub mod norms;
 pub mod problem;
 pub mod report;
 pub mod study;
+pub mod three_d;
 
 pub use error::VerifyError;
 pub use exact::{

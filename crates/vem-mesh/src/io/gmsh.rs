@@ -75,14 +75,14 @@ pub fn read_gmsh_bytes(bytes: &[u8], name: impl AsRef<Path>) -> Result<Mesh, Mes
 
 /// Node tags to positions in the `$Nodes` section: a table indexed by tag when the tags are
 /// dense (as Gmsh writes them), else the tags sorted for binary search.
-enum TagIndex {
+pub(super) enum TagIndex {
     Dense(Vec<u32>),
     Sorted(Vec<(u64, u32)>),
 }
 
 impl TagIndex {
     /// The index of `nodes` (whose tags are distinct: the parser checks).
-    fn new(nodes: &[super::MshNode]) -> Result<Self, String> {
+    pub(super) fn new(nodes: &[super::MshNode]) -> Result<Self, String> {
         if u32::try_from(nodes.len()).is_err() {
             return Err(format!(
                 "{} nodes are more than this reader takes",
@@ -108,7 +108,7 @@ impl TagIndex {
     }
 
     /// The position of the node with tag `tag`.
-    fn get(&self, tag: u64) -> Option<usize> {
+    pub(super) fn get(&self, tag: u64) -> Option<usize> {
         match self {
             TagIndex::Dense(table) => match table.get(usize::try_from(tag).ok()?) {
                 Some(&i) if i != u32::MAX => Some(i as usize),
@@ -351,7 +351,9 @@ fn unsupported_element(element_type: i32, dim: i32, entity_tag: i32) -> String {
              (gmsh -order 1)"
         )
     } else if dim == 3 {
-        "3D elements are not supported; the mesh must be 2D".to_string()
+        "3D elements are not supported here; the mesh must be 2D (read a 3D mesh with \
+         read_gmsh_polyhedral)"
+            .to_string()
     } else {
         "only points (15), 2-node lines (1), 3-node triangles (2) and 4-node quadrangles (3) \
          are supported"
@@ -392,8 +394,8 @@ mod tests {
         let err = read_gmsh_bytes(text.as_bytes(), "tet.msh").unwrap_err();
         assert_eq!(
             err.to_string(),
-            "tet.msh: element type 4 (Tet4) in volume entity 9: 3D elements are not supported; \
-             the mesh must be 2D"
+            "tet.msh: element type 4 (Tet4) in volume entity 9: 3D elements are not supported \
+             here; the mesh must be 2D (read a 3D mesh with read_gmsh_polyhedral)"
         );
     }
 

@@ -24,6 +24,8 @@
 #[cfg(feature = "gmsh")]
 mod gmsh;
 #[cfg(feature = "gmsh")]
+mod gmsh3d;
+#[cfg(feature = "gmsh")]
 mod msh;
 mod polymesher;
 #[cfg(feature = "svg")]
@@ -36,9 +38,13 @@ mod vtk;
 mod vtk_read;
 #[cfg(feature = "vtu")]
 mod vtu;
+#[cfg(feature = "vtu")]
+mod vtu_polyhedral;
 
 #[cfg(feature = "gmsh")]
 pub use gmsh::{read_gmsh, read_gmsh_bytes};
+#[cfg(feature = "gmsh")]
+pub use gmsh3d::{read_gmsh_polyhedral, read_gmsh_polyhedral_bytes};
 #[cfg(feature = "gmsh")]
 pub use msh::{
     element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,
@@ -58,6 +64,8 @@ pub use vtk_read::{
 };
 #[cfg(feature = "vtu")]
 pub use vtu::{write_vtu, write_vtu_with, DataArray, VtuData};
+#[cfg(feature = "vtu")]
+pub use vtu_polyhedral::{write_polyhedral_vtu, write_polyhedral_vtu_with};
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};

@@ -146,21 +146,22 @@ pub fn write_vtu_with(
         path: path.to_path_buf(),
         reason,
     };
-    check_arrays("point", &data.point_data, mesh.n_vertices()).map_err(fail)?;
-    check_arrays("cell", &data.cell_data, mesh.n_polygons()).map_err(fail)?;
+    check_arrays("point", &data.point_data, mesh.n_vertices(), "vertices").map_err(fail)?;
+    check_arrays("cell", &data.cell_data, mesh.n_polygons(), "polygons").map_err(fail)?;
     let mut grid = UnstructuredGrid::from_mesh(mesh);
     grid.point_data = data.point_data.iter().map(DataArray::to_vtk).collect();
     grid.cell_data = data.cell_data.iter().map(DataArray::to_vtk).collect();
     grid.write(path, encoding)
 }
 
-/// Checks the arrays of one group ("point" or "cell") against the number of entries.
-fn check_arrays(group: &str, arrays: &[DataArray], entries: usize) -> Result<(), String> {
-    let what = if group == "point" {
-        "vertices"
-    } else {
-        "polygons"
-    };
+/// Checks the arrays of one group ("point" or "cell") against the number of entries (`what`:
+/// "vertices", "polygons", "cells").
+pub(super) fn check_arrays(
+    group: &str,
+    arrays: &[DataArray],
+    entries: usize,
+    what: &str,
+) -> Result<(), String> {
     for (i, array) in arrays.iter().enumerate() {
         let label = format!("{group}-data array '{}'", array.name);
         if array.name.trim().is_empty() {
