@@ -121,7 +121,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             iterations += f.solver_iterations;
         }
         if k + 1 == steps {
-            let (open, stick, slip) = result.status_counts();
+            let counts = result.status_counts();
+            let (open, stick, slip) = (counts.open, counts.stick, counts.slip);
             let force = result.force_on_body_a();
             println!(
                 "last step: P = {:.6}, Q = {:.6}, open / stick / slip nodes {open} / {stick} / {slip}",

@@ -206,14 +206,24 @@ fn vem1_bbar_does_not_lock_on_e2c_and_keeps_every_node_in_contact() {
 
 #[test]
 fn vem1_bbar_is_the_default_element_at_moderate_lambda() {
-    // lambda <= 2 mu: the same local matrices, so the same errors to the last bit (E1 at
-    // nu = 0.3 and M1 at the reference material lambda = 2, mu = 1).
+    // lambda <= 2 mu: the same local matrices, so the same errors to round-off (E1 at
+    // nu = 0.3 and M1 at the reference material lambda = 2, mu = 1; the contact solve of M1
+    // sums in parallel, so the last bit may differ).
     for (name, material, family) in [
         ("E1", lame(0.3), MeshFamily::Voronoi),
         ("M1", Lame::default(), MeshFamily::Quads),
     ] {
         let (default, _) = errors(name, material, family, "vem1", &[4, 8]);
         let (bbar, _) = errors(name, material, family, "vem1-bbar", &[4, 8]);
-        assert_eq!(default, bbar, "{name}");
+        for (a, b) in [
+            (default.grad, bbar.grad),
+            (default.l2, bbar.l2),
+            (default.energy, bbar.energy),
+        ] {
+            assert!(
+                (a - b).abs() <= 1e-13 * a.abs(),
+                "{name}: {default:?} {bbar:?}"
+            );
+        }
     }
 }

@@ -18,16 +18,14 @@ use clap::{Args, ValueEnum};
 use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use vem_contact::{
-    ContactLaw, ContactProblem, Coulomb, Frictionless, SolverOptions, SolverRegistry,
-};
+use vem_contact::{ContactLaw, ContactProblem, Coulomb, Frictionless, SolverRegistry};
 use vem_elastic::{
     CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
     Plane,
 };
 use vem_mesh::generators::{structured_quads, voronoi, MeshFamily, Rectangle};
 use vem_mesh::{Mesh, Point, Vector};
-use vem_space::LowestOrderVem;
+use vem_space::{LowestOrderVem, Options};
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 use vem_verify::report::{write_json, write_text};
@@ -273,7 +271,7 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
         n,
         ..Measurement::default()
     };
-    let mut solver = SolverRegistry::builtin().make(&args.solver, &SolverOptions::default())?;
+    let mut solver = SolverRegistry::builtin().make(&args.solver, &Options::new())?;
     let start = Instant::now();
     let problem = problem(args.case, n)?;
     m.mesh_generation = seconds(start.elapsed());

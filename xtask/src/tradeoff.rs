@@ -21,9 +21,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use vem_contact::{
     AccuracyPreset, ContactDiscretisation, ContactResult, ErrorModel, PenaltyParameter,
-    SolverOptions, SolverRegistry,
+    SolverRegistry,
 };
-use vem_space::ElementRegistry;
+use vem_space::{ElementRegistry, Options};
 use vem_verify::diagnostics::contact_diagnostics;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::norms::ErrorNorms;
@@ -84,7 +84,7 @@ impl Problem {
 struct Setting {
     label: String,
     solver: String,
-    options: SolverOptions,
+    options: Options,
 }
 
 fn parse_setting(label: &str) -> Result<Setting, String> {
@@ -99,7 +99,7 @@ fn parse_setting(label: &str) -> Result<Setting, String> {
         Some((s, o)) => (s, Some(o)),
         None => (label, None),
     };
-    let mut options = SolverOptions::default();
+    let mut options = Options::new();
     if let Some(option) = option {
         let (key, value) = option
             .split_once('=')
@@ -108,9 +108,9 @@ fn parse_setting(label: &str) -> Result<Setting, String> {
             .parse()
             .map_err(|_| format!("setting '{label}': '{value}' is not a number"))?;
         options = match key {
-            "tol" => options.tolerance(value),
-            "factor" => options.penalty(PenaltyParameter::RelativeToStiffness(value)),
-            "aug" => options.augmentation(PenaltyParameter::RelativeToStiffness(value)),
+            "tol" => options.with("tolerance", value),
+            "factor" => options.with("penalty", PenaltyParameter::RelativeToStiffness(value)),
+            "aug" => options.with("augmentation", PenaltyParameter::RelativeToStiffness(value)),
             _ => {
                 return Err(format!(
                     "setting '{label}': unknown key '{key}' (tol, factor, aug)"

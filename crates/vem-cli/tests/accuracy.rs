@@ -79,9 +79,9 @@ fn a_target_error_sizes_the_meshes_without_n_and_picks_the_solver() {
     assert!(lower
         .predicted_error
         .is_some_and(|e| (e - expected).abs() < 1e-12));
-    let contact = model.contact().unwrap();
-    assert_eq!(contact.solver, AccuracyPreset::Draft.solver());
-    assert_eq!(contact.options, AccuracyPreset::Draft.solver_options());
+    let solver = model.problem().solver();
+    assert_eq!(solver.name, AccuracyPreset::Draft.solver());
+    assert_eq!(solver.options, AccuracyPreset::Draft.solver_options());
 }
 
 #[test]

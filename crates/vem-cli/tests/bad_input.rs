@@ -125,46 +125,46 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
         (
             "E = 100.0",
             "E = 1e308",
-            "material",
-            "`E` of body 'block' = 1e308",
+            "E = 1e308",
+            "`body[0].material.E` = 1e308",
         ),
         ("E = 100.0", "E = 1e155", "material", "out of range"),
         (
             "E = 100.0, nu = 0.3",
             "lambda = 1.7976931348623157e308, mu = 1.0",
-            "material",
-            "`lambda` of body 'block'",
+            "lambda = 1.79",
+            "`body[0].material.lambda`",
         ),
-        // Keys of a table entry are located at the entry (`[[body.traction]]`).
+        // Keys are located at their value, also inside a table entry (`[[body.traction]]`).
         (
             "pressure = 0.5",
             "pressure = 1e300",
-            "[[body.traction]]",
-            "`pressure` of the traction on part 'top' of body 'block'",
+            "pressure = 1e300",
+            "`body[0].traction[0].pressure`",
         ),
         (
             "pressure = 0.5",
             "pressure = nan",
-            "[[body.traction]]",
+            "pressure = nan",
             "must be finite",
         ),
         (
             "[2, 1]]",
             "[2, 1e200]]",
             "rectangle",
-            "`rectangle` of body 'block'",
+            "`body[0].mesh.rectangle[1][1]`",
         ),
         (
             "x = 0.0",
             "x = inf",
-            "[[body.dirichlet]]",
-            "`x` of the Dirichlet condition on part 'left' of body 'block' = inf",
+            "x = inf",
+            "`body[0].dirichlet[0].x` = inf",
         ),
         (
             "point = [0.0, 0.0]",
             "point = [0.0, -1e-200]",
             "obstacle",
-            "obstacle line `point`",
+            "`contact[0].obstacle.line.point[1]`",
         ),
     ];
     for (from, to, needle, words) in cases {
@@ -178,7 +178,7 @@ fn numbers_out_of_range_are_refused_with_key_and_line() {
         &error_of(&text),
         &text,
         "hertz",
-        &["hertz `radius`", "out of range"],
+        &["`contact[0].hertz.radius`", "out of range"],
     );
     let text = format!("{SIGNORINI}\n[output]\nwidth = 1e300\n");
     assert_at(&error_of(&text), &text, "width", &["at most 20000"]);
@@ -344,10 +344,11 @@ fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
     assert_eq!(names(&dir), ["out", "s.toml"]);
     // The summary on disk is this run's.
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
-    assert!(summary.contains(&format!(
-        "\"total\": {}",
-        outcome.summary.contact.as_ref().unwrap().nodes.total
-    )));
+    let written: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(
+        written["contact"]["nodes"],
+        serde_json::to_value(outcome.summary.contact.as_ref().unwrap().nodes).unwrap()
+    );
     // A run that fails leaves the earlier result as it was and no temporary.
     let before = fs::read(out.join("summary.json")).unwrap();
     let pulled = dir.join("pulled.toml");
@@ -399,10 +400,7 @@ fn overlap_is_a_warning_and_no_support_names_the_gaps() {
             && shown.contains("initial gaps from 0.000e0 to 0.000e0 at its 5 nodes"),
         "{shown}"
     );
-    assert!(
-        !shown.contains("floating body"),
-        "the cause is told once, by the source: {shown}"
-    );
-    assert!(e.chain().contains("unbounded energy"), "{}", e.chain());
+    // The solver's own words follow, once.
+    assert_eq!(shown.matches("unbounded energy").count(), 1, "{shown}");
     fs::remove_dir_all(&dir).unwrap();
 }

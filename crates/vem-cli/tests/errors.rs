@@ -119,7 +119,7 @@ fn unknown_body_lists_the_bodies() {
 }
 
 #[test]
-fn second_contact_pair_is_an_error() {
+fn a_repeated_contact_pair_is_an_error() {
     let pair = "[[contact]]\nbody = \"a\"\npart = \"bottom\"\nobstacle = { line = { point = [0, 0], normal = [0, 1] } }\n";
     let text = format!(
         "{BLOCK}\n{pair}\n{}",
@@ -130,7 +130,7 @@ fn second_contact_pair_is_an_error() {
         &e,
         &text,
         "[[contact]] ",
-        &["second [[contact]]", "one contact pair"],
+        &["repeats [[contact]] 1", "body 'a' part 'bottom'"],
     );
 }
 
@@ -144,7 +144,7 @@ fn law_settings_must_match_the_law() {
         &error_of(&text),
         &text,
         "\"tresca\"",
-        &["needs `friction_bound`"],
+        &["law 'tresca'", "missing field `friction_bound`"],
     );
     let text = format!("{base}coefficient = 0.3\n");
     assert_located(
@@ -158,7 +158,11 @@ fn law_settings_must_match_the_law() {
         &error_of(&text),
         &text,
         "{ factor",
-        &["`penalty` does not apply to solver = \"condensed\""],
+        &[
+            "solver 'condensed'",
+            "unknown field `penalty`",
+            "expected `tolerance` or `max_iterations`",
+        ],
     );
 }
 
@@ -297,13 +301,13 @@ fn values_the_library_rejects_are_located_at_their_key() {
         "-1.0\n",
         &["max_distance = -1", "positive and finite"],
     );
-    // Non-finite values are refused by the scene's range check, at their entry.
+    // Non-finite values are refused where they are written.
     let text = format!("{BLOCK}dirichlet = [{{ part = \"left\", x = nan }}]\n");
     assert_located(
         &error_of(&text),
         &text,
-        "{ part = \"left\"",
-        &["body 'a'", "'left'", "`x`", "must be finite"],
+        "nan }",
+        &["`body[0].dirichlet[0].x` = nan", "must be finite"],
     );
     let text = format!(
         "{BLOCK}dirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0 }}]\ntraction = [{{ part = \"top\", pressure = inf }}]\n"
@@ -311,7 +315,7 @@ fn values_the_library_rejects_are_located_at_their_key() {
     assert_located(
         &error_of(&text),
         &text,
-        "{ part = \"top\"",
-        &["'top'", "`pressure`", "must be finite"],
+        "inf }",
+        &["`body[0].traction[0].pressure` = inf", "must be finite"],
     );
 }

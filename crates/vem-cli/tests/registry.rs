@@ -2,7 +2,8 @@
 //! an unknown solver name is a located error that lists the names.
 
 use vem_cli::{Model, Registries, Scene};
-use vem_contact::{ContactSolver, PenaltySettings, PenaltySolver, SolverOptions, SolverRegistry};
+use vem_contact::{ContactSolver, PenaltySettings, PenaltySolver, SolverRegistry};
+use vem_space::Options;
 
 /// A Voronoi block pressed by a uniform pressure p = 0.01 on the rigid line y = 0: the contact
 /// pressure is p at every node and the resultant p times the width 2.
@@ -35,11 +36,17 @@ fn a_registered_solver_runs_a_scene() {
         .register(
             "stiff-penalty",
             "penalty with factor 1e8",
-            |options: &SolverOptions| {
-                options.refuse(&["penalty", "augmentation"])?;
+            |options: &Options| {
+                // Its one setting: the tolerance; any other key is refused with its path.
+                #[derive(serde::Deserialize)]
+                #[serde(deny_unknown_fields)]
+                struct Settings {
+                    tolerance: Option<f64>,
+                }
+                let settings: Settings = options.parse()?;
                 let mut b = PenaltySettings::builder()
                     .penalty(vem_contact::PenaltyParameter::RelativeToStiffness(1e8));
-                if let Some(t) = options.tolerance_value() {
+                if let Some(t) = settings.tolerance {
                     b = b.tolerance(t);
                 }
                 Ok(Box::new(PenaltySolver::new(b.build()?)) as Box<dyn ContactSolver>)

@@ -2,7 +2,7 @@
 //! `docs/tradeoff.md`).
 //!
 //! An [`AccuracyPreset`] names a solver setting (a registry name and its
-//! [`Options`](vem_space::Options)) and the relative energy-norm error it aims at when the mesh size is chosen
+//! [`Options`]) and the relative energy-norm error it aims at when the mesh size is chosen
 //! for the user. The study found that the mesh size, not the solver tolerance, sets the error:
 //! on one mesh the three presets give the same errors to three digits (the condensed solver's
 //! tolerance moves the interface forces far below the discretisation error), so the presets

@@ -77,8 +77,35 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
             ));
         }
     }
+    let mut sides: Vec<(String, String)> = Vec::new();
     for (k, contact) in scene.contacts.iter().enumerate() {
-        check_contact(scene, contact, &KeyPath::key("contact").index(k))?;
+        let path = KeyPath::key("contact").index(k);
+        check_contact(scene, contact, &path)?;
+        // The same two sides in contact twice would constrain the same gaps twice.
+        let this = (
+            format!("body '{}' part '{}'", contact.body, contact.part),
+            {
+                match (&contact.other_body, &contact.other_part) {
+                    (Some(b), Some(p)) => format!("body '{b}' part '{p}'"),
+                    _ => serde_json::to_string(&contact.obstacle).unwrap_or_default(),
+                }
+            },
+        );
+        if let Some(j) = sides
+            .iter()
+            .position(|s| *s == this || (s.0 == this.1 && s.1 == this.0))
+        {
+            return Err(SceneError::at(
+                path,
+                format!(
+                    "this [[contact]] repeats [[contact]] {}: {} is already in contact with \
+                     the same counterpart",
+                    j + 1,
+                    this.0
+                ),
+            ));
+        }
+        sides.push(this);
     }
     check_accuracy(scene)?;
     if let Some(m) = scene.output.magnification {
@@ -746,11 +773,7 @@ fn check_ranges(checked: &Checked) -> Result<(), SceneError> {
     fn walk(value: &serde_json::Value, path: &KeyPath) -> Result<(), SceneError> {
         match value {
             serde_json::Value::Number(n) => {
-                let what = match path.0.last() {
-                    Some(crate::error::Segment::Key(k)) => format!("`{k}`"),
-                    _ => format!("`{}`", last_key(path)),
-                };
-                number(n.as_f64().unwrap_or(f64::NAN), path, &what)
+                number(n.as_f64().unwrap_or(f64::NAN), path, &format!("`{path}`"))
             }
             serde_json::Value::Array(items) => items
                 .iter()

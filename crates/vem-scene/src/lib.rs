@@ -75,4 +75,4 @@ pub use solve::{
     describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison, Outcome,
     ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody, StepSummary,
 };
-pub use value::{ScalarFunction, ScalarValue, VectorValue};
+pub use value::{ScalarFunction, ScalarValue, VectorFunction, VectorValue};

@@ -76,11 +76,44 @@ impl SpanIndex {
 /// ```
 ///
 /// # Errors
-/// [`TomlError`] for a syntax error, an unknown key, a value of the wrong type.
+/// [`TomlError`] for a syntax error, an unknown key, a value of the wrong type, a number that
+/// is not finite (`nan`, `inf`: TOML has them, a scene has no use for them).
 pub fn parse(source: &str) -> Result<(Scene, SpanIndex), TomlError> {
     let scene: Scene = toml::from_str(source).map_err(|e| TomlError {
         span: e.span(),
         message: e.message().trim_end().to_string(),
     })?;
+    if let Ok(table) = DeTable::parse(source) {
+        non_finite_in_table(table.get_ref(), &KeyPath::root())?;
+    }
     Ok((scene, SpanIndex::of(source)))
+}
+
+/// The first float of `table` written `nan` or `inf` as an error at its place.
+fn non_finite_in_table(table: &DeTable<'_>, path: &KeyPath) -> Result<(), TomlError> {
+    for (key, value) in table {
+        non_finite_in(value.get_ref(), value.span(), &path.at(key.get_ref()))?;
+    }
+    Ok(())
+}
+
+fn non_finite_in(value: &DeValue<'_>, span: Range<usize>, path: &KeyPath) -> Result<(), TomlError> {
+    match value {
+        DeValue::Float(float) => {
+            let text = float.as_str();
+            if text.contains("nan") || text.contains("inf") {
+                return Err(TomlError {
+                    span: Some(span),
+                    message: format!("`{path}` = {text} must be finite"),
+                });
+            }
+            Ok(())
+        }
+        DeValue::Table(table) => non_finite_in_table(table, path),
+        DeValue::Array(items) => items
+            .iter()
+            .enumerate()
+            .try_for_each(|(k, item)| non_finite_in(item.get_ref(), item.span(), &path.index(k))),
+        _ => Ok(()),
+    }
 }

@@ -10,6 +10,9 @@ use vem_mesh::expression::Expression;
 /// A function of the coordinates `x` (length the dimension) and the pseudo-time `t`.
 pub type ScalarFunction = Arc<dyn Fn(&[f64], f64) -> f64 + Send + Sync>;
 
+/// A vector function of the position and the pseudo-time (from Rust).
+pub type VectorFunction = Arc<dyn Fn(&[f64], f64) -> Vec<f64> + Send + Sync>;
+
 /// A scalar of a scene: a number, an expression of `x, y, z, t` written as a string, or a
 /// function (Rust only; it does not serialise).
 ///
@@ -140,7 +143,7 @@ pub enum VectorValue {
     /// Its components.
     Components(Vec<ScalarValue>),
     /// A function of the position and the pseudo-time, returning the components.
-    Function(Arc<dyn Fn(&[f64], f64) -> Vec<f64> + Send + Sync>),
+    Function(VectorFunction),
 }
 
 impl VectorValue {

@@ -342,7 +342,8 @@ impl Registry<Arc<dyn Stabilisation>> {
     /// The stabilisations of this crate.
     pub fn builtin_stabilisations() -> Self {
         let mut registry = Self::empty("stabilisation");
-        let builtin: [(&str, &str, Factory<Arc<dyn Stabilisation>>); 3] = [
+        type Builtin = (&'static str, &'static str, Factory<Arc<dyn Stabilisation>>);
+        let builtin: [Builtin; 3] = [
             (
                 "dofi-dofi",
                 "S = alpha I, alpha = scale * trace(C) (scaling \"trace\", the default) or scale * 5 mu (\"shear\"); scale 1/8",

@@ -25,9 +25,10 @@ use std::time::Instant;
 
 use vem_contact::{
     ContactSolution, ContactSolver, ContactSolverError, ContactSystem, KktResiduals, KktTolerance,
-    PatternId, SolveReport, SolveStatus, SolverOptions, SolverRegistry, WorkCounters,
+    PatternId, SolveReport, SolveStatus, SolverRegistry, WorkCounters,
 };
 use vem_elastic::{CholeskySettings, CholeskySolver, LinearSolver};
+use vem_space::{Options, OptionsError};
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::report::study_markdown;
 use vem_verify::study::{MeshPairing, Study, StudyResult};
@@ -64,12 +65,21 @@ fn backend(detail: impl std::fmt::Display) -> ContactSolverError {
 }
 
 impl DualGaussSeidel {
-    fn new(options: &SolverOptions) -> Self {
-        Self {
-            tolerance: options.tolerance_value().unwrap_or(1e-13),
-            max_sweeps: options.max_iterations_value().unwrap_or(200_000),
-            factors: None,
+    /// The solver with its settings table (`tolerance`, `max_iterations`); any other key is
+    /// refused with its path.
+    fn new(options: &Options) -> Result<Self, OptionsError> {
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Settings {
+            tolerance: Option<f64>,
+            max_iterations: Option<usize>,
         }
+        let settings: Settings = options.parse()?;
+        Ok(Self {
+            tolerance: settings.tolerance.unwrap_or(1e-13),
+            max_sweeps: settings.max_iterations.unwrap_or(200_000),
+            factors: None,
+        })
     }
 
     /// Factorises the stiffness blocks unless the kept factors are those of `system`'s
@@ -260,9 +270,7 @@ fn main() -> Result<ExitCode, Box<dyn std::error::Error>> {
     solvers.register(
         NAME,
         "projected Gauss-Seidel on the dual, dense Schur complement (example)",
-        |options: &SolverOptions| {
-            Ok(Box::new(DualGaussSeidel::new(options)) as Box<dyn ContactSolver>)
-        },
+        |options: &Options| Ok(Box::new(DualGaussSeidel::new(options)?) as Box<dyn ContactSolver>),
     )?;
     println!("solvers: {}", solvers.names().join(", "));
     let m1: Arc<dyn ExactSolution> = case_by_name("M1", Lame::default())?.into();

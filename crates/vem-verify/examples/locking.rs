@@ -14,10 +14,10 @@
 
 use std::sync::Arc;
 
-use vem_contact::{SolverOptions, SolverRegistry};
+use vem_contact::SolverRegistry;
 use vem_mesh::generators::MeshFamily;
 use vem_mesh::{Mesh, PartSpec};
-use vem_space::ElementRegistry;
+use vem_space::{ElementRegistry, Options};
 use vem_verify::exact::{case_by_name, DivergenceFreeContact, ExactSolution, Lame};
 use vem_verify::norms::ErrorNorms;
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
@@ -144,7 +144,7 @@ fn midpoint_study(
             &settings,
         )?;
         let mut solver =
-            SolverRegistry::builtin().make(SolverRegistry::DEFAULT, &SolverOptions::default())?;
+            SolverRegistry::builtin().make(SolverRegistry::DEFAULT, &Options::new())?;
         let solution = problem.solve(&mut *solver)?;
         finest = ErrorNorms::combine(&solution.errors(&*exact)?);
         h.push(problem.mesh_size());

@@ -3,8 +3,9 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ContactSolver, ExactSettings, ExactSolver, SolverOptions, SolverRegistry};
+use vem_contact::{ContactSolver, ExactSettings, ExactSolver, SolverRegistry};
 use vem_mesh::generators::MeshFamily;
+use vem_space::Options;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::report::{plot_svg, study_markdown, summary_markdown, write_json};
 use vem_verify::study::{
@@ -21,7 +22,8 @@ fn case(name: &str) -> Arc<dyn ExactSolution> {
 fn tight_solver() -> SolverRegistry {
     let mut solvers = SolverRegistry::builtin();
     solvers
-        .register("exact-tight", "Clarabel at 1e-12", |_: &SolverOptions| {
+        .register("exact-tight", "Clarabel at 1e-12", |options: &Options| {
+            options.refuse_all("exact-tight")?;
             let settings = ExactSettings::builder()
                 .eps_abs(1e-12)
                 .eps_rel(1e-12)

@@ -15,12 +15,12 @@ use std::sync::Arc;
 
 use vem_contact::{
     ContactError, ContactLaw, ContactNode, ContactProblem, ContactResult, Frictionless, LawState,
-    PenaltyParameter, SolverOptions, SolverRegistry, Tresca,
+    PenaltyParameter, SolverRegistry, Tresca,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
-use vem_space::{ElementRegistry, ElementSpace};
+use vem_space::{ElementRegistry, ElementSpace, Options};
 use vem_verify::cases::{CaseRegistry, PATCH_TOLERANCE};
 use vem_verify::exact::{BodyId, ExactContact, ExactSolution, Lame, Side};
 use vem_verify::nalgebra::Matrix2;
@@ -581,7 +581,7 @@ impl Patch {
 
     /// Solves with `solver` (options `options`) and judges against the exact answer within
     /// `tolerance`.
-    fn judge(&self, n: usize, solver: &str, options: &SolverOptions, tolerance: f64) -> Outcome {
+    fn judge(&self, n: usize, solver: &str, options: &Options, tolerance: f64) -> Outcome {
         let outcome = self
             .problem(n)
             .and_then(|problem| solve(&problem, solver, options));
@@ -617,7 +617,7 @@ pub fn chain(error: &dyn std::error::Error) -> String {
 fn solve(
     problem: &ContactProblem,
     solver: &str,
-    options: &SolverOptions,
+    options: &Options,
 ) -> Result<ContactResult, String> {
     let mut solver = SolverRegistry::builtin()
         .make(solver, options)
@@ -676,7 +676,7 @@ fn patch_row(name: String, patch: &Patch, size: &Size) -> Row {
     let outcomes = size
         .solvers
         .iter()
-        .map(|s| patch.judge(size.patch, s, &SolverOptions::default(), patch_tolerance(s)))
+        .map(|s| patch.judge(size.patch, s, &Options::new(), patch_tolerance(s)))
         .collect();
     Row {
         name,
@@ -887,7 +887,7 @@ fn units_outcome(case: &str, length: f64, modulus: f64, n: usize, solver: &str) 
         let problem = DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default())
             .map_err(|e| chain(&e))?;
         let contact = problem.contact_problem().ok_or("not a contact case")?;
-        solve(&contact, solver, &SolverOptions::default())
+        solve(&contact, solver, &Options::new())
     };
     let reference = match run(1.0, 1.0) {
         Ok(r) => r,
@@ -1007,7 +1007,7 @@ pub fn penalty(size: &Size) -> Vec<Row> {
             let factor = 10f64.powi(2 * k);
             let tolerance = 1.0 / factor + PATCH_TOLERANCE;
             let options =
-                SolverOptions::default().penalty(PenaltyParameter::RelativeToStiffness(factor));
+                Options::new().with("penalty", PenaltyParameter::RelativeToStiffness(factor));
             let outcome = patch.judge(size.patch, "penalty", &options, tolerance);
             Row {
                 name: format!("penalty factor {factor:.0e}"),
@@ -1067,7 +1067,7 @@ fn m1_problem(n: usize, law: Option<Arc<dyn ContactLaw>>) -> Result<ContactProbl
 
 fn penalty_m1_outcome(n: usize, factor: f64, tolerance: f64) -> Outcome {
     let reference = match m1_problem(n, None)
-        .and_then(|p| solve(&p, SolverRegistry::DEFAULT, &SolverOptions::default()))
+        .and_then(|p| solve(&p, SolverRegistry::DEFAULT, &Options::new()))
     {
         Ok(r) => r,
         Err(e) => {
@@ -1078,7 +1078,7 @@ fn penalty_m1_outcome(n: usize, factor: f64, tolerance: f64) -> Outcome {
             }
         }
     };
-    let options = SolverOptions::default().penalty(PenaltyParameter::RelativeToStiffness(factor));
+    let options = Options::new().with("penalty", PenaltyParameter::RelativeToStiffness(factor));
     let outcome = m1_problem(n, None).and_then(|p| solve(&p, "penalty", &options));
     judge("penalty", outcome, |r| {
         let change = answer_change(&reference, r, 1.0, 1.0);
@@ -1160,11 +1160,7 @@ pub fn friction(size: &Size) -> Vec<Row> {
 
 fn bound_zero_outcome(n: usize, solver: &str) -> Outcome {
     let run = |law: Arc<dyn ContactLaw>| -> Result<ContactResult, String> {
-        solve(
-            &m1_problem(n, Some(law))?,
-            solver,
-            &SolverOptions::default(),
-        )
+        solve(&m1_problem(n, Some(law))?, solver, &Options::new())
     };
     let reference = match run(Arc::new(Frictionless)) {
         Ok(r) => r,
