@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
+use vem_elastic::ElementField;
 use vem_mesh::io::{
     remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers, write_vtu,
-    SvgLayer, SvgOptions, VtuData,
+    PvdCollection, SvgLayer, SvgOptions, VtuData,
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -39,7 +40,7 @@ impl Outcome {
     ///
     /// The set is written into a fresh folder beside `dir` and renamed into place: `dir`
     /// holds either its earlier contents or the whole new set. `dir` must be new, empty, or
-    /// hold only the files of an earlier run (`.vtu`, `.svg`, `.csv`, `.json`): a folder
+    /// hold only the files of an earlier run (`.vtu`, `.pvd`, `.svg`, `.csv`, `.json`): a folder
     /// holding anything else is refused rather than replaced.
     pub fn write(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let staging = Staging::begin(dir)?;
@@ -59,14 +60,20 @@ impl Outcome {
             move |source| CliError::Mesh { context, source }
         };
         let mut written = Vec::new();
-        let raw = self.contact_pressure_at_vertices(|n| n.pressure);
-        let consistent = self.contact_pressure_at_vertices(|n| n.consistent_pressure);
-        let contact_pressure = raw.into_iter().zip(consistent).map(|(r, c)| r.zip(c));
-        for (solved, pressure) in self.bodies.iter().zip(contact_pressure) {
+        let nodes = self.contact.as_ref().map_or(&[][..], |c| &c.nodes[..]);
+        for (solved, pressure) in self.bodies.iter().zip(self.pressures(nodes)) {
             let path = dir.join(format!("{}.vtu", solved.body.name()));
-            write_vtu(&path, solved.body.mesh(), &vtu_data(solved, pressure))
-                .map_err(mesh_error(&path))?;
+            let data = vtu_data(
+                solved.solution.vertex_displacements(),
+                &solved.fields,
+                solved,
+                pressure,
+            );
+            write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
             written.push(path);
+        }
+        if !self.steps.is_empty() {
+            written.extend(self.write_history(dir)?);
         }
         let width = self.width();
         let path = dir.join("deformed.svg");
@@ -110,6 +117,93 @@ impl Outcome {
         Ok(written)
     }
 
+    /// The raw and consistent contact pressure at the interface vertices of every body.
+    fn pressures(&self, nodes: &[InterfaceNode]) -> Vec<Option<(Vec<f64>, Vec<f64>)>> {
+        let raw = self.contact_pressure_at_vertices(nodes, |n| n.pressure);
+        let consistent = self.contact_pressure_at_vertices(nodes, |n| n.consistent_pressure);
+        raw.into_iter()
+            .zip(consistent)
+            .map(|(r, c)| r.zip(c))
+            .collect()
+    }
+
+    /// The files of a load history of several steps: per body in contact a ParaView time
+    /// series `<body>.pvd` of `<body>_NNNN.vtu` (step NNNN from 1, at its pseudo-time), per
+    /// step `contact_NNNN.csv`, and `history.csv` and `history.svg`: the contact force on
+    /// body A and the load point's displacement at every step.
+    fn write_history(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let mesh_error = |path: &Path| {
+            let context = path.display().to_string();
+            move |source| CliError::Mesh { context, source }
+        };
+        let mut written = Vec::new();
+        let Some(last) = &self.contact else {
+            return Ok(written);
+        };
+        let frictionless = last.model.tangential_rows == 0;
+        let steps = self
+            .summary
+            .contact
+            .as_ref()
+            .map_or(&[][..], |c| &c.history[..]);
+        let mut series: Vec<PvdCollection> = vec![PvdCollection::new(); self.contact_bodies.len()];
+        let count = self.steps.len() + 1;
+        for k in 0..count {
+            let (nodes, time) = match self.steps.get(k) {
+                Some(step) => (&step.result.nodes, step.time),
+                None => (&last.nodes, steps.last().map_or(1.0, |s| s.time)),
+            };
+            let label = format!("{:04}", k + 1);
+            let pressures = self.pressures(nodes);
+            for (b, &index) in self.contact_bodies.iter().enumerate() {
+                let solved = &self.bodies[index];
+                let name = solved.body.name();
+                let file = format!("{name}_{label}.vtu");
+                let path = dir.join(&file);
+                let data = match self.steps.get(k) {
+                    Some(step) => {
+                        let body = &step.result.bodies[b];
+                        let fields = body
+                            .body
+                            .element_fields(body.solution.displacement())
+                            .map_err(|e| CliError::Elastic(Box::new(e)))?;
+                        vtu_data(
+                            body.solution.vertex_displacements(),
+                            &fields,
+                            solved,
+                            pressures[index].clone(),
+                        )
+                    }
+                    None => vtu_data(
+                        solved.solution.vertex_displacements(),
+                        &solved.fields,
+                        solved,
+                        pressures[index].clone(),
+                    ),
+                };
+                write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
+                series[b].add(time, 0, name, file);
+                written.push(path);
+            }
+            let path = dir.join(format!("contact_{label}.csv"));
+            write_atomically(&path, |w| write_contact_csv(w, nodes, frictionless))
+                .map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        for (b, &index) in self.contact_bodies.iter().enumerate() {
+            let path = dir.join(format!("{}.pvd", self.bodies[index].body.name()));
+            series[b].write(&path).map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        let path = dir.join("history.csv");
+        write_atomically(&path, |w| write_history_csv(w, steps)).map_err(mesh_error(&path))?;
+        written.push(path);
+        let path = dir.join("history.svg");
+        plot::history(&path, &self.summary.title, steps, self.width())?;
+        written.push(path);
+        Ok(written)
+    }
+
     /// Picture width: the scene's `[output] width` or [`DEFAULT_WIDTH`].
     fn width(&self) -> f64 {
         self.output_width.unwrap_or(DEFAULT_WIDTH)
@@ -119,13 +213,11 @@ impl Outcome {
     /// (zero elsewhere).
     fn contact_pressure_at_vertices(
         &self,
+        nodes: &[InterfaceNode],
         value: impl Fn(&InterfaceNode) -> f64,
     ) -> Vec<Option<Vec<f64>>> {
         let mut pressure: Vec<Option<Vec<f64>>> = vec![None; self.bodies.len()];
-        let Some(contact) = &self.contact else {
-            return pressure;
-        };
-        for node in &contact.nodes {
+        for node in nodes {
             let sides = [
                 (node.body_a, Some(node.vertex_a)),
                 (node.body_b.unwrap_or(usize::MAX), node.vertex_b),
@@ -225,7 +317,7 @@ struct Staging {
 }
 
 /// The extensions of the files a run writes.
-const OUTPUT_EXTENSIONS: [&str; 4] = ["vtu", "svg", "csv", "json"];
+const OUTPUT_EXTENSIONS: [&str; 5] = ["vtu", "pvd", "svg", "csv", "json"];
 
 impl Staging {
     /// Checks `target` (new, empty or an earlier run's), removes stale temporaries beside
@@ -368,14 +460,18 @@ fn round_down_to_nice(value: f64) -> f64 {
 
 /// Point data (displacement, raw and consistent contact pressure) and cell data (stress, von Mises, A1 figures)
 /// of one body.
-fn vtu_data(solved: &SolvedBody, contact_pressure: Option<(Vec<f64>, Vec<f64>)>) -> VtuData {
-    let fields = &solved.fields;
+fn vtu_data(
+    displacements: Vec<Vector>,
+    fields: &[ElementField],
+    solved: &SolvedBody,
+    contact_pressure: Option<(Vec<f64>, Vec<f64>)>,
+) -> VtuData {
     let stress: Vec<f64> = fields
         .iter()
         .flat_map(|f| [f.stress[(0, 0)], f.stress[(1, 1)], f.stress[(0, 1)]])
         .collect();
     let mut data = VtuData::new()
-        .with_point_vectors("displacement", &solved.solution.vertex_displacements())
+        .with_point_vectors("displacement", &displacements)
         .with_cell_data(vem_mesh::io::DataArray::new("stress_xx_yy_xy", 3, stress))
         .with_cell_scalars(
             "sigma_zz",
@@ -415,6 +511,33 @@ pub fn status_label(status: NodeStatus, frictionless: bool) -> &'static str {
         NodeStatus::Slip if frictionless => "contact",
         other => other.name(),
     }
+}
+
+/// `history.csv`: one row per step: its pseudo-time, the load point's displacement, the
+/// contact force on body A, the sum of the normal forces and the node counts.
+fn write_history_csv(w: &mut dyn Write, steps: &[vem_scene::StepSummary]) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "t,ux,uy,force_x,force_y,normal_resultant,open,contact,stick,slip"
+    )?;
+    for s in steps {
+        let at = |v: &[f64], c: usize| v.get(c).copied().unwrap_or(f64::NAN);
+        writeln!(
+            w,
+            "{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{}",
+            s.time,
+            at(&s.displacement, 0),
+            at(&s.displacement, 1),
+            at(&s.force_on_body_a, 0),
+            at(&s.force_on_body_a, 1),
+            s.normal_resultant,
+            s.nodes.open,
+            s.nodes.contact,
+            s.nodes.stick,
+            s.nodes.slip
+        )?;
+    }
+    Ok(())
 }
 
 fn write_contact_csv(

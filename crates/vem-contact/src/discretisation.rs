@@ -803,8 +803,8 @@ impl<const D: usize> ContactDiscretisation<D> {
     /// It starts from the laws' bounds of the state `previous` at the end of the last step (a
     /// history's warm start) when that state carries a normal force, else from their starting
     /// bounds (a Coulomb node held: the stick predictor, which gives the normal forces of the
-    /// first Coulomb bounds whatever holds the bodies sideways). A warm start whose bounds
-    /// cannot hold the new load starts again from the held state. The steps between the start
+    /// first Coulomb bounds whatever holds the bodies sideways). A warm start whose solve fails
+    /// (its bounds cannot hold the new load) starts again from the held state. The steps between the start
     /// and the last solve ask the solver for the forces only
     /// ([`ContactSolver::solve_forces`]); every step solves a system of the same structure, so
     /// the solver keeps its factorisations.
@@ -841,9 +841,11 @@ impl<const D: usize> ContactDiscretisation<D> {
             let system = self.system_at(level, bounds.as_deref().map(Cow::Borrowed), reference);
             let forces = match solver.solve_forces(&system) {
                 Ok(forces) => forces,
-                Err(ContactSolverError::RigidSliding { .. }) if !held => {
-                    // The last step's normal forces cannot hold this step's load: start again
-                    // from the held state.
+                Err(_) if !held => {
+                    // The last step's normal forces cannot hold this step's load (the solver
+                    // finds the rigid sliding, or fails to converge on a problem without
+                    // enough friction capacity): start again from the held state, whose
+                    // error, if any, is the one reported.
                     held = true;
                     bounds = self.bounds(None)?;
                     source = None;

@@ -122,18 +122,7 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
     if let Some(gib) = scene.limits.memory_gib {
         positive(gib, &KeyPath::key("limits").at("memory_gib"))?;
     }
-    if let Some(history) = &scene.history {
-        let path = KeyPath::key("history").at("steps");
-        if history.steps.is_empty() {
-            return Err(SceneError::at(
-                path,
-                "a load history needs at least one step",
-            ));
-        }
-        for (k, &s) in history.steps.iter().enumerate() {
-            number(s, &path.index(k), "a load factor")?;
-        }
-    }
+    crate::history::check_history(scene)?;
     check_ranges(&checked)?;
     Ok(checked)
 }

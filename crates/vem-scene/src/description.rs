@@ -76,6 +76,9 @@ pub struct BodyDescription {
     /// A body force per unit area (per unit volume in 3D): `[fx, fy]`, numbers or expressions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body_force: Option<VectorValue>,
+    /// The load curve of the body force along the history (as a condition's `curve`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body_force_curve: Option<Vec<[f64; 2]>>,
 }
 
 /// A mesh: generated (`family` with `rectangle`, `n`, `seed`) or read (`file`).
@@ -186,6 +189,10 @@ pub struct DirichletDescription {
     /// `u_z` on the part (3D).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z: Option<ScalarValue>,
+    /// Its load curve along the history, `[[t, s], ...]`: the factor `s(t)` of its values,
+    /// piecewise linear (default: the history's ramp `[[0, 0], [1, 1]]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<Vec<[f64; 2]>>,
 }
 
 /// `[[body.rigid_plate]]`: the part moves as one rigid plate in the given components, pushed
@@ -204,6 +211,10 @@ pub struct RigidPlateDescription {
     /// The resultant along z (3D).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub resultant_z: Option<f64>,
+    /// Its load curve along the history, `[[t, s], ...]`: the factor `s(t)` of its values,
+    /// piecewise linear (default: the history's ramp `[[0, 0], [1, 1]]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<Vec<[f64; 2]>>,
 }
 
 /// `[[body.traction]]`: a traction vector or a normal pressure on a part.
@@ -218,6 +229,10 @@ pub struct TractionDescription {
     /// A normal pressure, positive compressive (a number).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pressure: Option<f64>,
+    /// Its load curve along the history, `[[t, s], ...]`: the factor `s(t)` of its values,
+    /// piecewise linear (default: the history's ramp `[[0, 0], [1, 1]]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<Vec<[f64; 2]>>,
 }
 
 /// Which side gives the contact normal of two bodies (`normal` key).
@@ -354,13 +369,28 @@ pub struct CircleDescription {
     pub radius: f64,
 }
 
-/// `history = { steps = [0.25, 0.5, 1.0] }`: the load factors of the steps, each scaling every
-/// load, prescribed displacement and rigid-plate force.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// `[history]`: a load history in pseudo-time `t`, solved step by step on one discretisation
+/// (friction incremental from step to step). Either
+/// - `steps = [0.25, 0.5, 1.0]`: the load factors of the steps, each scaling every load,
+///   prescribed displacement and rigid-plate force (steps at `t` = 1, 2, ...); or
+/// - `times = [...]` (increasing), or `end` with `increments` (evenly spaced times in
+///   `(0, end]`): at each time every condition is scaled by its `curve` (default: the ramp
+///   `[[0, 0], [1, 1]]`, constant after its last point).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadHistory {
     /// The load factors, in order.
-    pub steps: Vec<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<Vec<f64>>,
+    /// The times of the steps, increasing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub times: Option<Vec<f64>>,
+    /// The last time of evenly spaced steps (with `increments`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end: Option<f64>,
+    /// The number of evenly spaced steps up to `end`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub increments: Option<usize>,
 }
 
 /// `[output]`.

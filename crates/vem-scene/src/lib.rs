@@ -62,6 +62,7 @@ mod build;
 pub mod check;
 pub mod description;
 mod error;
+mod history;
 pub mod resources;
 mod solve;
 #[cfg(feature = "toml")]
@@ -71,6 +72,7 @@ mod value;
 pub use build::{BuildOptions, Model, ModelBody, ModelContact, Registries};
 pub use description::Scene;
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
+pub use history::MAX_STEPS;
 pub use solve::{
     describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison, Outcome,
     ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody, StepSummary,

@@ -8,11 +8,12 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 use vem_contact::{
-    ContactError, ContactResult, ContactSolverError, FixedPointReport, InterfaceNode, ModelSummary,
-    NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
+    ContactError, ContactResult, ContactSolverError, FixedPointReport, HistoryStep, InterfaceNode,
+    ModelSummary, NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::quality::ElementQuality;
+use vem_mesh::Vector;
 use vem_space::Choice;
 
 use crate::build::{locate_contact, locate_elastic, Model};
@@ -43,6 +44,10 @@ pub struct Outcome {
     pub contact: Option<ContactResult>,
     /// For each body of the contact result, its index in [`Outcome::bodies`].
     pub contact_bodies: Vec<usize>,
+    /// With a load history of several steps: every step before the last, each with its
+    /// contact result and body solutions (the last step is [`Outcome::contact`] and
+    /// [`Outcome::bodies`]).
+    pub steps: Vec<HistoryStep>,
     /// What was computed.
     pub summary: RunSummary,
     started: Instant,
@@ -157,10 +162,15 @@ pub struct ContactSummary {
 /// One step of a load history.
 #[derive(Debug, Clone, Serialize)]
 pub struct StepSummary {
-    /// The load factor.
-    pub load_factor: f64,
+    /// The step's pseudo-time (with `steps = [factors]`: 1, 2, ...).
+    pub time: f64,
     /// Sum of the nodal normal forces.
     pub normal_resultant: f64,
+    /// The total contact force on body A of the first pair (a vector).
+    pub force_on_body_a: Vec<f64>,
+    /// The load point's displacement: the mean displacement of the part of body A's (first
+    /// pair) first Dirichlet condition or rigid plate (empty when it has none).
+    pub displacement: Vec<f64>,
     /// Node statuses.
     pub nodes: StatusCounts,
 }
@@ -350,6 +360,32 @@ fn tidy(value: f64) -> f64 {
     value + 0.0
 }
 
+/// The mean displacement of the part of the first Dirichlet condition or rigid plate of body
+/// A of the first pair (the load point of a load-displacement curve); empty without one.
+pub fn load_point_displacement(result: &ContactResult) -> Vec<f64> {
+    let Some(pair) = result.model.pairs.first() else {
+        return Vec::new();
+    };
+    let a = result.nodes.get(pair.nodes.start).map_or(0, |n| n.body_a);
+    let Some(body) = result.bodies.get(a) else {
+        return Vec::new();
+    };
+    let Some(condition) = body.body.dirichlet().first() else {
+        return Vec::new();
+    };
+    let Ok(vertices) = body.body.mesh().part_vertices(condition.part()) else {
+        return Vec::new();
+    };
+    if vertices.is_empty() {
+        return Vec::new();
+    }
+    let sum = vertices.iter().fold(Vector::zeros(), |s, &v| {
+        s + body.solution.vertex_displacement(v)
+    });
+    let mean = sum / vertices.len() as f64;
+    vec![tidy(mean.x), tidy(mean.y)]
+}
+
 /// "initial gaps from g0 to g1 at its N nodes" for an interface without overlap.
 fn gap_range(nodes: &[vem_contact::ContactNode]) -> String {
     let (lo, hi) = nodes
@@ -388,6 +424,7 @@ impl Model {
         let mut contact = None;
         let mut contact_bodies = Vec::new();
         let mut history = Vec::new();
+        let mut earlier_steps = Vec::new();
         let located = |e: SceneError| SceneError {
             path: self.written(&e.path),
             ..e
@@ -402,10 +439,7 @@ impl Model {
             let discretisation = problem
                 .discretise()
                 .map_err(|e| located(locate_contact(scene, e)))?;
-            let steps = scene
-                .history
-                .as_ref()
-                .map_or_else(|| vec![1.0], |h| h.steps.clone());
+            let load_history = crate::history::load_history(scene, indices).map_err(located)?;
             let overlap = Warning::initial_overlap(
                 discretisation
                     .nodes()
@@ -413,43 +447,46 @@ impl Model {
                     .map(|n| (n.position, n.normal, n.initial_gap)),
             );
             let mut work = discretisation.work();
-            let mut last = None;
-            for &factor in &steps {
-                let result = discretisation
-                    .solve_scaled(solver.as_mut(), factor)
-                    .map_err(|e| match e {
-                        ContactError::Solver(source @ ContactSolverError::Unbounded { .. }) => {
-                            let pairs: Vec<&str> = self
-                                .contacts
-                                .iter()
-                                .map(|c| c.description.as_str())
-                                .collect();
-                            SceneError::at(
-                                KeyPath::key("contact"),
-                                format!(
-                                    "the contact of {} gives the body no support under its load \
+            let steps = discretisation
+                .solve_history(solver.as_mut(), &load_history)
+                .map_err(|e| match e {
+                    ContactError::Solver(source @ ContactSolverError::Unbounded { .. }) => {
+                        let pairs: Vec<&str> = self
+                            .contacts
+                            .iter()
+                            .map(|c| c.description.as_str())
+                            .collect();
+                        SceneError::at(
+                            KeyPath::key("contact"),
+                            format!(
+                                "the contact of {} gives the body no support under its load \
                                      ({}): hold the body by a Dirichlet condition, or check that \
                                      the contact part faces its counterpart: {}",
-                                    pairs.join("; "),
-                                    overlap.as_ref().map_or_else(
-                                        || gap_range(discretisation.nodes()),
-                                        |o| o.to_string()
-                                    ),
-                                    one_line(&source)
+                                pairs.join("; "),
+                                overlap.as_ref().map_or_else(
+                                    || gap_range(discretisation.nodes()),
+                                    |o| o.to_string()
                                 ),
-                            )
-                        }
-                        e => located(locate_contact(scene, e)),
-                    })?;
+                                one_line(&source)
+                            ),
+                        )
+                    }
+                    e => located(locate_contact(scene, e)),
+                })?;
+            for step in &steps {
+                let result = &step.result;
                 work += result.work;
                 history.push(StepSummary {
-                    load_factor: factor,
+                    time: step.time,
                     normal_resultant: tidy(result.normal_resultant()),
+                    force_on_body_a: result.force_on_body_a().iter().map(|&f| tidy(f)).collect(),
+                    displacement: load_point_displacement(result),
                     nodes: result.status_counts(),
                 });
-                last = Some(result);
             }
-            let mut result = last.expect("a history has at least one step");
+            let mut steps = steps;
+            let mut result = steps.pop().expect("a history has at least one step").result;
+            earlier_steps = steps;
             result.work = work;
             result.model.total_time = start.elapsed();
             let stages = result.work.times;
@@ -461,13 +498,9 @@ impl Model {
             contact_bodies = indices.clone();
             contact = Some(result);
         }
-        let load_factor = scene
-            .history
-            .as_ref()
-            .and_then(|h| h.steps.last().copied())
-            .unwrap_or(1.0);
         for (index, slot) in slots.iter_mut().enumerate() {
             if slot.is_none() {
+                let load_factor = crate::history::final_factor(scene, index).map_err(located)?;
                 let body = &self.bodies[index].body;
                 let elastic = |e| {
                     located(locate_elastic(scene, e).unwrap_or_else(|text| {
@@ -528,6 +561,7 @@ impl Model {
             bodies,
             contact,
             contact_bodies,
+            steps: earlier_steps,
             summary,
             started,
         })
@@ -812,8 +846,8 @@ impl fmt::Display for RunSummary {
         for step in &c.history {
             writeln!(
                 f,
-                "    load factor {}: sum of normal forces {:.6e}, {} open",
-                step.load_factor, step.normal_resultant, step.nodes.open
+                "    t = {}: sum of normal forces {:.6e}, {} open",
+                step.time, step.normal_resultant, step.nodes.open
             )?;
         }
         for warning in &c.warnings {

@@ -1131,12 +1131,13 @@ impl CondensedSolver {
     }
 }
 
-impl ContactSolver for CondensedSolver {
-    fn name(&self) -> &'static str {
-        NAME
-    }
-
-    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
+impl CondensedSolver {
+    /// One solve at the settings' tolerance: the interface stage, then the back substitution
+    /// and the KKT check.
+    fn solve_once(
+        &mut self,
+        system: &ContactSystem<'_>,
+    ) -> Result<ContactSolution, ContactSolverError> {
         match self.interface_stage(system)? {
             Stage::Done(solution) => Ok(solution),
             Stage::Interface {
@@ -1145,6 +1146,42 @@ impl ContactSolver for CondensedSolver {
                 start,
                 work,
             } => self.finish(system, interface, u0, start, work),
+        }
+    }
+}
+
+impl ContactSolver for CondensedSolver {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn solve(&mut self, system: &ContactSystem<'_>) -> Result<ContactSolution, ContactSolverError> {
+        let first = self.solve_once(system);
+        let shifted = self
+            .structure
+            .as_ref()
+            .and_then(|s| s.factors.as_ref())
+            .is_some_and(Factors::is_shifted);
+        match first {
+            // The proximal iteration of a floating body stops on a small step, and converges
+            // linearly: warm-started near its fixed point it may stop at once, short of the KKT
+            // check by a little (seen at 1.1e-9 against 1e-9 on a block held sideways by
+            // Coulomb friction alone). Iterate on, from where it stopped, at a tolerance 1e-3
+            // tighter; the answer is certified as before.
+            Err(ContactSolverError::NotConverged { report })
+                if shifted && report.status == SolveStatus::FailedCheck =>
+            {
+                let tolerance = self.settings.tolerance;
+                self.settings.tolerance = tolerance * 1e-3;
+                let again = self.solve_once(system);
+                self.settings.tolerance = tolerance;
+                again.map(|mut solution| {
+                    solution.report.work += report.work;
+                    solution.report.iterations += report.iterations;
+                    solution
+                })
+            }
+            other => other,
         }
     }
 
