@@ -289,11 +289,11 @@ pub(crate) fn slip(
     })
 }
 
-/// `history.svg`: the contact force on body A of the first pair (`F_x`, `F_y`) along a
-/// history against the load point's displacement ([`vem_scene::StepSummary::displacement`],
-/// the component that changes most), one dot per step joined in the order of the steps, so
-/// that an unloading and reloading shows its loop. Against the step's pseudo-time when there
-/// is no load point.
+/// `history.svg`: along a load history, the load-displacement curve (the normal contact
+/// force `F_y` on body A of the first pair against the load point's `u_y`) and the tangential
+/// force-displacement curve (`F_x` against `u_x`) side by side, one dot per step joined in the
+/// order of the steps, so that an unloading and reloading shows its loop. The load point is
+/// [`vem_scene::StepSummary::displacement`]; without one, both against the pseudo-time.
 pub(crate) fn history(
     path: &Path,
     title: &str,
@@ -301,63 +301,55 @@ pub(crate) fn history(
     width: f64,
 ) -> Result<(), CliError> {
     let against_time = steps.iter().any(|s| s.displacement.len() < 2);
-    // The displacement component that changes most along the history.
-    let component = if against_time {
-        0
-    } else {
-        let change = |c: usize| {
-            let values = steps.iter().map(|s| s.displacement[c]);
-            values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
-        };
-        usize::from(change(1) >= change(0))
+    let curve = |c: usize| -> Curve {
+        steps
+            .iter()
+            .map(|s| {
+                let x = if against_time {
+                    s.time
+                } else {
+                    s.displacement[c]
+                };
+                (x, s.force_on_body_a.get(c).copied().unwrap_or(0.0))
+            })
+            .collect()
     };
-    let abscissa = |s: &vem_scene::StepSummary| {
-        if against_time {
-            s.time
-        } else {
-            s.displacement[component]
-        }
-    };
-    let force =
-        |s: &vem_scene::StepSummary, c: usize| s.force_on_body_a.get(c).copied().unwrap_or(0.0);
-    let normal: Curve = steps.iter().map(|s| (abscissa(s), force(s, 1))).collect();
-    let tangential: Curve = steps.iter().map(|s| (abscissa(s), force(s, 0))).collect();
-    let x_range = padded(normal.iter().map(|p| p.0), 0.05);
-    let y_range = padded(
-        normal.iter().chain(&tangential).map(|p| p.1).chain([0.0]),
-        LEGEND_ROOM,
-    );
-    let x_desc = if against_time {
-        "pseudo-time t".to_string()
-    } else {
-        format!("load point displacement u_{}", ["x", "y"][component])
-    };
+    let panels = [
+        (curve(1), PRESSURE, "normal", "F_y", "u_y"),
+        (curve(0), FRICTION, "tangential", "F_x", "u_x"),
+    ];
     svg_file(path, width, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(format!("{title}: load history"), ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_range, y_range)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc.as_str())
-            .y_desc("contact force on body A")
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
-        for (curve, colour, label) in [(&normal, PRESSURE, "F_y"), (&tangential, FRICTION, "F_x")] {
+        let area = root.titled(&format!("{title}: load history"), ("sans-serif", 18))?;
+        let (left, right) = area.split_horizontally(area.dim_in_pixel().0 / 2);
+        for (area, (points, colour, kind, force, displacement)) in [left, right].iter().zip(&panels)
+        {
+            let x_range = padded(points.iter().map(|p| p.0), 0.05);
+            let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), 0.05);
+            let x_desc = if against_time {
+                "pseudo-time t".to_string()
+            } else {
+                format!("load point displacement {displacement}")
+            };
+            let mut chart = ChartBuilder::on(area)
+                .caption(
+                    format!("{kind} force {force} on body A"),
+                    ("sans-serif", 16),
+                )
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(x_range, y_range)?;
             chart
-                .draw_series(LineSeries::new(curve.iter().copied(), colour))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-            chart.draw_series(curve.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+                .configure_mesh()
+                .x_desc(x_desc.as_str())
+                .y_desc(*force)
+                .x_labels(5)
+                .light_line_style(WHITE.mix(0.0))
+                .draw()?;
+            let colour = *colour;
+            chart.draw_series(LineSeries::new(points.iter().copied(), colour))?;
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
         Ok(())
     })
 }

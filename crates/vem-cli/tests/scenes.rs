@@ -504,3 +504,51 @@ fn cattaneo_mindlin_stick_zone() {
     assert!(sticking > 2);
     assert!(dir.join("slip.svg").is_file());
 }
+
+/// Scene 9: the fretting cycle, a load history. The disc is pressed, then moved sideways to
+/// +d, -d and +d again with Coulomb friction. At every step the tangential force stays within
+/// the friction capacity F times the normal load; at the same displacement the force depends
+/// on the way the disc came (the hysteresis loop): back at 0 after +d the friction pushes
+/// towards +x, after -d towards -x; the cycle is symmetric. Every step is written (the
+/// ParaView series lists them at their times).
+#[test]
+fn fretting_cycle_is_a_hysteresis_loop() {
+    let (outcome, dir) = run("fretting");
+    let f = 0.3;
+    let steps = &outcome.summary.contact.as_ref().unwrap().history;
+    assert_eq!(steps.len(), 14);
+    assert_eq!(outcome.steps.len(), 13);
+    let at = |t: f64| steps.iter().find(|s| s.time == t).unwrap();
+    for s in steps {
+        let (q, p) = (s.force_on_body_a[0], s.force_on_body_a[1]);
+        assert!((p - s.normal_resultant).abs() < 1e-12 * p, "{s:?}");
+        assert!(q.abs() <= f * p * (1.0 + 1e-9), "{s:?}");
+    }
+    // The displacement of the top: the prescribed one.
+    assert!((at(3.0).displacement[0] - 0.002).abs() < 1e-15);
+    assert!(at(4.0).displacement[0].abs() < 1e-15);
+    // At u_x = 0 after +d and after -d: opposite friction forces, a loop.
+    let (after_plus, after_minus) = (at(4.0).force_on_body_a[0], at(6.0).force_on_body_a[0]);
+    assert!(
+        after_plus > 0.0 && after_minus < 0.0,
+        "{after_plus:e} {after_minus:e}"
+    );
+    // The extremes are symmetric, and reloading to +d meets the first loading at +d.
+    let (plus, minus) = (at(3.0).force_on_body_a[0], at(5.0).force_on_body_a[0]);
+    assert!(
+        (plus + minus).abs() < 0.01 * plus.abs(),
+        "{plus:e} {minus:e}"
+    );
+    let again = at(7.0).force_on_body_a[0];
+    assert!(
+        (again - plus).abs() < 0.01 * plus.abs(),
+        "{again:e} {plus:e}"
+    );
+    // Files: a series per body over every step, a contact table per step, the curves.
+    let pvd = std::fs::read_to_string(dir.join("disc.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet ").count(), 14);
+    assert!(pvd.contains("timestep=\"0.5\"") && pvd.contains("file=\"disc_0014.vtu\""));
+    assert!(dir.join("contact_0014.csv").is_file() && dir.join("history.svg").is_file());
+    let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    assert_eq!(history.lines().count(), 15);
+}

@@ -60,11 +60,14 @@ pub struct SetViolation {
 pub struct ContactDiagnostics {
     /// Interface nodes (node pairs).
     pub nodes: usize,
-    /// Nodes in contact (stick or slip).
+    /// Nodes in contact (contact, stick or slip).
     pub active: usize,
-    /// Nodes in contact that stick (Tresca).
+    /// Nodes in contact without friction (frictionless law).
+    #[serde(default)]
+    pub contact: usize,
+    /// Nodes in contact that stick (friction below its bound).
     pub stick: usize,
-    /// Nodes in contact that slip (every active node of a frictionless law).
+    /// Nodes in contact that slip (friction at its bound).
     pub slip: usize,
     /// `sum lambda_N`, the discrete normal resultant.
     pub normal_resultant: f64,
@@ -169,6 +172,7 @@ pub fn contact_diagnostics(
     ContactDiagnostics {
         nodes: nodes.len(),
         active: nodes.len() - count(NodeStatus::Open),
+        contact: count(NodeStatus::Contact),
         stick: count(NodeStatus::Stick),
         slip: count(NodeStatus::Slip),
         normal_resultant,

@@ -156,13 +156,16 @@ pub fn study_markdown(study: &StudyResult) -> String {
     }
     if let Some(c) = study.finest().and_then(|r| r.contact.as_ref()) {
         out.push_str(&format!(
-            "\n\nFinest size: {} interface nodes, {} active ({} stick, {} slip); \
+            "\n\nFinest size: {} interface nodes, {} active ({}); \
              sum of nodal contact forces {:.6} (exact {:.6}), of friction forces {:.6} (exact {:.6}); \
              nodal pressure error {}.",
             c.nodes,
             c.active,
-            c.stick,
-            c.slip,
+            if c.stick + c.slip == 0 {
+                "frictionless".to_string()
+            } else {
+                format!("{} stick, {} slip", c.stick, c.slip)
+            },
             c.normal_resultant,
             c.normal_resultant_exact,
             c.tangential_resultant,
