@@ -13,8 +13,8 @@ use vem_cli::{convert_mesh, default_output_dir, generate_mesh_within, CliError, 
 /// Contact of elastic bodies with the lowest-order virtual element method (VEM).
 ///
 /// A scene file (TOML) describes the bodies (mesh, material, boundary conditions by part
-/// name) and at most one contact pair (another body or a rigid obstacle; frictionless,
-/// Tresca or Coulomb). The format is documented key by key in docs/scenes.md; example scenes
+/// name) and their contact pairs (another body or a rigid obstacle; frictionless, Tresca or
+/// Coulomb), solved together, at once or along a load history. The format is documented key by key in docs/scenes.md; example scenes
 /// are in crates/vem-cli/scenes/.
 #[derive(Debug, Parser)]
 #[command(name = "vem", version, about, long_about)]

@@ -39,13 +39,17 @@ impl Scene {
         let source = source.into();
         let (description, spans) = toml_file::parse(&source)
             .map_err(|e| CliError::at(&path, &source, e.span, e.message))?;
-        let scene = Self {
+        let mut scene = Self {
             path,
             source,
             description,
             spans,
             memory_limit: None,
         };
+        // Untitled: the file's stem titles the run.
+        if scene.description.title.is_none() {
+            scene.description.title = Some(scene.stem());
+        }
         vem_scene::check::check(&scene.description).map_err(|e| scene.error(e))?;
         Ok(scene)
     }

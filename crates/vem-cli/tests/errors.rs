@@ -130,7 +130,7 @@ fn a_repeated_contact_pair_is_an_error() {
         &e,
         &text,
         "[[contact]] ",
-        &["repeats [[contact]] 1", "body 'a' part 'bottom'"],
+        &["repeats contact[0]", "body 'a' part 'bottom'"],
     );
 }
 

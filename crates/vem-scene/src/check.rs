@@ -10,7 +10,7 @@ use crate::description::{
     BodyDescription, ContactDescription, LegacyPenalty, LegacyScaling, LegacyStabilisationKind,
     Scene,
 };
-use crate::{Deprecation, KeyPath, SceneError};
+use crate::{Deprecation, KeyPath, ScalarValue, SceneError, VectorValue};
 
 /// The largest magnitude of a number of a scene.
 pub const LARGEST: f64 = 1e100;
@@ -98,9 +98,8 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
             return Err(SceneError::at(
                 path,
                 format!(
-                    "this [[contact]] repeats [[contact]] {}: {} is already in contact with \
-                     the same counterpart",
-                    j + 1,
+                    "this pair repeats contact[{j}]: {} is already in contact with the same \
+                     counterpart",
                     this.0
                 ),
             ));
@@ -123,6 +122,14 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
         positive(gib, &KeyPath::key("limits").at("memory_gib"))?;
     }
     crate::history::check_history(scene)?;
+    for (k, body) in scene.bodies.iter().enumerate() {
+        check_body_expressions(body, &KeyPath::key("body").index(k))?;
+    }
+    for (k, contact) in scene.contacts.iter().enumerate() {
+        if let Some(gap) = &contact.imposed_gap {
+            check_scalar(gap, &KeyPath::key("contact").index(k).at("imposed_gap"))?;
+        }
+    }
     check_ranges(&checked)?;
     Ok(checked)
 }
@@ -778,4 +785,54 @@ fn check_ranges(checked: &Checked) -> Result<(), SceneError> {
         path: checked.written(&e.path),
         ..e
     })
+}
+
+/// Every expression of the scene uses only the coordinates of its dimension and no `t`
+/// (values change along a load history by their curves).
+fn check_scalar(value: &ScalarValue, path: &KeyPath) -> Result<(), SceneError> {
+    if value.dimension_used() > DIMENSION {
+        return Err(SceneError::at(
+            path.clone(),
+            format!(
+                "an expression of a coordinate beyond the scene's dimension {DIMENSION} (x, y)"
+            ),
+        ));
+    }
+    if value.uses_time() {
+        return Err(SceneError::at(
+            path.clone(),
+            "an expression of `t`: values change along a load history by their `curve = [[t, \
+             s], ...]` (and `[history]` times); write the value without `t`",
+        ));
+    }
+    Ok(())
+}
+
+fn check_vector(value: &VectorValue, path: &KeyPath) -> Result<(), SceneError> {
+    if let VectorValue::Components(components) = value {
+        for (k, c) in components.iter().enumerate() {
+            check_scalar(c, &path.index(k))?;
+        }
+    }
+    Ok(())
+}
+
+fn check_body_expressions(body: &BodyDescription, path: &KeyPath) -> Result<(), SceneError> {
+    for (k, d) in body.dirichlet.iter().enumerate() {
+        let at = path.at("dirichlet").index(k);
+        for (key, value) in [("x", &d.x), ("y", &d.y), ("z", &d.z)] {
+            if let Some(value) = value {
+                check_scalar(value, &at.at(key))?;
+            }
+        }
+    }
+    for (k, t) in body.traction.iter().enumerate() {
+        if let Some(value) = &t.value {
+            check_vector(value, &path.at("traction").index(k).at("value"))?;
+        }
+    }
+    if let Some(force) = &body.body_force {
+        check_vector(force, &path.at("body_force"))?;
+    }
+    Ok(())
 }

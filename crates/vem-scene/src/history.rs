@@ -7,7 +7,7 @@ use vem_contact::{LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory
 
 use crate::check::number;
 use crate::description::{BodyDescription, LoadHistory as HistoryDescription};
-use crate::{KeyPath, ScalarValue, Scene, SceneError, VectorValue};
+use crate::{KeyPath, Scene, SceneError};
 
 /// The most steps a history may have (a misplaced exponent, not a plan).
 pub const MAX_STEPS: usize = 1_000_000;
@@ -126,7 +126,7 @@ fn times(history: &HistoryDescription) -> Result<Option<Vec<f64>>, SceneError> {
 }
 
 /// Checks the history and the curves: one form of `[history]`, curves only with times, every
-/// curve a valid one, and no expression of `t` (a history scales the values by curves).
+/// curve a valid one.
 ///
 /// # Errors
 /// A [`SceneError`] at the key at fault.
@@ -176,52 +176,6 @@ pub(crate) fn check_history(scene: &Scene) -> Result<(), SceneError> {
             }
             curve(&c)?;
         }
-        refuse_time(body, &KeyPath::key("body").index(k))?;
-    }
-    for (k, contact) in scene.contacts.iter().enumerate() {
-        if let Some(gap) = &contact.imposed_gap {
-            refuse_scalar_time(gap, &KeyPath::key("contact").index(k).at("imposed_gap"))?;
-        }
-    }
-    Ok(())
-}
-
-fn refuse_scalar_time(value: &ScalarValue, path: &KeyPath) -> Result<(), SceneError> {
-    if value.uses_time() {
-        return Err(SceneError::at(
-            path.clone(),
-            "an expression of `t`: values change along a load history by their `curve = [[t, \
-             s], ...]` (and `[history]` times); write the value without `t`",
-        ));
-    }
-    Ok(())
-}
-
-fn refuse_vector_time(value: &VectorValue, path: &KeyPath) -> Result<(), SceneError> {
-    if let VectorValue::Components(components) = value {
-        for (k, c) in components.iter().enumerate() {
-            refuse_scalar_time(c, &path.index(k))?;
-        }
-    }
-    Ok(())
-}
-
-fn refuse_time(body: &BodyDescription, path: &KeyPath) -> Result<(), SceneError> {
-    for (k, d) in body.dirichlet.iter().enumerate() {
-        let at = path.at("dirichlet").index(k);
-        for (key, value) in [("x", &d.x), ("y", &d.y), ("z", &d.z)] {
-            if let Some(value) = value {
-                refuse_scalar_time(value, &at.at(key))?;
-            }
-        }
-    }
-    for (k, t) in body.traction.iter().enumerate() {
-        if let Some(value) = &t.value {
-            refuse_vector_time(value, &path.at("traction").index(k).at("value"))?;
-        }
-    }
-    if let Some(force) = &body.body_force {
-        refuse_vector_time(force, &path.at("body_force"))?;
     }
     Ok(())
 }

@@ -247,11 +247,18 @@ impl HertzComparison {
             None => 0.0,
         };
         let effective_modulus = 1.0 / (compliance(a) + b.map_or(0.0, compliance));
-        let load = nodes
+        // P: the pair's contact force on A along the mean contact normal (friction, which
+        // acts across it, is not part of Hertz's load).
+        let force = nodes
             .iter()
             .map(|n| n.friction_force - n.normal * n.normal_force)
-            .sum::<vem_mesh::Vector>()
-            .norm();
+            .sum::<vem_mesh::Vector>();
+        let normal = nodes.iter().map(|n| n.normal).sum::<vem_mesh::Vector>();
+        let load = if normal.norm() > 0.0 {
+            force.dot(&normal).abs() / normal.norm()
+        } else {
+            force.norm()
+        };
         let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();
         let peak_pressure = 2.0 * load / (std::f64::consts::PI * half_width);
         let (computed_half_width, centre) = contact_zone(nodes);
@@ -825,24 +832,15 @@ impl fmt::Display for RunSummary {
             c.resultants.normal
         )?;
         let n = &c.nodes;
-        if c.model.tangential_rows == 0 {
-            writeln!(
-                f,
-                "    nodes: {} ({} open, {} in contact)",
-                n.total(),
-                n.open,
-                n.contact
-            )?;
-        } else {
-            writeln!(
-                f,
-                "    nodes: {} ({} open, {} stick, {} slip)",
-                n.total(),
-                n.open,
-                n.stick,
-                n.slip
-            )?;
+        // The states the pairs' laws have: contact without friction, stick and slip with it.
+        let mut states = vec![format!("{} open", n.open)];
+        if n.contact > 0 || c.model.tangential_rows == 0 {
+            states.push(format!("{} in contact", n.contact));
         }
+        if c.model.tangential_rows > 0 {
+            states.push(format!("{} stick, {} slip", n.stick, n.slip));
+        }
+        writeln!(f, "    nodes: {} ({})", n.total(), states.join(", "))?;
         for step in &c.history {
             writeln!(
                 f,

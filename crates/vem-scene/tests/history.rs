@@ -213,3 +213,15 @@ fn histories_that_cannot_be_followed_are_refused_at_their_key() {
     assert_eq!(path, "body[0].traction[0].value[0]");
     assert!(text.contains("`curve"), "{text}");
 }
+
+#[test]
+fn expressions_beyond_the_dimension_are_refused() {
+    let text = blocks(
+        "",
+        "\"frictionless\"",
+        r#"traction = [{ part = "top", value = ["0.1 * z", 0] }]"#,
+    );
+    let e = solve(&text).err().expect("refused");
+    assert_eq!(e.path.to_string(), "body[0].traction[0].value[0]");
+    assert!(e.message.contains("dimension 2"), "{}", e.message);
+}

@@ -9,6 +9,7 @@ use crate::warning::Warning;
 /// How a solver run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 #[non_exhaustive]
 pub enum SolveStatus {
     /// Converged to the requested tolerances.
