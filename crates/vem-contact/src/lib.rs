@@ -84,6 +84,14 @@ fn seconds<S: serde::Serializer>(d: &std::time::Duration, s: S) -> Result<S::Ok,
     s.serialize_f64(d.as_secs_f64())
 }
 
+/// A duration read from its seconds (the form [`seconds`] writes); negative or non-finite
+/// seconds are an error.
+#[cfg(feature = "serde")]
+fn from_seconds<'de, D: serde::Deserializer<'de>>(d: D) -> Result<std::time::Duration, D::Error> {
+    let s = <f64 as serde::Deserialize>::deserialize(d)?;
+    std::time::Duration::try_from_secs_f64(s).map_err(serde::de::Error::custom)
+}
+
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
     ContactForces, ContactSolution, ContactSolver, ContactSolverError, ContactSystem,

@@ -30,8 +30,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use vem_contact::{
-    BodyResult, ContactProblem, ContactSolver, FixedPointReport, InterfaceNode, SolveReport,
-    StageTimes, WorkCounters,
+    BodyResult, ContactLaw, ContactProblem, ContactSolver, FixedPointReport, InterfaceNode,
+    SolveReport, StageTimes, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::Mesh;
@@ -47,6 +47,7 @@ use crate::VerifyError;
 pub struct ProblemSettings {
     element: Arc<dyn ElementSpace>,
     traction_points: usize,
+    law: Option<Arc<dyn ContactLaw>>,
 }
 
 impl ProblemSettings {
@@ -73,6 +74,17 @@ impl ProblemSettings {
         self.traction_points
     }
 
+    /// The contact law that replaces the case's own (default: none, the case's law).
+    pub fn law(&self) -> Option<&Arc<dyn ContactLaw>> {
+        self.law.as_ref()
+    }
+
+    /// The same settings with another contact law.
+    pub(crate) fn with_law(mut self, law: Arc<dyn ContactLaw>) -> Self {
+        self.law = Some(law);
+        self
+    }
+
     /// The same settings with another element space.
     pub(crate) fn with_element(mut self, element: Arc<dyn ElementSpace>) -> Self {
         self.element = element;
@@ -85,6 +97,7 @@ impl Default for ProblemSettings {
         Self {
             element: Arc::new(LowestOrderVem::default()),
             traction_points: Self::DEFAULT_TRACTION_POINTS,
+            law: None,
         }
     }
 }
@@ -99,6 +112,13 @@ impl ProblemSettingsBuilder {
     /// The element space of every body.
     pub fn element(mut self, element: Arc<dyn ElementSpace>) -> Self {
         self.settings.element = element;
+        self
+    }
+
+    /// A contact law in place of the case's own: the same exact solution solved under another
+    /// law (a law of one's own against a case whose answer it must reproduce, say).
+    pub fn law(mut self, law: Arc<dyn ContactLaw>) -> Self {
+        self.settings.law = Some(law);
         self
     }
 
@@ -133,6 +153,7 @@ impl std::fmt::Debug for ProblemSettings {
         f.debug_struct("ProblemSettings")
             .field("element", &self.element.name())
             .field("traction_points", &self.traction_points)
+            .field("law", &self.law.as_ref().map(|l| l.describe()))
             .finish()
     }
 }
@@ -185,6 +206,7 @@ pub fn elastic_body(
 pub struct DiscreteProblem {
     exact: Arc<dyn ExactSolution>,
     bodies: Vec<ElasticBody>,
+    law: Option<Arc<dyn ContactLaw>>,
 }
 
 impl std::fmt::Debug for DiscreteProblem {
@@ -226,7 +248,11 @@ impl DiscreteProblem {
             .zip(meshes)
             .map(|(&id, mesh)| elastic_body(&exact, id, mesh, settings))
             .collect::<Result<_, _>>()?;
-        Ok(Self { exact, bodies })
+        Ok(Self {
+            exact,
+            bodies,
+            law: settings.law.clone(),
+        })
     }
 
     /// The exact solution.
@@ -248,10 +274,11 @@ impl DiscreteProblem {
     }
 
     /// The contact problem of a contact case (`None` for elasticity cases): body one's bottom
-    /// against body two's top, the case's law, `h0` as the imposed gap.
+    /// against body two's top, the case's law (or the settings' [`ProblemSettings::law`]),
+    /// `h0` as the imposed gap.
     pub fn contact_problem(&self) -> Option<ContactProblem> {
         let contact = self.exact.contact()?;
-        let law = contact.law();
+        let law = self.law.clone().unwrap_or_else(|| contact.law());
         let [(_, side_a), (_, side_b)] = CONTACT_SIDES;
         let exact = Arc::clone(&self.exact);
         let problem = ContactProblem::two_bodies(

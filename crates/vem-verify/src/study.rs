@@ -24,7 +24,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use vem_contact::SolverRegistry;
+use vem_contact::{ContactLaw, SolverRegistry, WorkCounters};
 use vem_mesh::generators::MeshFamily;
 use vem_mesh::Mesh;
 use vem_space::ElementSpace;
@@ -328,37 +328,16 @@ pub struct SizeRecord {
     /// Coulomb cases: the last relative change of the normal forces of the fixed point.
     #[serde(default)]
     pub fixed_point_change: Option<f64>,
-    /// What the solve computed (assemblies, symbolic analyses, numeric factorisations,
-    /// triangular solves).
+    /// Coulomb cases: the tolerance the fixed point stopped at (the law's, or the solver's
+    /// force accuracy when larger).
     #[serde(default)]
-    pub work: WorkCount,
+    pub fixed_point_tolerance: Option<f64>,
+    /// What the build and solve computed (assemblies, symbolic analyses, numeric
+    /// factorisations, triangular solves, and the library's stage times).
+    #[serde(default)]
+    pub work: WorkCounters,
     /// Time of each stage.
     pub times: StageTimes,
-}
-
-/// The counts of [`vem_contact::WorkCounters`] of one size (its times are in
-/// [`SizeRecord::times`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub struct WorkCount {
-    /// Global assemblies (one per body and build).
-    pub assemblies: usize,
-    /// Symbolic analyses (or set-ups of an external solver).
-    pub symbolic_analyses: usize,
-    /// Numeric factorisations.
-    pub numeric_factorisations: usize,
-    /// Forward and backward triangular solve pairs (0 where the backend does not tell).
-    pub triangular_solves: usize,
-}
-
-impl From<vem_contact::WorkCounters> for WorkCount {
-    fn from(work: vem_contact::WorkCounters) -> Self {
-        Self {
-            assemblies: work.assemblies,
-            symbolic_analyses: work.symbolic_analyses,
-            numeric_factorisations: work.numeric_factorisations,
-            triangular_solves: work.triangular_solves,
-        }
-    }
 }
 
 /// Rates fitted by least squares to `log error = rate log h + c` over the finest sizes.
@@ -414,6 +393,9 @@ pub struct StudyResult {
     /// Further expectations judged with it ([`Study::also_expect`]).
     #[serde(default)]
     pub also_expected: Vec<Expectation>,
+    /// The names of the criteria of one's own judged with it ([`Study::also_check`]).
+    #[serde(default)]
+    pub criteria: Vec<String>,
     /// Whether it was met.
     pub verdict: Verdict,
     /// Wall-clock seconds of the whole study.
@@ -487,6 +469,67 @@ pub struct Study {
     fitted: usize,
     expectation: Expectation,
     also_expected: Vec<Expectation>,
+    criteria: Vec<Criterion>,
+}
+
+/// A criterion of one's own that a study must meet, besides its [`Expectation`]s: a name and
+/// a check of the measured records and fitted rates that returns what falls short (nothing
+/// when met). For example "the resultant errors below h^2 at every size".
+///
+/// ```
+/// use vem_verify::study::Criterion;
+/// let below_h2 = Criterion::new("resultant error <= h^2", |records, _rates| {
+///     records
+///         .iter()
+///         .filter_map(|r| {
+///             let c = r.contact.as_ref()?;
+///             (c.normal_resultant_error > r.h * r.h).then(|| {
+///                 format!("n = {:?}: error {:.2e} > h^2 = {:.2e}", r.n, c.normal_resultant_error, r.h * r.h)
+///             })
+///         })
+///         .collect()
+/// });
+/// assert_eq!(below_h2.name(), "resultant error <= h^2");
+/// assert!(below_h2.check(&[], &vem_verify::study::fit_rates(&[], 3)).is_empty());
+/// ```
+#[derive(Clone)]
+pub struct Criterion {
+    name: String,
+    check: CriterionCheck,
+}
+
+/// The check of a [`Criterion`]: the shortfalls of the records and rates.
+pub type CriterionCheck = Arc<dyn Fn(&[SizeRecord], &Rates) -> Vec<String> + Send + Sync>;
+
+impl Criterion {
+    /// The criterion `name` checked by `check`.
+    pub fn new(
+        name: impl Into<String>,
+        check: impl Fn(&[SizeRecord], &Rates) -> Vec<String> + Send + Sync + 'static,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            check: Arc::new(check),
+        }
+    }
+
+    /// Its name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// What falls short of it.
+    pub fn check(&self, records: &[SizeRecord], rates: &Rates) -> Vec<String> {
+        (self.check)(records, rates)
+    }
+}
+
+impl fmt::Debug for Criterion {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Criterion")
+            .field("name", &self.name)
+            .finish()
+    }
 }
 
 impl fmt::Debug for Study {
@@ -502,6 +545,7 @@ impl fmt::Debug for Study {
             .field("fitted", &self.fitted)
             .field("expectation", &self.expectation)
             .field("also_expected", &self.also_expected)
+            .field("criteria", &self.criteria)
             .finish()
     }
 }
@@ -531,6 +575,7 @@ impl Study {
             fitted: Self::DEFAULT_FITTED,
             expectation: Expectation::OPTIMAL_RATES,
             also_expected: Vec::new(),
+            criteria: Vec::new(),
         }
     }
 
@@ -558,6 +603,21 @@ impl Study {
     /// The options every solver of the study is made with (tolerance, iterations, penalty).
     pub fn solver_options(mut self, options: Options) -> Self {
         self.options = options;
+        self
+    }
+
+    /// A contact law in place of the case's own (e.g. a law of one's own, or Tresca with a
+    /// bound the case's Coulomb answer must reproduce); its name is reported in
+    /// [`StudyResult::law`].
+    pub fn law(mut self, law: Arc<dyn ContactLaw>) -> Self {
+        self.settings = self.settings.clone().with_law(law);
+        self
+    }
+
+    /// A criterion of one's own, judged with the expectations ([`Criterion`]); its
+    /// shortfalls enter the verdict prefixed with its name.
+    pub fn also_check(mut self, criterion: Criterion) -> Self {
+        self.criteria.push(criterion);
         self
     }
 
@@ -620,15 +680,17 @@ impl Study {
         format!(
             "{} ({}) on {}",
             self.exact.name(),
-            self.law(),
+            self.law_name(),
             self.pairing.describe()
         )
     }
 
-    fn law(&self) -> String {
-        self.exact
-            .contact()
-            .map_or_else(|| "elasticity".to_string(), |c| c.law().name().to_string())
+    fn law_name(&self) -> String {
+        match (self.exact.contact(), self.settings.law()) {
+            (None, _) => "elasticity".to_string(),
+            (Some(_), Some(law)) => law.name().to_string(),
+            (Some(c), None) => c.law().name().to_string(),
+        }
     }
 
     /// Checks the settings: at least one size, sizes positive and increasing, at least two
@@ -741,8 +803,10 @@ impl Study {
             }),
             inserted_nodes: interface.map(|i| i.inserted_nodes),
             fixed_point_steps: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.steps)),
-            work: solution.work.into(),
+            work: solution.work,
             fixed_point_change: interface.and_then(|i| i.fixed_point.as_ref().map(|f| f.residual)),
+            fixed_point_tolerance: interface
+                .and_then(|i| i.fixed_point.as_ref().map(|f| f.tolerance)),
             times: StageTimes {
                 mesh: mesh_time,
                 assembly: solution.assembly_time.as_secs_f64(),
@@ -779,11 +843,20 @@ impl Study {
         let rates = fit_rates(&records, self.fitted);
         let mut expectations = vec![self.expectation];
         expectations.extend_from_slice(&self.also_expected);
-        let verdict = judge(&expectations, &records, &rates);
+        let mut verdict = judge(&expectations, &records, &rates);
+        for criterion in &self.criteria {
+            let shortfalls = criterion.check(&records, &rates);
+            verdict.passed &= shortfalls.is_empty();
+            verdict.shortfalls.extend(
+                shortfalls
+                    .into_iter()
+                    .map(|s| format!("{}: {s}", criterion.name())),
+            );
+        }
         let lame = self.exact.lame();
         Ok(StudyResult {
             case: self.exact.name().to_string(),
-            law: self.law().to_string(),
+            law: self.law_name(),
             pairing: self.pairing.to_string(),
             pairing_label: self.pairing.describe(),
             slug: self.pairing.slug(),
@@ -795,6 +868,7 @@ impl Study {
             rates,
             expectation: self.expectation,
             also_expected: self.also_expected.clone(),
+            criteria: self.criteria.iter().map(|c| c.name().to_string()).collect(),
             verdict,
             seconds: start.elapsed().as_secs_f64(),
         })
@@ -812,7 +886,7 @@ impl Study {
 /// #         body_errors: vec![], contact: None, solver_iterations: None,
 /// #         max_penetration: None, inserted_nodes: None, fixed_point_steps: None,
 /// #         work: Default::default(),
-/// #         fixed_point_change: None, times: Default::default() }
+/// #         fixed_point_change: None, fixed_point_tolerance: None, times: Default::default() }
 /// # }
 /// // E_grad = E_a = h, E_0 = h^2 on the three finest of four sizes.
 /// let records: Vec<SizeRecord> = [0.8, 0.4, 0.2, 0.1].iter().map(|&h| record(h, h)).collect();

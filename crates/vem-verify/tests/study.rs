@@ -274,3 +274,74 @@ fn reports_round_trip() {
     let err = write_json(dir.join("missing").join("x.json"), &result).unwrap_err();
     assert!(err.to_string().contains("x.json"), "{err}");
 }
+
+/// A law in place of the case's own: M1 (frictionless) solved under Tresca with the bound 0
+/// is the same problem, so the same errors to the solver's accuracy; the result names the law.
+/// A Coulomb case records the tolerance its fixed point stopped at. A criterion of one's own
+/// enters the verdict with its name.
+#[test]
+fn law_override_fixed_point_tolerance_and_criteria_of_ones_own() {
+    let pairing = MeshPairing::pair(MeshFamily::Quads, 1, MeshFamily::Quads, 1);
+    let study = |law: Option<Arc<dyn vem_contact::ContactLaw>>| {
+        let mut s = Study::new(case("M1"), pairing.clone())
+            .sizes([4, 8])
+            .fitted(2);
+        if let Some(law) = law {
+            s = s.law(law);
+        }
+        s.run().unwrap()
+    };
+    let frictionless = study(None);
+    let tresca = study(Some(Arc::new(vem_contact::Tresca::try_new(0.0).unwrap())));
+    assert_eq!(
+        (frictionless.law.as_str(), tresca.law.as_str()),
+        ("frictionless", "tresca")
+    );
+    for (a, b) in frictionless.records.iter().zip(&tresca.records) {
+        let (ea, eb) = (a.errors.relative_grad(), b.errors.relative_grad());
+        assert!((ea - eb).abs() <= 1e-8 * ea, "{ea:e} {eb:e}");
+        assert_eq!(a.fixed_point_tolerance, None);
+    }
+    // Coulomb (a bound F p that the fixed point iterates): its tolerance is recorded.
+    let coulomb = Study::new(case("M1"), pairing.clone())
+        .sizes([4, 8])
+        .fitted(2)
+        .law(Arc::new(vem_contact::Coulomb::try_new(0.3).unwrap()))
+        .run()
+        .unwrap();
+    assert_eq!(coulomb.law, "coulomb");
+    for record in &coulomb.records {
+        let tolerance = record.fixed_point_tolerance.expect("a fixed point");
+        assert!(tolerance >= 1e-8, "{tolerance:e}");
+        assert!(record.fixed_point_change.unwrap() <= tolerance);
+    }
+    // A criterion that the first size's error falls by at least 1.5 to the second, and one
+    // that cannot hold.
+    let halves = vem_verify::study::Criterion::new("error halves", |records, _| {
+        let (coarse, fine) = (&records[0].errors, &records[1].errors);
+        if coarse.relative_grad() >= 1.5 * fine.relative_grad() {
+            Vec::new()
+        } else {
+            vec!["the error did not fall".to_string()]
+        }
+    });
+    let never = vem_verify::study::Criterion::new("never", |_, _| vec!["by design".to_string()]);
+    let judged = Study::new(case("M1"), pairing)
+        .sizes([4, 8])
+        .fitted(2)
+        .also_check(halves)
+        .also_check(never)
+        .run()
+        .unwrap();
+    assert!(!judged.verdict.passed);
+    let shortfalls = &judged.verdict.shortfalls;
+    assert!(
+        shortfalls.iter().any(|s| s == "never: by design"),
+        "{shortfalls:?}"
+    );
+    assert!(
+        !shortfalls.iter().any(|s| s.starts_with("error halves")),
+        "{shortfalls:?}"
+    );
+    assert_eq!(judged.criteria, ["error halves", "never"]);
+}

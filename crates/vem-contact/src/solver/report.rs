@@ -558,28 +558,70 @@ pub struct SolveReport {
 /// Seconds spent in each stage of a model build or a solve. A backend that does not expose a
 /// stage leaves it at zero (its whole time is in [`StageTimes::contact_solve`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StageTimes {
     /// Interface node insertion (and the node geometry).
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub insertion: Duration,
     /// Element matrices, scatter, loads, constraint rows.
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub assembly: Duration,
     /// Symbolic analyses (orderings, symbolic factorisations, solver set-up).
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub symbolic: Duration,
     /// Numeric factorisations.
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub numeric: Duration,
     /// Triangular solves.
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub solves: Duration,
     /// Whole contact solves (including the three stages above).
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub contact_solve: Duration,
     /// Post-processing (full displacements, reactions, energies, interface results).
-    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::seconds"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            serialize_with = "crate::seconds",
+            deserialize_with = "crate::from_seconds"
+        )
+    )]
     pub post: Duration,
 }
 
@@ -598,7 +640,7 @@ impl AddAssign for StageTimes {
 /// What a build or a solve computed, counted where it happens and carried with every result
 /// (the CLI's `summary.json` and the xtask reports print these figures).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WorkCounters {
     /// Global assemblies of the stiffness and load (one per body and build or refill).
     pub assemblies: usize,
