@@ -1,5 +1,10 @@
 //! `cargo xtask convergence`: the convergence studies of the project (Theorems 4.1 and 4.2 of
-//! the paper, `docs/formulation.md` section 3; measurement as in `docs/manufactured.md` section 8).
+//! the paper, `docs/formulation.md` section 3; measurement as in `docs/manufactured.md` section 8)
+//! in the plane, and the study of the element on polyhedra in space ([`three_d`],
+//! `docs/convergence-3d.md`). One run, one verdict: the exit status is 1 when a study of either
+//! part falls short.
+
+mod three_d;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -8,7 +13,7 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use vem_contact::SolverRegistry;
-use vem_space::ElementRegistry;
+use vem_space::{ElementRegistry, ElementSpace};
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::Lame;
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
@@ -17,7 +22,8 @@ use vem_verify::study::{Expectation, MeshPairing, Study, StudyResult};
 /// Options of `cargo xtask convergence`.
 #[derive(Debug, Args)]
 pub struct ConvergenceArgs {
-    /// Run a reduced set of smaller sizes (a minute or two, for CI).
+    /// Run a reduced set of smaller sizes (a minute or two, for CI); the study in space then
+    /// judges against the lower thresholds its sizes show (its report says which).
     #[arg(long)]
     quick: bool,
     /// Where the JSON, Markdown and SVG files are written.
@@ -27,11 +33,13 @@ pub struct ConvergenceArgs {
     #[arg(long, default_value = SolverRegistry::DEFAULT)]
     solver: String,
     /// The element of every body: a name of the element registry (vem1, vem1-shear,
-    /// vem1-drecipe, p1 on triangles).
+    /// vem1-drecipe, vem1-bbar, p1 on triangles); in space the lowest-order VEM with the same
+    /// stabilisation (p1 has none: select cases in the plane).
     #[arg(long, default_value = DEFAULT_ELEMENT)]
     element: String,
     /// Run only the studies of these cases, any name of the case registry (M1..M4, E1, E2,
-    /// PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3); repeatable. M1, M2 and E1 are the default run.
+    /// PT0a, PT0b, PTC1, PTC1h, PTC2, PTC3) or a case in space (E1-3D, E2-3D, PT0-3D);
+    /// repeatable. M1, M2, E1 and the three cases in space are the default run.
     #[arg(long = "case", value_name = "CASE")]
     cases: Vec<String>,
 }
@@ -69,12 +77,21 @@ const QUICK_SIZES: &[usize] = &[8, 16, 32];
 /// Sizes of the 1:3 pairing with `--quick`.
 const QUICK_SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32];
 
-/// The cases of the default run.
+/// The cases in the plane of the default run.
 const DEFAULT_CASES: [&str; 3] = ["M1", "M2", "E1"];
 
-/// The studies of the cases `wanted` (the default cases when empty), each case of `cases` on
-/// the contact pairings (two bodies) or the elasticity families (one body).
-fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Vec<Planned>, String> {
+/// The planned run: the studies in the plane and the cases in space.
+struct Plan {
+    /// The studies in the plane, in the order they run.
+    studies: Vec<Planned>,
+    /// The cases in space, each once, in the order they run.
+    solid: Vec<&'static str>,
+}
+
+/// The studies of the cases `wanted` (the default cases in the plane and in space when empty):
+/// each case of `cases` on the contact pairings (two bodies) or the elasticity families (one
+/// body); each case in space on every polyhedral family ([`three_d`]).
+fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Plan, String> {
     let sizes_for = |pairing: &str| match (quick, pairing.contains("*3")) {
         (false, false) => SIZES,
         (false, true) => SIZES_ONE_TO_THREE,
@@ -82,15 +99,26 @@ fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Vec<Plan
         (true, true) => QUICK_SIZES_ONE_TO_THREE,
     };
     let names: Vec<String> = if wanted.is_empty() {
-        DEFAULT_CASES.iter().map(|c| c.to_string()).collect()
+        DEFAULT_CASES
+            .iter()
+            .chain(&three_d::DEFAULT_CASES)
+            .map(|c| c.to_string())
+            .collect()
     } else {
         wanted.to_vec()
     };
     let mut studies = Vec::new();
+    let mut solid = Vec::new();
     for wanted in &names {
+        if let Some(name) = three_d::case_name(wanted) {
+            if !solid.contains(&name) {
+                solid.push(name);
+            }
+            continue;
+        }
         let case = cases
             .make(wanted, Lame::default())
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| format!("{e}; the cases in space are {}", three_d::case_names()))?;
         let name = case.name().to_string();
         let expectation = cases
             .expectation(&name)
@@ -109,7 +137,7 @@ fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Vec<Plan
             });
         }
     }
-    Ok(studies)
+    Ok(Plan { studies, solid })
 }
 
 /// What the studies measure, for the head of the Markdown report.
@@ -155,16 +183,21 @@ and on the finest mesh no interface node contradicts the expected sets. The swit
 themselves are reported, not asserted: the transitions are flat by design
 ([manufactured.md](manufactured.md) section 8), so nodes just past them may take either status.
 
-**Reproduce**: `cargo xtask convergence` (this report, about the time given below on 2 cores),
-`cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default `target/convergence`),
-`--solver NAME` (a name of the solver registry: `condensed`, `exact`, `penalty`, `active-set`),
-`--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `p1`), `--case NAME` (repeatable; any
-case of the case registry, e.g. `M3` or `PTC2`). One study of your own: `cargo run --release -p vem-verify
+**Reproduce**: `cargo xtask convergence` (this report, its studies in the time given below on
+2 cores), `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default
+`target/convergence`), `--solver NAME` (a name of the solver registry: `condensed`, `exact`,
+`penalty`, `active-set`), `--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `vem1-bbar`,
+`p1`), `--case NAME` (repeatable; any
+case of the case registry, e.g. `M3` or `PTC2`, or a case in space). The same command runs the
+study of the element on polyhedra in space (E1-3D, E2-3D, PT0-3D on six polyhedral families),
+reported in [convergence-3d.md](convergence-3d.md); the exit status is 1 when a study of either
+falls short. One study of your own: `cargo run --release -p vem-verify
 --example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
 `cargo run --release -p vem-verify --example custom_solution`.
 "#;
 
-/// Runs the planned studies; `Ok(true)` when every study passes.
+/// Runs the planned studies, in the plane then in space, prints and writes their reports;
+/// `Ok(true)` when every study passes.
 pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let start = Instant::now();
     let solvers = SolverRegistry::builtin();
@@ -177,16 +210,84 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         .into());
     }
     let element = ElementRegistry::builtin().make(&args.element)?;
-    let planned = plan(args.quick, &args.cases, &CaseRegistry::builtin())?;
+    let plan = plan(args.quick, &args.cases, &CaseRegistry::builtin())?;
+    // The element in space, refused before anything runs when it has no form on polyhedra.
+    let solid_element = if plan.solid.is_empty() {
+        None
+    } else {
+        Some(three_d::element(&args.element)?)
+    };
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let bars = MultiProgress::new();
+    let style = ProgressStyle::with_template("{prefix:<40} [{bar:30}] {elapsed:>4} {msg}")?
+        .progress_chars("=> ");
+    let mut parts = Vec::new();
+    let mut passed = true;
+    if !plan.studies.is_empty() {
+        let results = run_studies(&plan.studies, args, &solvers, element, &bars, &style)?;
+        passed &= results.iter().all(|r| r.verdict.passed);
+        parts.push(format!("{} studies in the plane", results.len()));
+    }
+    if let Some(element) = solid_element {
+        let outcome = three_d::run(&plan.solid, args.quick, element, &bars, &style)?;
+        println!("{}", three_d::summary_markdown(&outcome));
+        if outcome.quick {
+            println!("{}\n", three_d::quick_note());
+        }
+        println!(
+            "{} series in space in {:.0} s: {}",
+            outcome.series.len(),
+            outcome.seconds,
+            verdict_line(outcome.passed)
+        );
+        let default_run =
+            plan.solid == three_d::DEFAULT_CASES && !args.quick && args.element == DEFAULT_ELEMENT;
+        three_d::write(&outcome, &args.out, &command_options(args), default_run)?;
+        eprintln!(
+            "wrote {}/convergence-3d.md, convergence-3d.json and convergence-3d/*.svg",
+            args.out.display()
+        );
+        passed &= outcome.passed;
+        parts.push(format!("{} series in space", outcome.series.len()));
+    }
+    if parts.len() > 1 {
+        println!(
+            "{} in {:.0} s: {}",
+            parts.join(" and "),
+            start.elapsed().as_secs_f64(),
+            verdict_line(passed)
+        );
+    }
+    Ok(passed)
+}
+
+/// The verdict of a part or of the whole run, on the last line of its output.
+fn verdict_line(passed: bool) -> &'static str {
+    if passed {
+        "all pass"
+    } else {
+        "SOME FALL SHORT"
+    }
+}
+
+/// Runs the studies in the plane, prints them and their summary and writes `convergence.md`,
+/// `convergence.json` and `convergence/*.svg`.
+fn run_studies(
+    planned: &[Planned],
+    args: &ConvergenceArgs,
+    solvers: &SolverRegistry,
+    element: Arc<dyn ElementSpace>,
+    bars: &MultiProgress,
+    style: &ProgressStyle,
+) -> Result<Vec<StudyResult>, Box<dyn std::error::Error>> {
+    let start = Instant::now();
     let plots = args.out.join("convergence");
     std::fs::create_dir_all(&plots)
         .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;
     let cases = CaseRegistry::builtin();
-    let bars = MultiProgress::new();
-    let style = ProgressStyle::with_template("{prefix:<40} [{bar:30}] {elapsed:>4} {msg}")?
-        .progress_chars("=> ");
     let mut results: Vec<StudyResult> = Vec::with_capacity(planned.len());
-    for p in &planned {
+    for p in planned {
         let exact = cases.make(&p.case, Lame::default())?;
         let pairing: MeshPairing = p.pairing.parse()?;
         let study = Study::new(exact, pairing.clone())
@@ -222,16 +323,11 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
     }
     let seconds = start.elapsed().as_secs_f64();
     let passed = results.iter().all(|r| r.verdict.passed);
-    let summary = summary_markdown(&results);
-    println!("{summary}");
+    println!("{}", summary_markdown(&results));
     println!(
-        "{} studies in {seconds:.0} s: {}",
+        "{} studies in the plane in {seconds:.0} s: {}",
         results.len(),
-        if passed {
-            "all pass"
-        } else {
-            "SOME FALL SHORT"
-        }
+        verdict_line(passed)
     );
     write_text(
         args.out.join("convergence.md"),
@@ -245,7 +341,7 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         "wrote {}/convergence.md, convergence.json and convergence/*.svg",
         args.out.display()
     );
-    Ok(passed)
+    Ok(results)
 }
 
 /// The whole Markdown report: introduction, summary, one section per case with its plots.
@@ -322,4 +418,39 @@ struct JsonReport<'a> {
     seconds: f64,
     passed: bool,
     studies: &'a [StudyResult],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cases_select_the_parts_in_the_plane_and_in_space() {
+        let cases = CaseRegistry::builtin();
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        // The default run: M1, M2 (five pairings each), E1 (three families) and every case in
+        // space.
+        let default = plan(false, &[], &cases).unwrap();
+        assert_eq!(default.studies.len(), 13);
+        assert_eq!(default.solid, three_d::DEFAULT_CASES);
+        // Names of either part, in any case, each case in space once.
+        let mixed = plan(true, &names(&["e2-3d", "M1", "E2-3D"]), &cases).unwrap();
+        assert_eq!(mixed.solid, ["E2-3D"]);
+        assert!(mixed.studies.iter().all(|s| s.case == "M1"));
+        assert_eq!(mixed.studies[0].sizes, QUICK_SIZES);
+        // A selection of one part runs that part only.
+        assert!(plan(false, &names(&["PT0-3D"]), &cases)
+            .unwrap()
+            .studies
+            .is_empty());
+        assert!(plan(false, &names(&["E1"]), &cases)
+            .unwrap()
+            .solid
+            .is_empty());
+        // An unknown name lists the cases of both parts.
+        let unknown = plan(false, &names(&["E3-3D"]), &cases).err().unwrap();
+        assert!(
+            unknown.contains("\"E3-3D\"") && unknown.contains("M1") && unknown.contains("PT0-3D")
+        );
+    }
 }
