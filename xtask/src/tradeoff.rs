@@ -21,7 +21,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use vem_contact::{
     AccuracyPreset, ContactDiscretisation, ContactResult, ErrorModel, PenaltyParameter,
-    SolverRegistry,
+    SolverRegistry, WorkCounters,
 };
 use vem_space::{ElementRegistry, Options};
 use vem_verify::diagnostics::contact_diagnostics;
@@ -242,9 +242,6 @@ pub struct Row {
     mesh_generation: f64,
     /// Interface insertion and assembly (once per group, shared by its settings).
     discretisation: f64,
-    symbolic: f64,
-    numeric: f64,
-    solves: f64,
     /// Wall time of this setting's solve.
     solve_wall: f64,
     /// CPU time (user + system, all threads) of this setting's solve.
@@ -253,9 +250,8 @@ pub struct Row {
     errors_time: f64,
     iterations: usize,
     fixed_point_steps: usize,
-    assemblies: usize,
-    factorisations: usize,
-    triangular_solves: usize,
+    /// What the build and this setting's solve computed, with the library's stage times.
+    work: WorkCounters,
     /// VmHWM of the group's process after this setting.
     peak_memory: u64,
 }
@@ -636,9 +632,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
             .iter()
             .map(|b| b.system.dofs().n_free())
             .sum();
-        row.assemblies = solution.work.assemblies;
-        row.factorisations = solution.work.numeric_factorisations;
-        row.triangular_solves = solution.work.triangular_solves;
+        row.work = solution.work;
         let start = Instant::now();
         let errors = ErrorNorms::combine(&solution.errors(&**problem.exact())?);
         row.errors_time = seconds(start.elapsed());
@@ -667,7 +661,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
             unknowns: discretisation.n_dofs(),
             contact_rows: discretisation.normal_rows().nrows(),
             discretisation: seconds(build_work.times.insertion + build_work.times.assembly),
-            assemblies: build_work.assemblies,
+            work: build_work,
             ..base.clone()
         };
         let slow = setting.solver == "exact" || setting.label.starts_with("active-set@aug");
@@ -681,12 +675,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
             Ok(result) => {
                 row.solve_wall = seconds(start.elapsed());
                 row.solve_cpu = cpu_seconds() - cpu;
-                let work = result.work;
-                row.symbolic = seconds(work.times.symbolic);
-                row.numeric = seconds(work.times.numeric);
-                row.solves = seconds(work.times.solves);
-                row.factorisations = work.numeric_factorisations;
-                row.triangular_solves = work.triangular_solves;
+                row.work += result.work;
                 row.iterations = result
                     .fixed_point
                     .as_ref()
@@ -905,7 +894,7 @@ fn short_line(row: &Row) -> String {
                 .or(row.pressure_l2)
                 .map_or_else(|| "—".to_string(), |e| format!("{e:.3e}")),
             row.total_time(),
-            row.factorisations
+            row.work.numeric_factorisations
         ),
     }
 }
@@ -1077,7 +1066,7 @@ fn report(
                 opt(r.pressure_l2),
                 opt(r.resultant),
                 r.iterations,
-                r.factorisations,
+                r.work.numeric_factorisations,
                 r.solve_wall
             ));
         }
@@ -1252,14 +1241,14 @@ fn report(
                 r.discretisation,
                 r.solve_wall,
                 r.solve_cpu,
-                r.symbolic,
-                r.numeric,
-                r.solves,
+                r.work.times.symbolic.as_secs_f64(),
+                r.work.times.numeric.as_secs_f64(),
+                r.work.times.solves.as_secs_f64(),
                 r.iterations,
                 r.fixed_point_steps,
-                r.assemblies,
-                r.factorisations,
-                r.triangular_solves,
+                r.work.assemblies,
+                r.work.numeric_factorisations,
+                r.work.triangular_solves,
                 r.peak_memory as f64 / 1024.0 / 1024.0,
                 if on_front(r) { "yes" } else { "" },
             ));
@@ -1388,7 +1377,7 @@ fn findings(rows: &[Row]) -> String {
         let factorisations: Vec<f64> = rows
             .iter()
             .filter(|r| r.setting == label && r.error.is_none() && r.role != "reference")
-            .map(|r| r.factorisations as f64)
+            .map(|r| r.work.numeric_factorisations as f64)
             .collect();
         let failed = rows
             .iter()

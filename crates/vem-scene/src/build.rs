@@ -456,6 +456,7 @@ fn build_mesh(
             }
         }
         .map_err(|e| SceneError::at(at.clone(), format!("body '{name}': {e}")))?;
+        let read = with_sub_parts(read, spec, path)?;
         return Ok((read, format!("mesh file {file}"), None));
     }
     let (n, chosen, predicted) = generated_size(scene, spec, path)?;
@@ -470,6 +471,7 @@ fn build_mesh(
         String::new()
     };
     let (a, b) = (rect.min, rect.max);
+    let generated = with_sub_parts(generated, spec, path)?;
     Ok((
         generated,
         format!(
@@ -478,6 +480,78 @@ fn build_mesh(
         ),
         predicted,
     ))
+}
+
+/// `mesh` with the body's further parts (`mesh.parts`): the boundary edges whose two end
+/// points lie in each part's box (widened by 1e-9 of its size, so that points on its sides
+/// count), among the edges of `of` when given.
+///
+/// # Errors
+/// A part named like one of the mesh's, an `of` the mesh lacks, a box that holds no edge.
+fn with_sub_parts(
+    mut mesh: Mesh,
+    spec: &BodyDescription,
+    path: &KeyPath,
+) -> Result<Mesh, SceneError> {
+    let name = &spec.name;
+    for (k, part) in spec.mesh.parts.iter().enumerate() {
+        let at = path.at("mesh").at("parts").index(k);
+        let of: Option<Vec<(Point, Point)>> = match &part.of {
+            Some(of) => {
+                check_part(&mesh, name, of, &at.at("of"))?;
+                let vertices = mesh.vertices();
+                Some(
+                    mesh.part_specs()
+                        .into_iter()
+                        .find(|p| &p.name == of)
+                        .map(|p| {
+                            p.edges
+                                .iter()
+                                .map(|&[a, b]| (vertices[a], vertices[b]))
+                                .collect()
+                        })
+                        .unwrap_or_default(),
+                )
+            }
+            None => None,
+        };
+        let (lo, hi) = (&part.bounds[0], &part.bounds[1]);
+        let slack = 1e-9
+            * (hi[0] - lo[0])
+                .abs()
+                .max((hi[1] - lo[1]).abs())
+                .max(f64::MIN_POSITIVE);
+        let inside = |p: Point| {
+            p.x >= lo[0] - slack
+                && p.x <= hi[0] + slack
+                && p.y >= lo[1] - slack
+                && p.y <= hi[1] + slack
+        };
+        let in_of = |a: Point, b: Point| {
+            of.as_ref().is_none_or(|edges| {
+                edges
+                    .iter()
+                    .any(|&(p, q)| (p == a && q == b) || (p == b && q == a))
+            })
+        };
+        let cut = mesh
+            .with_part_where(&part.name, |a, b| inside(a) && inside(b) && in_of(a, b))
+            .map_err(|e| SceneError::at(at.at("name"), format!("body '{name}': {e}")))?;
+        if cut.part(&part.name).map_or(0, |p| p.edges.len()) == 0 {
+            return Err(SceneError::at(
+                at.at("box"),
+                format!(
+                    "body '{name}': part '{}' has no boundary edge{} with both ends in its box",
+                    part.name,
+                    part.of
+                        .as_ref()
+                        .map_or(String::new(), |of| format!(" of part '{of}'"))
+                ),
+            ));
+        }
+        mesh = cut;
+    }
+    Ok(mesh)
 }
 
 /// A polygonal mesh from a VTK file with the scene's part names.

@@ -424,6 +424,23 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
     }
     let mesh = &body.mesh;
     let mesh_path = path.at("mesh");
+    for (k, part) in mesh.parts.iter().enumerate() {
+        let at = mesh_path.at("parts").index(k);
+        let corners = at.at("box");
+        exact_len(part.bounds.len(), 2, &corners)?;
+        for (c, corner) in part.bounds.iter().enumerate() {
+            exact_len(corner.len(), DIMENSION, &corners.index(c))?;
+        }
+        if (0..DIMENSION).any(|i| part.bounds[0][i] > part.bounds[1][i]) {
+            return Err(SceneError::at(
+                corners,
+                format!(
+                    "body '{name}': the box of part '{}' has its lower corner above its upper one",
+                    part.name
+                ),
+            ));
+        }
+    }
     match (&mesh.family, &mesh.file) {
         (Some(_), Some(_)) | (None, None) => {
             return Err(SceneError::at(

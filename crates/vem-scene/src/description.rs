@@ -107,6 +107,26 @@ pub struct MeshDescription {
     /// VTK files: the names of the part numbers of the line cells (`{ 1 = "bottom" }`).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub part_names: BTreeMap<String, String>,
+    /// Further boundary parts cut out of the mesh's boundary (a strip load, a partial clamp, a
+    /// contact zone on part of an edge): `parts = [{ name = "strip", of = "top", box =
+    /// [[0.4, 0.9], [0.6, 1.1]] }]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parts: Vec<SubPartDescription>,
+}
+
+/// A boundary part made of the boundary edges whose two end points lie in a box (closed, to
+/// a round-off of the box's size), optionally only among the edges of an existing part.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubPartDescription {
+    /// The new part's name (not a name the mesh has).
+    pub name: String,
+    /// The part its edges are taken from (default: the whole boundary).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub of: Option<String>,
+    /// The box `[[x0, y0], [x1, y1]]` the edges' end points lie in.
+    #[serde(rename = "box")]
+    pub bounds: Vec<Vec<f64>>,
 }
 
 /// An isotropic material: `E` and `nu`, or `lambda` and `mu`, and `plane`.
