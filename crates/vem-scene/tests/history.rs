@@ -221,7 +221,7 @@ fn expressions_beyond_the_dimension_are_refused() {
         "\"frictionless\"",
         r#"traction = [{ part = "top", value = ["0.1 * z", 0] }]"#,
     );
-    let e = solve(&text).err().expect("refused");
+    let e = solve(&text).expect_err("refused");
     assert_eq!(e.path.to_string(), "body[0].traction[0].value[0]");
     assert!(e.message.contains("dimension 2"), "{}", e.message);
 }

@@ -45,7 +45,7 @@ fn a_strip_load_and_a_partial_clamp_cut_out_by_boxes() {
 #[test]
 fn parts_that_cannot_be_made_are_refused_at_their_key() {
     let refused = |parts: &str| {
-        let e = solve(&block(parts)).err().expect("refused");
+        let e = solve(&block(parts)).expect_err("refused");
         (e.path.to_string(), e.message)
     };
     let (path, message) = refused(
