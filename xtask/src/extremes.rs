@@ -1,7 +1,8 @@
 //! `cargo xtask extremes`: numerical stability at the extremes. Every row (Poisson ratio up to
 //! 0.49999, stiffness contrasts, units, degenerate cells, penalty factors, gaps, friction
 //! bounds) is solved by every registered solver and judged against an independent expected
-//! answer; the report goes to `docs/extremes.md` (or `--out`). The rows themselves are in
+//! answer; the report goes to `target/extremes/extremes.md` (`--out docs/extremes.md` for the
+//! tracked one). The rows themselves are in
 //! [`rows`], shared with the workspace test `tests/tests/extremes.rs`.
 
 pub mod rows;
@@ -21,8 +22,8 @@ pub struct ExtremesArgs {
     /// Smaller meshes and fewer mesh families in the locking study (under a minute, for CI).
     #[arg(long)]
     quick: bool,
-    /// The Markdown report.
-    #[arg(long, default_value = "docs/extremes.md")]
+    /// The Markdown report (`--out docs/extremes.md` regenerates the tracked one).
+    #[arg(long, default_value = "target/extremes/extremes.md")]
     out: PathBuf,
     /// Only the solvers named (registry names: condensed, exact, penalty, active-set);
     /// repeatable. Default: every registered solver.

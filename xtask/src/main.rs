@@ -6,7 +6,7 @@
 //! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
 //!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
 //! - `extremes`: stability at the extremes, every solver against independent answers (see
-//!   `docs/extremes.md`).
+//!   `target/extremes/extremes.md`; `--out docs/extremes.md` regenerates the tracked report).
 //! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
 //!   interface insertion (see `docs/fuzzing.md`).
 //! - `tradeoff`: work-precision diagrams of every solver setting, the accuracy presets and the
@@ -49,7 +49,8 @@ enum Task {
     Hertz(hertz::HertzArgs),
     /// Stability at the extremes: Poisson ratio up to 0.49999 for every element, stiffness
     /// contrasts, units scaled, degenerate cells, penalty factors, gaps, friction bounds; every
-    /// solver against an independent expected answer. Writes docs/extremes.md; exits with
+    /// solver against an independent expected answer. Writes target/extremes/extremes.md (or
+    /// `--out`); exits with
     /// status 1 when a wrong answer came without an error or a warning.
     Extremes(extremes::ExtremesArgs),
     /// Mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and interface
