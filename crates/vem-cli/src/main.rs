@@ -32,9 +32,11 @@ enum Command {
     /// (one row per interface node), summary.json (what was built, DOFs, constraint rows,
     /// solver, iterations, KKT residuals, resultants, times), deformed.svg (the deformed
     /// bodies, magnified, coloured by von Mises stress, with the obstacle), pressure.svg and,
-    /// with friction, slip.svg; with a load history of several steps also BODY_NNNN.vtu and
-    /// contact_NNNN.csv per step, BODY.pvd (a ParaView time series), history.csv and
-    /// history.svg (load-displacement curves). Prints a short summary.
+    /// with friction, slip.svg; with contact, interface.vtu (the interface nodes and their
+    /// values) and results.pvd (opens every body and the interface at once); with a load
+    /// history of several steps also BODY_NNNN.vtu, interface_NNNN.vtu and contact_NNNN.csv
+    /// per step, results.pvd over the steps, history.csv and history.svg (load-displacement
+    /// curves). Prints a short summary.
     Run {
         /// The scene file (TOML).
         scene: PathBuf,

@@ -12,7 +12,8 @@ use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
 use vem_elastic::ElementField;
 use vem_mesh::io::{
     remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers, write_vtu,
-    PvdCollection, SvgLayer, SvgOptions, VtuData,
+    CellType, Cells, PvdCollection, SvgLayer, SvgOptions, UnstructuredGrid, VtkArray, VtuData,
+    VtuEncoding,
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -24,6 +25,10 @@ use vem_scene::SolvedBody;
 pub const CONTACT_COLUMNS: &str =
     "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,friction_force,\
      consistent_friction_traction,slip,status";
+
+/// The encoding of the interface datasets: compressed (zlib) binary, which VTK, ParaView and
+/// meshio read alike (meshio misreads the raw appended arrays of these small files).
+const INTERFACE_ENCODING: VtuEncoding = VtuEncoding::Compressed;
 
 /// Default width of pictures and plots, in pixels.
 pub const DEFAULT_WIDTH: f64 = 900.0;
@@ -72,7 +77,27 @@ impl Outcome {
             write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if !self.steps.is_empty() {
+        if let Some(contact) = &self.contact {
+            let path = dir.join("interface.vtu");
+            interface_grid(&contact.nodes, &contact.model.pairs)
+                .write(&path, INTERFACE_ENCODING)
+                .map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        if self.steps.is_empty() {
+            // One collection that opens every body and the interface at once.
+            let mut collection = PvdCollection::new();
+            for (part, solved) in self.bodies.iter().enumerate() {
+                let name = solved.body.name();
+                collection.add(0.0, part, name, format!("{name}.vtu"));
+            }
+            if self.contact.is_some() {
+                collection.add(0.0, self.bodies.len(), "interface", "interface.vtu");
+            }
+            let path = dir.join("results.pvd");
+            collection.write(&path).map_err(mesh_error(&path))?;
+            written.push(path);
+        } else {
             written.extend(self.write_history(dir)?);
         }
         let width = self.width();
@@ -127,10 +152,11 @@ impl Outcome {
             .collect()
     }
 
-    /// The files of a load history of several steps: per body in contact a ParaView time
-    /// series `<body>.pvd` of `<body>_NNNN.vtu` (step NNNN from 1, at its pseudo-time), per
-    /// step `contact_NNNN.csv`, and `history.csv` and `history.svg`: the contact force on
-    /// body A and the load point's displacement at every step.
+    /// The files of a load history of several steps: per step NNNN (from 1) `<body>_NNNN.vtu`
+    /// of every body in contact, `interface_NNNN.vtu` and `contact_NNNN.csv`; `results.pvd`,
+    /// the ParaView time series of them all at the steps' pseudo-times; `history.csv` and
+    /// `history.svg`: the contact force on body A and the load point's displacement at every
+    /// step.
     fn write_history(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let mesh_error = |path: &Path| {
             let context = path.display().to_string();
@@ -146,7 +172,7 @@ impl Outcome {
             .contact
             .as_ref()
             .map_or(&[][..], |c| &c.history[..]);
-        let mut series: Vec<PvdCollection> = vec![PvdCollection::new(); self.contact_bodies.len()];
+        let mut series = PvdCollection::new();
         let count = self.steps.len() + 1;
         for k in 0..count {
             let (nodes, time) = match self.steps.get(k) {
@@ -182,19 +208,24 @@ impl Outcome {
                     ),
                 };
                 write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
-                series[b].add(time, 0, name, file);
+                series.add(time, b, name, file);
                 written.push(path);
             }
             let path = dir.join(format!("contact_{label}.csv"));
             write_atomically(&path, |w| write_contact_csv(w, nodes, frictionless))
                 .map_err(mesh_error(&path))?;
             written.push(path);
-        }
-        for (b, &index) in self.contact_bodies.iter().enumerate() {
-            let path = dir.join(format!("{}.pvd", self.bodies[index].body.name()));
-            series[b].write(&path).map_err(mesh_error(&path))?;
+            let file = format!("interface_{label}.vtu");
+            let path = dir.join(&file);
+            interface_grid(nodes, &last.model.pairs)
+                .write(&path, INTERFACE_ENCODING)
+                .map_err(mesh_error(&path))?;
+            series.add(time, self.contact_bodies.len(), "interface", file);
             written.push(path);
         }
+        let path = dir.join("results.pvd");
+        series.write(&path).map_err(mesh_error(&path))?;
+        written.push(path);
         let path = dir.join("history.csv");
         write_atomically(&path, |w| write_history_csv(w, steps)).map_err(mesh_error(&path))?;
         written.push(path);
@@ -511,6 +542,77 @@ pub fn status_label(status: NodeStatus, frictionless: bool) -> &'static str {
         NodeStatus::Slip if frictionless => "contact",
         other => other.name(),
     }
+}
+
+/// The interface as a dataset of its own: per contact pair the segments between its
+/// consecutive nodes (in their order along the interface), and at every node the columns of `contact.csv` as point
+/// data (vectors in 3 components: `normal`, `friction_force`, `friction_traction` (the
+/// consistent one), `slip`), the status as an integer `status` (0 open, 1 contact, 2 stick,
+/// 3 slip) and the pair as cell data `pair`.
+fn interface_grid(nodes: &[InterfaceNode], pairs: &[vem_contact::PairSummary]) -> UnstructuredGrid {
+    let points: Vec<[f64; 3]> = nodes
+        .iter()
+        .map(|n| [n.position.x, n.position.y, 0.0])
+        .collect();
+    let mut cells = Cells::new();
+    let mut pair_of_cell = Vec::new();
+    for (k, pair) in pairs.iter().enumerate() {
+        let indices: Vec<usize> = pair.nodes.clone().collect();
+        if let [only] = indices[..] {
+            cells.push(CellType::Vertex, &[only]);
+            pair_of_cell.push(k as i32);
+        }
+        // Segments rather than one polyline: every reader (meshio too) takes them.
+        for segment in indices.windows(2) {
+            cells.push(CellType::Line, segment);
+            pair_of_cell.push(k as i32);
+        }
+    }
+    let vector = |v: &dyn Fn(&InterfaceNode) -> Vector| -> Vec<[f64; 3]> {
+        nodes
+            .iter()
+            .map(|n| {
+                let v = v(n);
+                [v.x + 0.0, v.y + 0.0, 0.0]
+            })
+            .collect()
+    };
+    let scalar = |f: &dyn Fn(&InterfaceNode) -> f64| -> Vec<f64> {
+        nodes.iter().map(|n| f(n) + 0.0).collect()
+    };
+    let status = |s: NodeStatus| match s {
+        NodeStatus::Open => 0,
+        NodeStatus::Contact => 1,
+        NodeStatus::Stick => 2,
+        NodeStatus::Slip => 3,
+    };
+    UnstructuredGrid::new(points, cells)
+        .with_point_data(VtkArray::vectors("normal", &vector(&|n| n.normal)))
+        .with_point_data(VtkArray::scalars("initial_gap", scalar(&|n| n.initial_gap)))
+        .with_point_data(VtkArray::scalars("normal_jump", scalar(&|n| n.normal_jump)))
+        .with_point_data(VtkArray::scalars(
+            "normal_force",
+            scalar(&|n| n.normal_force),
+        ))
+        .with_point_data(VtkArray::scalars("pressure", scalar(&|n| n.pressure)))
+        .with_point_data(VtkArray::scalars(
+            "consistent_pressure",
+            scalar(&|n| n.consistent_pressure),
+        ))
+        .with_point_data(VtkArray::vectors(
+            "friction_force",
+            &vector(&|n| n.friction_force),
+        ))
+        .with_point_data(VtkArray::vectors(
+            "friction_traction",
+            &vector(&|n| n.consistent_friction_traction),
+        ))
+        .with_point_data(VtkArray::vectors("slip", &vector(&|n| n.slip)))
+        .with_point_data(VtkArray::int32(
+            "status",
+            nodes.iter().map(|n| status(n.status)).collect(),
+        ))
+        .with_cell_data(VtkArray::int32("pair", pair_of_cell))
 }
 
 /// `history.csv`: one row per step: its pseudo-time, the load point's displacement, the

@@ -335,7 +335,9 @@ fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
         "block.vtu",
         "contact.csv",
         "deformed.svg",
+        "interface.vtu",
         "pressure.svg",
+        "results.pvd",
         "summary.json",
     ];
     assert_eq!(names(&out), expected);

@@ -207,6 +207,24 @@ fn hertz_half_width_and_peak_pressure() {
             > 0.0
     );
     assert!(dir.join("pressure.svg").is_file() && !dir.join("slip.svg").exists());
+    // The interface as a dataset of its own: a point per node with its values, a segment
+    // between consecutive nodes; one collection opens it with both bodies.
+    let interface = vem_mesh::io::read_vtu(dir.join("interface.vtu")).unwrap();
+    let nodes = nodes(&outcome);
+    assert_eq!(interface.points.len(), nodes.len());
+    assert_eq!(interface.cells.len(), nodes.len() - 1);
+    let pressure = interface
+        .point_data
+        .iter()
+        .find(|a| a.name == "pressure")
+        .unwrap();
+    for (k, n) in nodes.iter().enumerate() {
+        assert_eq!(pressure.values.get_f64(k), Some(n.pressure));
+    }
+    let pvd = std::fs::read_to_string(dir.join("results.pvd")).unwrap();
+    for file in ["disc.vtu", "block.vtu", "interface.vtu"] {
+        assert!(pvd.contains(&format!("file=\"{file}\"")), "{file}");
+    }
 }
 
 /// Scene 3: a block pressed (p = 0.2) and sheared (top displaced by 0.02) on a foundation,
@@ -278,15 +296,16 @@ fn signorini_block_on_a_rigid_line() {
         assert!(n.normal_jump.abs() < 1e-8);
     }
     assert!((contact.normal_resultant() - p * 2.0).abs() < 1e-6);
-    // Only the block's mesh is written.
-    let vtus: Vec<String> = std::fs::read_dir(&dir)
+    // Only the block's mesh is written (the obstacle has none), with the interface.
+    let mut vtus: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .filter_map(|e| {
             let name = e.unwrap().file_name().to_string_lossy().into_owned();
             name.ends_with(".vtu").then_some(name)
         })
         .collect();
-    assert_eq!(vtus, ["block.vtu"]);
+    vtus.sort();
+    assert_eq!(vtus, ["block.vtu", "interface.vtu"]);
     assert_eq!(
         summary_json(&dir)["contact"]["model"]["pairs"][0]["obstacle"],
         true
@@ -544,10 +563,15 @@ fn fretting_cycle_is_a_hysteresis_loop() {
         (again - plus).abs() < 0.01 * plus.abs(),
         "{again:e} {plus:e}"
     );
-    // Files: a series per body over every step, a contact table per step, the curves.
-    let pvd = std::fs::read_to_string(dir.join("disc.pvd")).unwrap();
-    assert_eq!(pvd.matches("<DataSet ").count(), 14);
-    assert!(pvd.contains("timestep=\"0.5\"") && pvd.contains("file=\"disc_0014.vtu\""));
+    // Files: one time series of both bodies and the interface over every step, a contact
+    // table per step, the curves.
+    let pvd = std::fs::read_to_string(dir.join("results.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet ").count(), 3 * 14);
+    for file in ["disc_0014.vtu", "block_0001.vtu", "interface_0007.vtu"] {
+        assert!(pvd.contains(&format!("file=\"{file}\"")), "{file}");
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    assert!(pvd.contains("timestep=\"0.5\""));
     assert!(dir.join("contact_0014.csv").is_file() && dir.join("history.svg").is_file());
     let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
     assert_eq!(history.lines().count(), 15);
