@@ -170,7 +170,10 @@ fn checks() -> Result<Vec<String>, Error> {
     }
     let law = &mixed.model.pairs[0].law;
     check(
-        worst <= tolerance && at_cap > 0 && at_coulomb > 0 && law.starts_with("capped coulomb"),
+        worst <= tolerance
+            && at_cap > 0
+            && at_coulomb > 0
+            && law == &format!("capped coulomb, F = {F}, cap = {cap}"),
         format!(
             "cap = {cap} (law: {law}): friction off the cone by at most {worst:.1e} \
              (tolerance {tolerance:.1e}); {at_cap} nodes slip at the cap, {at_coulomb} at F \
