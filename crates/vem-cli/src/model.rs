@@ -124,14 +124,16 @@ impl Model {
                     })?
                     .len(),
             };
-            let law = spec
-                .law
-                .as_ref()
-                .map_or_else(|| "frictionless".to_string(), |l| l.name.clone());
+            // The law as built (the scene's pairs are the problem's, in order).
+            let built = self
+                .model
+                .contact_problem()
+                .and_then(|(problem, _)| problem.pairs().get(contacts.len()))
+                .map(|pair| pair.law());
             contacts.push(CheckedContact {
                 description: c.description.clone(),
-                friction: law != "frictionless",
-                law,
+                friction: built.is_some_and(|law| law.has_friction()),
+                law: built.map_or_else(|| "frictionless".to_string(), |law| law.describe()),
                 interface_nodes,
             });
         }
@@ -274,9 +276,12 @@ impl fmt::Display for CheckReport {
                 "model: no contact pair: each body is solved as plain linear elasticity"
             );
         }
+        let any_friction = self.contacts.iter().any(|c| c.friction);
         for c in &self.contacts {
             writeln!(f, "model: {}, law {}", c.description, c.law)?;
-            let tangential = if c.friction {
+            // Tangential rows are built for every node of a problem with friction somewhere
+            // (a frictionless pair's bounds are 0).
+            let tangential = if any_friction {
                 format!("{} tangential rows", c.interface_nodes)
             } else {
                 "no tangential rows (frictionless)".to_string()

@@ -31,31 +31,15 @@ impl Outcome {
             .iter()
             .filter_map(|c| c.obstacle.clone())
             .collect();
+        // The bound per unit length at every node, as the solve used it (any law).
         let friction_bounds = inner.contact.as_ref().and_then(|contact| {
-            let laws: Vec<_> = model
-                .scene()
-                .contacts
-                .iter()
-                .map(|c| c.law.clone().unwrap_or_default())
-                .collect();
-            if contact.model.tangential_rows == 0 {
-                return None;
-            }
-            Some(
+            (contact.model.tangential_rows > 0).then(|| {
                 contact
                     .nodes
                     .iter()
-                    .map(|n| {
-                        let law = &laws[n.pair];
-                        let setting = |key: &str| law.options.get(key).and_then(|v| v.as_f64());
-                        match law.name.as_str() {
-                            "tresca" => setting("friction_bound").unwrap_or(0.0),
-                            "coulomb" => setting("coefficient").unwrap_or(0.0) * n.pressure,
-                            _ => 0.0,
-                        }
-                    })
-                    .collect(),
-            )
+                    .map(|n| n.friction_bound / n.tributary_measure)
+                    .collect()
+            })
         });
         let output = &scene.file().output;
         Self {

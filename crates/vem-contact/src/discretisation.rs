@@ -1001,6 +1001,7 @@ impl<const D: usize> ContactDiscretisation<D> {
                 consistent_pressure: normal_force / node.tributary_measure,
                 friction_force: friction,
                 consistent_friction_traction: friction / node.tributary_measure,
+                friction_bound: friction_bound.unwrap_or(0.0),
                 slip,
                 status,
                 body_a: node.body_a,

@@ -154,6 +154,10 @@ pub struct InterfaceNode<const D: usize = 2> {
     /// ([`TractionBound::Magnitude`]: `|t| <= F p` for Coulomb), along the tangent; in 3D the
     /// nodal value.
     pub consistent_friction_traction: VectorD<D>,
+    /// The nodal friction bound `b_i` the last solve used (a force: Tresca `g_F l_x`, Coulomb
+    /// `F lambda_N` of the fixed point's last step, a law of one's own its own; the disk's
+    /// radius in 3D); 0 without friction.
+    pub friction_bound: f64,
     /// The slip: the tangential part of `u_A - u_B` (zero for frictionless laws: not
     /// modelled).
     pub slip: VectorD<D>,
