@@ -187,12 +187,11 @@ themselves are reported, not asserted: the transitions are flat by design
 2 cores), `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default
 `target/convergence`), `--solver NAME` (a name of the solver registry: `condensed`, `exact`,
 `penalty`, `active-set`), `--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `vem1-bbar`,
-`p1`), `--case NAME` (repeatable; any
-case of the case registry, e.g. `M3` or `PTC2`, or a case in space). The same command runs the
-study of the element on polyhedra in space (E1-3D, E2-3D, PT0-3D on six polyhedral families),
-reported in [convergence-3d.md](convergence-3d.md); the exit status is 1 when a study of either
-falls short. One study of your own: `cargo run --release -p vem-verify
---example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
+`p1`), `--case NAME` (repeatable; any case of the case registry, e.g. `M3` or `PTC2`, or a case
+in space). The same command runs the study of the element on polyhedra in space (E1-3D, E2-3D,
+PT0-3D on six polyhedral families), reported in [convergence-3d.md](convergence-3d.md); the exit
+status is 1 when a study of either falls short. One study of your own: `cargo run --release -p
+vem-verify --example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
 `cargo run --release -p vem-verify --example custom_solution`.
 "#;
 
