@@ -1,6 +1,7 @@
 //! Project tasks, run as `cargo xtask <task>` (an alias of `cargo run --release -p xtask --`).
 //!
-//! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 (see `docs/convergence.md`).
+//! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 and of 3D elasticity (see
+//!   `docs/convergence.md`, `docs/convergence-3d.md`).
 //! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
 //!   `docs/benchmarks.md`).
 //! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
@@ -35,9 +36,10 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Task {
     /// Convergence studies by manufactured solutions: M1 (Theorem 4.1, frictionless), M2
-    /// (Theorem 4.2, Tresca) on five mesh pairings and E1 (elasticity) on three families.
-    /// Writes JSON, Markdown and SVG plots; exits with status 1 when a study falls short of
-    /// the expected rates (E_grad and E_a >= 0.9, E_0 >= 1.8).
+    /// (Theorem 4.2, Tresca) on five mesh pairings and E1 (elasticity) on three families; in
+    /// 3D, E1-3D, E2-3D and the patch test PT0-3D on six polyhedral families. Writes JSON,
+    /// Markdown and SVG plots; exits with status 1 when a study falls short of the expected
+    /// rates (2D: E_grad and E_a >= 0.9, E_0 >= 1.8; 3D: E_grad >= 0.95, E_0 >= 1.9).
     Convergence(convergence::ConvergenceArgs),
     /// Contact solves against one elastic solve of the same meshes (Hertz-like frictionless
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
