@@ -58,6 +58,30 @@ fn padded(values: impl Iterator<Item = f64>, top: f64) -> Range<f64> {
     (lo - 0.05 * span)..(hi + top * span)
 }
 
+/// `area` below the title `text`, wrapped at word boundaries into lines that fit the area's
+/// width (20-pixel sans-serif: about 10 pixels a character), never cut.
+fn titled<'a>(
+    area: &DrawingArea<SVGBackend<'a>, Shift>,
+    text: &str,
+) -> Result<DrawingArea<SVGBackend<'a>, Shift>, Box<dyn std::error::Error>> {
+    let room = ((area.dim_in_pixel().0 as f64 - 40.0) / 10.0).max(20.0) as usize;
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= room => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    let mut below = area.clone();
+    for line in &lines {
+        below = below.titled(line, ("sans-serif", 20))?;
+    }
+    Ok(below)
+}
+
 /// Room above the curves for the legend, as a fraction of the value span.
 const LEGEND_ROOM: f64 = 0.35;
 
@@ -136,11 +160,38 @@ pub(crate) fn pressure(
             .collect();
         (traction, consistent_traction, bounds)
     });
-    let x_range = padded(pressure.iter().chain(&hertz_curve).map(|p| p.0), 0.05);
+    // Zoomed to the contact zone (its active nodes, a fifth of its width and two node
+    // spacings on each side, and Hertz's zone), the whole interface when nothing touches.
+    let active: Vec<f64> = nodes
+        .iter()
+        .filter(|n| n.status.is_active())
+        .map(position)
+        .collect();
+    let x_range = if active.is_empty() {
+        padded(pressure.iter().chain(&hertz_curve).map(|p| p.0), 0.05)
+    } else {
+        let lo = active.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = active.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let spacing = 2.0 * (hi - lo).max(f64::MIN_POSITIVE) / active.len().max(1) as f64;
+        let margin = (0.2 * (hi - lo)).max(2.0 * spacing);
+        let (all_lo, all_hi) = pressure
+            .iter()
+            .map(|p| p.0)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        let (h_lo, h_hi) = hertz_curve
+            .iter()
+            .map(|p| p.0)
+            .fold((lo, hi), |(a, b), x| (a.min(x), b.max(x)));
+        (h_lo - margin).max(all_lo)..(h_hi + margin).min(all_hi)
+    };
+    let in_view = |p: &&(f64, f64)| x_range.contains(&p.0);
     let y_range = padded(
         pressure
             .iter()
-            .chain(&consistent)
+            .filter(in_view)
+            .chain(consistent.iter().filter(in_view))
             .chain(&hertz_curve)
             .map(|p| p.1)
             .chain(friction.iter().flat_map(|(t, c, b)| {
@@ -152,13 +203,22 @@ pub(crate) fn pressure(
             .chain([0.0]),
         LEGEND_ROOM,
     );
+    let hertz_label = hertz.map_or_else(String::new, |h| {
+        // Four significant digits, as the summary prints them.
+        let four = |v: f64| vem_scene::short(format!("{v:.3e}").parse().unwrap_or(v));
+        format!(
+            "Hertz: p0 sqrt(1 - (x - c)^2 / a^2), p0 = {}, a = {}",
+            four(h.peak_pressure),
+            four(h.half_width)
+        )
+    });
     svg_file(path, width, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(format!("{title}: contact pressure"), ("sans-serif", 20))
+        let area = titled(root, &format!("{title}: contact pressure"))?;
+        let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(70)
-            .build_cartesian_2d(x_range, y_range)?;
+            .build_cartesian_2d(x_range.clone(), y_range)?;
         chart
             .configure_mesh()
             .x_desc(name)
@@ -175,22 +235,23 @@ pub(crate) fn pressure(
                     hertz_curve.iter().copied(),
                     HERTZ.stroke_width(2),
                 ))?
-                .label("Hertz p0 sqrt(1 - (x - c)^2 / a^2)")
+                .label(hertz_label.as_str())
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], HERTZ.stroke_width(2))
                 });
         }
         chart
             .draw_series(LineSeries::new(
-                consistent.iter().copied(),
+                consistent.iter().filter(in_view).copied(),
                 PRESSURE.stroke_width(2),
             ))?
-            .label("consistent pressure (L2 projection of the normal forces)")
+            .label("consistent pressure (projection of the normal forces, >= 0)")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PRESSURE.stroke_width(2)));
         chart
             .draw_series(
                 pressure
                     .iter()
+                    .filter(in_view)
                     .map(|&p| Circle::new(p, 2, PRESSURE.mix(0.5).filled())),
             )?
             .label("nodal pressure (normal force / tributary length)")
@@ -198,10 +259,10 @@ pub(crate) fn pressure(
         if let Some((traction, consistent_traction, bounds)) = &friction {
             chart
                 .draw_series(LineSeries::new(
-                    consistent_traction.iter().copied(),
+                    consistent_traction.iter().filter(in_view).copied(),
                     FRICTION.stroke_width(2),
                 ))?
-                .label("consistent friction traction (L2 projection)")
+                .label("consistent friction traction (projection within the bound)")
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], FRICTION.stroke_width(2))
                 });
@@ -209,19 +270,20 @@ pub(crate) fn pressure(
                 .draw_series(
                     traction
                         .iter()
+                        .filter(in_view)
                         .map(|&p| Circle::new(p, 2, FRICTION.mix(0.5).filled())),
                 )?
                 .label("nodal friction traction (friction force / tributary length)")
                 .legend(|(x, y)| Circle::new((x + 10, y), 2, FRICTION.mix(0.5).filled()));
             chart
                 .draw_series(LineSeries::new(
-                    bounds.iter().copied(),
+                    bounds.iter().filter(in_view).copied(),
                     BOUND.stroke_width(1),
                 ))?
                 .label("+/- friction bound")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BOUND));
             chart.draw_series(LineSeries::new(
-                bounds.iter().map(|&(x, g)| (x, -g)),
+                bounds.iter().filter(in_view).map(|&(x, g)| (x, -g)),
                 BOUND.stroke_width(1),
             ))?;
         }
@@ -247,8 +309,8 @@ pub(crate) fn slip(
     let x_range = padded(points.iter().map(|p| p.0), 0.05);
     let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), LEGEND_ROOM);
     svg_file(path, width, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(format!("{title}: slip"), ("sans-serif", 20))
+        let area = titled(root, &format!("{title}: slip"))?;
+        let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(80)
@@ -319,7 +381,7 @@ pub(crate) fn history(
         (curve(0), FRICTION, "tangential", "F_x", "u_x"),
     ];
     svg_file(path, width, |root| {
-        let area = root.titled(&format!("{title}: load history"), ("sans-serif", 18))?;
+        let area = titled(root, &format!("{title}: load history"))?;
         let (left, right) = area.split_horizontally(area.dim_in_pixel().0 / 2);
         for (area, (points, colour, kind, force, displacement)) in [left, right].iter().zip(&panels)
         {
