@@ -509,6 +509,11 @@ fn vtu_data(
             fields.iter().map(|f| f.stress[(2, 2)]).collect(),
         )
         .with_cell_scalars("von_mises", fields.iter().map(|f| f.von_mises).collect())
+        .with_point_data(vem_mesh::io::DataArray::new(
+            "nodal_stress_xx_yy_xy",
+            3,
+            nodal_stress(solved.body.mesh(), fields),
+        ))
         .with_cell_scalars(
             "quality_gamma",
             solved.qualities.iter().map(|q| q.gamma()).collect(),
@@ -531,6 +536,36 @@ fn vtu_data(
             .with_point_scalars("consistent_contact_pressure", consistent);
     }
     data
+}
+
+/// The stress recovered at the vertices: at each vertex the area-weighted mean of the stresses
+/// (constant per element) of the elements around it, `xx, yy, xy` per vertex. A smooth field
+/// for contour plots beside the cell values; it is not more accurate than they are.
+fn nodal_stress(mesh: &Mesh, fields: &[ElementField]) -> Vec<f64> {
+    let mut sum = vec![0.0; 3 * mesh.n_vertices()];
+    let mut weight = vec![0.0; mesh.n_vertices()];
+    for (p, field) in fields.iter().enumerate() {
+        let area = mesh.area(p);
+        let values = [
+            field.stress[(0, 0)],
+            field.stress[(1, 1)],
+            field.stress[(0, 1)],
+        ];
+        for &v in mesh.polygon(p) {
+            for (c, value) in values.iter().enumerate() {
+                sum[3 * v + c] += area * value;
+            }
+            weight[v] += area;
+        }
+    }
+    for (v, &w) in weight.iter().enumerate() {
+        if w > 0.0 {
+            for c in 0..3 {
+                sum[3 * v + c] /= w;
+            }
+        }
+    }
+    sum
 }
 
 /// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`], numbers in

@@ -120,7 +120,23 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
             );
         }
     }
-    // The files say the same.
+    // The files say the same; the stress recovered at the vertices is the uniform one too.
+    for body in ["upper", "lower"] {
+        let grid = vem_mesh::io::read_vtu(dir.join(format!("{body}.vtu"))).unwrap();
+        let nodal = grid
+            .point_data
+            .iter()
+            .find(|a| a.name == "nodal_stress_xx_yy_xy")
+            .unwrap();
+        for v in 0..grid.points.len() {
+            let yy = nodal.values.get_f64(3 * v + 1).unwrap();
+            let xx = nodal.values.get_f64(3 * v).unwrap();
+            assert!(
+                (yy + p).abs() < 1e-8 && xx.abs() < 1e-8,
+                "{body} {v}: {xx} {yy}"
+            );
+        }
+    }
     let rows = read_contact_csv(&dir);
     assert_eq!(rows.len(), nodes(&outcome).len());
     assert!(rows
