@@ -141,12 +141,37 @@ impl Model {
             .map(|(i, b)| build_mesh(scene, b, &KeyPath::key("body").index(i), &options.base))
             .collect::<Result<Vec<_>, _>>()?;
         let mesh_time = start.elapsed();
+        let mut meshes = meshes;
+        // The locking-free default inserts the edge midpoints before the memory check: on
+        // triangles they multiply the unknowns by about 4.
+        let mut midpoints = vec![false; meshes.len()];
+        for (i, (spec, (mesh, _, _))) in scene.bodies.iter().zip(meshes.iter_mut()).enumerate() {
+            let locking_free = spec.element.is_none()
+                && body_material(spec, &KeyPath::root())
+                    .ok()
+                    .and_then(|m| nearly_incompressible(&m))
+                    .is_some();
+            if locking_free && mesh.polygons().any(|p| p.len() == 3) {
+                *mesh = mesh.with_edge_midpoints().map_err(|e| {
+                    SceneError::at(
+                        KeyPath::key("body").index(i).at("mesh"),
+                        format!("body '{}': edge midpoints: {e}", spec.name),
+                    )
+                })?;
+                midpoints[i] = true;
+            }
+        }
         check_memory_of_meshes(&meshes, &limit)?;
         let registries = &options.registries;
         let mut bodies = Vec::with_capacity(meshes.len());
         for (i, (spec, (mesh, source, predicted))) in scene.bodies.iter().zip(meshes).enumerate() {
             let path = KeyPath::key("body").index(i);
-            let mut body = build_body(scene, spec, mesh, source, &registries.elements, &path)?;
+            let mesh = BodyMeshOf {
+                mesh,
+                source,
+                midpoints: midpoints[i],
+            };
+            let mut body = build_body(scene, spec, mesh, &registries.elements, &path)?;
             body.predicted_error = predicted;
             bodies.push(body);
         }
@@ -594,51 +619,35 @@ fn check_part(mesh: &Mesh, body: &str, part: &str, path: &KeyPath) -> Result<(),
 fn build_body(
     scene: &Scene,
     spec: &BodyDescription,
-    mesh: Mesh,
-    mesh_source: String,
+    mesh: BodyMeshOf,
     elements: &ElementRegistry,
     path: &KeyPath,
 ) -> Result<ModelBody, SceneError> {
     let name = spec.name.clone();
-    let m = spec.material;
-    let plane = match m.plane {
-        Some(PlaneDescription::Stress) => Plane::Stress,
-        _ => Plane::Strain,
-    };
-    let material = match (m.young, m.nu, m.lambda, m.mu) {
-        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
-        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
-        _ => return Err(SceneError::at(path.at("material"), "incomplete material")),
-    }
-    .map_err(|e| SceneError::at(path.at("material"), format!("body '{name}': {e}")))?;
+    let BodyMeshOf {
+        mesh,
+        source: mesh_source,
+        midpoints,
+    } = mesh;
+    let material = body_material(spec, path)?;
     let nearly_incompressible = nearly_incompressible(&material);
     let has_triangles = mesh.polygons().any(|p| p.len() == 3);
-    let (choice, mesh, why) = match (&spec.element, nearly_incompressible) {
-        (Some(choice), _) => (choice.clone(), mesh, None),
-        (None, None) => (Choice::named(ElementRegistry::DEFAULT), mesh, None),
+    let (choice, why) = match (&spec.element, nearly_incompressible) {
+        (Some(choice), _) => (choice.clone(), None),
+        (None, None) => (Choice::named(ElementRegistry::DEFAULT), None),
         (None, Some(nu)) => {
             let why = format!(
                 "nu = {nu} > {NEARLY_INCOMPRESSIBLE} in plane strain, the locking-free default"
             );
-            if has_triangles {
-                let mesh = mesh.with_edge_midpoints().map_err(|e| {
-                    SceneError::at(
-                        path.at("mesh"),
-                        format!("body '{name}': edge midpoints: {e}"),
-                    )
-                })?;
-                (
-                    Choice::named(LOCKING_FREE),
-                    mesh,
-                    Some(format!("{LOCKING_FREE} with edge midpoints: {why}")),
-                )
+            let with = if midpoints {
+                " with edge midpoints"
             } else {
-                (
-                    Choice::named(LOCKING_FREE),
-                    mesh,
-                    Some(format!("{LOCKING_FREE}: {why}")),
-                )
-            }
+                ""
+            };
+            (
+                Choice::named(LOCKING_FREE),
+                Some(format!("{LOCKING_FREE}{with}: {why}")),
+            )
         }
     };
     let element = elements
@@ -760,6 +769,29 @@ fn build_body(
         predicted_error: None,
         warnings,
     })
+}
+
+/// The mesh of one body as `build_body` takes it: the mesh, where it came from, and whether
+/// the locking-free default inserted its edge midpoints.
+struct BodyMeshOf {
+    mesh: Mesh,
+    source: String,
+    midpoints: bool,
+}
+
+/// The material of a body; errors at `path.material`.
+fn body_material(spec: &BodyDescription, path: &KeyPath) -> Result<Material, SceneError> {
+    let m = spec.material;
+    let plane = match m.plane {
+        Some(PlaneDescription::Stress) => Plane::Stress,
+        _ => Plane::Strain,
+    };
+    match (m.young, m.nu, m.lambda, m.mu) {
+        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
+        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
+        _ => return Err(SceneError::at(path.at("material"), "incomplete material")),
+    }
+    .map_err(|e| SceneError::at(path.at("material"), format!("body '{}': {e}", spec.name)))
 }
 
 /// The Poisson's ratio above which a body in plane strain counts as nearly incompressible:

@@ -155,3 +155,39 @@ fn a_locking_element_forced_close_to_incompressibility_is_warned_about() {
         .iter()
         .all(|b| b.warnings.is_empty() && b.element.starts_with("vem1:")));
 }
+
+#[test]
+fn a_material_given_by_lame_parameters_gets_the_default_on_generated_triangles() {
+    // lambda / mu = 499: nu = lambda / (2 (lambda + mu)) = 0.499.
+    let text = r#"
+[[body]]
+name = "pad"
+mesh = { family = "triangles", rectangle = [[0, 0], [2, 1]], n = 4 }
+material = { lambda = 499.0, mu = 1.0, plane = "strain" }
+dirichlet = [{ part = "bottom", x = 0.0, y = 0.0 }]
+traction = [{ part = "top", pressure = 0.1 }]
+"#;
+    let (scene, _) = parse(text).unwrap();
+    let model = Model::build(&scene, &BuildOptions::default()).unwrap();
+    let [pad] = model.bodies() else {
+        panic!("one body")
+    };
+    assert!(
+        pad.element
+            .starts_with("vem1-bbar with edge midpoints: nu = 0.499 > 0.45"),
+        "{}",
+        pad.element
+    );
+    let mesh = pad.body.mesh();
+    assert!(mesh.polygons().all(|p| p.len() == 6));
+    // The pressure on the top carried by the clamp: 0.1 times the length 2 (equilibrium).
+    let outcome = model.solve().unwrap();
+    let reaction = outcome
+        .body("pad")
+        .unwrap()
+        .solution
+        .reaction("bottom")
+        .unwrap();
+    assert!((reaction.y - 0.2).abs() < 1e-10, "{reaction}");
+    assert!(outcome.summary.bodies[0].warnings.is_empty());
+}
