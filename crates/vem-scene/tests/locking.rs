@@ -1,7 +1,8 @@
 //! The default element of a nearly incompressible body: the shipped Hertz scene (Gmsh
 //! triangles in the disc, quadrilaterals in the block) at Poisson's ratio 0.499 on both bodies
 //! keeps the half-width and the peak pressure of plane-strain Hertz as close as at 0.3, where
-//! the plain `vem1` locks; a locking element forced by the scene is warned about.
+//! the plain `vem1` locks, and so at 0.4999 with triangles in the block too; a locking element
+//! forced by the scene is warned about.
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +17,14 @@ fn scenes() -> PathBuf {
 /// The shipped Hertz scene with Poisson's ratio `nu` on both bodies and `element` (a TOML
 /// value) on both if given.
 fn hertz(nu: f64, element: Option<&str>) -> Model {
-    let text = std::fs::read_to_string(scenes().join("hertz.toml")).unwrap();
+    hertz_on("hertz_block.msh", nu, element)
+}
+
+/// As [`hertz`], with the block's mesh file `block`.
+fn hertz_on(block: &str, nu: f64, element: Option<&str>) -> Model {
+    let text = std::fs::read_to_string(scenes().join("hertz.toml"))
+        .unwrap()
+        .replace("hertz_block.msh", block);
     assert_eq!(text.matches("nu = 0.3,").count(), 2);
     let mut text = text.replace("nu = 0.3,", &format!("nu = {nu},"));
     if let Some(element) = element {
@@ -190,4 +198,33 @@ traction = [{ part = "top", pressure = 0.1 }]
         .unwrap();
     assert!((reaction.y - 0.2).abs() < 1e-10, "{reaction}");
     assert!(outcome.summary.bodies[0].warnings.is_empty());
+}
+
+#[test]
+fn the_default_at_nu_0_4999_does_not_lock_with_triangles_on_both_sides() {
+    let block = "hertz_block_triangles.msh";
+    let reference = hertz_on(block, 0.3, None);
+    let near = hertz_on(block, 0.4999, None);
+    for body in near.bodies() {
+        assert!(
+            body.element
+                .starts_with("vem1-bbar with edge midpoints: nu = 0.4999 > 0.45"),
+            "{}",
+            body.element
+        );
+    }
+    // Measured: a +2.1 % and +1.3 %, p0 +0.3 % and +0.4 %; vem1-bbar without the midpoints
+    // -97.0 % and +296 %, vem1 -97.0 % and +434 %.
+    let (a_0, p_0) = errors(&reference);
+    let (a, p) = errors(&near);
+    assert!(
+        (a - a_0).abs() < 0.03,
+        "a: {a:+.4} at 0.4999, {a_0:+.4} at 0.3"
+    );
+    assert!(
+        (p - p_0).abs() < 0.03,
+        "p0: {p:+.4} at 0.4999, {p_0:+.4} at 0.3"
+    );
+    let (a_locked, p_locked) = errors(&hertz_on(block, 0.4999, Some("\"vem1-bbar\"")));
+    assert!(a_locked < -0.5 && p_locked > 1.0, "{a_locked} {p_locked}");
 }
