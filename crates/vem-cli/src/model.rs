@@ -84,6 +84,7 @@ impl Model {
                     material: vem_scene::describe_material(&b.body),
                     element: b.element.clone(),
                     conditions: describe_conditions(spec),
+                    warnings: b.warnings.clone(),
                 }
             })
             .collect();
@@ -208,6 +209,8 @@ pub struct CheckedBody {
     pub element: String,
     /// Boundary conditions and body force.
     pub conditions: Vec<String>,
+    /// Warnings about the body's model (a locking element close to incompressibility).
+    pub warnings: Vec<String>,
 }
 
 /// What `vem check` reports for a contact pair.
@@ -261,6 +264,9 @@ impl fmt::Display for CheckReport {
                 parts.join(", ")
             )?;
             writeln!(f, "  material: {}; element: {}", b.material, b.element)?;
+            for warning in &b.warnings {
+                writeln!(f, "  warning: {warning}")?;
+            }
             for c in &b.conditions {
                 writeln!(f, "  {c}")?;
             }

@@ -31,6 +31,9 @@ fn run(name: &str) -> (Outcome, PathBuf) {
         "{name}: {:?}",
         outcome.summary.deprecations
     );
+    for body in &outcome.summary.bodies {
+        assert!(body.warnings.is_empty(), "{name}: {:?}", body.warnings);
+    }
     if let Some(contact) = &outcome.summary.contact {
         assert!(
             contact.warnings.is_empty(),

@@ -274,6 +274,62 @@ impl Mesh {
             .collect()
     }
 
+    /// A copy of this mesh with the midpoint of every edge inserted as a vertex: a polygon of
+    /// `n` vertices becomes one of `2n` (the new vertices collinear with their edge's ends),
+    /// every boundary-part edge two edges of the same part, in the same order. Areas, part
+    /// lengths and the domain are unchanged; the new vertices are numbered after the old ones,
+    /// in the order of [`Mesh::edges`].
+    ///
+    /// On triangles this is the locking-free element of the lowest-order VEM: a triangle with
+    /// its edge midpoints has six displacement degrees of freedom against one pressure
+    /// (divergence) mode, so the discrete divergence-free space is rich enough at Poisson's
+    /// ratio close to 1/2 (docs/elements.md).
+    ///
+    /// ```
+    /// use vem_mesh::generators::{structured_triangles, Rectangle};
+    /// let mesh = structured_triangles(&Rectangle::unit_square(), 2, 2)?;
+    /// let refined = mesh.with_edge_midpoints()?;
+    /// assert_eq!(refined.n_vertices(), mesh.n_vertices() + mesh.n_edges());
+    /// assert!(refined.polygons().all(|p| p.len() == 6));
+    /// # Ok::<(), vem_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The validation of [`Mesh::from_polygons`] (a valid mesh gives a valid refined one).
+    pub fn with_edge_midpoints(&self) -> Result<Self, MeshError> {
+        let n = self.vertices.len();
+        let mut vertices = self.vertices.clone();
+        vertices.extend(self.edges.iter().map(|edge| {
+            let [a, b] = edge.vertices;
+            Point::from((self.vertices[a].coords + self.vertices[b].coords) * 0.5)
+        }));
+        let polygons: Vec<Vec<usize>> = (0..self.n_polygons())
+            .map(|p| {
+                self.polygon(p)
+                    .iter()
+                    .zip(self.polygon_edges(p))
+                    .flat_map(|(&v, &e)| [v, n + e])
+                    .collect()
+            })
+            .collect();
+        let parts = self
+            .parts
+            .iter()
+            .map(|part| {
+                let edges = part
+                    .edges
+                    .iter()
+                    .flat_map(|&e| {
+                        let [a, b] = self.edges[e].vertices;
+                        [[a, n + e], [n + e, b]]
+                    })
+                    .collect();
+                PartSpec::new(part.name.clone(), edges)
+            })
+            .collect();
+        Self::from_polygons(vertices, &polygons, parts)
+    }
+
     /// Area of polygon `p`.
     pub fn area(&self, p: usize) -> f64 {
         geometry::signed_area(&self.polygon_points(p))
@@ -439,6 +495,68 @@ mod tests {
             Point::new(2.0, 1.0),
         ];
         (vertices, vec![vec![0, 1, 4, 3], vec![1, 2, 5, 4]])
+    }
+
+    #[test]
+    fn edge_midpoints_keep_areas_parts_and_validity() {
+        use crate::generators::{structured_triangles, voronoi, Rectangle};
+        let rect = Rectangle::new(Point::new(-1.0, 0.0), Point::new(2.0, 1.5));
+        for mesh in [
+            structured_triangles(&rect, 5, 4).unwrap(),
+            voronoi(&rect, 30, 7).unwrap(),
+        ] {
+            let refined = mesh.with_edge_midpoints().unwrap();
+            assert_eq!(refined.n_vertices(), mesh.n_vertices() + mesh.n_edges());
+            assert_eq!(refined.n_polygons(), mesh.n_polygons());
+            assert_eq!(refined.n_edges(), 2 * mesh.n_edges());
+            let (mut total, mut total_refined) = (0.0, 0.0);
+            for p in 0..mesh.n_polygons() {
+                assert_eq!(refined.polygon(p).len(), 2 * mesh.polygon(p).len());
+                // The old vertices in their old order, every other one.
+                let corners: Vec<usize> = refined.polygon(p).iter().copied().step_by(2).collect();
+                assert_eq!(corners, mesh.polygon(p));
+                assert!((refined.area(p) - mesh.area(p)).abs() <= 1e-12 * mesh.area(p));
+                assert!(
+                    refined
+                        .centroid(p)
+                        .coords
+                        .metric_distance(&mesh.centroid(p).coords)
+                        < 1e-12
+                );
+                total += mesh.area(p);
+                total_refined += refined.area(p);
+            }
+            // The whole domain: 3 x 1.5.
+            assert!((total - 4.5).abs() < 1e-12 && (total_refined - 4.5).abs() < 1e-12);
+            let length = |m: &Mesh, part: &BoundaryPart| -> f64 {
+                part.edges
+                    .iter()
+                    .map(|&e| {
+                        let [a, b] = m.edge(e).vertices;
+                        (m.vertex(a) - m.vertex(b)).norm()
+                    })
+                    .sum()
+            };
+            assert_eq!(refined.part_names(), mesh.part_names());
+            assert!(!mesh.parts().is_empty());
+            for (old, new) in mesh.parts().iter().zip(refined.parts()) {
+                assert_eq!(new.edges.len(), 2 * old.edges.len());
+                assert!(new.edges.iter().all(|&e| refined.edge(e).is_boundary()));
+                let (l_old, l_new) = (length(&mesh, old), length(&refined, new));
+                assert!(
+                    (l_old - l_new).abs() <= 1e-12 * l_old,
+                    "{}: {l_old} {l_new}",
+                    old.name
+                );
+            }
+            // Every new vertex halves its edge.
+            for (e, edge) in mesh.edges().iter().enumerate() {
+                let [a, b] = edge.vertices;
+                let m = refined.vertex(mesh.n_vertices() + e);
+                assert!(((m - mesh.vertex(a)) - (mesh.vertex(b) - m)).norm() < 1e-14);
+            }
+            crate::validate::validate(&refined).unwrap();
+        }
     }
 
     #[test]

@@ -73,6 +73,9 @@ pub struct ModelBody {
     /// A generated mesh in a scene with `accuracy` or `target_error`: the relative energy
     /// error `E_grad / |u|_1` the error model predicts for its size.
     pub predicted_error: Option<f64>,
+    /// Warnings about the body's model, one sentence each (a locking element at a Poisson's
+    /// ratio close to 1/2).
+    pub warnings: Vec<String>,
 }
 
 /// A contact pair as built: the scene's description, the counterpart's obstacle if any.
@@ -138,12 +141,37 @@ impl Model {
             .map(|(i, b)| build_mesh(scene, b, &KeyPath::key("body").index(i), &options.base))
             .collect::<Result<Vec<_>, _>>()?;
         let mesh_time = start.elapsed();
+        let mut meshes = meshes;
+        // The locking-free default inserts the edge midpoints before the memory check: on
+        // triangles they multiply the unknowns by about 4.
+        let mut midpoints = vec![false; meshes.len()];
+        for (i, (spec, (mesh, _, _))) in scene.bodies.iter().zip(meshes.iter_mut()).enumerate() {
+            let locking_free = spec.element.is_none()
+                && body_material(spec, &KeyPath::root())
+                    .ok()
+                    .and_then(|m| nearly_incompressible(&m))
+                    .is_some();
+            if locking_free && mesh.polygons().any(|p| p.len() == 3) {
+                *mesh = mesh.with_edge_midpoints().map_err(|e| {
+                    SceneError::at(
+                        KeyPath::key("body").index(i).at("mesh"),
+                        format!("body '{}': edge midpoints: {e}", spec.name),
+                    )
+                })?;
+                midpoints[i] = true;
+            }
+        }
         check_memory_of_meshes(&meshes, &limit)?;
         let registries = &options.registries;
         let mut bodies = Vec::with_capacity(meshes.len());
         for (i, (spec, (mesh, source, predicted))) in scene.bodies.iter().zip(meshes).enumerate() {
             let path = KeyPath::key("body").index(i);
-            let mut body = build_body(scene, spec, mesh, source, &registries.elements, &path)?;
+            let mesh = BodyMeshOf {
+                mesh,
+                source,
+                midpoints: midpoints[i],
+            };
+            let mut body = build_body(scene, spec, mesh, &registries.elements, &path)?;
             body.predicted_error = predicted;
             bodies.push(body);
         }
@@ -591,34 +619,63 @@ fn check_part(mesh: &Mesh, body: &str, part: &str, path: &KeyPath) -> Result<(),
 fn build_body(
     scene: &Scene,
     spec: &BodyDescription,
-    mesh: Mesh,
-    mesh_source: String,
+    mesh: BodyMeshOf,
     elements: &ElementRegistry,
     path: &KeyPath,
 ) -> Result<ModelBody, SceneError> {
     let name = spec.name.clone();
-    let m = spec.material;
-    let plane = match m.plane {
-        Some(PlaneDescription::Stress) => Plane::Stress,
-        _ => Plane::Strain,
+    let BodyMeshOf {
+        mesh,
+        source: mesh_source,
+        midpoints,
+    } = mesh;
+    let material = body_material(spec, path)?;
+    let nearly_incompressible = nearly_incompressible(&material);
+    let has_triangles = mesh.polygons().any(|p| p.len() == 3);
+    let (choice, why) = match (&spec.element, nearly_incompressible) {
+        (Some(choice), _) => (choice.clone(), None),
+        (None, None) => (Choice::named(ElementRegistry::DEFAULT), None),
+        (None, Some(nu)) => {
+            let why = format!(
+                "nu = {nu} > {NEARLY_INCOMPRESSIBLE} in plane strain, the locking-free default"
+            );
+            let with = if midpoints {
+                " with edge midpoints"
+            } else {
+                ""
+            };
+            (
+                Choice::named(LOCKING_FREE),
+                Some(format!("{LOCKING_FREE}{with}: {why}")),
+            )
+        }
     };
-    let material = match (m.young, m.nu, m.lambda, m.mu) {
-        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
-        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
-        _ => return Err(SceneError::at(path.at("material"), "incomplete material")),
-    }
-    .map_err(|e| SceneError::at(path.at("material"), format!("body '{name}': {e}")))?;
-    let choice = spec
-        .element
-        .clone()
-        .unwrap_or_else(|| Choice::named(ElementRegistry::DEFAULT));
     let element = elements
         .make_choice(&choice)
         .map_err(|e| registry_error(e, &path.at("element")))?;
-    let description = elements.summary(&choice.name).map_or_else(
-        || element.name().to_string(),
-        |s| format!("{}: {s}", element.name()),
-    );
+    let description = match (why, elements.summary(&choice.name)) {
+        (Some(why), Some(s)) => format!("{why} ({s})"),
+        (Some(why), None) => why,
+        (None, Some(s)) => format!("{}: {s}", element.name()),
+        (None, None) => element.name().to_string(),
+    };
+    let mut warnings = Vec::new();
+    if let (Some(nu), Some(_)) = (nearly_incompressible, &spec.element) {
+        let remedy = "remove `element` for the locking-free default (vem1-bbar, with the edge \
+                      midpoints inserted on triangles)";
+        if LOCKING.contains(&element.name()) {
+            warnings.push(format!(
+                "body '{name}': element '{}' locks at nu = {nu} > {NEARLY_INCOMPRESSIBLE} in \
+                 plane strain (contact zones too small, pressure peaks too high); {remedy}",
+                element.name()
+            ));
+        } else if element.name() == LOCKING_FREE && has_triangles {
+            warnings.push(format!(
+                "body '{name}': element '{LOCKING_FREE}' on triangles locks mildly at nu = {nu} \
+                 > {NEARLY_INCOMPRESSIBLE} in plane strain; {remedy}"
+            ));
+        }
+    }
     for (k, d) in spec.dirichlet.iter().enumerate() {
         check_part(
             &mesh,
@@ -710,7 +767,56 @@ fn build_body(
         mesh_source,
         element: description,
         predicted_error: None,
+        warnings,
     })
+}
+
+/// The mesh of one body as `build_body` takes it: the mesh, where it came from, and whether
+/// the locking-free default inserted its edge midpoints.
+struct BodyMeshOf {
+    mesh: Mesh,
+    source: String,
+    midpoints: bool,
+}
+
+/// The material of a body; errors at `path.material`.
+fn body_material(spec: &BodyDescription, path: &KeyPath) -> Result<Material, SceneError> {
+    let m = spec.material;
+    let plane = match m.plane {
+        Some(PlaneDescription::Stress) => Plane::Stress,
+        _ => Plane::Strain,
+    };
+    match (m.young, m.nu, m.lambda, m.mu) {
+        (Some(e), Some(nu), None, None) => Material::from_young_poisson(e, nu, plane),
+        (None, None, Some(lambda), Some(mu)) => Material::from_lame(lambda, mu, plane),
+        _ => return Err(SceneError::at(path.at("material"), "incomplete material")),
+    }
+    .map_err(|e| SceneError::at(path.at("material"), format!("body '{}': {e}", spec.name)))
+}
+
+/// The Poisson's ratio above which a body in plane strain counts as nearly incompressible:
+/// the scene then chooses [`LOCKING_FREE`] by default and warns about a locking element.
+pub const NEARLY_INCOMPRESSIBLE: f64 = 0.45;
+
+/// The element chosen by default for a nearly incompressible body (with the edge midpoints
+/// inserted on a mesh with triangles).
+pub const LOCKING_FREE: &str = "vem1-bbar";
+
+/// The built-in elements that lock as Poisson's ratio tends to 1/2.
+const LOCKING: [&str; 4] = ["vem1", "vem1-shear", "vem1-drecipe", "p1"];
+
+/// Poisson's ratio of an isotropic material in plane strain when it exceeds
+/// [`NEARLY_INCOMPRESSIBLE`]; `None` otherwise (plane stress does not lock: its in-plane ratio
+/// `nu / (1 + nu)` stays below 1/3).
+fn nearly_incompressible(material: &Material) -> Option<f64> {
+    let (lambda, mu) = material.lame()?;
+    if material.plane()? != Plane::Strain {
+        return None;
+    }
+    let nu = lambda / (2.0 * (lambda + mu));
+    // Rounded to the digits a scene writes (0.499, not 0.49899999999999994).
+    let nu = (nu * 1e12).round() / 1e12;
+    (nu > NEARLY_INCOMPRESSIBLE).then_some(nu)
 }
 
 /// The pseudo-time at which the values of the scene are taken: the end of the load history

@@ -69,7 +69,9 @@ mod solve;
 pub mod toml_file;
 mod value;
 
-pub use build::{BuildOptions, Model, ModelBody, ModelContact, Registries};
+pub use build::{
+    BuildOptions, Model, ModelBody, ModelContact, Registries, LOCKING_FREE, NEARLY_INCOMPRESSIBLE,
+};
 pub use description::Scene;
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
 pub use history::MAX_STEPS;

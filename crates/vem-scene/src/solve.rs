@@ -119,6 +119,9 @@ pub struct BodySummary {
     pub max_von_mises: f64,
     /// Reactions of the Dirichlet conditions and rigid plates.
     pub reactions: Vec<ReactionSummary>,
+    /// Warnings about the body's model (a locking element close to incompressibility), one
+    /// sentence each.
+    pub warnings: Vec<String>,
 }
 
 /// The reaction of one Dirichlet condition or rigid plate.
@@ -631,6 +634,7 @@ impl Model {
                             force: r.force.iter().map(|&f| tidy(f)).collect(),
                         })
                         .collect(),
+                    warnings: built.warnings.clone(),
                 }
             })
             .collect();
@@ -716,6 +720,10 @@ impl fmt::Display for RunSummary {
                 b.mesh_size,
                 b.gamma
             )?;
+            writeln!(f, "    element {}", b.element)?;
+            for warning in &b.warnings {
+                writeln!(f, "    warning: {warning}")?;
+            }
             if let Some(e) = b.predicted_error {
                 writeln!(
                     f,

@@ -16,7 +16,6 @@ use std::sync::Arc;
 
 use vem_contact::SolverRegistry;
 use vem_mesh::generators::MeshFamily;
-use vem_mesh::{Mesh, PartSpec};
 use vem_space::{ElementRegistry, Options};
 use vem_verify::exact::{case_by_name, DivergenceFreeContact, ExactSolution, Lame};
 use vem_verify::norms::ErrorNorms;
@@ -66,53 +65,6 @@ fn study(
         .run()?)
 }
 
-/// `mesh` with the midpoint of every edge inserted as a vertex: each polygon of `n` vertices
-/// becomes one of `2n` (collinear in pairs), each boundary-part edge two edges.
-fn with_edge_midpoints(mesh: &Mesh) -> Result<Mesh, Box<dyn std::error::Error>> {
-    let mut vertices = mesh.vertices().to_vec();
-    let midpoint: Vec<usize> = mesh
-        .edges()
-        .iter()
-        .map(|edge| {
-            let [a, b] = edge.vertices;
-            vertices.push(vem_mesh::Point::from(
-                (mesh.vertex(a).coords + mesh.vertex(b).coords) * 0.5,
-            ));
-            vertices.len() - 1
-        })
-        .collect();
-    let polygons: Vec<Vec<usize>> = (0..mesh.n_polygons())
-        .map(|p| {
-            mesh.polygon(p)
-                .iter()
-                .zip(mesh.polygon_edges(p))
-                .flat_map(|(&v, &e)| [v, midpoint[e]])
-                .collect()
-        })
-        .collect();
-    let edge_of = |a: usize, b: usize| {
-        mesh.edges()
-            .iter()
-            .position(|e| e.vertices == [a, b] || e.vertices == [b, a])
-    };
-    let parts = mesh
-        .part_specs()
-        .into_iter()
-        .map(|part| {
-            let edges = part
-                .edges
-                .iter()
-                .flat_map(|&[a, b]| {
-                    let m = midpoint[edge_of(a, b).expect("a part edge is a mesh edge")];
-                    [[a, m], [m, b]]
-                })
-                .collect();
-            PartSpec::new(part.name, edges)
-        })
-        .collect();
-    Ok(Mesh::from_polygons(vertices, &polygons, parts)?)
-}
-
 /// The errors at the finest size and the fitted rates of `E_grad` and `E_0`.
 type Measured = (ErrorNorms, Option<f64>, Option<f64>);
 
@@ -140,7 +92,7 @@ fn midpoint_study(
         )?;
         let problem = DiscreteProblem::try_new(
             Arc::clone(&exact),
-            vec![with_edge_midpoints(&mesh)?],
+            vec![mesh.with_edge_midpoints()?],
             &settings,
         )?;
         let mut solver =
