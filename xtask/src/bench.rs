@@ -16,6 +16,7 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 
 use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
+use crate::whole_run::{self, WholeRun};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use vem_contact::{ContactLaw, ContactProblem, Coulomb, Frictionless, SolverRegistry};
@@ -127,7 +128,25 @@ pub struct BenchArgs {
     /// Parallelism of the elastic reference's factorisation.
     #[arg(long, value_enum, default_value = "default")]
     parallelism: Parallelism,
+    /// Sizes (unknowns, comma separated) of the whole runs (mesh files in, every output
+    /// written) of the Hertz case with Gmsh meshes; default 1e5 and 1e6 up to
+    /// `--max-unknowns` (1e4 with `--quick`); 0: none.
+    #[arg(long, value_delimiter = ',')]
+    whole_run: Vec<usize>,
+    /// A scene file whose whole run is measured too (one row).
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Repetitions of every whole run (the medians are reported).
+    #[arg(long, default_value_t = 3)]
+    repeat: usize,
+    /// Only the whole runs (no contact solver rows).
+    #[arg(long)]
+    whole_run_only: bool,
 }
+
+/// Sizes of the whole runs: the default ladder, and `--quick`'s.
+const WHOLE_RUN_SIZES: [usize; 3] = [100_000, 1_000_000, 8_000_000];
+const QUICK_WHOLE_RUN_SIZES: [usize; 1] = [10_000];
 
 /// Options of the hidden `cargo xtask bench-one` (one measurement, one JSON line).
 #[derive(Debug, Args)]
@@ -396,6 +415,9 @@ fn plan(args: &BenchArgs) -> Result<Vec<Planned>, String> {
         args.cases.clone()
     };
     let mut planned = Vec::new();
+    if args.whole_run_only {
+        return Ok(planned);
+    }
     for &case in &cases {
         for &unknowns in &sizes {
             for solver in &solvers {
@@ -477,8 +499,12 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
         bar.inc(weight(p));
     }
     bar.finish_with_message("done");
+    let whole_runs = whole_runs(args)?;
     let seconds = started.elapsed().as_secs_f64();
-    let markdown = markdown(&rows, args, seconds);
+    let mut markdown = markdown(&rows, args, seconds);
+    if !whole_runs.is_empty() {
+        markdown.push_str(&whole_run_markdown(&whole_runs, args));
+    }
     println!("{markdown}");
     write_text(args.out.join("bench.md"), &markdown)?;
     write_json(
@@ -488,6 +514,7 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
             seconds,
             machine: machine(),
             measurements: &rows,
+            whole_runs: &whole_runs,
         },
     )?;
     write_text(args.out.join("bench.svg"), &plot_svg(&rows)?)?;
@@ -505,6 +532,76 @@ struct JsonReport<'a> {
     seconds: f64,
     machine: String,
     measurements: &'a [Measurement],
+    whole_runs: &'a [WholeRun],
+}
+
+/// The sizes of the whole runs `args` ask for.
+fn whole_run_sizes(args: &BenchArgs) -> Vec<usize> {
+    if !args.whole_run.is_empty() {
+        return args.whole_run.iter().copied().filter(|&s| s > 0).collect();
+    }
+    if args.quick {
+        return QUICK_WHOLE_RUN_SIZES.to_vec();
+    }
+    let max = if args.full {
+        LADDER[7]
+    } else {
+        args.max_unknowns
+    };
+    WHOLE_RUN_SIZES
+        .iter()
+        .copied()
+        .filter(|&s| s <= max)
+        .collect()
+}
+
+/// The whole runs (each size, then `--scene`), every one printed as it comes.
+fn whole_runs(args: &BenchArgs) -> Result<Vec<WholeRun>, Box<dyn std::error::Error>> {
+    let mut runs = Vec::new();
+    let planned: Vec<(usize, Option<&std::path::Path>)> = whole_run_sizes(args)
+        .into_iter()
+        .map(|s| (s, None))
+        .chain(args.scene.as_deref().map(|s| (0, Some(s))))
+        .collect();
+    for (unknowns, scene) in planned {
+        let dir = match scene {
+            Some(_) => args.out.join("whole-scene"),
+            None => args.out.join(format!("whole-{unknowns}")),
+        };
+        eprintln!(
+            "whole run {} ({} repetitions)",
+            scene.map_or_else(
+                || format!("~{unknowns} unknowns"),
+                |s| s.display().to_string()
+            ),
+            args.repeat
+        );
+        let run = whole_run::measure(unknowns, scene, &dir, args.repeat)?;
+        eprintln!("{}", whole_run::row(&run));
+        runs.push(run);
+    }
+    Ok(runs)
+}
+
+/// The whole-run table.
+fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> String {
+    let mut out = format!(
+        "\n## Whole runs\n\nA scene from its mesh files to every output written (`vem run`: \
+         `Scene::load`, `Model::build`, `Model::solve`, `Outcome::write`), the median of {} \
+         runs each in its own process, against one Cholesky (analyse + factorise + solve by \
+         `CholeskySolver`, default settings) of the stiffness of every body on its solved mesh. \
+         `hertz-gmsh`: a block of triangles with a parabolic gap (R = 1) pressed on a block of \
+         quadrilaterals 1.25 times finer, frictionless, both meshes written as MSH 4.1 ASCII \
+         files. Times in seconds; *read*: the scene and mesh files to validated meshes; \
+         *other*: what the named stages leave of the whole run.\n\n",
+        args.repeat
+    );
+    out.push_str(whole_run::TABLE_HEADER);
+    for run in runs {
+        out.push_str(&whole_run::row(run));
+        out.push('\n');
+    }
+    out
 }
 
 const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
@@ -638,6 +735,19 @@ fn options(args: &BenchArgs) -> String {
     if !args.cases.is_empty() {
         let c: Vec<&str> = args.cases.iter().map(|c| c.name()).collect();
         o.push_str(&format!(" --cases {}", c.join(",")));
+    }
+    if !args.whole_run.is_empty() {
+        let s: Vec<String> = args.whole_run.iter().map(usize::to_string).collect();
+        o.push_str(&format!(" --whole-run {}", s.join(",")));
+    }
+    if let Some(scene) = &args.scene {
+        o.push_str(&format!(" --scene {}", scene.display()));
+    }
+    if args.repeat != 3 {
+        o.push_str(&format!(" --repeat {}", args.repeat));
+    }
+    if args.whole_run_only {
+        o.push_str(" --whole-run-only");
     }
     if args.parallelism != Parallelism::Default {
         o.push_str(&format!(" --parallelism {:?}", args.parallelism).to_lowercase());

@@ -2,7 +2,8 @@
 //!
 //! - `convergence`: the convergence studies of Theorems 4.1 and 4.2 and of 3D elasticity (see
 //!   `docs/convergence.md`, `docs/convergence-3d.md`).
-//! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns (see
+//! - `bench`: contact solves against one elastic solve from 10^4 to 8 10^6 unknowns, and whole
+//!   runs (mesh files in, every output written) against one Cholesky (see
 //!   `docs/benchmarks.md`).
 //! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
 //!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
@@ -20,6 +21,7 @@ mod extremes;
 mod fuzz;
 mod hertz;
 mod tradeoff;
+mod whole_run;
 
 use std::process::ExitCode;
 
@@ -43,7 +45,8 @@ enum Task {
     Convergence(convergence::ConvergenceArgs),
     /// Contact solves against one elastic solve of the same meshes (Hertz-like frictionless
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
-    /// measurement in a child process. Writes bench.md, bench.json and bench.svg.
+    /// measurement in a child process; whole runs of a scene (mesh files in, every output
+    /// written) against one Cholesky. Writes bench.md, bench.json and bench.svg.
     Bench(bench::BenchArgs),
     /// The Hertz half-disc on a block at h_c = 0.08, 0.04, 0.02 with each contact normal
     /// choice (peak, profile, half-width, resultants) and Coulomb friction (Q/P at full slip,
@@ -62,6 +65,10 @@ enum Task {
     /// One measurement of `bench`, printed as one JSON line (run by `bench` in a child process).
     #[command(hide = true)]
     BenchOne(bench::BenchOneArgs),
+    /// One whole run of `bench` (scene and mesh files in, every output written) and its
+    /// reference Cholesky, printed as one JSON line (run by `bench` in a child process).
+    #[command(hide = true)]
+    BenchWhole(whole_run::BenchWholeArgs),
     /// The speed-accuracy trade: M1, M2, Hertz, Coulomb and E1 on several mesh pairings and
     /// sizes, every solver with several settings, one discretisation per mesh for all of them;
     /// errors, stage times, counters, peak memory, work-precision diagrams with the Pareto
@@ -80,6 +87,7 @@ fn main() -> ExitCode {
         Task::Bench(args) => bench::run(&args),
         Task::Extremes(args) => extremes::run(&args),
         Task::BenchOne(args) => bench::run_one(&args),
+        Task::BenchWhole(args) => whole_run::run_one(&args),
         Task::Hertz(args) => hertz::run(&args),
         Task::Fuzz(args) => fuzz::run(&args),
         Task::Tradeoff(args) => tradeoff::run(&args),

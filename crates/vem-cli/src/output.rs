@@ -65,18 +65,23 @@ impl Outcome {
             move |source| CliError::Mesh { context, source }
         };
         let mut written = Vec::new();
-        let nodes = self.contact.as_ref().map_or(&[][..], |c| &c.nodes[..]);
-        for (solved, pressure) in self.bodies.iter().zip(self.pressures(nodes)) {
-            let path = dir.join(format!("{}.vtu", solved.body.name()));
-            let data = vtu_data(
-                solved.solution.vertex_displacements(),
-                &solved.fields,
-                solved,
-                pressure,
-            );
-            write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
-            written.push(path);
-        }
+        let width = self.width();
+        // The bodies' files on a thread of their own beside the picture (independent files;
+        // the picture's rasterisation and compression are as long as a large body's file).
+        let this = &*self;
+        let (bodies, deformed) = std::thread::scope(|scope| {
+            let bodies = scope.spawn(|| this.write_bodies(dir));
+            let path = dir.join("deformed.svg");
+            let deformed = this
+                .write_deformed(&path, width)
+                .map(|()| path.clone())
+                .map_err(mesh_error(&path));
+            let bodies = bodies
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (bodies, deformed)
+        });
+        written.extend(bodies?);
         if let Some(contact) = &self.contact {
             let path = dir.join("interface.vtu");
             interface_grid(&contact.nodes, &contact.model.pairs)
@@ -100,11 +105,7 @@ impl Outcome {
         } else {
             written.extend(self.write_history(dir)?);
         }
-        let width = self.width();
-        let path = dir.join("deformed.svg");
-        self.write_deformed(&path, width)
-            .map_err(mesh_error(&path))?;
-        written.push(path);
+        written.push(deformed?);
         if let Some(contact) = &self.contact {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
@@ -139,6 +140,27 @@ impl Outcome {
         })?;
         write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
         written.push(path);
+        Ok(written)
+    }
+
+    /// `<body>.vtu` of every body, in the order of the bodies.
+    fn write_bodies(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let mut written = Vec::with_capacity(self.bodies.len());
+        let nodes = self.contact.as_ref().map_or(&[][..], |c| &c.nodes[..]);
+        for (solved, pressure) in self.bodies.iter().zip(self.pressures(nodes)) {
+            let path = dir.join(format!("{}.vtu", solved.body.name()));
+            let data = vtu_data(
+                solved.solution.vertex_displacements(),
+                &solved.fields,
+                solved,
+                pressure,
+            );
+            write_vtu(&path, solved.body.mesh(), &data).map_err(|source| CliError::Mesh {
+                context: path.display().to_string(),
+                source,
+            })?;
+            written.push(path);
+        }
         Ok(written)
     }
 

@@ -1012,6 +1012,13 @@ fn insert_points(
             PartSpec::new(spec.name, edges)
         })
         .collect();
-    let new_mesh = Mesh::from_compact(vertices, offsets, indices, parts)?;
+    // Only the polygons at the moved and inserted vertices changed: they are validated, not
+    // the whole mesh again.
+    let changed: Vec<usize> = moves
+        .iter()
+        .map(|&(v, _)| v)
+        .chain(mesh.n_vertices()..mesh.n_vertices() + inserted)
+        .collect();
+    let new_mesh = Mesh::from_compact_changed(vertices, offsets, indices, parts, &changed)?;
     Ok((new_mesh, place_vertices, inserted))
 }

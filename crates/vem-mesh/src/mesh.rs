@@ -128,6 +128,52 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// [`Mesh::from_compact`] for a mesh made from a valid mesh by changes at the vertices
+    /// `changed` only (moved, or inserted into edges): the polygons near the change are
+    /// validated, not the whole mesh again (see `validate::validate_changed`).
+    pub(crate) fn from_compact_changed(
+        vertices: Vec<Point>,
+        polygon_offsets: Vec<usize>,
+        polygon_vertices: Vec<usize>,
+        parts: Vec<PartSpec>,
+        changed: &[usize],
+    ) -> Result<Self, MeshError> {
+        let storage = |reason: &str| MeshError::BadStorage {
+            reason: reason.to_string(),
+        };
+        if polygon_offsets.first() != Some(&0)
+            || polygon_offsets.last() != Some(&polygon_vertices.len())
+            || polygon_offsets.windows(2).any(|w| w[1] < w[0])
+        {
+            return Err(storage(
+                "offsets must increase from 0 to the number of indices",
+            ));
+        }
+        if let Some(k) = polygon_vertices.iter().position(|&v| v >= vertices.len()) {
+            let (vertex, polygon) = (
+                polygon_vertices[k],
+                polygon_offsets.partition_point(|&o| o <= k) - 1,
+            );
+            return Err(MeshError::VertexOutOfRange {
+                polygon,
+                vertex,
+                vertex_count: vertices.len(),
+            });
+        }
+        let (edges, polygon_edges) = derive_edges(&polygon_offsets, &polygon_vertices)?;
+        let mut mesh = Mesh {
+            vertices,
+            polygon_offsets,
+            polygon_vertices,
+            polygon_edges,
+            edges,
+            parts: Vec::new(),
+        };
+        mesh.parts = resolve_parts(&mesh, parts)?;
+        validate::validate_changed(&mesh, changed)?;
+        Ok(mesh)
+    }
+
     /// Number of vertices.
     pub fn n_vertices(&self) -> usize {
         self.vertices.len()

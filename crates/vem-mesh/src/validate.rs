@@ -46,6 +46,10 @@
 //!
 //! A vertex within the tolerance of another polygon's edge is found even when it lies just
 //! outside the edge's bounding box (a hanging node a hair below a horizontal edge).
+//!
+//! A mesh made from a valid one by changes at a few vertices (interface node insertion moves
+//! and inserts vertices along the interface) is validated near the change only: the same
+//! checks, on the polygons with a changed vertex against everything near them.
 
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -166,6 +170,214 @@ pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         before.and(conformity).and(after)
     })
+}
+
+/// Checks a mesh made from a valid mesh by changes at the vertices `changed` only (vertices
+/// moved, or inserted into edges, as interface node insertion does): the checks of
+/// [`validate`] that such a change can fail, on what lies near it. A check that involves only
+/// polygons without a changed vertex passed on the valid mesh (whose coincidence tolerance
+/// differs from this one's by the change of a few polygons' boxes in the mean) and is not
+/// repeated:
+///
+/// - storage (index range, repeats, size), simplicity, area and orientation of the polygons
+///   with a changed vertex, finite coordinates of the changed vertices;
+/// - duplicates: the changed vertices against every vertex;
+/// - conformity: the edges of the polygons with a changed vertex against every edge;
+/// - corners: around every vertex of those polygons (the only vertices whose edges moved);
+/// - nesting: as in [`validate`] (one pass over the polygons; nothing more for a mesh in one
+///   piece).
+///
+/// The work is one pass over the vertices, polygons and edges plus what is near the change,
+/// against the grids and sorts of the whole validation.
+pub(crate) fn validate_changed(mesh: &Mesh, changed: &[usize]) -> Result<(), MeshError> {
+    let n = mesh.n_vertices();
+    let mut is_changed = vec![false; n];
+    for &v in changed {
+        let p = mesh.vertex(v);
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return Err(MeshError::NonFiniteVertex {
+                vertex: v,
+                x: p.x,
+                y: p.y,
+            });
+        }
+        is_changed[v] = true;
+    }
+    let touched: Vec<usize> = (0..mesh.n_polygons())
+        .filter(|&p| mesh.polygon(p).iter().any(|&v| is_changed[v]))
+        .collect();
+    if touched.is_empty() {
+        return Ok(());
+    }
+    let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
+    // Step 1 and 3 for the touched polygons.
+    let mut points = Vec::new();
+    let mut sorted = Vec::new();
+    for &p in &touched {
+        let loop_ = mesh.polygon(p);
+        if loop_.len() < 3 {
+            return Err(MeshError::TooFewVertices {
+                polygon: p,
+                count: loop_.len(),
+            });
+        }
+        sorted.clear();
+        sorted.extend_from_slice(loop_);
+        sorted.sort_unstable();
+        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+            return Err(MeshError::RepeatedVertex {
+                polygon: p,
+                vertex: w[0],
+            });
+        }
+    }
+    check_changed_duplicates(mesh, changed, tolerance)?;
+    for &p in &touched {
+        points.clear();
+        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+        check_polygon(p, &points, tolerance)?;
+    }
+    check_changed_conformity(mesh, &touched, tolerance)?;
+    let mut around = vec![false; n];
+    for &p in &touched {
+        for &v in mesh.polygon(p) {
+            around[v] = true;
+        }
+    }
+    check_corners_at(mesh, Some(&around))?;
+    check_nesting(mesh)
+}
+
+/// Step 2 for the vertices `changed`: none within `tolerance` of another vertex used by a
+/// polygon. The changed vertices are sorted by x; every vertex looks for partners in its
+/// x-range by binary search.
+fn check_changed_duplicates(
+    mesh: &Mesh,
+    changed: &[usize],
+    tolerance: f64,
+) -> Result<(), MeshError> {
+    let vertices = mesh.vertices();
+    let mut used = vec![false; mesh.n_vertices()];
+    for &v in mesh.polygon_vertex_indices() {
+        used[v] = true;
+    }
+    let mut by_x: Vec<usize> = changed.iter().copied().filter(|&v| used[v]).collect();
+    by_x.sort_by(|&a, &b| vertices[a].x.total_cmp(&vertices[b].x));
+    by_x.dedup();
+    let Some((&first, &last)) = by_x.first().zip(by_x.last()) else {
+        return Ok(());
+    };
+    let (lo, hi) = (vertices[first].x - tolerance, vertices[last].x + tolerance);
+    let mut found: Option<(usize, usize, f64)> = None;
+    for (b, pb) in vertices.iter().enumerate() {
+        if !used[b] || pb.x < lo || pb.x > hi {
+            continue;
+        }
+        let start = by_x.partition_point(|&a| vertices[a].x < pb.x - tolerance);
+        for &a in &by_x[start..] {
+            let pa = vertices[a];
+            if pa.x > pb.x + tolerance {
+                break;
+            }
+            let distance = (pa - pb).norm();
+            if a != b && distance <= tolerance {
+                let pair = (a.min(b), a.max(b));
+                if found.is_none_or(|(fa, fb, _)| pair < (fa, fb)) {
+                    found = Some((pair.0, pair.1, distance));
+                }
+            }
+        }
+    }
+    match found {
+        Some((a, b, distance)) => Err(MeshError::DuplicateVertices {
+            a,
+            b,
+            distance,
+            tolerance,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Step 4 for the edges of the polygons `touched` against every edge: the touched edges are
+/// filed in a grid, every edge of the mesh near them is tested against those in its cells.
+fn check_changed_conformity(
+    mesh: &Mesh,
+    touched: &[usize],
+    tolerance: f64,
+) -> Result<(), MeshError> {
+    let edges = mesh.edges();
+    let mut mine: Vec<usize> = touched
+        .iter()
+        .flat_map(|&p| mesh.polygon_edges(p).iter().copied())
+        .collect();
+    mine.sort_unstable();
+    mine.dedup();
+    let segment = |e: usize| edges[e].vertices.map(|v| mesh.vertex(v));
+    let widened = |e: usize| {
+        let b = Aabb::of_points(segment(e).into_iter());
+        Aabb {
+            min: Point::new(b.min.x - tolerance, b.min.y - tolerance),
+            max: Point::new(b.max.x + tolerance, b.max.y + tolerance),
+        }
+    };
+    let boxes: Vec<Aabb> = mine.iter().map(|&e| widened(e)).collect();
+    let all = Aabb::of_points(boxes.iter().flat_map(|b| [b.min, b.max]));
+    let grid = Grid::new(&boxes);
+    let mut found: Option<((usize, usize), Conflict)> = None;
+    for (f, edge) in edges.iter().enumerate() {
+        let b = Aabb::of_points(edge.vertices.map(|v| mesh.vertex(v)).into_iter());
+        if !b.intersects(&all) {
+            continue;
+        }
+        grid.for_each_in(&b, |i| {
+            let e = mine[i];
+            if e == f || !boxes[i].intersects(&b) {
+                return;
+            }
+            let (ea, eb) = (&edges[e], &edges[f]);
+            let (pa, qa) = (ea.left, ea.right.unwrap_or(usize::MAX));
+            let (pb, qb) = (eb.left, eb.right.unwrap_or(usize::MAX));
+            if pa == pb || pa == qb || (qa != usize::MAX && (qa == pb || qa == qb)) {
+                return; // a pair within one polygon: checked by `self_intersection`
+            }
+            let pair = (e.min(f), e.max(f));
+            if found.is_some_and(|(best, _)| best <= pair) {
+                return;
+            }
+            let (first, second) = (pair.0, pair.1);
+            let conflict = segments_conflict(
+                edges[first].vertices,
+                segment(first),
+                edges[second].vertices,
+                segment(second),
+                tolerance,
+            );
+            if conflict != Conflict::None {
+                found = Some((pair, conflict));
+            }
+        });
+    }
+    match found {
+        None => Ok(()),
+        Some(((e, f), conflict)) => {
+            let (ea, eb) = (&edges[e], &edges[f]);
+            Err(match conflict {
+                Conflict::Cross => MeshError::Overlapping {
+                    a: ea.left,
+                    b: eb.left,
+                },
+                _ => MeshError::NonConforming {
+                    polygon_a: ea.left,
+                    a0: ea.vertices[0],
+                    a1: ea.vertices[1],
+                    polygon_b: eb.left,
+                    b0: eb.vertices[0],
+                    b1: eb.vertices[1],
+                },
+            })
+        }
+    }
 }
 
 /// The coincidence tolerance of `mesh`: [`COINCIDENCE_RATIO`] times the mean bounding-box
@@ -426,31 +638,47 @@ fn check_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
 /// edge see the same angle bit for bit. The corners are computed polygon by polygon and filed
 /// under their vertex in compressed storage, then sorted by angle around each vertex.
 fn check_corners(mesh: &Mesh) -> Result<(), MeshError> {
+    check_corners_at(mesh, None)
+}
+
+/// [`check_corners`] around the vertices `v` with `only[v]` (every vertex for `None`).
+fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError> {
     use std::f64::consts::{PI, TAU};
     let n = mesh.n_vertices();
+    let wanted = |v: usize| only.is_none_or(|only| only[v]);
     let indices = mesh.polygon_vertex_indices();
     let mut start = vec![0usize; n + 1];
     for &v in indices {
-        start[v + 1] += 1;
+        if wanted(v) {
+            start[v + 1] += 1;
+        }
     }
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let direction: Vec<f64> = mesh
-        .edges()
-        .iter()
-        .map(|e| {
-            let d = mesh.vertex(e.vertices[1]) - mesh.vertex(e.vertices[0]);
-            d.y.atan2(d.x)
-        })
-        .collect();
+    let direction_of = |e: usize| {
+        let edge = &mesh.edges()[e];
+        let d = mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0]);
+        d.y.atan2(d.x)
+    };
+    // Every edge's direction once (the whole mesh), or on demand around a few vertices.
+    let direction: Vec<f64> = if only.is_none() {
+        (0..mesh.n_edges()).map(direction_of).collect()
+    } else {
+        Vec::new()
+    };
     // The angle of the ray from vertex `v` along edge `e`, in (-pi, pi].
     let ray = |e: usize, v: usize| -> f64 {
         let edge = &mesh.edges()[e];
-        if edge.vertices[0] == v {
-            direction[e]
+        let along = if direction.is_empty() {
+            direction_of(e)
         } else {
-            let angle = direction[e] + PI;
+            direction[e]
+        };
+        if edge.vertices[0] == v {
+            along
+        } else {
+            let angle = along + PI;
             if angle > PI {
                 angle - TAU
             } else {
@@ -460,13 +688,13 @@ fn check_corners(mesh: &Mesh) -> Result<(), MeshError> {
     };
     // (start angle, opening angle, polygon), filed by vertex.
     let mut fill = start.clone();
-    let mut sectors = vec![(0.0f64, 0.0f64, 0usize); indices.len()];
+    let mut sectors = vec![(0.0f64, 0.0f64, 0usize); start[n]];
     for p in 0..mesh.n_polygons() {
         let loop_ = mesh.polygon(p);
         let loop_edges = mesh.polygon_edges(p);
         let m = loop_.len();
         for (k, &v) in loop_.iter().enumerate() {
-            if start[v + 1] - start[v] < 2 {
+            if !wanted(v) || start[v + 1] - start[v] < 2 {
                 continue;
             }
             let from = ray(loop_edges[k], v);
@@ -1191,6 +1419,245 @@ mod tests {
             Point::new(1.0, 1.0),
             Point::new(0.0, 1.0),
         ]
+    }
+
+    /// An n x n grid of unit squares with its vertices jittered (deterministically), split
+    /// into triangles in every third cell, with the part "bottom".
+    fn jittered_grid(n: usize) -> Mesh {
+        let mut state = 99u64;
+        let mut jitter = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.3
+        };
+        let id = |i: usize, j: usize| j * (n + 1) + i;
+        let mut vertices = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let inner = i > 0 && i < n && j > 0 && j < n;
+                let (dx, dy) = if inner {
+                    (jitter(), jitter())
+                } else {
+                    (0.0, 0.0)
+                };
+                vertices.push(Point::new(i as f64 + dx, j as f64 + dy));
+            }
+        }
+        let mut polygons = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                if (i + j) % 3 == 0 {
+                    polygons.push(vec![a, b, c]);
+                    polygons.push(vec![a, c, d]);
+                } else {
+                    polygons.push(vec![a, b, c, d]);
+                }
+            }
+        }
+        let bottom = crate::PartSpec::new("bottom", (0..n).map(|i| [i, i + 1]).collect());
+        Mesh::from_polygons(vertices, &polygons, vec![bottom]).unwrap()
+    }
+
+    /// The mesh with vertex `v` at `to` (storage only, unvalidated), or with a vertex
+    /// inserted into the bottom edge at `at` of its length when `v` is `None`.
+    fn changed(
+        mesh: &Mesh,
+        v: Option<usize>,
+        to: Point,
+    ) -> (
+        Vec<Point>,
+        Vec<usize>,
+        Vec<usize>,
+        Vec<crate::PartSpec>,
+        Vec<usize>,
+    ) {
+        let mut vertices = mesh.vertices().to_vec();
+        let mut offsets = vec![0];
+        let mut indices = Vec::new();
+        let changed = match v {
+            Some(v) => {
+                vertices[v] = to;
+                for p in 0..mesh.n_polygons() {
+                    indices.extend_from_slice(mesh.polygon(p));
+                    offsets.push(indices.len());
+                }
+                vec![v]
+            }
+            None => {
+                // Into the edge (0, 1) of the bottom, traversed 0 -> 1 by its polygon.
+                vertices.push(to);
+                let new = vertices.len() - 1;
+                for p in 0..mesh.n_polygons() {
+                    let loop_ = mesh.polygon(p);
+                    for (k, &u) in loop_.iter().enumerate() {
+                        indices.push(u);
+                        if u == 0 && loop_[(k + 1) % loop_.len()] == 1 {
+                            indices.push(new);
+                        }
+                    }
+                    offsets.push(indices.len());
+                }
+                vec![new]
+            }
+        };
+        let parts = mesh
+            .part_specs()
+            .into_iter()
+            .map(|spec| {
+                let edges = spec
+                    .edges
+                    .into_iter()
+                    .flat_map(|[a, b]| match (v, a.min(b), a.max(b)) {
+                        (None, 0, 1) => vec![[0, vertices.len() - 1], [vertices.len() - 1, 1]],
+                        _ => vec![[a, b]],
+                    })
+                    .collect();
+                crate::PartSpec::new(spec.name, edges)
+            })
+            .collect();
+        (vertices, offsets, indices, parts, changed)
+    }
+
+    #[test]
+    fn validating_near_a_change_agrees_with_the_whole_validation() {
+        let n = 8;
+        let mesh = jittered_grid(n);
+        let mut state = 5u64;
+        let mut uniform = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut valid, mut invalid) = (0, 0);
+        let mut kinds: Vec<String> = Vec::new();
+        for trial in 0..600 {
+            // Moves of every size (most small and valid, some across neighbours, onto another
+            // vertex, or outside), and insertions into a bottom edge.
+            let (v, to) = if trial % 10 == 9 {
+                let x = if trial % 20 == 9 { 0.5 } else { 1e-13 };
+                (None, Point::new(x, 0.0))
+            } else {
+                let v = (uniform() * mesh.n_vertices() as f64) as usize;
+                let p = mesh.vertex(v);
+                let size = [1e-3, 0.3, 1.0, 2.0, 4.0][trial % 5];
+                let to = if trial % 37 == 0 {
+                    mesh.vertex((v + 1) % mesh.n_vertices())
+                } else {
+                    Point::new(
+                        p.x + size * (uniform() - 0.5),
+                        p.y + size * (uniform() - 0.5),
+                    )
+                };
+                (Some(v), to)
+            };
+            let (vertices, offsets, indices, parts, changed) = changed(&mesh, v, to);
+            let near = Mesh::from_compact_changed(
+                vertices.clone(),
+                offsets.clone(),
+                indices.clone(),
+                parts.clone(),
+                &changed,
+            );
+            let whole = Mesh::from_compact(vertices, offsets, indices, parts);
+            assert_eq!(
+                near.is_ok(),
+                whole.is_ok(),
+                "trial {trial}: {v:?} to {to:?}: {near:?} against {whole:?}"
+            );
+            if let (Err(a), Err(b)) = (&near, &whole) {
+                // The same kind of failure.
+                assert_eq!(
+                    std::mem::discriminant(a),
+                    std::mem::discriminant(b),
+                    "trial {trial}: {a} against {b}"
+                );
+                let kind = format!("{a:?}");
+                let kind = kind.split([' ', '{', '(']).next().unwrap_or("").to_string();
+                if !kinds.contains(&kind) {
+                    kinds.push(kind);
+                }
+                invalid += 1;
+            } else {
+                valid += 1;
+            }
+        }
+        assert!(
+            valid > 200 && invalid > 80,
+            "{valid} valid, {invalid} invalid"
+        );
+        assert!(kinds.len() >= 3, "{kinds:?}");
+    }
+
+    #[test]
+    fn changes_that_overlap_other_polygons_are_found_near_them() {
+        // Two triangles sharing vertex 0 (first and third quadrants) and a far-away one.
+        let vertices = vec![
+            Point::new(0.0, 0.0),
+            Point::new(4.0, 0.0),
+            Point::new(0.0, 4.0),
+            Point::new(-2.0, -1.0),
+            Point::new(-1.0, -2.0),
+            Point::new(10.0, 10.0),
+            Point::new(11.0, 10.0),
+            Point::new(10.0, 11.0),
+        ];
+        let polygons = [vec![0, 1, 2], vec![0, 3, 4], vec![5, 6, 7]];
+        let mesh = Mesh::from_polygons(vertices.clone(), &polygons, Vec::new()).unwrap();
+        let offsets = mesh.polygon_offsets().to_vec();
+        let indices = mesh.polygon_vertex_indices().to_vec();
+        let cases: [(&[(usize, Point)], &str); 5] = [
+            // Corners overlapping at vertex 0, no edge crossing.
+            (
+                &[(3, Point::new(1.0, 0.5)), (4, Point::new(0.5, 1.0))],
+                "Overlapping",
+            ),
+            // An edge crossing another polygon's.
+            (
+                &[(3, Point::new(5.0, 2.0)), (4, Point::new(2.0, 5.0))],
+                "Overlapping",
+            ),
+            // A whole component inside a polygon of another.
+            (
+                &[
+                    (5, Point::new(1.0, 1.0)),
+                    (6, Point::new(1.5, 1.0)),
+                    (7, Point::new(1.0, 1.5)),
+                ],
+                "Overlapping",
+            ),
+            // A vertex in the interior of another polygon's edge.
+            (&[(5, Point::new(2.0, 2.0))], "NonConforming"),
+            // A valid move.
+            (&[(3, Point::new(-2.0, -0.5))], "Ok"),
+        ];
+        for (moves, expected) in cases {
+            let mut moved = vertices.clone();
+            for &(v, p) in moves {
+                moved[v] = p;
+            }
+            let changed: Vec<usize> = moves.iter().map(|&(v, _)| v).collect();
+            let near = Mesh::from_compact_changed(
+                moved.clone(),
+                offsets.clone(),
+                indices.clone(),
+                Vec::new(),
+                &changed,
+            );
+            let whole = Mesh::from_compact(moved, offsets.clone(), indices.clone(), Vec::new());
+            let kind = |r: &Result<Mesh, MeshError>| match r {
+                Ok(_) => "Ok".to_string(),
+                Err(e) => format!("{e:?}")
+                    .split([' ', '{', '('])
+                    .next()
+                    .unwrap()
+                    .to_string(),
+            };
+            assert_eq!(kind(&near), expected, "{moves:?}: {near:?}");
+            assert_eq!(kind(&whole), expected, "{moves:?}: {whole:?}");
+        }
     }
 
     #[test]

@@ -114,7 +114,9 @@ impl LowestOrderVem {
         c
     }
 
-    /// The 3 x 2n Voigt strain `[xx, yy, 2 xy]` of `Pi`.
+    /// The 3 x 2n Voigt strain `[xx, yy, 2 xy]` of `Pi` (the stiffness computes with its
+    /// columns directly; the tests compare with the matrix products).
+    #[cfg(test)]
     fn strain_matrix(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
         let mut b = DMatrix::zeros(3, 2 * n);
@@ -129,6 +131,7 @@ impl LowestOrderVem {
     }
 
     /// `D`: the P1 basis of [`EnergyProjection::coefficients`] at the vertices (2n x 6).
+    #[cfg(test)]
     fn basis_at_vertices(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
         let mut d = DMatrix::zeros(2 * n, 6);
@@ -146,6 +149,7 @@ impl LowestOrderVem {
 }
 
 /// `(m + m^T) / 2`: removes the round-off asymmetry of a product `A^T S A`.
+#[cfg(test)]
 fn symmetrised(m: DMatrix<f64>) -> DMatrix<f64> {
     (&m + m.transpose()) * 0.5
 }
@@ -166,14 +170,44 @@ impl ElementSpace for LowestOrderVem {
         material: &ElasticityTensor,
     ) -> Result<LocalStiffness, SpaceError> {
         let geometry = PolygonGeometry::try_new(polygon)?;
-        // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v).
-        let b = Self::strain_matrix(&geometry);
-        let c = DMatrix::from_column_slice(3, 3, material.voigt().as_slice());
-        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.area());
-        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi.
-        let dofs = 2 * geometry.n_vertices();
-        let projector = Self::basis_at_vertices(&geometry) * Self::coefficients(&geometry);
-        let complement = DMatrix::identity(dofs, dofs) - projector;
+        let n = geometry.n_vertices();
+        let dofs = 2 * n;
+        // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v), entry by entry from
+        // the columns of the Voigt strain matrix B (3 x 2n: [w_x, 0, w_y] for the x value of
+        // a vertex, [0, w_y, w_x] for its y value; see `strain_matrix`), the lower triangle
+        // computed and mirrored, so that K_c is exactly symmetric. The matrices are small
+        // (2n <= 30 or so): plain loops, no general matrix product and its workspace.
+        let c = material.voigt();
+        let weights = geometry.gradient_weights();
+        let column = |j: usize| {
+            let w = weights[j / 2];
+            if j % 2 == 0 {
+                [w.x, 0.0, w.y]
+            } else {
+                [0.0, w.y, w.x]
+            }
+        };
+        let area = geometry.area();
+        let mut consistency = DMatrix::zeros(dofs, dofs);
+        for j in 0..dofs {
+            let b = column(j);
+            let cb = [
+                c[(0, 0)] * b[0] + c[(0, 1)] * b[1] + c[(0, 2)] * b[2],
+                c[(1, 0)] * b[0] + c[(1, 1)] * b[1] + c[(1, 2)] * b[2],
+                c[(2, 0)] * b[0] + c[(2, 1)] * b[1] + c[(2, 2)] * b[2],
+            ];
+            for i in j..dofs {
+                let a = column(i);
+                let value = area * (a[0] * cb[0] + a[1] * cb[1] + a[2] * cb[2]);
+                consistency[(i, j)] = value;
+                consistency[(j, i)] = value;
+            }
+        }
+        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi. Both components of a vertex
+        // value are projected alike: Pi_dof = I_2 (x) Q with Q[k][m] = 1/n + r_k . w_m (r_k the
+        // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
+        // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
+        // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
         let s = self
             .stabilisation
             .diagonal(&geometry, material, &consistency)?;
@@ -187,11 +221,29 @@ impl ElementSpace for LowestOrderVem {
                 ),
             });
         }
-        let mut scaled = complement.clone();
-        for (mut row, s_i) in scaled.row_iter_mut().zip(s.iter()) {
-            row *= *s_i;
+        let relative = geometry.relative_vertices();
+        let mean = 1.0 / n as f64;
+        // R = I - Q, row-major n x n.
+        let mut r = vec![0.0; n * n];
+        for (k, x) in relative.iter().enumerate() {
+            for (m, w) in weights.iter().enumerate() {
+                let identity = if k == m { 1.0 } else { 0.0 };
+                r[k * n + m] = identity - (mean + x.x * w.x + x.y * w.y);
+            }
         }
-        let stabilisation = symmetrised(complement.transpose() * scaled);
+        let mut stabilisation = DMatrix::zeros(dofs, dofs);
+        for component in 0..2 {
+            for b in 0..n {
+                for a in b..n {
+                    let value: f64 = (0..n)
+                        .map(|k| r[k * n + a] * s[2 * k + component] * r[k * n + b])
+                        .sum();
+                    let (i, j) = (2 * a + component, 2 * b + component);
+                    stabilisation[(i, j)] = value;
+                    stabilisation[(j, i)] = value;
+                }
+            }
+        }
         Ok(LocalStiffness {
             consistency,
             stabilisation,
@@ -239,5 +291,86 @@ impl ElementSpace for LowestOrderVem {
         Ok(DVector::from_fn(2 * n, |i, _| {
             integral[i % 2] * weights[i / 2]
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::DRecipe;
+
+    /// `K_c = |T| B' C B` and `K_s = (I - D Pi)' S (I - D Pi)` as the matrix products of the
+    /// module docs.
+    fn by_products(
+        element: &LowestOrderVem,
+        polygon: &[Point],
+        material: &ElasticityTensor,
+    ) -> LocalStiffness {
+        let geometry = PolygonGeometry::try_new(polygon).unwrap();
+        let b = LowestOrderVem::strain_matrix(&geometry);
+        let c = DMatrix::from_column_slice(3, 3, material.voigt().as_slice());
+        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.area());
+        let dofs = 2 * geometry.n_vertices();
+        let projector =
+            LowestOrderVem::basis_at_vertices(&geometry) * LowestOrderVem::coefficients(&geometry);
+        let complement = DMatrix::identity(dofs, dofs) - projector;
+        let s = element
+            .stabilisation()
+            .diagonal(&geometry, material, &consistency)
+            .unwrap();
+        let mut scaled = complement.clone();
+        for (mut row, s_i) in scaled.row_iter_mut().zip(s.iter()) {
+            row *= *s_i;
+        }
+        LocalStiffness {
+            consistency,
+            stabilisation: symmetrised(complement.transpose() * scaled),
+        }
+    }
+
+    #[test]
+    fn stiffness_agrees_with_the_matrix_products() {
+        let material = ElasticityTensor::try_isotropic(3.0, 1.5).unwrap();
+        let polygons: Vec<Vec<Point>> = vec![
+            vec![
+                Point::new(0.1, 0.0),
+                Point::new(1.0, 0.2),
+                Point::new(0.3, 0.9),
+            ],
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(2.0, 0.0),
+                Point::new(2.0, 1.0),
+                Point::new(1.0, 1.0),
+                Point::new(1.0, 2.0),
+                Point::new(0.0, 2.0),
+            ],
+            (0..9)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / 9.0;
+                    let r = if k % 2 == 0 { 1.0 } else { 0.7 };
+                    Point::new(5.0 + r * t.cos(), -3.0 + 0.4 * r * t.sin())
+                })
+                .collect(),
+        ];
+        let stabilisations: [Arc<dyn Stabilisation>; 2] =
+            [Arc::new(DofiDofi::default()), Arc::new(DRecipe)];
+        for stabilisation in stabilisations {
+            let element = LowestOrderVem::try_new(stabilisation).unwrap();
+            for polygon in &polygons {
+                let fast = element.stiffness(polygon, &material).unwrap();
+                let reference = by_products(&element, polygon, &material);
+                // The stabilisation of a triangle is round-off (Pi_dof = I): relative to K_c.
+                let scale = reference.consistency.norm();
+                for (a, b) in [
+                    (&fast.consistency, &reference.consistency),
+                    (&fast.stabilisation, &reference.stabilisation),
+                ] {
+                    assert_eq!(a.shape(), b.shape());
+                    assert!((a - b).norm() <= 1e-14 * scale, "{a} against {b}");
+                    assert_eq!(a, &a.transpose(), "exactly symmetric");
+                }
+            }
+        }
     }
 }

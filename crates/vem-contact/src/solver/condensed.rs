@@ -355,69 +355,29 @@ impl Factors {
         work: &mut WorkCounters,
     ) -> Result<Option<Self>, ContactSolverError> {
         let rows = all_rows(system);
-        let mut bodies = Vec::new();
-        let mut hessian = Mat::<f64>::zeros(rows.len(), rows.len());
         let interfaces = shared::interfaces(system);
-        let ordering = settings.cholesky.ordering();
-        for (b, (block, interface)) in system.stiffness_blocks().iter().zip(interfaces).enumerate()
-        {
-            let (offset, k) = (block.offset(), block.matrix());
-            let n = k.nrows();
-            // The position of each interface unknown in G.
-            const NONE: usize = usize::MAX;
-            let mut position = vec![NONE; n];
-            for (p, &i) in interface.iter().enumerate() {
-                position[i] = p;
-            }
-            // The analysis with the interface last, on the block's shared order.
-            let start = Instant::now();
-            let order = shared::order_of_block(system, b, &interface, ordering).map_err(backend)?;
-            let key = BlockKey::of(system, b, ordering);
-            let (analysis, made) = shared::block_analysis(key, || {
-                let mut cholesky = CholeskySolver::new(settings.cholesky);
-                cholesky.analyse_with_order(k.symbolic(), &order.order, interface.len())?;
-                Ok::<_, SolveError>(cholesky.shared_analysis().expect("analysed above"))
-            })
-            .map_err(backend)?;
-            if made {
-                work.symbolic_analyses += 1;
-                work.times.symbolic += start.elapsed();
-            }
-            held.orders.push(order);
-            held.analyses.push(Arc::clone(&analysis));
-            // The numeric factor for these stiffness values, shared.
-            let factor_key = FactorKey {
-                block: key,
-                stiffness_version: system.stiffness_version(),
-                settings: format!("{:?}", settings.cholesky),
+        // The bodies' blocks are independent: each is ordered, analysed and factorised on its
+        // own thread (an ordering runs on one core; each factorisation chooses its own
+        // parallelism), then their interface parts are summed in the order of the bodies.
+        let parts: Vec<Result<BodyPart, ContactSolverError>> = interfaces
+            .into_par_iter()
+            .enumerate()
+            .map(|(b, interface)| BodyPart::build(system, b, interface, &rows, settings))
+            .collect();
+        let mut hessian = Mat::<f64>::zeros(rows.len(), rows.len());
+        let mut bodies = Vec::with_capacity(parts.len());
+        let mut singular = false;
+        for part in parts {
+            let part = part?;
+            *work += part.work;
+            held.orders.push(part.order);
+            held.analyses.push(part.analysis);
+            let Some(mut body) = part.body else {
+                singular = true;
+                continue;
             };
-            let (block_factor, _) = shared::block_factor(factor_key, || {
-                let mut cholesky = CholeskySolver::from_analysis(settings.cholesky, analysis);
-                let shift = factorise_or_shift(&mut cholesky, k, &interface, work)?;
-                Ok::<_, ContactSolverError>(BlockFactor {
-                    factor: shift.and_then(|_| cholesky.shared_factor()),
-                    shift: shift.unwrap_or(0.0),
-                })
-            })?;
-            let Some(factor) = block_factor.factor.clone() else {
-                return Ok(None);
-            };
-            let shift = block_factor.shift;
-            let cholesky = CholeskySolver::from_factor(settings.cholesky, factor);
-            let mut proximal = None;
-            let mut trailing = Mat::<f64>::zeros(0, 0);
-            if !interface.is_empty() {
-                // W = L_GG^-1 B_G' and H += W'W.
-                let mut w = Mat::<f64>::zeros(interface.len(), rows.len());
-                for (r, &(cols, values)) in rows.iter().enumerate() {
-                    for (&c, &v) in cols.iter().zip(values) {
-                        if (offset..offset + n).contains(&c) {
-                            w[(position[c - offset], r)] += v;
-                        }
-                    }
-                }
-                let l = cholesky.trailing_factor().map_err(backend)?;
-                solve_lower_triangular_in_place(l.as_ref(), w.as_mut(), Par::rayon(0));
+            if let Some(w) = part.w {
+                // H += W'W.
                 matmul(
                     hessian.as_mut(),
                     Accum::Add,
@@ -426,25 +386,14 @@ impl Factors {
                     1.0,
                     Par::rayon(0),
                 );
-                if shift > 0.0 {
-                    proximal = Some(Proximal {
-                        shift,
-                        w,
-                        interface_displacement: vec![0.0; interface.len()],
-                        last_step: vec![0.0; interface.len()],
-                    });
+                if let Some(proximal) = body.proximal.as_mut() {
+                    proximal.w = w;
                 }
-                trailing = l;
             }
-            bodies.push(BodyFactor {
-                offset,
-                n,
-                cholesky,
-                _shared: block_factor,
-                interface,
-                trailing,
-                proximal,
-            });
+            bodies.push(body);
+        }
+        if singular {
+            return Ok(None);
         }
         Ok(Some(Self {
             bodies,
@@ -454,6 +403,119 @@ impl Factors {
             multipliers: None,
             reduced: ReducedFactor::default(),
         }))
+    }
+}
+
+/// What one body contributes to [`Factors`]: its shared order and analysis, its factor
+/// (`None` when it stays singular with the shift), `W = L_GG^-1 B_G'` and the work done.
+struct BodyPart {
+    order: Arc<BlockOrder>,
+    analysis: Arc<CholeskyAnalysis>,
+    body: Option<BodyFactor>,
+    w: Option<Mat<f64>>,
+    work: WorkCounters,
+}
+
+impl BodyPart {
+    fn build(
+        system: &ContactSystem<'_>,
+        b: usize,
+        interface: Vec<usize>,
+        rows: &[(&[usize], &[f64])],
+        settings: &CondensedSettings,
+    ) -> Result<Self, ContactSolverError> {
+        let mut work = WorkCounters::default();
+        let ordering = settings.cholesky.ordering();
+        let block = &system.stiffness_blocks()[b];
+        let (offset, k) = (block.offset(), block.matrix());
+        let n = k.nrows();
+        // The position of each interface unknown in G.
+        const NONE: usize = usize::MAX;
+        let mut position = vec![NONE; n];
+        for (p, &i) in interface.iter().enumerate() {
+            position[i] = p;
+        }
+        // The analysis with the interface last, on the block's shared order.
+        let start = Instant::now();
+        let order = shared::order_of_block(system, b, &interface, ordering).map_err(backend)?;
+        let key = BlockKey::of(system, b, ordering);
+        let (analysis, made) = shared::block_analysis(key, || {
+            let mut cholesky = CholeskySolver::new(settings.cholesky);
+            cholesky.analyse_with_order(k.symbolic(), &order.order, interface.len())?;
+            Ok::<_, SolveError>(cholesky.shared_analysis().expect("analysed above"))
+        })
+        .map_err(backend)?;
+        if made {
+            work.symbolic_analyses += 1;
+            work.times.symbolic += start.elapsed();
+        }
+        // The numeric factor for these stiffness values, shared.
+        let factor_key = FactorKey {
+            block: key,
+            stiffness_version: system.stiffness_version(),
+            settings: format!("{:?}", settings.cholesky),
+        };
+        let (block_factor, _) = shared::block_factor(factor_key, || {
+            let mut cholesky =
+                CholeskySolver::from_analysis(settings.cholesky, Arc::clone(&analysis));
+            let shift = factorise_or_shift(&mut cholesky, k, &interface, &mut work)?;
+            Ok::<_, ContactSolverError>(BlockFactor {
+                factor: shift.and_then(|_| cholesky.shared_factor()),
+                shift: shift.unwrap_or(0.0),
+            })
+        })?;
+        let Some(factor) = block_factor.factor.clone() else {
+            return Ok(Self {
+                order,
+                analysis,
+                body: None,
+                w: None,
+                work,
+            });
+        };
+        let shift = block_factor.shift;
+        let cholesky = CholeskySolver::from_factor(settings.cholesky, factor);
+        let mut proximal = None;
+        let mut trailing = Mat::<f64>::zeros(0, 0);
+        let mut w_of_body = None;
+        if !interface.is_empty() {
+            // W = L_GG^-1 B_G'.
+            let mut w = Mat::<f64>::zeros(interface.len(), rows.len());
+            for (r, &(cols, values)) in rows.iter().enumerate() {
+                for (&c, &v) in cols.iter().zip(values) {
+                    if (offset..offset + n).contains(&c) {
+                        w[(position[c - offset], r)] += v;
+                    }
+                }
+            }
+            let l = cholesky.trailing_factor().map_err(backend)?;
+            solve_lower_triangular_in_place(l.as_ref(), w.as_mut(), Par::rayon(0));
+            if shift > 0.0 {
+                proximal = Some(Proximal {
+                    shift,
+                    w: Mat::zeros(0, 0),
+                    interface_displacement: vec![0.0; interface.len()],
+                    last_step: vec![0.0; interface.len()],
+                });
+            }
+            trailing = l;
+            w_of_body = Some(w);
+        }
+        Ok(Self {
+            order,
+            analysis,
+            body: Some(BodyFactor {
+                offset,
+                n,
+                cholesky,
+                _shared: block_factor,
+                interface,
+                trailing,
+                proximal,
+            }),
+            w: w_of_body,
+            work,
+        })
     }
 }
 

@@ -117,14 +117,97 @@ impl Raster {
         header.extend_from_slice(&(self.height as u32).to_be_bytes());
         header.extend_from_slice(&[8, 6, 0, 0, 0]);
         chunk(&mut png, b"IHDR", &header);
-        chunk(
-            &mut png,
-            b"IDAT",
-            &miniz_oxide::deflate::compress_to_vec_zlib(&filtered, 6),
-        );
+        chunk(&mut png, b"IDAT", &zlib_in_pieces(&filtered, PNG_LEVEL));
         chunk(&mut png, b"IEND", &[]);
         png
     }
+}
+
+/// zlib's compression level of the pictures: 1 (the fastest) makes the picture of a contact
+/// run (1800 x 1190 pixels) 30 % larger than 6 (0.63 against 0.48 MB) in a third of the time.
+const PNG_LEVEL: u8 = 1;
+
+/// Data of at least this many bytes is deflated in pieces, one thread each.
+const PIECE_MIN_BYTES: usize = 1 << 20;
+
+/// The zlib stream of `data` at `level`, its pieces deflated on one thread each: every piece
+/// but the last ends with a sync flush (an empty stored block ending on a byte boundary), so
+/// that the raw deflate streams join into one; then the zlib header and the Adler-32 of the
+/// whole. Each piece starts with an empty dictionary, which costs a few bytes per piece.
+fn zlib_in_pieces(data: &[u8], level: u8) -> Vec<u8> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+    let pieces = if data.len() < PIECE_MIN_BYTES {
+        1
+    } else {
+        threads
+    };
+    let size = data.len().div_ceil(pieces).max(1);
+    let chunks: Vec<&[u8]> = data.chunks(size).collect();
+    let last = chunks.len().saturating_sub(1);
+    let deflated: Vec<Vec<u8>> = if chunks.len() <= 1 {
+        vec![raw_deflate(data, level, true)]
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = chunks
+                .iter()
+                .enumerate()
+                .map(|(k, &piece)| scope.spawn(move || raw_deflate(piece, level, k == last)))
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| {
+                    h.join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+                })
+                .collect()
+        })
+    };
+    // CMF 0x78: deflate with a 32 KiB window; FLG 0x01: no dictionary, check bits.
+    let mut out = vec![0x78, 0x01];
+    for piece in &deflated {
+        out.extend_from_slice(piece);
+    }
+    out.extend_from_slice(&adler32(data).to_be_bytes());
+    out
+}
+
+/// The raw deflate stream of `data`, ended by a final block (`last`) or by a sync flush.
+fn raw_deflate(data: &[u8], level: u8, last: bool) -> Vec<u8> {
+    use miniz_oxide::deflate::core::{
+        compress_to_output, create_comp_flags_from_zip_params, CompressorOxide, TDEFLFlush,
+        TDEFLStatus,
+    };
+    // Negative window bits: no zlib header.
+    let flags = create_comp_flags_from_zip_params(i32::from(level), -15, 0);
+    let mut compressor = CompressorOxide::new(flags);
+    let mut out = Vec::with_capacity(data.len() / 8 + 64);
+    let flush = if last {
+        TDEFLFlush::Finish
+    } else {
+        TDEFLFlush::Sync
+    };
+    let (status, _) = compress_to_output(&mut compressor, data, flush, |bytes| {
+        out.extend_from_slice(bytes);
+        true
+    });
+    debug_assert!(matches!(status, TDEFLStatus::Done | TDEFLStatus::Okay));
+    out
+}
+
+/// The Adler-32 checksum of `data` (RFC 1950).
+fn adler32(data: &[u8]) -> u32 {
+    const MOD: u32 = 65_521;
+    let (mut a, mut b) = (1u32, 0u32);
+    // 5552 bytes keep the sums below 2^32 before the reduction.
+    for block in data.chunks(5552) {
+        for &byte in block {
+            a += u32::from(byte);
+            b += a;
+        }
+        a %= MOD;
+        b %= MOD;
+    }
+    (b << 16) | a
 }
 
 /// Appends a PNG chunk: length, type, data, CRC-32 of type and data.
@@ -215,5 +298,34 @@ mod tests {
         let raw =
             miniz_oxide::inflate::decompress_to_vec_zlib(&png[idat + 4..idat + 4 + len]).unwrap();
         assert_eq!(raw.len(), 10 * 41);
+    }
+
+    #[test]
+    fn pieces_deflated_apart_inflate_to_the_data() {
+        // Large enough to be cut into pieces (on a machine with several threads), with runs
+        // and noise; miniz_oxide's zlib decoder checks the Adler-32 too.
+        let mut state = 7u32;
+        let data: Vec<u8> = (0..3 * PIECE_MIN_BYTES + 12345)
+            .map(|i| {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                if (i / 4096) % 3 == 0 {
+                    (state >> 24) as u8
+                } else {
+                    (i / 4096) as u8
+                }
+            })
+            .collect();
+        for level in [1, 6] {
+            let stream = zlib_in_pieces(&data, level);
+            let back = miniz_oxide::inflate::decompress_to_vec_zlib(&stream).unwrap();
+            assert!(back == data, "level {level}");
+            assert!(stream.len() < data.len() / 2);
+        }
+        assert_eq!(adler32(b"Wikipedia"), 0x11E6_0398);
+        let small = zlib_in_pieces(b"abcabcabc", 1);
+        assert_eq!(
+            miniz_oxide::inflate::decompress_to_vec_zlib(&small).unwrap(),
+            b"abcabcabc"
+        );
     }
 }
