@@ -167,6 +167,9 @@ pub struct BenchOneArgs {
     /// elastic reference.
     #[arg(long)]
     model_only: bool,
+    /// Stop after the contact solve: no elastic reference (for memory profiles of the solve).
+    #[arg(long)]
+    contact_only: bool,
 }
 
 /// One measurement, as the child prints it and the reports carry it. Times in seconds, memory
@@ -342,6 +345,10 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
         }
     }
     m.peak_contact = peak_memory();
+    if args.contact_only {
+        println!("{}", serde_json::to_string(&m)?);
+        return Ok(true);
+    }
     // The elastic reference: every body alone with its Dirichlet data, on the enlarged meshes.
     let settings = match args.parallelism {
         Parallelism::Default => CholeskySettings::default(),

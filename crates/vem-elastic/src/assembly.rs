@@ -674,22 +674,45 @@ struct BlockValues<'a> {
 }
 
 impl BlockValues<'_> {
-    /// Adds `value` at (`row`, `col`); the entry is in the pattern by construction.
+    /// Adds `column[a]` at (`row`, `col`) for every `(row, a)` of `rows` (sorted by row): one
+    /// merge along the column's sorted row indices, which hold every element coupling by
+    /// construction.
     #[inline]
-    fn add(&mut self, row: usize, col: usize, value: f64) {
+    fn add_column(&mut self, col: usize, rows: &[(usize, usize)], column: &[f64]) {
         let range = self.col_ptr[col]..self.col_ptr[col + 1];
-        let k = range.start
-            + self.row_idx[range]
-                .binary_search(&row)
-                .expect("the pattern holds every element coupling");
-        self.values[k - self.col_ptr[self.first_col]] += value;
+        let offset = range.start - self.col_ptr[self.first_col];
+        let pattern = &self.row_idx[range];
+        let values = &mut self.values[offset..offset + pattern.len()];
+        let mut k = 0;
+        for &(row, a) in rows {
+            while pattern[k] < row {
+                k += 1;
+            }
+            debug_assert_eq!(pattern[k], row, "the pattern holds every element coupling");
+            values[k] += column[a];
+        }
     }
 }
 
 impl ColumnBlock<'_> {
     /// Adds the columns of every contribution that fall in this block's global range.
     fn scatter(&mut self, contributions: &[(Vec<DofStatus>, ElementContribution)]) {
+        // The element's free and prescribed rows, (row, local index) sorted by row.
+        let (mut free, mut prescribed) = (Vec::new(), Vec::new());
         for (statuses, contribution) in contributions {
+            if !contribution.dofs.iter().any(|g| self.global.contains(g)) {
+                continue;
+            }
+            free.clear();
+            prescribed.clear();
+            for (a, status) in statuses.iter().enumerate() {
+                match *status {
+                    DofStatus::Free(row) => free.push((row, a)),
+                    DofStatus::Prescribed(row) => prescribed.push((row, a)),
+                }
+            }
+            free.sort_unstable();
+            prescribed.sort_unstable();
             for (b, &gb) in contribution.dofs.iter().enumerate() {
                 if !self.global.contains(&gb) {
                     continue;
@@ -698,21 +721,12 @@ impl ColumnBlock<'_> {
                     self.load[gb - self.global.start] += load[b];
                 }
                 let column = contribution.matrix.column(b);
+                let column = column.as_slice();
                 match statuses[b] {
-                    DofStatus::Free(col) => {
-                        for (a, status) in statuses.iter().enumerate() {
-                            if let DofStatus::Free(row) = *status {
-                                self.ff.add(row, col, column[a]);
-                            }
-                        }
-                    }
+                    DofStatus::Free(col) => self.ff.add_column(col, &free, column),
                     DofStatus::Prescribed(col) => {
-                        for (a, status) in statuses.iter().enumerate() {
-                            match *status {
-                                DofStatus::Free(row) => self.fp.add(row, col, column[a]),
-                                DofStatus::Prescribed(row) => self.pp.add(row, col, column[a]),
-                            }
-                        }
+                        self.fp.add_column(col, &free, column);
+                        self.pp.add_column(col, &prescribed, column);
                     }
                 }
             }

@@ -199,14 +199,16 @@ impl DofMap {
                 }
             }
         }
+        // Exact capacities: the map lives as long as the body.
+        let n_prescribed = prescribed_by.iter().filter(|entry| entry.is_some()).count();
         let mut map = DofMap {
             layout,
             status: Vec::with_capacity(n_dofs),
-            free: Vec::new(),
-            prescribed: Vec::new(),
-            prescribed_values: Vec::new(),
-            prescribed_owner: Vec::new(),
-            plate_of: Vec::new(),
+            free: Vec::with_capacity(n_dofs - n_prescribed),
+            prescribed: Vec::with_capacity(n_prescribed),
+            prescribed_values: Vec::with_capacity(n_prescribed),
+            prescribed_owner: Vec::with_capacity(n_prescribed),
+            plate_of: Vec::with_capacity(n_prescribed),
             plates,
         };
         for (g, entry) in prescribed_by.into_iter().enumerate() {

@@ -940,7 +940,13 @@ fn insert_points(
     places: impl Iterator<Item = Place>,
     moves: &[VertexMove],
 ) -> Result<(Mesh, Vec<usize>, usize), MeshError> {
-    let mut vertices = mesh.vertices().to_vec();
+    let places: Vec<Place> = places.collect();
+    let on_edges = places
+        .iter()
+        .filter(|p| matches!(p, Place::OnEdge { .. }))
+        .count();
+    let mut vertices = Vec::with_capacity(mesh.n_vertices() + on_edges);
+    vertices.extend_from_slice(mesh.vertices());
     for &(v, point) in moves {
         vertices[v] = point;
     }

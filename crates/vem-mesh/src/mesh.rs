@@ -434,7 +434,10 @@ fn derive_edges(
     }
     let mut filled = vec![0usize; n_vertices];
     let mut slots = vec![0usize; indices.len()];
-    let mut edges: Vec<Edge> = Vec::with_capacity(indices.len() / 2 + 16);
+    // E = (sides + boundary sides) / 2: room for a boundary of up to an eighth of the sides
+    // (any mesh but a strip), so that the edges, which live as long as the mesh, are not
+    // reallocated to twice their size near the end.
+    let mut edges: Vec<Edge> = Vec::with_capacity(indices.len() / 2 + indices.len() / 16 + 16);
     let mut polygon_edges = vec![0; indices.len()];
     for p in 0..offsets.len() - 1 {
         for k in 0..offsets[p + 1] - offsets[p] {

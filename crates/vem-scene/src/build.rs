@@ -134,12 +134,26 @@ impl Model {
         });
         let start = Instant::now();
         check_planned_memory(scene, &limit)?;
-        let meshes = scene
-            .bodies
-            .iter()
-            .enumerate()
-            .map(|(i, b)| build_mesh(scene, b, &KeyPath::key("body").index(i), &options.base))
-            .collect::<Result<Vec<_>, _>>()?;
+        // Every body's mesh on a thread of its own (independent files or generators); the
+        // first failure in the order of the bodies is reported.
+        let meshes = std::thread::scope(|scope| {
+            let built: Vec<_> = scene
+                .bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let base = &options.base;
+                    scope.spawn(move || build_mesh(scene, b, &KeyPath::key("body").index(i), base))
+                })
+                .collect();
+            built
+                .into_iter()
+                .map(|h| {
+                    h.join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+                })
+                .collect::<Result<Vec<_>, _>>()
+        })?;
         let mesh_time = start.elapsed();
         let mut meshes = meshes;
         // The locking-free default inserts the edge midpoints before the memory check: on
