@@ -13,9 +13,60 @@ import sys
 import xml.etree.ElementTree as ET
 
 import meshio
+import meshio.vtu._vtu as meshio_vtu
 import numpy
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
+
+
+def _patched_parse_raw_binary(filename):
+    """meshio 5.3.5's reader of raw appended VTU data, with one fix: it relabels each
+    DataArray's offset in place (to the offset in its base64 copy) while it still looks arrays
+    up by their raw offsets, so a later raw offset that equals an earlier array's new offset
+    finds the wrong array ("cannot reshape", or a misread array). The files are valid (VTK and
+    ParaView read them); here every array is looked up before any is relabelled."""
+    import base64
+    import re
+    import zlib
+    from xml.etree import ElementTree as ET
+
+    raw = open(filename, "rb").read()
+    start = re.search(re.compile(b'<AppendedData[^>]+(?:">)'), raw).end()
+    stop = raw.find(b"</AppendedData>")
+    root = ET.fromstring(raw[:start].decode() + raw[stop:].decode())
+    data = raw[start:stop].split(b"_", 1)[1].rsplit(b"\n", 1)[0]
+    dtype = meshio_vtu.vtu_to_numpy_type[root.get("header_type", "UInt32")].newbyteorder("<")
+    root.find("AppendedData").set("encoding", "base64")
+    by_offset = {}
+    for tag in root.iter("DataArray"):
+        if tag.get("offset") is not None:
+            by_offset.setdefault(int(tag.get("offset")), []).append(tag)
+    compressed = root.attrib.pop("compressor", None) is not None
+    arrays, i = "", 0
+    while i < len(data):
+        for tag in by_offset[i]:
+            tag.set("offset", str(len(arrays)))
+        if compressed:
+            blocks = int(numpy.frombuffer(data[i : i + dtype.itemsize], dtype)[0])
+            header_bytes = (3 + blocks) * dtype.itemsize
+            header = numpy.frombuffer(data[i : i + header_bytes], dtype)
+            block, j = b"", 0
+            for k in range(blocks):
+                size = int(header[k + 3])
+                block += zlib.decompress(data[i + header_bytes + j : i + header_bytes + j + size])
+                j += size
+            arrays += base64.b64encode(
+                numpy.array([len(block)]).astype(dtype).tobytes() + block).decode()
+            i += header_bytes + j
+        else:
+            size = int(numpy.frombuffer(data[i : i + dtype.itemsize], dtype)[0])
+            arrays += base64.b64encode(data[i : i + size + dtype.itemsize]).decode()
+            i += size + dtype.itemsize
+    root.find("AppendedData").text = "_" + arrays
+    return root
+
+
+meshio_vtu._parse_raw_binary = _patched_parse_raw_binary
 
 
 def vtk_read(path):
