@@ -143,25 +143,42 @@ impl Outcome {
         Ok(written)
     }
 
-    /// `<body>.vtu` of every body, in the order of the bodies.
+    /// `<body>.vtu` of every body, each on a thread of its own; the paths in the order of the
+    /// bodies.
     fn write_bodies(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
-        let mut written = Vec::with_capacity(self.bodies.len());
         let nodes = self.contact.as_ref().map_or(&[][..], |c| &c.nodes[..]);
-        for (solved, pressure) in self.bodies.iter().zip(self.pressures(nodes)) {
-            let path = dir.join(format!("{}.vtu", solved.body.name()));
-            let data = vtu_data(
-                solved.solution.vertex_displacements(),
-                &solved.fields,
-                solved,
-                pressure,
-            );
-            write_vtu(&path, solved.body.mesh(), &data).map_err(|source| CliError::Mesh {
-                context: path.display().to_string(),
-                source,
-            })?;
-            written.push(path);
-        }
-        Ok(written)
+        let pressures = self.pressures(nodes);
+        std::thread::scope(|scope| {
+            let threads: Vec<_> = self
+                .bodies
+                .iter()
+                .zip(pressures)
+                .map(|(solved, pressure)| {
+                    scope.spawn(move || {
+                        let path = dir.join(format!("{}.vtu", solved.body.name()));
+                        let data = vtu_data(
+                            solved.solution.vertex_displacements(),
+                            &solved.fields,
+                            solved,
+                            pressure,
+                        );
+                        write_vtu(&path, solved.body.mesh(), &data)
+                            .map(|()| path.clone())
+                            .map_err(|source| CliError::Mesh {
+                                context: path.display().to_string(),
+                                source,
+                            })
+                    })
+                })
+                .collect();
+            threads
+                .into_iter()
+                .map(|t| {
+                    t.join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+                })
+                .collect()
+        })
     }
 
     /// The raw and consistent contact pressure at the interface vertices of every body.

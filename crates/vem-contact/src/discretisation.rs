@@ -54,6 +54,8 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use rayon::prelude::*;
+
 use vem_elastic::{AssembledSystem, DofStatus, ElasticBody, Material};
 use vem_mesh::{Point, VectorD};
 
@@ -1266,6 +1268,7 @@ impl<const D: usize> ContactDiscretisation<D> {
 fn element_warnings<const D: usize>(body: &ElasticBody<D>) -> Vec<Warning> {
     let mesh = body.body_mesh();
     let mut poor: Vec<(usize, vem_mesh::quality::ElementQuality)> = (0..mesh.n_cells())
+        .into_par_iter()
         .map(|c| (c, mesh.cell_quality(c)))
         .filter(|(_, q)| {
             !(q.star_ratio >= STAR_RATIO_FLOOR && q.shortest_edge_ratio >= EDGE_RATIO_FLOOR)

@@ -720,10 +720,19 @@ pub fn insert_interface_nodes(
         (Vec::new(), Vec::new())
     };
 
-    let (new_a, vertices_a, inserted_a) =
-        insert_points(mesh_a, &chain_a, stations.iter().map(|st| st.a), &moves_a)?;
-    let (new_b, vertices_b, inserted_b) =
-        insert_points(mesh_b, &chain_b, stations.iter().map(|st| st.b), &moves_b)?;
+    // The two meshes are independent: b on a thread of its own.
+    let (a, b) = std::thread::scope(|scope| {
+        let b = scope
+            .spawn(|| insert_points(mesh_b, &chain_b, stations.iter().map(|st| st.b), &moves_b));
+        let a = insert_points(mesh_a, &chain_a, stations.iter().map(|st| st.a), &moves_a);
+        (
+            a,
+            b.join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+        )
+    });
+    let (new_a, vertices_a, inserted_a) = a?;
+    let (new_b, vertices_b, inserted_b) = b?;
 
     // Normals from the new chain of a (spec: nu_1 at the node); lengths on the paired range.
     let new_chain_a = Chain::new(&new_a, part_a, &fail)?;
