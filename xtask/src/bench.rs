@@ -596,7 +596,8 @@ fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> String {
         "\n## Whole runs\n\nA scene from its mesh files to every output written (`vem run`: \
          `Scene::load`, `Model::build`, `Model::solve`, `Outcome::write`), the median of {} \
          runs each in its own process, against one Cholesky (analyse + factorise + solve by \
-         `CholeskySolver`, default settings) of the stiffness of every body on its solved mesh. \
+         `CholeskySolver`, default settings) of the stiffness of every body on its solved mesh, \
+         in a process of its own after the same model building and assembly (untimed). \
          `hertz-gmsh`: a block of triangles with a parabolic gap (R = 1) pressed on a block of \
          quadrilaterals 1.25 times finer, frictionless, both meshes written as MSH 4.1 ASCII \
          files. Times in seconds; *read*: the scene and mesh files to validated meshes; \
