@@ -1460,19 +1460,18 @@ mod tests {
         Mesh::from_polygons(vertices, &polygons, vec![bottom]).unwrap()
     }
 
-    /// The mesh with vertex `v` at `to` (storage only, unvalidated), or with a vertex
-    /// inserted into the bottom edge at `at` of its length when `v` is `None`.
-    fn changed(
-        mesh: &Mesh,
-        v: Option<usize>,
-        to: Point,
-    ) -> (
+    /// Compact storage of a mesh (vertices, offsets, indices, parts) and its changed vertices.
+    type Storage = (
         Vec<Point>,
         Vec<usize>,
         Vec<usize>,
         Vec<crate::PartSpec>,
         Vec<usize>,
-    ) {
+    );
+
+    /// The mesh with vertex `v` at `to` (storage only, unvalidated), or with the vertex `to`
+    /// inserted into the bottom edge from vertex 0 to vertex 1 when `v` is `None`.
+    fn changed(mesh: &Mesh, v: Option<usize>, to: Point) -> Storage {
         let mut vertices = mesh.vertices().to_vec();
         let mut offsets = vec![0];
         let mut indices = Vec::new();
