@@ -4,8 +4,11 @@
 //! factorise, solve) of the same stiffness matrices.
 //!
 //! Every repetition runs in a child process (`cargo xtask bench-whole`), so that its peak
-//! memory (`VmHWM`) and its fresh memory belong to that run alone; the report gives the median
-//! of every figure over the repetitions.
+//! memory (`VmHWM`) and its fresh memory belong to that run alone, and its reference in
+//! another (`--reference`: the scene built and discretised as the whole run does it, then the
+//! Cholesky timed), so that both start from the same state of a fresh process (memory a
+//! process touches for the first time costs several times what it costs again); the report
+//! gives the median of every figure over the repetitions.
 //!
 //! The bench's own case is Hertz-like: a block (0,1) x (0,1) of structured triangles with a
 //! parabolic initial gap (an indenter of radius 1 over x = 1/2), its top pushed down by 0.02,
@@ -19,6 +22,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
@@ -40,6 +44,11 @@ pub struct BenchWholeArgs {
     /// The folder of the bench's own meshes and scene (made when missing) and of the outputs.
     #[arg(long)]
     dir: PathBuf,
+    /// Measure the reference Cholesky instead of the whole run: the scene built and its
+    /// stiffness matrices assembled as the whole run assembles them (untimed), then analysed,
+    /// factorised and solved.
+    #[arg(long)]
+    reference: bool,
 }
 
 /// One whole run. Times in seconds, sizes in bytes.
@@ -67,6 +76,9 @@ pub struct WholeRun {
     pub output: f64,
     /// From the start to the last file written.
     pub whole: f64,
+    /// What the named stages leave of the whole run (the rest of `Model::solve`: load
+    /// history, summary).
+    pub other: f64,
     /// Bytes written.
     pub written_bytes: u64,
     /// VmHWM after `Model::build`, after `Model::solve`, after `Outcome::write`.
@@ -96,11 +108,6 @@ impl WholeRun {
     /// Whole run / one Cholesky.
     pub fn ratio(&self) -> f64 {
         self.whole / self.cholesky()
-    }
-
-    /// What the named stages leave of the whole run.
-    fn other(&self) -> f64 {
-        self.whole - self.read - self.build - self.assembly - self.solve - self.post - self.output
     }
 }
 
@@ -319,8 +326,11 @@ pub fn run_one(args: &BenchWholeArgs) -> Result<bool, Box<dyn std::error::Error>
         },
         ..WholeRun::default()
     };
-    let out = args.dir.join("out");
-    let result = whole_run(&scene_path, &out, &mut w);
+    let result = if args.reference {
+        reference(&scene_path, &mut w)
+    } else {
+        whole_run(&scene_path, &args.dir.join("out"), &mut w)
+    };
     if let Err(error) = result {
         w.status = "failed".to_string();
         w.error = Some(error);
@@ -330,7 +340,7 @@ pub fn run_one(args: &BenchWholeArgs) -> Result<bool, Box<dyn std::error::Error>
     Ok(true)
 }
 
-/// The whole run of `scene` into `out`, then the reference Cholesky of its solved bodies.
+/// The whole run of `scene` into `out`.
 fn whole_run(scene: &Path, out: &Path, w: &mut WholeRun) -> Result<(), String> {
     let error = |e: vem_cli::CliError| chain(&e);
     let start = Instant::now();
@@ -355,16 +365,40 @@ fn whole_run(scene: &Path, out: &Path, w: &mut WholeRun) -> Result<(), String> {
     w.post = times.post_s;
     w.mesh_bytes = mesh_file_bytes(&scene);
     w.written_bytes = folder_bytes(out);
+    w.unknowns = outcome.summary().bodies.iter().map(|b| b.free_dofs).sum();
+    w.other = w.whole - w.read - w.build - w.assembly - w.solve - w.post - w.output;
     w.status = outcome.summary().contact.as_ref().map_or_else(
         || "elastic".to_string(),
         |c| format!("{:?}", c.report.status),
     );
-    let bodies: Vec<vem_elastic::ElasticBody> =
-        outcome.bodies.iter().map(|b| b.body.clone()).collect();
-    drop(outcome);
-    drop(model);
-    for body in &bodies {
-        let system = body.assemble().map_err(|e| chain(&e))?;
+    Ok(())
+}
+
+/// The reference of the whole run of `scene`, in a process of its own so that both start
+/// from the same state: the scene built and discretised as the whole run does it (meshes
+/// with their interface nodes, stiffness matrices; untimed), then every body's stiffness
+/// analysed, factorised and solved once by `CholeskySolver` with the default settings.
+fn reference(scene: &Path, w: &mut WholeRun) -> Result<(), String> {
+    let error = |e: vem_cli::CliError| chain(&e);
+    let scene = vem_cli::Scene::load(scene).map_err(error)?;
+    let model = vem_cli::Model::build(&scene).map_err(error)?;
+    let problem = model.problem();
+    let discretisation = match problem.contact_problem() {
+        Some((contact, _)) => Some(contact.discretise().map_err(|e| chain(&e))?),
+        None => None,
+    };
+    let mut systems: Vec<Arc<vem_elastic::AssembledSystem>> = discretisation
+        .as_ref()
+        .map_or_else(Vec::new, |d| d.systems().to_vec());
+    let in_contact: Vec<usize> = problem
+        .contact_problem()
+        .map_or_else(Vec::new, |(_, indices)| indices.to_vec());
+    for (index, body) in problem.bodies().iter().enumerate() {
+        if !in_contact.contains(&index) {
+            systems.push(Arc::new(body.body.assemble().map_err(|e| chain(&e))?));
+        }
+    }
+    for system in &systems {
         let k = system.stiffness();
         w.unknowns += k.nrows();
         w.stiffness_bytes += (k.val().len() * 16 + k.symbolic().col_ptr().len() * 8) as u64;
@@ -381,6 +415,7 @@ fn whole_run(scene: &Path, out: &Path, w: &mut WholeRun) -> Result<(), String> {
         w.reference_solve += seconds(start.elapsed());
         std::hint::black_box(u);
     }
+    w.status = "reference".to_string();
     Ok(())
 }
 
@@ -393,8 +428,7 @@ pub fn measure(
     repeat: usize,
 ) -> Result<WholeRun, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
-    let mut runs = Vec::with_capacity(repeat);
-    for _ in 0..repeat.max(1) {
+    let child = |reference: bool| -> Result<WholeRun, String> {
         let mut command = Command::new(&exe);
         command
             .arg("bench-whole")
@@ -403,6 +437,9 @@ pub fn measure(
             .args(["--unknowns", &unknowns.to_string()]);
         if let Some(scene) = scene {
             command.arg("--scene").arg(scene);
+        }
+        if reference {
+            command.arg("--reference");
         }
         let output = command
             .output()
@@ -413,26 +450,40 @@ pub fn measure(
             .rev()
             .find(|l| l.starts_with('{'))
             .and_then(|line| serde_json::from_str::<WholeRun>(line).ok());
-        match parsed {
-            Some(run) if run.error.is_some() => return Ok(run),
-            Some(run) => runs.push(run),
-            None => {
-                let stderr = String::from_utf8_lossy(&output.stderr);
-                let reason: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-                return Ok(WholeRun {
-                    case: scene
-                        .map_or_else(|| "hertz-gmsh".to_string(), |s| s.display().to_string()),
-                    target_unknowns: unknowns,
-                    status: "failed".to_string(),
-                    error: Some(format!(
-                        "the whole run exited with {}: {}",
-                        output.status,
-                        reason.join(" ")
-                    )),
-                    ..WholeRun::default()
-                });
+        Ok(parsed.unwrap_or_else(|| {
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            let reason: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+            WholeRun {
+                case: scene.map_or_else(|| "hertz-gmsh".to_string(), |s| s.display().to_string()),
+                target_unknowns: unknowns,
+                status: "failed".to_string(),
+                error: Some(format!(
+                    "the {} exited with {}: {}",
+                    if reference { "reference" } else { "whole run" },
+                    output.status,
+                    reason.join(" ")
+                )),
+                ..WholeRun::default()
             }
+        }))
+    };
+    let mut runs = Vec::with_capacity(repeat);
+    for _ in 0..repeat.max(1) {
+        // The whole run first (it writes the bench's own meshes), then its reference.
+        let mut run = child(false)?;
+        if run.error.is_some() {
+            return Ok(run);
         }
+        let reference = child(true)?;
+        if reference.error.is_some() {
+            return Ok(reference);
+        }
+        run.reference_analyse = reference.reference_analyse;
+        run.reference_factorise = reference.reference_factorise;
+        run.reference_solve = reference.reference_solve;
+        run.stiffness_bytes = reference.stiffness_bytes;
+        run.factor_bytes = reference.factor_bytes;
+        runs.push(run);
     }
     Ok(median(&runs))
 }
@@ -457,6 +508,7 @@ fn median(runs: &[WholeRun]) -> WholeRun {
         post: pick(|r| r.post),
         output: pick(|r| r.output),
         whole: pick(|r| r.whole),
+        other: pick(|r| r.other),
         reference_analyse: pick(|r| r.reference_analyse),
         reference_factorise: pick(|r| r.reference_factorise),
         reference_solve: pick(|r| r.reference_solve),
@@ -495,7 +547,7 @@ pub fn row(w: &WholeRun) -> String {
         w.solve,
         w.post,
         w.output,
-        w.other(),
+        w.other,
         w.whole,
         w.reference_analyse,
         w.reference_factorise,

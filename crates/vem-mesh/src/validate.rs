@@ -1460,7 +1460,7 @@ mod tests {
         Mesh::from_polygons(vertices, &polygons, vec![bottom]).unwrap()
     }
 
-    /// A mesh's storage: vertices, polygon offsets and indices, parts, changed vertices.
+    /// Compact storage of a mesh (vertices, offsets, indices, parts) and its changed vertices.
     type Storage = (
         Vec<Point>,
         Vec<usize>,
@@ -1469,8 +1469,8 @@ mod tests {
         Vec<usize>,
     );
 
-    /// The mesh with vertex `v` at `to` (storage only, unvalidated), or with a vertex
-    /// inserted into the bottom edge at `at` of its length when `v` is `None`.
+    /// The mesh with vertex `v` at `to` (storage only, unvalidated), or with the vertex `to`
+    /// inserted into the bottom edge from vertex 0 to vertex 1 when `v` is `None`.
     fn changed(mesh: &Mesh, v: Option<usize>, to: Point) -> Storage {
         let mut vertices = mesh.vertices().to_vec();
         let mut offsets = vec![0];

@@ -99,25 +99,38 @@ impl Raster {
     /// difference with the row above, which makes flat colour regions compress well).
     pub(crate) fn to_png(&self) -> Vec<u8> {
         let stride = 4 * self.width;
-        let mut filtered = Vec::with_capacity((stride + 1) * self.height);
-        for row in 0..self.height {
-            let line = &self.rgba[row * stride..(row + 1) * stride];
-            if row == 0 {
-                filtered.push(0); // None
-                filtered.extend_from_slice(line);
-            } else {
-                filtered.push(2); // Up
-                let above = &self.rgba[(row - 1) * stride..row * stride];
-                filtered.extend(line.iter().zip(above).map(|(x, a)| x.wrapping_sub(*a)));
+        // Rows filtered piece by piece on the threads that deflate them.
+        let bytes = (stride + 1) * self.height;
+        let pieces = pieces_for(bytes).min(self.height.max(1));
+        let rows_per_piece = self.height.div_ceil(pieces).max(1);
+        let filtered_rows = |k: usize| {
+            let rows = k * rows_per_piece..((k + 1) * rows_per_piece).min(self.height);
+            let mut filtered = Vec::with_capacity((stride + 1) * rows.len());
+            for row in rows {
+                let line = &self.rgba[row * stride..(row + 1) * stride];
+                if row == 0 {
+                    filtered.push(0); // None
+                    filtered.extend_from_slice(line);
+                } else {
+                    filtered.push(2); // Up
+                    let above = &self.rgba[(row - 1) * stride..row * stride];
+                    filtered.extend(line.iter().zip(above).map(|(x, a)| x.wrapping_sub(*a)));
+                }
             }
-        }
+            filtered
+        };
+        let idat = zlib_of_parts(
+            self.height.div_ceil(rows_per_piece),
+            filtered_rows,
+            PNG_LEVEL,
+        );
         let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
         let mut header = Vec::with_capacity(13);
         header.extend_from_slice(&(self.width as u32).to_be_bytes());
         header.extend_from_slice(&(self.height as u32).to_be_bytes());
         header.extend_from_slice(&[8, 6, 0, 0, 0]);
         chunk(&mut png, b"IHDR", &header);
-        chunk(&mut png, b"IDAT", &zlib_in_pieces(&filtered, PNG_LEVEL));
+        chunk(&mut png, b"IDAT", &idat);
         chunk(&mut png, b"IEND", &[]);
         png
     }
@@ -130,28 +143,50 @@ const PNG_LEVEL: u8 = 1;
 /// Data of at least this many bytes is deflated in pieces, one thread each.
 const PIECE_MIN_BYTES: usize = 1 << 20;
 
-/// The zlib stream of `data` at `level`, its pieces deflated on one thread each: every piece
-/// but the last ends with a sync flush (an empty stored block ending on a byte boundary), so
-/// that the raw deflate streams join into one; then the zlib header and the Adler-32 of the
-/// whole. Each piece starts with an empty dictionary, which costs a few bytes per piece.
-fn zlib_in_pieces(data: &[u8], level: u8) -> Vec<u8> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
-    let pieces = if data.len() < PIECE_MIN_BYTES {
+/// The number of pieces `bytes` of data are deflated in: one per thread from
+/// [`PIECE_MIN_BYTES`] on.
+fn pieces_for(bytes: usize) -> usize {
+    if bytes < PIECE_MIN_BYTES {
         1
     } else {
-        threads
-    };
-    let size = data.len().div_ceil(pieces).max(1);
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
+    }
+}
+
+/// The zlib stream of `data` at `level`, its pieces deflated on one thread each (see
+/// [`zlib_of_parts`]).
+#[cfg(test)]
+fn zlib_in_pieces(data: &[u8], level: u8) -> Vec<u8> {
+    let size = data.len().div_ceil(pieces_for(data.len())).max(1);
     let chunks: Vec<&[u8]> = data.chunks(size).collect();
-    let last = chunks.len().saturating_sub(1);
-    let deflated: Vec<Vec<u8>> = if chunks.len() <= 1 {
-        vec![raw_deflate(data, level, true)]
+    zlib_of_parts(chunks.len(), |k| chunks[k].to_vec(), level)
+}
+
+/// The zlib stream at `level` of the concatenation of `count` parts, part `k` made by
+/// `part(k)` and deflated on a thread of its own: every part but the last ends with a sync
+/// flush (an empty stored block ending on a byte boundary), so that the raw deflate streams
+/// join into one; then the zlib header and the Adler-32 of the whole, combined from the
+/// parts'. Each part starts with an empty dictionary, which costs a few bytes per part.
+fn zlib_of_parts(count: usize, part: impl Fn(usize) -> Vec<u8> + Sync, level: u8) -> Vec<u8> {
+    let count = count.max(1);
+    let last = count - 1;
+    let deflate = |k: usize| {
+        let data = part(k);
+        (
+            raw_deflate(&data, level, k == last),
+            adler32(&data),
+            data.len(),
+        )
+    };
+    let deflated: Vec<(Vec<u8>, u32, usize)> = if count == 1 {
+        vec![deflate(0)]
     } else {
         std::thread::scope(|scope| {
-            let handles: Vec<_> = chunks
-                .iter()
-                .enumerate()
-                .map(|(k, &piece)| scope.spawn(move || raw_deflate(piece, level, k == last)))
+            let handles: Vec<_> = (0..count)
+                .map(|k| {
+                    let deflate = &deflate;
+                    scope.spawn(move || deflate(k))
+                })
                 .collect();
             handles
                 .into_iter()
@@ -164,11 +199,37 @@ fn zlib_in_pieces(data: &[u8], level: u8) -> Vec<u8> {
     };
     // CMF 0x78: deflate with a 32 KiB window; FLG 0x01: no dictionary, check bits.
     let mut out = vec![0x78, 0x01];
-    for piece in &deflated {
-        out.extend_from_slice(piece);
+    let mut checksum = 1;
+    for (stream, adler, len) in &deflated {
+        out.extend_from_slice(stream);
+        checksum = adler32_combine(checksum, *adler, *len);
     }
-    out.extend_from_slice(&adler32(data).to_be_bytes());
+    out.extend_from_slice(&checksum.to_be_bytes());
     out
+}
+
+/// The Adler-32 of the concatenation of two byte strings from theirs and the length of the
+/// second (zlib's `adler32_combine`).
+fn adler32_combine(first: u32, second: u32, second_len: usize) -> u32 {
+    const MOD: u64 = 65_521;
+    let rem = second_len as u64 % MOD;
+    let mut a = u64::from(first & 0xffff);
+    let mut b = (rem * a) % MOD;
+    a += u64::from(second & 0xffff) + MOD - 1;
+    b += u64::from(first >> 16) + u64::from(second >> 16) + MOD - rem;
+    if a >= MOD {
+        a -= MOD;
+    }
+    if a >= MOD {
+        a -= MOD;
+    }
+    if b >= MOD << 1 {
+        b -= MOD << 1;
+    }
+    if b >= MOD {
+        b -= MOD;
+    }
+    (a | (b << 16)) as u32
 }
 
 /// The raw deflate stream of `data`, ended by a final block (`last`) or by a sync flush.
@@ -322,6 +383,12 @@ mod tests {
             assert!(stream.len() < data.len() / 2);
         }
         assert_eq!(adler32(b"Wikipedia"), 0x11E6_0398);
+        let (x, y) = data.split_at(1_234_567);
+        assert_eq!(
+            adler32_combine(adler32(x), adler32(y), y.len()),
+            adler32(&data)
+        );
+        assert_eq!(adler32_combine(1, adler32(b"Wiki"), 4), adler32(b"Wiki"));
         let small = zlib_in_pieces(b"abcabcabc", 1);
         assert_eq!(
             miniz_oxide::inflate::decompress_to_vec_zlib(&small).unwrap(),
