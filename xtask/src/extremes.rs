@@ -100,6 +100,13 @@ against an expected answer that does not come from a solver:
   Tresca with `g_F = 0` must equal the frictionless solve of the same meshes.
 - **Locking.** The divergence-free solution E2 at Poisson ratios 0.4 .. 0.49999 against 0.3
   (mu = 1, lambda = 2 nu / (1 - 2 nu), up to lambda/mu = 5e4): relative errors within 2x.
+- **Near-incompressible contact.** The two-body divergence-free contact solution E2c on
+  non-matching triangles, quadrilaterals and Voronoi cells at nu = 0.49, 0.499, 0.4999 against
+  0.3, for every element (and `vem1-bbar` with edge midpoints on triangles, the default's
+  choice there): relative errors within 2x. The shipped Hertz scene with nu changed on both
+  bodies, with the default element and with `vem1` or `vem1-bbar` forced: the errors of the
+  half-width and the peak pressure against plane-strain Hertz within 3 % of those at 0.3; an
+  element that misses this must carry the scene's locking warning.
 
 Verdicts: **PASS** (the expected answer within the tolerance); **FAIL (refused: error)** (the
 solver or the model building returned an error: no answer, but no wrong one);

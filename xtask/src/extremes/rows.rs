@@ -9,7 +9,8 @@
 //! - invariances: a problem whose lengths are scaled by `s` and moduli by `m` has the
 //!   displacement `s u(x/s)` and nodal forces `m s` times those of the unscaled problem;
 //!   Tresca with `g_F = 0` is the frictionless problem;
-//! - the divergence-free solution E2 of `vem-verify` for the locking measure.
+//! - the divergence-free solutions E2 (one body) and E2c (two bodies in contact) of
+//!   `vem-verify` for the locking measure, and plane-strain Hertz for the shipped Hertz scene.
 
 use std::sync::Arc;
 
@@ -104,6 +105,9 @@ pub struct Size {
     pub locking_families: Vec<MeshFamily>,
     /// Contact solvers (registry names).
     pub solvers: Vec<String>,
+    /// Block meshes (files beside the shipped Hertz scene) of the near-incompressible Hertz
+    /// rows.
+    pub hertz_blocks: Vec<&'static str>,
 }
 
 impl Size {
@@ -128,6 +132,7 @@ impl Size {
                     MeshFamily::Triangles,
                 ],
                 solvers: solver_names(),
+                hertz_blocks: vec!["hertz_block.msh"],
             }
         } else {
             Self {
@@ -136,6 +141,7 @@ impl Size {
                 locking: 32,
                 locking_families: all_families,
                 solvers: solver_names(),
+                hertz_blocks: vec!["hertz_block.msh", "hertz_block_triangles.msh"],
             }
         }
     }
@@ -156,6 +162,7 @@ impl Size {
                 MeshFamily::Triangles,
             ],
             solvers: solver_names(),
+            hertz_blocks: vec!["hertz_block.msh"],
         }
     }
 }
@@ -176,6 +183,7 @@ pub type Group = fn(&Size) -> Vec<Row>;
 pub fn groups() -> Vec<(&'static str, Group)> {
     vec![
         ("Poisson ratio up to 0.49999", poisson as Group),
+        ("Near-incompressible contact", incompressible_contact),
         ("Stiffness contrast between the bodies", contrast),
         ("Units: lengths and moduli scaled", units),
         ("Degenerate cells", cells),
@@ -1331,5 +1339,276 @@ impl ContactLaw for ScaledLaw {
 
     fn fixed_point(&self) -> Option<vem_contact::FixedPointSettings> {
         self.inner.fixed_point()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Near-incompressible contact
+
+/// Poisson ratios of the near-incompressible contact rows (each against nu = 0.3).
+pub const CONTACT_POISSON_RATIOS: [f64; 3] = [0.49, 0.499, 0.4999];
+/// Largest change of the Hertz half-width and peak-pressure errors from nu = 0.3 to a nearly
+/// incompressible nu for a locking-free choice (the scene test's bound).
+pub const HERTZ_LOCKING_CHANGE: f64 = 0.03;
+
+/// An element of the near-incompressible rows: a registry element, optionally on meshes with
+/// every edge's midpoint inserted (what the default chooses on triangles).
+struct ElementVariant {
+    label: String,
+    element: Arc<dyn ElementSpace>,
+    midpoints: bool,
+}
+
+/// Every registered element, and `vem1-bbar` with edge midpoints on triangles.
+fn element_variants(family: &MeshFamily) -> Vec<ElementVariant> {
+    let registry = ElementRegistry::builtin();
+    let mut variants: Vec<ElementVariant> = registry
+        .names()
+        .into_iter()
+        .map(|name| ElementVariant {
+            label: name.to_string(),
+            element: registry.make(name).expect("a registered element"),
+            midpoints: false,
+        })
+        .collect();
+    if matches!(family, MeshFamily::Triangles) {
+        variants.push(ElementVariant {
+            label: "vem1-bbar with edge midpoints".to_string(),
+            element: registry.make("vem1-bbar").expect("a registered element"),
+            midpoints: true,
+        });
+    }
+    variants
+}
+
+/// Near-incompressible contact: the two-body divergence-free contact solution E2c on
+/// triangles, quadrilaterals and Voronoi cells (non-matching), for every element, at
+/// nu = 0.49, 0.499 and 0.4999 against nu = 0.3; and the shipped Hertz scene (the block of
+/// quadrilaterals, and of triangles) against plane-strain Hertz with the default element and
+/// the elements a user may force.
+pub fn incompressible_contact(size: &Size) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for family in size.locking_families.iter().filter(|f| {
+        matches!(
+            f,
+            MeshFamily::Triangles | MeshFamily::Quads | MeshFamily::Voronoi
+        )
+    }) {
+        for variant in element_variants(family) {
+            rows.extend(e2c_locking(&variant, family, size.locking));
+        }
+    }
+    for block in &size.hertz_blocks {
+        for element in [None, Some("vem1"), Some("vem1-bbar")] {
+            rows.push(hertz_locking(block, element));
+        }
+    }
+    rows
+}
+
+/// E2c errors at each nu of [`CONTACT_POISSON_RATIOS`] against nu = 0.3 with `variant` on
+/// `family`, solved by the default contact solver.
+fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Option<Row> {
+    let settings = ProblemSettings::builder()
+        .element(Arc::clone(&variant.element))
+        .build()
+        .expect("valid settings");
+    let errors = |nu: f64| -> Result<ErrorNorms, String> {
+        let (lambda, mu) = lame_of(nu);
+        let lame = Lame::try_new(lambda, mu).map_err(|e| chain(&e))?;
+        let exact: Arc<dyn ExactSolution> =
+            Arc::new(vem_verify::exact::DivergenceFreeContact::new(lame));
+        let mut meshes = Vec::new();
+        for (body, seed) in [(BodyId::One, 1), (BodyId::Two, 2)] {
+            let mesh = family
+                .generate(&exact.domain(body), n, seed)
+                .map_err(|e| chain(&e))?;
+            meshes.push(if variant.midpoints {
+                mesh.with_edge_midpoints().map_err(|e| chain(&e))?
+            } else {
+                mesh
+            });
+        }
+        let problem = DiscreteProblem::try_new(Arc::clone(&exact), meshes, &settings)
+            .map_err(|e| chain(&e))?;
+        let mut solver = SolverRegistry::builtin()
+            .make(SolverRegistry::DEFAULT, &Options::new())
+            .map_err(|e| chain(&e))?;
+        let solution = problem.solve(&mut *solver).map_err(|e| chain(&e))?;
+        let parts = solution.errors(&*exact).map_err(|e| chain(&e))?;
+        Ok(ErrorNorms::combine(&parts))
+    };
+    let name = format!(
+        "{}: E2c contact on {}, nu = 0.3 .. {}",
+        variant.label,
+        family.name(),
+        CONTACT_POISSON_RATIOS[CONTACT_POISSON_RATIOS.len() - 1]
+    );
+    let expected = format!("relative E_grad and E_0 within {LOCKING_RATIO}x of those at nu = 0.3");
+    let solver = format!("contact ({})", SolverRegistry::DEFAULT);
+    let reference = match errors(0.3) {
+        Ok(e) => e,
+        // Elements limited to other cells (p1 on quadrilaterals) have no row there.
+        Err(error) if error.contains("support") => return None,
+        Err(error) => {
+            return Some(one_outcome(
+                name,
+                expected,
+                solver,
+                format!("error at nu = 0.3: {error}"),
+                Verdict::Refused(error),
+            ))
+        }
+    };
+    let mut measured = vec![format!(
+        "E_grad {:.2e}, E_0 {:.2e} at 0.3",
+        reference.relative_grad(),
+        reference.relative_l2()
+    )];
+    let mut worst: f64 = 0.0;
+    let mut refused = None;
+    for &nu in &CONTACT_POISSON_RATIOS {
+        match errors(nu) {
+            Ok(e) => {
+                let g = e.relative_grad() / reference.relative_grad();
+                let l = e.relative_l2() / reference.relative_l2();
+                worst = worst.max(g).max(l);
+                measured.push(format!("{nu}: x{g:.2} / x{l:.2}"));
+            }
+            Err(error) => refused = Some(format!("nu = {nu}: {error}")),
+        }
+    }
+    let verdict = match refused {
+        Some(e) => Verdict::Refused(e),
+        None if worst <= LOCKING_RATIO => Verdict::Pass,
+        // An element that locks answers what it computes; the scene layer warns about it.
+        None => Verdict::Warned("locking: the element's error grows with lambda".into()),
+    };
+    Some(one_outcome(
+        name,
+        expected,
+        solver,
+        measured.join("; "),
+        verdict,
+    ))
+}
+
+/// The shipped Hertz scene with `block` as the block's mesh file, Poisson's ratio `nu` on both
+/// bodies and `element` forced on both (the default choice when `None`): the relative errors
+/// of the half-width and the peak pressure against plane-strain Hertz, and the warnings.
+fn hertz_errors(
+    block: &str,
+    nu: f64,
+    element: Option<&str>,
+) -> Result<((f64, f64), Vec<String>), String> {
+    use vem_scene::{BuildOptions, Model};
+    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../crates/vem-cli/scenes");
+    let text = std::fs::read_to_string(scenes.join("hertz.toml"))
+        .map_err(|e| format!("hertz.toml: {e}"))?
+        .replace("hertz_block.msh", block)
+        .replace("nu = 0.3,", &format!("nu = {nu},"));
+    let text = match element {
+        Some(element) => text.replace(
+            "mesh = { file",
+            &format!("element = \"{element}\"\nmesh = {{ file"),
+        ),
+        None => text,
+    };
+    let (scene, _) = vem_scene::toml_file::parse(&text).map_err(|e| e.message)?;
+    let options = BuildOptions {
+        base: scenes,
+        ..BuildOptions::default()
+    };
+    let model = Model::build(&scene, &options).map_err(|e| e.to_string())?;
+    let outcome = model.solve().map_err(|e| e.to_string())?;
+    let mut warnings: Vec<String> = outcome
+        .summary
+        .bodies
+        .iter()
+        .flat_map(|b| b.warnings.iter().cloned())
+        .collect();
+    let contact = outcome
+        .summary
+        .contact
+        .as_ref()
+        .ok_or("the Hertz scene has contact")?;
+    warnings.extend(contact.warnings.iter().map(|w| w.to_string()));
+    let hertz = contact.hertz.first().ok_or("the Hertz scene compares")?;
+    Ok((
+        (hertz.half_width_error(), hertz.peak_pressure_error()),
+        warnings,
+    ))
+}
+
+/// The Hertz scene with the block `block` and `element` (the default choice when `None`): the
+/// change of the half-width and peak-pressure errors from nu = 0.3 to each nu of
+/// [`CONTACT_POISSON_RATIOS`].
+fn hertz_locking(block: &str, element: Option<&str>) -> Row {
+    let label = element.unwrap_or("default element");
+    let name = format!("{label}: Hertz scene, block {block}, nu = 0.3 .. 0.4999");
+    let expected = format!(
+        "errors of a and p0 within {:.0} % of those at nu = 0.3",
+        100.0 * HERTZ_LOCKING_CHANGE
+    );
+    let solver = format!("contact ({})", SolverRegistry::DEFAULT);
+    let refused = |error: String| {
+        one_outcome(
+            name.clone(),
+            expected.clone(),
+            solver.clone(),
+            format!("error: {error}"),
+            Verdict::Refused(error),
+        )
+    };
+    let ((a_0, p_0), _) = match hertz_errors(block, 0.3, element) {
+        Ok(r) => r,
+        Err(error) => return refused(error),
+    };
+    let mut measured = vec![format!(
+        "a {:+.1} %, p0 {:+.1} % at 0.3",
+        100.0 * a_0,
+        100.0 * p_0
+    )];
+    let (mut worst, mut warned) = (0.0_f64, Vec::new());
+    for &nu in &CONTACT_POISSON_RATIOS {
+        match hertz_errors(block, nu, element) {
+            Ok(((a, p), warnings)) => {
+                worst = worst.max((a - a_0).abs()).max((p - p_0).abs());
+                measured.push(format!(
+                    "{nu}: a {:+.1} %, p0 {:+.1} %",
+                    100.0 * a,
+                    100.0 * p
+                ));
+                warned.extend(warnings);
+            }
+            Err(error) => return refused(format!("nu = {nu}: {error}")),
+        }
+    }
+    let verdict = if worst <= HERTZ_LOCKING_CHANGE {
+        Verdict::Pass
+    } else if let Some(warning) = warned.first() {
+        Verdict::Warned(warning.clone())
+    } else {
+        Verdict::Wrong
+    };
+    one_outcome(name, expected, solver, measured.join("; "), verdict)
+}
+
+/// A row of one outcome.
+fn one_outcome(
+    name: String,
+    expected: String,
+    solver: String,
+    measured: String,
+    verdict: Verdict,
+) -> Row {
+    Row {
+        name,
+        expected,
+        outcomes: vec![Outcome {
+            solver,
+            measured,
+            verdict,
+        }],
     }
 }
