@@ -97,10 +97,13 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::geometry;
-use super::mesh::{FacePart, OrientedFace};
+use super::mesh::{FacePart, FastHasher, OrientedFace};
 use super::validate::PLANARITY_RATIO;
 use crate::interface::InterfaceOptions;
 use crate::{MeshError, Point3, PolyhedralMesh, Vector3};
+
+/// Hash maps keyed by indices, with the mesh's fast hasher (nothing depends on their order).
+type Map<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<FastHasher>>;
 
 /// Relative area (of the face of side a) under which the cell of a face pair is a touch along
 /// an edge or at a point, not a cell.
@@ -262,8 +265,8 @@ pub fn insert_surface_overlay(
              a face of '{part_a}' with an opposed normal"
         )));
     }
-    let mut candidates_of_a: HashMap<usize, Vec<usize>> = HashMap::new();
-    let mut candidates_of_b: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut candidates_of_a: Map<usize, Vec<usize>> = Map::default();
+    let mut candidates_of_b: Map<usize, Vec<usize>> = Map::default();
     for &(ia, ib) in &pairs {
         for &v in mesh_a.face(side_a.charts[ia].face) {
             candidates_of_a.entry(v).or_default().push(ib);
@@ -281,7 +284,7 @@ pub fn insert_surface_overlay(
     }
 
     // 2. Vertices of a along their nodal normals onto b.
-    let mut loc_of_a: HashMap<usize, Located> = HashMap::new();
+    let mut loc_of_a: Map<usize, Located> = Map::default();
     let mut a_vertices: Vec<usize> = candidates_of_a.keys().copied().collect();
     a_vertices.sort_unstable();
     for &v in &a_vertices {
@@ -307,7 +310,7 @@ pub fn insert_surface_overlay(
         }
     }
     // Vertex snapping is mutual: b's vertex w snaps to a's vertex v only if v snapped to w.
-    let mut partner_of_b: HashMap<usize, usize> = HashMap::new();
+    let mut partner_of_b: Map<usize, usize> = Map::default();
     for &v in &a_vertices {
         if let Some(Located {
             place: Loc::Vertex(w),
@@ -324,7 +327,7 @@ pub fn insert_surface_overlay(
     }
 
     // 3. Vertices of b orthogonally onto a.
-    let mut loc_of_b: HashMap<usize, Located> = HashMap::new();
+    let mut loc_of_b: Map<usize, Located> = Map::default();
     let mut b_vertices: Vec<usize> = candidates_of_b.keys().copied().collect();
     b_vertices.sort_unstable();
     for &w in &b_vertices {
@@ -357,7 +360,7 @@ pub fn insert_surface_overlay(
     }
 
     // 4 and 5. Crossings and cells.
-    let mut crossings: HashMap<(usize, usize), Option<Crossing>> = HashMap::new();
+    let mut crossings: Map<(usize, usize), Option<Crossing>> = Map::default();
     let mut cells: Vec<(usize, usize, Vec<Key>)> = Vec::new();
     let mut keys: Vec<Key> = Vec::new();
     for &(ia, ib) in &pairs {
@@ -444,9 +447,9 @@ pub fn insert_surface_overlay(
     // 6. Nodes: new vertices on both sides, in order of first appearance.
     let (n_a, n_b) = (mesh_a.n_vertices(), mesh_b.n_vertices());
     let mut nodes: Vec<Node> = Vec::new();
-    let mut node_of: HashMap<Key, usize> = HashMap::new();
+    let mut node_of: Map<Key, usize> = Map::default();
     let (mut points_a, mut points_b) = (Vec::new(), Vec::new());
-    let (mut new_loc_a, mut new_loc_b) = (HashMap::new(), HashMap::new());
+    let (mut new_loc_a, mut new_loc_b) = (Map::default(), Map::default());
     for (_, _, loop_) in &cells {
         for &key in loop_ {
             if node_of.contains_key(&key) {
@@ -500,8 +503,8 @@ pub fn insert_surface_overlay(
             });
         }
     }
-    let mut node_of_vertex_a: HashMap<usize, usize> = HashMap::new();
-    let mut node_of_vertex_b: HashMap<usize, usize> = HashMap::new();
+    let mut node_of_vertex_a: Map<usize, usize> = Map::default();
+    let mut node_of_vertex_b: Map<usize, usize> = Map::default();
     for (k, node) in nodes.iter().enumerate() {
         if node_of_vertex_b.insert(node.vertex_b, k).is_some() {
             return Err(fail(format!(
@@ -678,8 +681,8 @@ struct Crossing {
 fn crossing(
     side_a: &Side,
     side_b: &Side,
-    loc_of_a: &HashMap<usize, Located>,
-    loc_of_b: &HashMap<usize, Located>,
+    loc_of_a: &Map<usize, Located>,
+    loc_of_b: &Map<usize, Located>,
     ea: usize,
     eb: usize,
     max_distance: f64,
@@ -777,8 +780,9 @@ struct Side<'m> {
     mesh: &'m PolyhedralMesh,
     charts: Vec<Chart>,
     /// Part faces (chart indices) around each part vertex and each part edge.
-    charts_of_vertex: HashMap<usize, Vec<usize>>,
-    charts_of_edge: HashMap<usize, Vec<usize>>,
+    charts_of_vertex: Map<usize, Vec<usize>>,
+    charts_of_edge: Map<usize, Vec<usize>>,
+    chart_of_face: Map<usize, usize>,
     bbox: Aabb,
 }
 
@@ -793,8 +797,8 @@ impl<'m> Side<'m> {
             return Err(fail(format!("part '{part}' has no faces")));
         }
         let mut charts = Vec::with_capacity(faces.len());
-        let mut charts_of_vertex: HashMap<usize, Vec<usize>> = HashMap::new();
-        let mut charts_of_edge: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut charts_of_vertex: Map<usize, Vec<usize>> = Map::default();
+        let mut charts_of_edge: Map<usize, Vec<usize>> = Map::default();
         for (index, &f) in faces.iter().enumerate() {
             let points = mesh.face_points(f);
             let normal = geometry::face_normal(&points);
@@ -837,11 +841,17 @@ impl<'m> Side<'m> {
                 .iter()
                 .flat_map(|c| [c.bbox.lo, c.bbox.hi].into_iter()),
         );
+        let chart_of_face = charts
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (c.face, k))
+            .collect();
         Ok(Self {
             mesh,
             charts,
             charts_of_vertex,
             charts_of_edge,
+            chart_of_face,
             bbox,
         })
     }
@@ -871,11 +881,7 @@ impl<'m> Side<'m> {
         match place {
             Loc::Vertex(v) => self.vertex_normal(v),
             Loc::Edge(e, _) => self.edge_normal(e),
-            Loc::Face(f) => self
-                .charts
-                .iter()
-                .find(|c| c.face == f)
-                .map_or_else(Vector3::zeros, |c| c.normal),
+            Loc::Face(f) => self.charts[self.chart_of_face[&f]].normal,
         }
     }
 
@@ -1040,7 +1046,7 @@ fn candidate_pairs(side_a: &Side, side_b: &Side, reach: f64) -> Vec<(usize, usiz
         [r.x.floor() as i64, r.y.floor() as i64, r.z.floor() as i64]
     };
     let limit = key(side_b.bbox.hi);
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    let mut grid: Map<[i64; 3], Vec<usize>> = Map::default();
     for (ib, chart) in side_b.charts.iter().enumerate() {
         let (lo, hi) = (key(chart.bbox.lo), key(chart.bbox.hi));
         for i in lo[0]..=hi[0] {
@@ -1091,12 +1097,12 @@ fn rebuild(
     mesh: &PolyhedralMesh,
     part: &str,
     new_points: Vec<Point3>,
-    new_loc: &HashMap<usize, Loc>,
+    new_loc: &Map<usize, Loc>,
     replaced: BTreeMap<usize, Vec<Vec<usize>>>,
     fail: &dyn Fn(String) -> MeshError,
 ) -> Result<(PolyhedralMesh, Vec<Vec<usize>>), MeshError> {
     let n_old = mesh.n_vertices();
-    let mut on_edge: HashMap<usize, Vec<(f64, usize)>> = HashMap::new();
+    let mut on_edge: Map<usize, Vec<(f64, usize)>> = Map::default();
     for (&v, &place) in new_loc {
         if let Loc::Edge(e, t) = place {
             on_edge.entry(e).or_default().push((t, v));
@@ -1213,8 +1219,8 @@ fn rebuild(
     }
     // The extra faces: appended, boundary faces outward for the owner of the face they split.
     let n_faces = mesh.n_faces();
-    let mut extra_of_cell: HashMap<usize, Vec<usize>> = HashMap::new();
-    let mut extra_of_face: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut extra_of_cell: Map<usize, Vec<usize>> = Map::default();
+    let mut extra_of_face: Map<usize, Vec<usize>> = Map::default();
     for (k, (f, loop_)) in extra.into_iter().enumerate() {
         face_vertices.extend(loop_);
         face_offsets.push(face_vertices.len());
