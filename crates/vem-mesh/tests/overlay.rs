@@ -395,8 +395,13 @@ fn chevron_tops_are_refused_with_the_parts_named() {
     .unwrap();
     let squares = hexahedra(&Cuboid::unit_cube(), 4, 4, 2).unwrap();
     match insert_surface_overlay(&chevrons, "top", &squares, "bottom", &exact()) {
-        Err(MeshError::Interface { part_a, part_b, .. }) => {
+        Err(MeshError::Interface {
+            part_a,
+            part_b,
+            reason,
+        }) => {
             assert_eq!((part_a.as_str(), part_b.as_str()), ("top", "bottom"));
+            assert!(reason.contains("more than one piece"), "{reason}");
         }
         other => panic!("{other:?}"),
     }

@@ -434,7 +434,29 @@ pub fn insert_surface_overlay(
                 )));
             }
         }
-        cells.push((ia, ib, order.iter().map(|&(_, k)| keys[k]).collect()));
+        let loop_: Vec<Key> = order.iter().map(|&(_, k)| keys[k]).collect();
+        if !(chart.convex && side_b.charts[ib].convex) {
+            // A non-convex pair may meet in several pieces, which the ordering would bridge:
+            // every side of the cell must lie in both faces.
+            let point_b = |key: &Key| match *key {
+                Key::A(v) => loc_of_a[&v].point,
+                Key::B(w) => mesh_b.vertex(w),
+                Key::X(ea, eb) => crossings[&(ea, eb)].expect("a crossing").point_b,
+            };
+            let n = loop_.len();
+            for k in 0..n {
+                let (x, y) = (&loop_[k], &loop_[(k + 1) % n]);
+                let mid_a = point_a(x) + 0.5 * (point_a(y) - point_a(x));
+                let mid_b = point_b(x) + 0.5 * (point_b(y) - point_b(x));
+                if !side_a.contains(ia, mid_a) || !side_b.contains(ib, mid_b) {
+                    return Err(fail(format!(
+                        "face {fa} of '{part_a}' and face {fb} of '{part_b}' (one of them not \
+                         convex) meet in more than one piece, which this overlay does not build"
+                    )));
+                }
+            }
+        }
+        cells.push((ia, ib, loop_));
     }
     if cells.is_empty() {
         return Err(fail(format!(
@@ -766,6 +788,8 @@ struct Chart {
     lengths: Vec<f64>,
     area: f64,
     bbox: Aabb,
+    /// True when no corner of the polygon is reflex (collinear corners allowed).
+    convex: bool,
 }
 
 impl Chart {
@@ -822,12 +846,22 @@ impl<'m> Side<'m> {
                 lengths: Vec::with_capacity(points.len()),
                 area: geometry::face_area(&points),
                 bbox: Aabb::of(points.iter().copied()),
+                convex: true,
             };
             chart.polygon = points.iter().map(|&p| chart.chart(p)).collect();
             let n = points.len();
             chart.lengths = (0..n)
                 .map(|k| (points[(k + 1) % n] - points[k]).norm())
                 .collect();
+            chart.convex = (0..n).all(|k| {
+                let (p, q, r) = (
+                    chart.polygon[k],
+                    chart.polygon[(k + 1) % n],
+                    chart.polygon[(k + 2) % n],
+                );
+                let turn = (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
+                turn >= -1e-12 * chart.lengths[k] * chart.lengths[(k + 1) % n]
+            });
             for &v in mesh.face(f) {
                 charts_of_vertex.entry(v).or_default().push(index);
             }
@@ -957,6 +991,30 @@ impl<'m> Side<'m> {
             Loc::Edge(e, _) => self.mesh.face_edges(f).contains(&e),
             Loc::Face(g) => g == f,
         }
+    }
+
+    /// True when `p` (in the plane of chart `c`) lies in the closed face, to 1e-9 of the
+    /// face's longest edge.
+    fn contains(&self, c: usize, p: Point3) -> bool {
+        let chart = &self.charts[c];
+        let q = chart.chart(p);
+        let poly = &chart.polygon;
+        let n = poly.len();
+        let tolerance = 1e-9 * chart.lengths.iter().copied().fold(0.0, f64::max);
+        let mut inside = false;
+        for k in 0..n {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let (rx, ry) = (q[0] - a[0], q[1] - a[1]);
+            let t = ((rx * dx + ry * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+            if ((rx - t * dx).powi(2) + (ry - t * dy).powi(2)).sqrt() <= tolerance {
+                return true;
+            }
+            if (a[1] > q[1]) != (b[1] > q[1]) && q[0] < a[0] + (q[1] - a[1]) / dy * dx {
+                inside = !inside;
+            }
+        }
+        inside
     }
 
     /// Locates the point `p` (in the plane of chart `c`) in its face: at a vertex within `snap`
