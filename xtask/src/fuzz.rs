@@ -459,7 +459,7 @@ fn run_overlay(input: &[u8]) -> Verdict {
                     .chain(pair.normal.iter())
                     .chain([pair.tributary_area, pair.initial_gap].iter())
                     .all(|v| v.is_finite());
-                if !finite || !(pair.tributary_area > 0.0) {
+                if !finite || pair.tributary_area <= 0.0 {
                     return Verdict::NonFinite(format!("pair {k}: {pair:?}"));
                 }
             }
