@@ -17,6 +17,10 @@
 //!   part faces), and the 3D Gmsh reader (`read_gmsh_polyhedral_bytes`) on inputs that start
 //!   with `$MeshFormat`; seeds: generated polyhedral meshes of every family and the 3D Gmsh
 //!   corpus.
+//! - `overlay`: the surface overlay (`insert_surface_overlay`) between two polyhedral text
+//!   meshes (a first line `parts A B`, the meshes in the `polyhedral` target's form separated by
+//!   a line `---`), the enlarged meshes checked as in `polyhedral`; seeds: pairs of generated
+//!   blocks of different families and sizes, shifted, touching, apart and overlapping.
 //!
 //! Each input is a seed changed by one to four byte or structure mutations (bit flips, random
 //! bytes, deletions, duplications, splices with another seed, lines deleted, duplicated or
@@ -110,6 +114,11 @@ pub fn targets() -> Vec<Target> {
             name: "polyhedral",
             run: run_polyhedral,
             seeds: polyhedral_seeds,
+        },
+        Target {
+            name: "overlay",
+            run: run_overlay,
+            seeds: overlay_seeds,
         },
     ]
 }
@@ -409,6 +418,106 @@ fn polyhedral_seeds() -> Vec<Vec<u8>> {
             "msh",
         ))
         .collect()
+}
+
+/// The surface overlay of two polyhedral meshes: a header `parts <part a> <part b>`, then mesh
+/// a and mesh b in the text form of [`encode_polyhedral`], separated by a line `---`. Accepted
+/// overlays must have finite pairs with positive tributary areas and two meshes that pass
+/// [`check_polyhedral`].
+fn run_overlay(input: &[u8]) -> Verdict {
+    let text = String::from_utf8_lossy(input);
+    let Some((header, rest)) = text.split_once('\n') else {
+        return Verdict::Rejected;
+    };
+    let names: Vec<&str> = header.split_whitespace().collect();
+    let [_, part_a, part_b] = names.as_slice() else {
+        return Verdict::Rejected;
+    };
+    let Some((text_a, text_b)) = rest.split_once("\n---\n") else {
+        return Verdict::Rejected;
+    };
+    let build = |text: &str| {
+        let (vertices, cells, parts) = decode_polyhedral(text);
+        vem_mesh::PolyhedralMesh::from_polyhedra(vertices, &cells, parts).ok()
+    };
+    let (Some(mesh_a), Some(mesh_b)) = (build(text_a), build(text_b)) else {
+        return Verdict::Rejected;
+    };
+    match vem_mesh::insert_surface_overlay(
+        &mesh_a,
+        part_a,
+        &mesh_b,
+        part_b,
+        &InterfaceOptions::default(),
+    ) {
+        Ok(overlay) => {
+            for (k, pair) in overlay.pairs.iter().enumerate() {
+                let finite = pair
+                    .point_a
+                    .iter()
+                    .chain(pair.point_b.iter())
+                    .chain(pair.normal.iter())
+                    .chain([pair.tributary_area, pair.initial_gap].iter())
+                    .all(|v| v.is_finite());
+                if !finite || pair.tributary_area <= 0.0 {
+                    return Verdict::NonFinite(format!("pair {k}: {pair:?}"));
+                }
+            }
+            match check_polyhedral(&overlay.mesh_a) {
+                Verdict::Accepted => check_polyhedral(&overlay.mesh_b),
+                other => other,
+            }
+        }
+        Err(_) => Verdict::Rejected,
+    }
+}
+
+fn overlay_seeds() -> Vec<Vec<u8>> {
+    use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
+    use vem_mesh::Point3;
+    let below = Cuboid::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.5));
+    let above = |dx: f64, dy: f64, gap: f64| {
+        Cuboid::new(
+            Point3::new(dx, dy, 0.5 + gap),
+            Point3::new(1.0 + dx, 1.0 + dy, 1.0 + gap),
+        )
+    };
+    let perturbed = PolyhedralFamily::PerturbedHexahedra { distortion: 0.2 };
+    [
+        (
+            PolyhedralFamily::Hexahedra,
+            2,
+            PolyhedralFamily::Tetrahedra,
+            3,
+            above(0.1, 0.2, 0.0),
+        ),
+        (
+            PolyhedralFamily::Voronoi,
+            2,
+            perturbed,
+            3,
+            above(-0.15, 0.05, 0.01),
+        ),
+        (
+            PolyhedralFamily::Octree,
+            2,
+            PolyhedralFamily::Hexahedra,
+            3,
+            above(0.0, 0.0, -0.01),
+        ),
+    ]
+    .into_iter()
+    .map(|(family_a, n_a, family_b, n_b, cuboid_b)| {
+        let a = family_a.generate(&below, n_a, 1).expect("seed mesh");
+        let b = family_b.generate(&cuboid_b, n_b, 2).expect("seed mesh");
+        format!(
+            "parts top bottom\n{}---\n{}",
+            encode_polyhedral(&a),
+            encode_polyhedral(&b)
+        )
+        .into_bytes()
+    })
+    .collect()
 }
 
 /// The text form of a polyhedral mesh used by the `polyhedral` target.

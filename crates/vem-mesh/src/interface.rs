@@ -150,13 +150,13 @@ impl InterfaceOptions {
     }
 
     /// The fraction of an edge within which a projected point snaps to the edge's end node.
-    fn snap_fraction(&self) -> f64 {
+    pub(crate) fn snap_fraction(&self) -> f64 {
         self.snap_tolerance.max(self.min_edge_fraction)
     }
 
     /// Checks every setting: `snap_tolerance` in (0, 0.5), `min_edge_fraction` in [0, 0.5),
     /// `max_distance` positive and finite when given.
-    fn validate(&self) -> Result<(), MeshError> {
+    pub(crate) fn validate(&self) -> Result<(), MeshError> {
         let invalid = |setting, value, requirement| {
             Err(MeshError::InvalidOption {
                 setting,

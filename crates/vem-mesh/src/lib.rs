@@ -60,6 +60,9 @@ pub use interface::{
     boundary_chain, insert_interface_nodes, ChainNode, Interface, InterfaceOptions, InterfacePair,
 };
 pub use mesh::{BoundaryPart, Edge, Mesh, PartSpec};
+pub use polyhedral::overlay::{
+    boundary_surface, insert_surface_overlay, SurfaceInterface, SurfaceNode, SurfacePair,
+};
 pub use polyhedral::{FaceCells, FacePart, FacePartSpec, OrientedFace, PolyhedralMesh};
 
 /// A point of the plane.

@@ -6,6 +6,8 @@
 //! * [`geometry`]: face vector areas, normals, centroids and vertex weights of the fan
 //!   triangulation, volumes and centroids of polyhedra by the divergence theorem;
 //! * [`validate`]: the checks every mesh passes, each failure a located [`crate::MeshError`];
+//! * [`overlay`]: the surface overlay that makes two facing boundary parts node-to-node
+//!   (interface insertion in three dimensions);
 //! * [`quality`]: the shape-regularity figures (star-shaped ball, shortest edge, smallest face,
 //!   face discs, warping) per cell and over a mesh.
 //!
@@ -14,6 +16,7 @@
 
 pub mod geometry;
 mod mesh;
+pub mod overlay;
 pub mod quality;
 pub mod validate;
 
