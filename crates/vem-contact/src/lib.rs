@@ -55,6 +55,7 @@ mod problem;
 pub mod registry;
 mod result;
 pub mod solver;
+mod surface;
 mod warning;
 
 pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
@@ -68,7 +69,7 @@ pub use law::{
     Frictionless, LawState, ScalarField, Tresca,
 };
 pub use node::{frame, tangent, ContactNode, Location};
-pub use obstacle::{Obstacle, ObstacleGap, RigidObstacle};
+pub use obstacle::{Obstacle, Obstacle3, ObstacleGap, RigidObstacle};
 pub use problem::{ContactNormal, ContactPair, ContactProblem, Counterpart};
 pub use registry::{LawRegistry, RegistryError, SolverRegistry};
 pub use result::{
