@@ -184,19 +184,14 @@ fn two_bodies<const D: usize>(
         bodies[a].body_mesh().as_polyhedral(),
         bodies[b].body_mesh().as_polyhedral(),
     ) {
-        let interface = conforming_interface(
-            mesh_a,
-            part,
-            mesh_b,
-            other_part,
-            pair.interface_options(),
-        )
-        .map_err(|e| match e {
-            ContactError::Unsupported { what } => ContactError::Unsupported {
-                what: format!("contact pair {index}: {what}"),
-            },
-            other => other,
-        })?;
+        let interface =
+            conforming_interface(mesh_a, part, mesh_b, other_part, pair.interface_options())
+                .map_err(|e| match e {
+                    ContactError::Unsupported { what } => ContactError::Unsupported {
+                        what: format!("contact pair {index}: {what}"),
+                    },
+                    other => other,
+                })?;
         return two_bodies_on_surface(bodies, pair, index, a, b, interface);
     }
     let (Some(mesh_a), Some(mesh_b)) = (planar(&bodies[a]), planar(&bodies[b])) else {
@@ -379,8 +374,8 @@ fn two_bodies_on_surface<const D: usize>(
         .enumerate()
         .map(|(k, p)| (p.node_a, k))
         .collect();
-    let surface = surface_faces(&interface.mesh_a, part_a, &index_of)
-        .map_err(mesh_error(&name_a, part_a))?;
+    let surface =
+        surface_faces(&interface.mesh_a, part_a, &index_of).map_err(mesh_error(&name_a, part_a))?;
     let inserted = interface.inserted_a + interface.inserted_b;
     if inserted > 0 {
         let enlarged = |mesh: PolyhedralMesh| {
@@ -488,13 +483,7 @@ fn obstacle_nodes<const D: usize>(
     let vertices = part_surface(mesh, part).map_err(mesh_error)?;
     let nodes: Vec<ContactNode<D>> = vertices
         .iter()
-        .map(|&(v, s)| {
-            node(
-                v,
-                point(mesh.vertex(v).coords.as_slice()),
-                s.area,
-            )
-        })
+        .map(|&(v, s)| node(v, point(mesh.vertex(v).coords.as_slice()), s.area))
         .collect();
     // A rim vertex where the body's boundary goes on may cut the zone short.
     let rim = open_rim(mesh, part).map_err(mesh_error)?;
