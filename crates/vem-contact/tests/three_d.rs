@@ -584,3 +584,83 @@ fn the_warnings_of_the_plane_apply_in_space() {
         .collect();
     assert_eq!(limits.len(), 1, "{:?}", patch.warnings);
 }
+
+#[test]
+fn a_small_block_on_a_larger_one_pairs_only_its_own_nodes() {
+    // A punch [0, 0.5]^2 x [0, 0.5] (2 x 2 x 2 hexahedra) on a block [0, 1]^2 x [-1, 0]
+    // (4 x 4 x 4): the punch's bottom vertices lie on the block's top grid; the block's other
+    // top vertices are not interface nodes. The contact forces balance the punch's push, the
+    // punch's edges are convex corners (no zone cut short), and every solver agrees.
+    let punch = hexahedra(
+        &Cuboid::new(Point3::new(0.0, 0.0, 0.0), Point3::new(0.5, 0.5, 0.5)),
+        2,
+        2,
+        2,
+    )
+    .unwrap();
+    let block = hexahedra(
+        &Cuboid::new(Point3::new(0.0, 0.0, -1.0), Point3::new(1.0, 1.0, 0.0)),
+        4,
+        4,
+        4,
+    )
+    .unwrap();
+    let problem = stacked_blocks(punch, block, 0.01, E, E);
+    let mut reference: Option<Vec<f64>> = None;
+    for (name, mut solver) in solvers() {
+        let result = problem.solve(&mut *solver).unwrap();
+        assert_certified(&result, &name);
+        assert_eq!(result.nodes.len(), 9);
+        let push = result.bodies[0].solution.reaction("top").unwrap();
+        let carried = result.normal_resultant();
+        assert!(
+            (push.z + carried).abs() < 1e-8 * carried,
+            "{name}: {push} {carried}"
+        );
+        assert!(
+            !result
+                .warnings
+                .iter()
+                .any(|w| matches!(w, Warning::ContactZoneAtLimit { .. })),
+            "{name}: {:?}",
+            result.warnings
+        );
+        let forces: Vec<f64> = result.nodes.iter().map(|n| n.normal_force).collect();
+        match &reference {
+            None => reference = Some(forces),
+            Some(r) => {
+                for (a, b) in forces.iter().zip(r) {
+                    assert!((a - b).abs() < force_tolerance(&name) * carried, "{name}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_sliver_cell_is_reported_in_space() {
+    // One layer of cells 1e-8 thin under the contact part: far outside A1.
+    let base = hexahedra(&Cuboid::unit_cube(), 3, 3, 3).unwrap();
+    let mesh = mapped(&base, |p| {
+        let z = if (p.z - 1.0 / 3.0).abs() < 1e-12 {
+            1e-8
+        } else {
+            p.z
+        };
+        Point3::new(p.x, p.y, z)
+    });
+    let result = block_on_plane(mesh, 0.01)
+        .solve(
+            &mut *SolverRegistry::builtin()
+                .make("condensed", &Options::new())
+                .unwrap(),
+        )
+        .unwrap();
+    let shapes = result
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, Warning::ElementShape { .. }))
+        .count();
+    // The five worst of the nine sliver cells.
+    assert_eq!(shapes, 5, "{:?}", result.warnings);
+}
