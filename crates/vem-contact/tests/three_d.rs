@@ -664,3 +664,57 @@ fn a_sliver_cell_is_reported_in_space() {
     // The five worst of the nine sliver cells.
     assert_eq!(shapes, 5, "{:?}", result.warnings);
 }
+
+#[test]
+fn every_solver_passes_an_independent_kkt_check_in_the_problems_scales() {
+    // The ball problem's system solved directly; the KKT conditions recomputed here from the
+    // system and the answer alone, relative to the problem's own force scale
+    // F = max(|f|, |K u|, |B' lambda|) and displacement scale U = max(|u|, |g|).
+    let discretisation = block_under_ball(ball_block(), BALL_LIFT, BALL_RADIUS, 0.0)
+        .discretise()
+        .unwrap();
+    let system = discretisation.system();
+    let inf = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (name, mut solver) in solvers() {
+        let answer = solver.solve(&system).unwrap();
+        assert_eq!(
+            answer.report.status,
+            vem_contact::SolveStatus::Converged,
+            "{name}"
+        );
+        let (u, lambda) = (&answer.displacement, &answer.normal_force);
+        let ku = system.stiffness_apply(u);
+        let mut bt_lambda = vec![0.0; u.len()];
+        system
+            .normal_rows()
+            .add_transpose_apply(lambda, &mut bt_lambda);
+        let f = system.load();
+        let force = inf(f).max(inf(&ku)).max(inf(&bt_lambda));
+        let residual: Vec<f64> = (0..u.len()).map(|i| ku[i] - f[i] + bt_lambda[i]).collect();
+        let gap = system.gap();
+        let jump = system.normal_rows().apply(u);
+        let displacement = inf(u).max(inf(gap));
+        let penetration = jump.iter().zip(gap).fold(0.0f64, |m, (j, g)| m.max(j - g));
+        let complementarity = lambda
+            .iter()
+            .zip(jump.iter().zip(gap))
+            .fold(0.0f64, |m, (l, (j, g))| m.max((l * (g - j)).abs()));
+        let negative = lambda.iter().fold(0.0f64, |m, l| m.max(-l));
+        let (stat_tol, feas_tol, comp_tol) = match name.as_str() {
+            "exact" => (1e-8, 1e-8, 1e-6),
+            "penalty" => (1e-8, 1e-2, 1e-2),
+            _ => (1e-10, 1e-10, 1e-10),
+        };
+        assert!(inf(&residual) < stat_tol * force, "{name}: stationarity");
+        assert!(penetration < feas_tol * displacement, "{name}: penetration");
+        assert!(negative < 1e-12 * force, "{name}: tension");
+        assert!(
+            complementarity < comp_tol * force * displacement,
+            "{name}: complementarity"
+        );
+        // The solver's own report says the same in the same scales.
+        let own = vem_contact::KktResiduals::evaluate(&system, u, lambda, &answer.tangential_force);
+        assert!((own.stationarity - answer.report.residuals.stationarity).abs() < 1e-12);
+        assert!(lambda.iter().filter(|&&l| l > 0.0).count() > 4, "{name}");
+    }
+}
