@@ -94,6 +94,9 @@ struct PairData<const D: usize> {
     zone_ends: Vec<ZoneEnd>,
     /// Whether the nodes form a chain (2D), along which the consistent traction is projected.
     chain: bool,
+    /// In 3D, the faces (loops of the pair's node indices) on which the consistent pressure is
+    /// projected.
+    surface: Option<Vec<Vec<usize>>>,
 }
 
 /// The discretised contact problem (see the module docs).
@@ -169,6 +172,7 @@ impl<const D: usize> ContactDiscretisation<D> {
                 part: pair.part().to_string(),
                 zone_ends: geometry.zone_ends,
                 chain: geometry.chain,
+                surface: geometry.surface,
             });
         }
         drop(pairs);
@@ -1018,6 +1022,8 @@ impl<const D: usize> ContactDiscretisation<D> {
                     .filter(|_| pair.law.has_friction())
                     .map(|b| &b[pair.nodes.clone()]);
                 self.project_tractions(&mut nodes[pair.nodes.clone()], friction_bounds);
+            } else if let Some(faces) = &pair.surface {
+                project_surface_pressure(&mut nodes[pair.nodes.clone()], faces);
             }
         }
         let mut warnings = solution.report.warnings.clone();
@@ -1174,7 +1180,22 @@ impl<const D: usize> ContactDiscretisation<D> {
         for pair in &self.pairs {
             let pair_nodes = &nodes[pair.nodes.clone()];
             let mut warned: Vec<usize> = Vec::new();
-            for end in &pair.zone_ends {
+            // On a surface (3D) the rim has many nodes: one warning per pair, at the rim node
+            // with the largest normal force.
+            let mut ends: Vec<&ZoneEnd> = pair.zone_ends.iter().collect();
+            if !pair.chain {
+                ends = ends
+                    .into_iter()
+                    .filter(|end| pair_nodes[end.node].status.is_active())
+                    .max_by(|a, b| {
+                        pair_nodes[a.node]
+                            .normal_force
+                            .total_cmp(&pair_nodes[b.node].normal_force)
+                    })
+                    .into_iter()
+                    .collect();
+            }
+            for end in ends {
                 let node = &pair_nodes[end.node];
                 if node.status.is_active() && !warned.contains(&end.node) {
                     warned.push(end.node);
@@ -1259,6 +1280,24 @@ impl<const D: usize> ContactDiscretisation<D> {
             }
         }
         warnings
+    }
+}
+
+/// The consistent pressure of the nodes of one pair in space, projected on the faces `faces`
+/// (loops of the pair's node indices; [`crate::surface::surface_pressure`]).
+fn project_surface_pressure<const D: usize>(nodes: &mut [InterfaceNode<D>], faces: &[Vec<usize>]) {
+    if D != 3 {
+        return;
+    }
+    let points: Vec<vem_mesh::Point3> = nodes
+        .iter()
+        .map(|n| vem_mesh::Point3::new(n.position[0], n.position[1], n.position[2]))
+        .collect();
+    let forces: Vec<f64> = nodes.iter().map(|n| n.normal_force).collect();
+    let areas: Vec<f64> = nodes.iter().map(|n| n.tributary_measure).collect();
+    let pressures = crate::surface::surface_pressure(faces, &points, &forces, &areas);
+    for (node, p) in nodes.iter_mut().zip(pressures) {
+        node.consistent_pressure = p;
     }
 }
 

@@ -9,6 +9,11 @@
 //! along a load history ([`LoadHistory`], [`LoadPath`]), where friction acts on the slip
 //! increments and the answer depends on the path.
 //!
+//! In space (`D = 3`, polyhedral bodies) the frictionless problem is solved by every solver:
+//! against rigid obstacles ([`Obstacle3`]: a plane, a ball) and between two bodies whose
+//! contact surfaces are conforming (the same surface grid; non-matching surfaces need the
+//! surface overlay, not available yet). Friction in 3D is refused. See docs/contact-3d.md.
+//!
 //! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
 //! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction
 //! with nodal quadrature, tangential rows `B_T` with nodal bounds `b`. Solvers implement
@@ -55,6 +60,7 @@ mod problem;
 pub mod registry;
 mod result;
 pub mod solver;
+mod surface;
 mod warning;
 
 pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
@@ -68,7 +74,7 @@ pub use law::{
     Frictionless, LawState, ScalarField, Tresca,
 };
 pub use node::{frame, tangent, ContactNode, Location};
-pub use obstacle::{Obstacle, ObstacleGap, RigidObstacle};
+pub use obstacle::{Obstacle, Obstacle3, ObstacleGap, RigidObstacle};
 pub use problem::{ContactNormal, ContactPair, ContactProblem, Counterpart};
 pub use registry::{LawRegistry, RegistryError, SolverRegistry};
 pub use result::{

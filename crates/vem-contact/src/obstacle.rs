@@ -7,11 +7,11 @@
 //! condition, exact for a straight obstacle).
 //!
 //! An obstacle is anything that implements [`RigidObstacle`]; [`Obstacle`] holds the planar
-//! ones built in (a line, a disc, a polyline).
+//! ones built in (a line, a disc, a polyline), [`Obstacle3`] those in space (a plane, a ball).
 
 use std::fmt;
 
-use vem_mesh::{Point, PointD, Vector, VectorD};
+use vem_mesh::{Point, Point3, PointD, Vector, Vector3, VectorD};
 
 use crate::ContactError;
 
@@ -147,6 +147,108 @@ impl RigidObstacle<2> for Obstacle {
     }
 }
 
+/// A rigid obstacle in space.
+///
+/// ```
+/// use vem_contact::{Obstacle3, RigidObstacle};
+/// use vem_mesh::{Point3, Vector3};
+/// // A rigid ball of radius 2 centred 3 above the origin: the origin is 1 below its surface.
+/// let ball = Obstacle3::Sphere { centre: Point3::new(0.0, 0.0, 3.0), radius: 2.0 };
+/// ball.validate()?;
+/// let at = ball.gap_at(Point3::origin());
+/// assert!((at.gap - 1.0).abs() < 1e-15);
+/// assert_eq!(at.normal, Vector3::new(0.0, 0.0, 1.0));
+/// # Ok::<(), vem_contact::ContactError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub enum Obstacle3 {
+    /// The plane through `point` bounding the half-space obstacle; `normal` is the normal
+    /// pointing out of the obstacle, towards the body (normalised on use).
+    Plane {
+        /// A point of the plane.
+        point: Point3,
+        /// Outward normal of the obstacle.
+        normal: Vector3,
+    },
+    /// A rigid ball; the body lies outside it. The contact direction at a body point `x` is
+    /// towards the centre and the gap is `|c - x| - R`, the distance to the sphere: near the
+    /// point of first contact of a flat body it is `r^2 / (2 R)` to leading order in the
+    /// distance `r` from that point, the gap of Hertz's theory.
+    Sphere {
+        /// Centre of the ball.
+        centre: Point3,
+        /// Radius (> 0).
+        radius: f64,
+    },
+}
+
+impl RigidObstacle<3> for Obstacle3 {
+    fn name(&self) -> &str {
+        match self {
+            Obstacle3::Plane { .. } => "plane",
+            Obstacle3::Sphere { .. } => "sphere",
+        }
+    }
+
+    /// Checks the obstacle's data (finite values, positive radius, non-zero normal).
+    fn validate(&self) -> Result<(), ContactError> {
+        let bad = |reason: String| Err(ContactError::InvalidObstacle { reason });
+        match self {
+            Obstacle3::Plane { point, normal } => {
+                if !point.iter().chain(normal.iter()).all(|c| c.is_finite()) {
+                    return bad(format!(
+                        "plane through {} with normal {} is not finite",
+                        crate::Location::of(point),
+                        crate::Location::of_vector(normal)
+                    ));
+                }
+                if normal.norm() == 0.0 {
+                    return bad("plane normal is the zero vector".into());
+                }
+            }
+            Obstacle3::Sphere { centre, radius } => {
+                if !(centre.iter().all(|c| c.is_finite()) && radius.is_finite()) {
+                    return bad(format!(
+                        "sphere at {} with radius {radius} is not finite",
+                        crate::Location::of(centre)
+                    ));
+                }
+                if *radius <= 0.0 {
+                    return bad(format!("sphere radius {radius} must be positive"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Contact direction and gap at the body point `x` (see the module docs). At the centre
+    /// of a ball the direction is undefined; `+z` is taken there.
+    fn gap_at(&self, x: Point3) -> ObstacleGap<3> {
+        match self {
+            Obstacle3::Plane { point, normal } => {
+                let n = normal / normal.norm();
+                ObstacleGap {
+                    normal: -n,
+                    gap: (x - point).dot(&n),
+                }
+            }
+            Obstacle3::Sphere { centre, radius } => {
+                let to_centre = centre - x;
+                let distance = to_centre.norm();
+                let normal = if distance > 0.0 {
+                    to_centre / distance
+                } else {
+                    Vector3::z()
+                };
+                ObstacleGap {
+                    normal,
+                    gap: distance - radius,
+                }
+            }
+        }
+    }
+}
+
 /// Closest-point projection onto a polyline whose obstacle side is to the right.
 fn polyline_gap(points: &[Point], x: Point) -> ObstacleGap {
     let mut best: Option<(f64, Point, Vector, bool)> = None; // (distance, closest, left normal, at an end)
@@ -215,6 +317,34 @@ mod tests {
         assert!((corner.normal - Vector::new(-0.6, -0.8)).norm() < 1e-15);
         let inside = ground.gap_at(Point::new(0.5, -0.1));
         assert!((inside.gap + 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn plane_and_sphere_gaps() {
+        let floor = Obstacle3::Plane {
+            point: Point3::new(0.0, 0.0, -0.5),
+            normal: Vector3::new(0.0, 0.0, 2.0),
+        };
+        let g = floor.gap_at(Point3::new(3.0, -1.0, 0.25));
+        assert_eq!(g.normal, Vector3::new(0.0, 0.0, -1.0));
+        assert!((g.gap - 0.75).abs() < 1e-15);
+        let ball = Obstacle3::Sphere {
+            centre: Point3::new(1.0, 2.0, 2.0),
+            radius: 1.0,
+        };
+        let g = ball.gap_at(Point3::origin());
+        assert!((g.gap - 2.0).abs() < 1e-15);
+        assert!((g.normal - Vector3::new(1.0, 2.0, 2.0) / 3.0).norm() < 1e-15);
+        let bad = Obstacle3::Sphere {
+            centre: Point3::origin(),
+            radius: -1.0,
+        };
+        assert!(bad.validate().unwrap_err().to_string().contains("radius"));
+        let flat = Obstacle3::Plane {
+            point: Point3::origin(),
+            normal: Vector3::zeros(),
+        };
+        assert!(flat.validate().unwrap_err().to_string().contains("zero"));
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! The geometry of a contact pair: interface node insertion between two bodies, or the nodes
 //! of a body's contact part facing an obstacle. The only place of the contact layer where the
 //! dimension changes the code: in 2D the parts are chains of edges
-//! ([`vem_mesh::interface`]); in 3D the pair of two bodies needs the surface overlay, which is
-//! not available yet.
+//! ([`vem_mesh::interface`]); in 3D they are surfaces of faces ([`crate::surface`]), and a pair
+//! of two bodies is made node-to-node by a surface interface (conforming surfaces for now,
+//! [`crate::surface::conforming_interface`]; the surface overlay of non-matching ones is not
+//! available yet).
 
 use std::any::Any;
 use std::collections::HashMap;
@@ -10,20 +12,23 @@ use std::sync::Arc;
 
 use vem_elastic::ElasticBody;
 use vem_mesh::interface::{boundary_chain, insert_interface_nodes, ChainNode};
-use vem_mesh::{BodyMesh, Mesh, PointD, VectorD};
+use vem_mesh::{BodyMesh, Mesh, PointD, PolyhedralMesh, VectorD};
 
 use crate::problem::{ContactPair, Counterpart};
+use crate::surface::{conforming_interface, open_rim, part_surface, SurfaceInterface};
 use crate::warning::ZoneLimit;
 use crate::{ContactError, ContactNode, Location};
 
 /// What the geometry of one pair gives: its nodes (ordered along body A's part in 2D), the
 /// vertices inserted, the ends of the modelled interface that may cut a contact zone short,
-/// and whether the nodes form a chain (2D) along which the consistent traction is projected.
+/// and whether the nodes form a chain (2D) along which the consistent traction is projected,
+/// or in 3D the faces (loops of the pair's node indices) of the surface on which it is.
 pub(crate) struct PairGeometry<const D: usize> {
     pub(crate) nodes: Vec<ContactNode<D>>,
     pub(crate) inserted: usize,
     pub(crate) zone_ends: Vec<ZoneEnd>,
     pub(crate) chain: bool,
+    pub(crate) surface: Option<Vec<Vec<usize>>>,
 }
 
 /// An end of a pair's modelled interface that is not a geometric end of the contact: the
@@ -175,11 +180,25 @@ fn two_bodies<const D: usize>(
     other_part: &str,
 ) -> Result<PairGeometry<D>, ContactError> {
     let part = pair.part();
+    if let (Some(mesh_a), Some(mesh_b)) = (
+        bodies[a].body_mesh().as_polyhedral(),
+        bodies[b].body_mesh().as_polyhedral(),
+    ) {
+        let interface =
+            conforming_interface(mesh_a, part, mesh_b, other_part, pair.interface_options())
+                .map_err(|e| match e {
+                    ContactError::Unsupported { what } => ContactError::Unsupported {
+                        what: format!("contact pair {index}: {what}"),
+                    },
+                    other => other,
+                })?;
+        return two_bodies_on_surface(bodies, pair, index, a, b, interface);
+    }
     let (Some(mesh_a), Some(mesh_b)) = (planar(&bodies[a]), planar(&bodies[b])) else {
         return Err(ContactError::Unsupported {
             what: format!(
-                "contact pair {index}: interface insertion between two bodies in {D}D (the \
-                 surface overlay) is not available yet; a rigid obstacle is"
+                "contact pair {index}: interface insertion between two bodies in {D}D is not \
+                 available"
             ),
         });
     };
@@ -277,7 +296,121 @@ fn two_bodies<const D: usize>(
         inserted,
         zone_ends,
         chain: true,
+        surface: None,
     })
+}
+
+/// The geometry of a pair of two bodies in space from their surface interface `interface`
+/// (side a body `a`'s part, side b body `b`'s): the node pairs, the normal of the side the pair
+/// chooses, the ends of the modelled interface, the faces of side a's part on which the
+/// consistent pressure is projected; the bodies are replaced by themselves on the enlarged
+/// meshes when nodes were inserted.
+fn two_bodies_on_surface<const D: usize>(
+    bodies: &mut [ElasticBody<D>],
+    pair: &ContactPair<D>,
+    index: usize,
+    a: usize,
+    b: usize,
+    interface: SurfaceInterface,
+) -> Result<PairGeometry<D>, ContactError> {
+    let (name_a, name_b) = (bodies[a].name().to_string(), bodies[b].name().to_string());
+    let (part_a, part_b) = (interface.part_a.as_str(), interface.part_b.as_str());
+    let mesh_error = |name: &str, part: &str| {
+        let context = format!("contact part '{part}' of body '{name}'");
+        move |source| ContactError::Mesh { context, source }
+    };
+    // Body B's outward nodal normals on its enlarged part, for the normal choice.
+    let normal_b: HashMap<usize, vem_mesh::Vector3> = part_surface(&interface.mesh_b, part_b)
+        .map_err(mesh_error(&name_b, part_b))?
+        .into_iter()
+        .map(|(v, s)| (v, s.normal))
+        .collect();
+    let rim_a = open_rim(&interface.mesh_a, part_a).map_err(mesh_error(&name_a, part_a))?;
+    let rim_b = open_rim(&interface.mesh_b, part_b).map_err(mesh_error(&name_b, part_b))?;
+    let on_rim_a = |v: usize| rim_a.binary_search(&v).is_ok();
+    let on_rim_b = |v: usize| rim_b.binary_search(&v).is_ok();
+    let choice = pair.normal();
+    let mut zone_ends = Vec::new();
+    let mut nodes: Vec<ContactNode<D>> = Vec::with_capacity(interface.pairs.len());
+    for (k, p) in interface.pairs.iter().enumerate() {
+        let n_b = normal_b.get(&p.node_b).copied().unwrap_or(-p.normal);
+        let normal = choice.combine(p.normal, n_b);
+        let gap = (p.point_b - p.point_a).dot(&normal);
+        // A rim vertex of a part is an end of the modelled interface unless the body ends
+        // there too (a convex corner: not on the open rim); a pair in the middle of both
+        // parts is not an end.
+        let (end_a, end_b) = (on_rim_a(p.node_a), on_rim_b(p.node_b));
+        if end_a {
+            zone_ends.push(ZoneEnd {
+                node: k,
+                limit: ZoneLimit::EndOfPart,
+                body: a,
+                part: part_a.to_string(),
+            });
+        } else if end_b {
+            zone_ends.push(ZoneEnd {
+                node: k,
+                limit: ZoneLimit::EndOfPart,
+                body: b,
+                part: part_b.to_string(),
+            });
+        }
+        nodes.push(ContactNode {
+            pair: index,
+            body_a: a,
+            vertex_a: p.node_a,
+            body_b: Some(b),
+            vertex_b: Some(p.node_b),
+            position: point(p.point_a.coords.as_slice()),
+            normal: vector(normal.as_slice()),
+            tributary_measure: p.tributary_area,
+            geometric_gap: gap,
+            initial_gap: gap,
+        });
+    }
+    let index_of: HashMap<usize, usize> = interface
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (p.node_a, k))
+        .collect();
+    let surface =
+        surface_faces(&interface.mesh_a, part_a, &index_of).map_err(mesh_error(&name_a, part_a))?;
+    let inserted = interface.inserted_a + interface.inserted_b;
+    if inserted > 0 {
+        let enlarged = |mesh: PolyhedralMesh| {
+            same::<Arc<dyn BodyMesh<3>>, Arc<dyn BodyMesh<D>>>(Arc::new(mesh))
+                .expect("a polyhedral mesh is a body mesh of dimension 3")
+        };
+        bodies[a] = bodies[a].on_mesh(enlarged(interface.mesh_a))?;
+        bodies[b] = bodies[b].on_mesh(enlarged(interface.mesh_b))?;
+    }
+    Ok(PairGeometry {
+        nodes,
+        inserted,
+        zone_ends,
+        chain: false,
+        surface: Some(surface),
+    })
+}
+
+/// The faces of `part` of `mesh` as loops of node indices (`index_of`: vertex to node), the
+/// faces with a vertex that is not a node left out.
+fn surface_faces(
+    mesh: &PolyhedralMesh,
+    part: &str,
+    index_of: &HashMap<usize, usize>,
+) -> Result<Vec<Vec<usize>>, vem_mesh::MeshError> {
+    Ok(mesh
+        .part_faces(part)?
+        .iter()
+        .filter_map(|&f| {
+            mesh.face(f)
+                .iter()
+                .map(|v| index_of.get(v).copied())
+                .collect::<Option<Vec<usize>>>()
+        })
+        .collect())
 }
 
 /// The nodes of `part` of `body` facing `obstacle`: in 2D along the part's chain (tributary
@@ -339,43 +472,42 @@ fn obstacle_nodes<const D: usize>(
             inserted: 0,
             zone_ends,
             chain: true,
+            surface: None,
         });
     }
-    let mesh = body.body_mesh();
-    let points = mesh.points();
-    let mut measure: HashMap<usize, f64> = HashMap::new();
-    for facet in mesh.part_facets(part).map_err(mesh_error)? {
-        let area = facet_measure::<D>(&facet.iter().map(|&v| points[v]).collect::<Vec<_>>());
-        for &v in facet {
-            *measure.entry(v).or_default() += area / facet.len() as f64;
-        }
-    }
-    let mut vertices: Vec<usize> = measure.keys().copied().collect();
-    vertices.sort_unstable();
+    let Some(mesh) = body.body_mesh().as_polyhedral() else {
+        return Err(ContactError::Unsupported {
+            what: format!("contact pair {index}: contact parts in {D}D"),
+        });
+    };
+    let vertices = part_surface(mesh, part).map_err(mesh_error)?;
+    let nodes: Vec<ContactNode<D>> = vertices
+        .iter()
+        .map(|&(v, s)| node(v, point(mesh.vertex(v).coords.as_slice()), s.area))
+        .collect();
+    // A rim vertex where the body's boundary goes on may cut the zone short.
+    let rim = open_rim(mesh, part).map_err(mesh_error)?;
+    let index_of: HashMap<usize, usize> = vertices
+        .iter()
+        .enumerate()
+        .map(|(k, &(v, _))| (v, k))
+        .collect();
+    let zone_ends = rim
+        .iter()
+        .filter_map(|v| index_of.get(v))
+        .map(|&node| ZoneEnd {
+            node,
+            limit: ZoneLimit::EndOfPart,
+            body: body_index,
+            part: part.to_string(),
+        })
+        .collect();
+    let surface = surface_faces(mesh, part, &index_of).map_err(mesh_error)?;
     Ok(PairGeometry {
-        nodes: vertices
-            .into_iter()
-            .map(|v| node(v, points[v], measure[&v]))
-            .collect(),
+        nodes,
         inserted: 0,
-        zone_ends: Vec::new(),
+        zone_ends,
         chain: false,
+        surface: Some(surface),
     })
-}
-
-/// The measure of a boundary facet: the length of an edge in 2D, the area of a (fan
-/// triangulated) polygon in 3D.
-fn facet_measure<const D: usize>(corners: &[PointD<D>]) -> f64 {
-    match (D, corners) {
-        (2, [a, b]) => (b - a).norm(),
-        (3, _) if corners.len() >= 3 => {
-            let at = |p: &PointD<D>| nalgebra::Vector3::new(p[0], p[1], p[2]);
-            let mut area = nalgebra::Vector3::zeros();
-            for k in 0..corners.len() {
-                area += at(&corners[k]).cross(&at(&corners[(k + 1) % corners.len()]));
-            }
-            0.5 * area.norm()
-        }
-        _ => 0.0,
-    }
 }

@@ -144,8 +144,10 @@ pub struct InterfaceNode<const D: usize = 2> {
     /// value of the L2 projection of the nodal normal forces onto the non-negative continuous
     /// piecewise-linear functions on the interface spanned by the original (not inserted)
     /// nodes of the side with fewer of them, B on a tie, every node against an obstacle
-    /// ([`consistent_traction`] with [`TractionBound::NonNegative`]); in 3D the nodal
-    /// pressure.
+    /// ([`consistent_traction`] with [`TractionBound::NonNegative`]); in 3D the L2 projection
+    /// onto the non-negative functions of the face-trace space of the element on the faces of
+    /// body A's contact part (linear on each fan triangle of a face, the mean of the face's
+    /// vertex values at its centre), every node in the support (docs/contact-3d.md).
     pub consistent_pressure: f64,
     /// Nodal friction force on body A (tangential, `= sigma_1tau l_x`); it opposes the slip.
     pub friction_force: VectorD<D>,

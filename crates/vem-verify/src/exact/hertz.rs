@@ -239,3 +239,97 @@ mod tests {
         }
     }
 }
+
+/// Hertz's contact of a sphere on a half-space: a rigid or elastic ball of radius `R` pressed
+/// by a load `P` on an elastic half-space (`1/E* = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2`; a
+/// rigid ball has `1/E_1 = 0`) touches it on a disc of radius `a`, with
+///
+/// ```text
+/// a = (3 P R / (4 E*))^(1/3),   p(r) = p0 sqrt(1 - r^2/a^2),   p0 = 3 P / (2 pi a^2),
+/// ```
+///
+/// and approach `delta = a^2 / R` (Johnson, Contact Mechanics, 4.2).
+///
+/// ```
+/// use vem_verify::exact::HertzSphere;
+/// let hertz = HertzSphere::try_new(2.0, 100.0, 3.0)?;
+/// let (a, p0) = (hertz.contact_radius(), hertz.peak_pressure());
+/// // The pressure integrates to the load: int_0^a p 2 pi r dr = 2 pi p0 a^2 / 3.
+/// assert!((2.0 * std::f64::consts::PI * p0 * a * a / 3.0 - 3.0).abs() < 1e-12);
+/// assert!((hertz.approach() - a * a / 2.0).abs() < 1e-15);
+/// assert_eq!(hertz.pressure(1.01 * a), 0.0);
+/// # Ok::<(), vem_verify::exact::ExactError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzSphere {
+    radius: f64,
+    effective_modulus: f64,
+    load: f64,
+}
+
+impl HertzSphere {
+    /// Radius `R`, effective modulus `E*` and load `P`, each finite and positive.
+    ///
+    /// # Errors
+    /// [`ExactError::InvalidParameter`] naming the first value that is not.
+    pub fn try_new(radius: f64, effective_modulus: f64, load: f64) -> Result<Self, ExactError> {
+        let HertzContact {
+            radius,
+            effective_modulus,
+            load,
+        } = HertzContact::try_new(radius, effective_modulus, load)?;
+        Ok(Self {
+            radius,
+            effective_modulus,
+            load,
+        })
+    }
+
+    /// `E*` of a rigid ball on a half-space of modulus `e`, Poisson ratio `nu`:
+    /// `e / (1 - nu^2)`.
+    pub fn rigid_ball_modulus(e: f64, nu: f64) -> f64 {
+        e / (1.0 - nu * nu)
+    }
+
+    /// The radius `R` of the ball.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The effective modulus `E*`.
+    pub fn effective_modulus(&self) -> f64 {
+        self.effective_modulus
+    }
+
+    /// The load `P`.
+    pub fn load(&self) -> f64 {
+        self.load
+    }
+
+    /// The contact radius `a = (3 P R / (4 E*))^(1/3)`.
+    pub fn contact_radius(&self) -> f64 {
+        (3.0 * self.load * self.radius / (4.0 * self.effective_modulus)).cbrt()
+    }
+
+    /// The peak pressure `p0 = 3 P / (2 pi a^2)`.
+    pub fn peak_pressure(&self) -> f64 {
+        let a = self.contact_radius();
+        3.0 * self.load / (2.0 * std::f64::consts::PI * a * a)
+    }
+
+    /// The pressure at distance `r` from the axis (zero outside the contact disc).
+    pub fn pressure(&self, r: f64) -> f64 {
+        let a = self.contact_radius();
+        let s = 1.0 - (r / a).powi(2);
+        if s > 0.0 {
+            self.peak_pressure() * s.sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// The approach of distant points of the two bodies, `delta = a^2 / R`.
+    pub fn approach(&self) -> f64 {
+        self.contact_radius().powi(2) / self.radius
+    }
+}

@@ -47,7 +47,7 @@ pub use family_a::{
     FamilyA, InterfaceData, TraceData, Traces, CONTACT_SWITCH_POINT, FAMILY_A_FRICTION_BOUND,
     STICK_SLIP_POINT,
 };
-pub use hertz::HertzContact;
+pub use hertz::{HertzContact, HertzSphere};
 pub use jet::{Jet, SwitchPower, SwitchSide};
 pub use solution::{
     BodyId, ContactSet, ExactContact, ExactSolution, ExpectedSets, FrictionSet, InterfaceValues,
