@@ -10,9 +10,10 @@
 //! increments and the answer depends on the path.
 //!
 //! In space (`D = 3`, polyhedral bodies) the frictionless problem is solved by every solver:
-//! against rigid obstacles ([`Obstacle3`]: a plane, a ball) and between two bodies whose
-//! contact surfaces are conforming (the same surface grid; non-matching surfaces need the
-//! surface overlay, not available yet). Friction in 3D is refused. See docs/contact-3d.md.
+//! against rigid obstacles ([`Obstacle3`]: a plane, a ball) and between two bodies on
+//! non-matching surfaces, made node-to-node by the surface overlay
+//! ([`vem_mesh::polyhedral::overlay::insert_surface_overlay`]). Friction in 3D is refused. See
+//! docs/contact-3d.md.
 //!
 //! The [`solver`] layer is algebraic: a [`ContactSystem`] holds the stiffness `K`, the load
 //! `f`, the normal constraint rows `B_N` with gaps `g` (`B_N u <= g`) and, for Tresca friction

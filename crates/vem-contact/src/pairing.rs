@@ -2,9 +2,8 @@
 //! of a body's contact part facing an obstacle. The only place of the contact layer where the
 //! dimension changes the code: in 2D the parts are chains of edges
 //! ([`vem_mesh::interface`]); in 3D they are surfaces of faces ([`crate::surface`]), and a pair
-//! of two bodies is made node-to-node by a surface interface (conforming surfaces for now,
-//! [`crate::surface::conforming_interface`]; the surface overlay of non-matching ones is not
-//! available yet).
+//! of two bodies is made node-to-node by the surface overlay
+//! ([`vem_mesh::polyhedral::overlay::insert_surface_overlay`]).
 
 use std::any::Any;
 use std::collections::HashMap;
@@ -15,7 +14,9 @@ use vem_mesh::interface::{boundary_chain, insert_interface_nodes, ChainNode};
 use vem_mesh::{BodyMesh, Mesh, PointD, PolyhedralMesh, VectorD};
 
 use crate::problem::{ContactPair, Counterpart};
-use crate::surface::{conforming_interface, open_rim, part_surface, SurfaceInterface};
+use vem_mesh::polyhedral::overlay::{boundary_surface, insert_surface_overlay, SurfaceInterface};
+
+use crate::surface::open_rim;
 use crate::warning::ZoneLimit;
 use crate::{ContactError, ContactNode, Location};
 
@@ -184,13 +185,15 @@ fn two_bodies<const D: usize>(
         bodies[a].body_mesh().as_polyhedral(),
         bodies[b].body_mesh().as_polyhedral(),
     ) {
+        let (name_a, name_b) = (bodies[a].name(), bodies[b].name());
         let interface =
-            conforming_interface(mesh_a, part, mesh_b, other_part, pair.interface_options())
-                .map_err(|e| match e {
-                    ContactError::Unsupported { what } => ContactError::Unsupported {
-                        what: format!("contact pair {index}: {what}"),
-                    },
-                    other => other,
+            insert_surface_overlay(mesh_a, part, mesh_b, other_part, pair.interface_options())
+                .map_err(|source| ContactError::Mesh {
+                    context: format!(
+                        "contact pair {index}: surface overlay of '{part}' of body '{name_a}' \
+                         and '{other_part}' of body '{name_b}'"
+                    ),
+                    source,
                 })?;
         return two_bodies_on_surface(bodies, pair, index, a, b, interface);
     }
@@ -320,10 +323,10 @@ fn two_bodies_on_surface<const D: usize>(
         move |source| ContactError::Mesh { context, source }
     };
     // Body B's outward nodal normals on its enlarged part, for the normal choice.
-    let normal_b: HashMap<usize, vem_mesh::Vector3> = part_surface(&interface.mesh_b, part_b)
+    let normal_b: HashMap<usize, vem_mesh::Vector3> = boundary_surface(&interface.mesh_b, part_b)
         .map_err(mesh_error(&name_b, part_b))?
         .into_iter()
-        .map(|(v, s)| (v, s.normal))
+        .map(|s| (s.vertex, s.normal))
         .collect();
     let rim_a = open_rim(&interface.mesh_a, part_a).map_err(mesh_error(&name_a, part_a))?;
     let rim_b = open_rim(&interface.mesh_b, part_b).map_err(mesh_error(&name_b, part_b))?;
@@ -480,17 +483,17 @@ fn obstacle_nodes<const D: usize>(
             what: format!("contact pair {index}: contact parts in {D}D"),
         });
     };
-    let vertices = part_surface(mesh, part).map_err(mesh_error)?;
+    let vertices = boundary_surface(mesh, part).map_err(mesh_error)?;
     let nodes: Vec<ContactNode<D>> = vertices
         .iter()
-        .map(|&(v, s)| node(v, point(mesh.vertex(v).coords.as_slice()), s.area))
+        .map(|s| node(s.vertex, point(s.point.coords.as_slice()), s.tributary_area))
         .collect();
     // A rim vertex where the body's boundary goes on may cut the zone short.
     let rim = open_rim(mesh, part).map_err(mesh_error)?;
     let index_of: HashMap<usize, usize> = vertices
         .iter()
         .enumerate()
-        .map(|(k, &(v, _))| (v, k))
+        .map(|(k, s)| (s.vertex, k))
         .collect();
     let zone_ends = rim
         .iter()

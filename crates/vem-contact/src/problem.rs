@@ -4,9 +4,9 @@
 //!
 //! Discretisation:
 //! 1. every pair of two bodies: the nodes of each contact side are inserted into the other
-//!    side's boundary cells ([`vem_mesh::interface::insert_interface_nodes`] in 2D), so the
-//!    interface is node-to-node (in 3D the two surfaces must be conforming for now: their
-//!    coincident vertices are paired); a pair against a rigid obstacle: the nodes of the body's
+//!    side's boundary cells ([`vem_mesh::interface::insert_interface_nodes`] in 2D, the surface
+//!    overlay [`vem_mesh::polyhedral::overlay::insert_surface_overlay`] in 3D), so the
+//!    interface is node-to-node; a pair against a rigid obstacle: the nodes of the body's
 //!    contact part, nothing meshed. The pairs are inserted one after the other;
 //! 2. each body is assembled on its (enlarged) mesh with Dirichlet conditions eliminated; the
 //!    unknowns are the free degrees of freedom of the bodies, one after the other;

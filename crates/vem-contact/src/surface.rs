@@ -1,17 +1,8 @@
-//! The geometry of contact surfaces in space (`D = 3`): nodal normals and tributary areas of a
-//! boundary part, the rim of a part (where a contact zone may be cut short), the pairing of
-//! two conforming parts, and the consistent pressure on a surface.
-//!
-//! # Two bodies: the interface as [`SurfaceInterface`]
-//!
-//! A pair of two bodies is made node-to-node by a surface interface: the two meshes (enlarged
-//! where nodes were inserted), the node pairs with their points, the outward nodal normal of
-//! side a, the tributary area and the initial gap. The contact layer reads nothing else, so any
-//! construction of that value serves. [`conforming_interface`] builds it for conforming
-//! surfaces (every vertex of side a's part has a partner vertex of side b's part at the same
-//! place on the surface, as two blocks generated with the same surface grid have); it inserts
-//! nothing. Non-matching surfaces need the surface overlay, which inserts the nodes of each side
-//! into the other's faces and returns the same shape of value.
+//! The geometry of contact surfaces in space (`D = 3`) that the contact layer adds to the
+//! mesh layer's: the rim of a part (where a contact zone may be cut short) and the consistent
+//! pressure on a surface. A pair of two bodies is made node-to-node by the surface overlay
+//! ([`vem_mesh::polyhedral::overlay::insert_surface_overlay`]); the nodal normals and
+//! tributary areas of a part are [`vem_mesh::polyhedral::overlay::boundary_surface`]'s.
 //!
 //! # Tributary areas
 //!
@@ -25,85 +16,8 @@
 
 use std::collections::HashMap;
 
-use vem_mesh::interface::InterfaceOptions;
-use vem_mesh::polyhedral::geometry::{face_normal, face_vertex_weights, vertex_mean};
-use vem_mesh::{MeshError, Point3, PolyhedralMesh, Vector3};
-
-use crate::ContactError;
-
-/// One node pair of a surface interface (the shape of the surface overlay's pairs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct SurfacePair {
-    /// The vertex of side a's (enlarged) mesh.
-    pub(crate) node_a: usize,
-    /// The partner vertex of side b's (enlarged) mesh.
-    pub(crate) node_b: usize,
-    /// The position of `node_a`.
-    pub(crate) point_a: Point3,
-    /// The position of `node_b`.
-    pub(crate) point_b: Point3,
-    /// The outward unit nodal normal of side a at `node_a`.
-    pub(crate) normal: Vector3,
-    /// The tributary area of `node_a` on side a's part.
-    pub(crate) tributary_area: f64,
-    /// `(point_b - point_a) . normal`: positive when the sides are apart.
-    pub(crate) initial_gap: f64,
-}
-
-/// Two parts made node-to-node (the shape of the surface overlay's answer).
-#[derive(Debug, Clone)]
-pub(crate) struct SurfaceInterface {
-    /// Side a's mesh, enlarged by the inserted nodes.
-    pub(crate) mesh_a: PolyhedralMesh,
-    /// Side b's mesh, enlarged by the inserted nodes.
-    pub(crate) mesh_b: PolyhedralMesh,
-    /// Side a's part.
-    pub(crate) part_a: String,
-    /// Side b's part.
-    pub(crate) part_b: String,
-    /// The node pairs, in the order of side a's vertices.
-    pub(crate) pairs: Vec<SurfacePair>,
-    /// Vertices inserted into side a.
-    pub(crate) inserted_a: usize,
-    /// Vertices inserted into side b.
-    pub(crate) inserted_b: usize,
-}
-
-/// Per vertex of a part: the outward unit nodal normal (the normalised mean of the outward
-/// unit normals of the part's faces at it) and the tributary area (module docs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct SurfaceVertex {
-    pub(crate) normal: Vector3,
-    pub(crate) area: f64,
-}
-
-/// The vertices of `part` of `mesh` with their nodal normals and tributary areas, sorted by
-/// vertex index.
-pub(crate) fn part_surface(
-    mesh: &PolyhedralMesh,
-    part: &str,
-) -> Result<Vec<(usize, SurfaceVertex)>, MeshError> {
-    let mut acc: HashMap<usize, (Vector3, f64)> = HashMap::new();
-    for &f in mesh.part_faces(part)? {
-        let points = mesh.face_points(f);
-        let n = face_normal(&points);
-        for (&v, w) in mesh.face(f).iter().zip(face_vertex_weights(&points)) {
-            let entry = acc.entry(v).or_insert((Vector3::zeros(), 0.0));
-            entry.0 += n;
-            entry.1 += w.dot(&n);
-        }
-    }
-    let mut vertices: Vec<(usize, SurfaceVertex)> = acc
-        .into_iter()
-        .map(|(v, (sum, area))| {
-            let norm = sum.norm();
-            let normal = if norm > 0.0 { sum / norm } else { sum };
-            (v, SurfaceVertex { normal, area })
-        })
-        .collect();
-    vertices.sort_unstable_by_key(|&(v, _)| v);
-    Ok(vertices)
-}
+use vem_mesh::polyhedral::geometry::{face_normal, vertex_mean};
+use vem_mesh::{MeshError, Point3, PolyhedralMesh};
 
 /// A part's rim turns into the rest of its body's boundary by at least this angle at a convex
 /// edge (45 degrees, as a chain's corner in 2D): the contact must end there.
@@ -150,131 +64,6 @@ pub(crate) fn open_rim(mesh: &PolyhedralMesh, part: &str) -> Result<Vec<usize>, 
     open.sort_unstable();
     open.dedup();
     Ok(open)
-}
-
-/// The surface interface of two conforming parts: every vertex of `part_a` of `mesh_a` has a
-/// vertex of `part_b` of `mesh_b` at the same place on the surface (a tangential offset below
-/// `snap_tolerance` times the shortest edge of side a's part at the vertex, a normal offset,
-/// the initial gap, below that edge and below `max_distance` if set). Vertices of side b
-/// without a partner are not interface nodes (side b may extend beyond side a). Nothing is
-/// inserted: the meshes are returned as they are.
-///
-/// # Errors
-/// A vertex of side a without a partner on side b (the surfaces do not match there: the
-/// surface overlay is needed), two vertices of side a with the same partner, an unknown part.
-pub(crate) fn conforming_interface(
-    mesh_a: &PolyhedralMesh,
-    part_a: &str,
-    mesh_b: &PolyhedralMesh,
-    part_b: &str,
-    options: &InterfaceOptions,
-) -> Result<SurfaceInterface, ContactError> {
-    let mesh_error = |part: &str| {
-        let part = part.to_string();
-        move |source| ContactError::Mesh {
-            context: format!("contact part '{part}'"),
-            source,
-        }
-    };
-    let side_a = part_surface(mesh_a, part_a).map_err(mesh_error(part_a))?;
-    let side_b = part_vertices_sorted(mesh_b, part_b).map_err(mesh_error(part_b))?;
-    // The shortest part edge at every vertex of side a.
-    let mut shortest: HashMap<usize, f64> = HashMap::new();
-    let mut longest = 0.0f64;
-    for &f in mesh_a.part_faces(part_a).map_err(mesh_error(part_a))? {
-        for &e in mesh_a.face_edges(f) {
-            let [p, q] = mesh_a.edge(e);
-            let length = (mesh_a.vertex(q) - mesh_a.vertex(p)).norm();
-            longest = longest.max(length);
-            for v in [p, q] {
-                let s = shortest.entry(v).or_insert(f64::INFINITY);
-                *s = s.min(length);
-            }
-        }
-    }
-    // Side b's vertices hashed on a grid of side a's longest part edge.
-    let cell = if longest > 0.0 { longest } else { 1.0 };
-    let key = |p: &Point3| {
-        [
-            (p.x / cell).floor() as i64,
-            (p.y / cell).floor() as i64,
-            (p.z / cell).floor() as i64,
-        ]
-    };
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-    for &v in &side_b {
-        grid.entry(key(&mesh_b.vertex(v))).or_default().push(v);
-    }
-    let mut partner_of_b: HashMap<usize, usize> = HashMap::new();
-    let mut pairs = Vec::with_capacity(side_a.len());
-    for &(v, surface) in &side_a {
-        let x = mesh_a.vertex(v);
-        let edge = shortest.get(&v).copied().unwrap_or(cell);
-        let tangential_tolerance = options.snap_tolerance() * edge;
-        let normal_limit = options.max_distance().map_or(edge, |d| d.min(edge));
-        let [i, j, k] = key(&x);
-        let mut best: Option<(f64, usize)> = None;
-        for di in -1..=1 {
-            for dj in -1..=1 {
-                for dk in -1..=1 {
-                    for &w in grid.get(&[i + di, j + dj, k + dk]).into_iter().flatten() {
-                        let d = mesh_b.vertex(w) - x;
-                        let normal_offset = d.dot(&surface.normal);
-                        let tangential = (d - surface.normal * normal_offset).norm();
-                        if tangential <= tangential_tolerance
-                            && normal_offset.abs() <= normal_limit
-                            && best.is_none_or(|(t, _)| tangential < t)
-                        {
-                            best = Some((tangential, w));
-                        }
-                    }
-                }
-            }
-        }
-        let Some((_, w)) = best else {
-            return Err(ContactError::Unsupported {
-                what: format!(
-                    "two bodies in 3D: vertex {v} of part '{part_a}' at {} has no vertex of part \
-                     '{part_b}' at the same place on the surface; until the surface overlay is \
-                     available the two contact surfaces must be conforming (the same surface \
-                     grid), with side a's part within side b's",
-                    crate::Location::of(&x)
-                ),
-            });
-        };
-        if let Some(&first) = partner_of_b.get(&w) {
-            return Err(ContactError::Unsupported {
-                what: format!(
-                    "two bodies in 3D: vertices {first} and {v} of part '{part_a}' both face \
-                     vertex {w} of part '{part_b}': the surfaces are not conforming"
-                ),
-            });
-        }
-        partner_of_b.insert(w, v);
-        let point_b = mesh_b.vertex(w);
-        pairs.push(SurfacePair {
-            node_a: v,
-            node_b: w,
-            point_a: x,
-            point_b,
-            normal: surface.normal,
-            tributary_area: surface.area,
-            initial_gap: (point_b - x).dot(&surface.normal),
-        });
-    }
-    Ok(SurfaceInterface {
-        mesh_a: mesh_a.clone(),
-        mesh_b: mesh_b.clone(),
-        part_a: part_a.to_string(),
-        part_b: part_b.to_string(),
-        pairs,
-        inserted_a: 0,
-        inserted_b: 0,
-    })
-}
-
-fn part_vertices_sorted(mesh: &PolyhedralMesh, part: &str) -> Result<Vec<usize>, MeshError> {
-    mesh.part_vertices(part)
 }
 
 /// The consistent mass matrix of the face traces on a surface, in the fan space of the
@@ -402,6 +191,8 @@ const SWEEP_TOLERANCE: f64 = 1e-13;
 mod tests {
     use super::*;
     use vem_mesh::generators::polyhedral::{hexahedra, tetrahedra, Cuboid};
+    use vem_mesh::polyhedral::overlay::boundary_surface;
+    use vem_mesh::Vector3;
 
     #[test]
     fn tributary_areas_add_up_and_are_equal_shares_on_squares() {
@@ -410,16 +201,16 @@ mod tests {
             hexahedra(&cube, 4, 2, 2).unwrap(),
             tetrahedra(&cube, 4, 2, 2).unwrap(),
         ] {
-            let top = part_surface(&mesh, "top").unwrap();
-            let total: f64 = top.iter().map(|(_, s)| s.area).sum();
+            let top = boundary_surface(&mesh, "top").unwrap();
+            let total: f64 = top.iter().map(|s| s.tributary_area).sum();
             assert!((total - 2.0).abs() < 1e-14);
-            for (_, s) in &top {
+            for s in &top {
                 assert!((s.normal - Vector3::z()).norm() < 1e-15);
             }
         }
         let mesh = hexahedra(&cube, 4, 2, 2).unwrap();
-        let top = part_surface(&mesh, "top").unwrap();
-        let max = top.iter().map(|(_, s)| s.area).fold(0.0, f64::max);
+        let top = boundary_surface(&mesh, "top").unwrap();
+        let max = top.iter().map(|s| s.tributary_area).fold(0.0, f64::max);
         assert!((max - 0.25).abs() < 1e-15);
     }
 
@@ -449,17 +240,17 @@ mod tests {
     #[test]
     fn the_projection_reproduces_uniform_and_bilinear_free_forces() {
         let mesh = tetrahedra(&Cuboid::unit_cube(), 3, 3, 1).unwrap();
-        let top = part_surface(&mesh, "top").unwrap();
+        let top = boundary_surface(&mesh, "top").unwrap();
         let index: HashMap<usize, usize> =
-            top.iter().enumerate().map(|(i, &(v, _))| (v, i)).collect();
+            top.iter().enumerate().map(|(i, s)| (s.vertex, i)).collect();
         let faces: Vec<Vec<usize>> = mesh
             .part_faces("top")
             .unwrap()
             .iter()
             .map(|&f| mesh.face(f).iter().map(|v| index[v]).collect())
             .collect();
-        let points: Vec<Point3> = top.iter().map(|&(v, _)| mesh.vertex(v)).collect();
-        let areas: Vec<f64> = top.iter().map(|(_, s)| s.area).collect();
+        let points: Vec<Point3> = top.iter().map(|s| s.point).collect();
+        let areas: Vec<f64> = top.iter().map(|s| s.tributary_area).collect();
         // Uniform pressure 2.5.
         let forces: Vec<f64> = areas.iter().map(|a| 2.5 * a).collect();
         let p = surface_pressure(&faces, &points, &forces, &areas);
