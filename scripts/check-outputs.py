@@ -3,7 +3,8 @@
 against the run's own contact.csv: every VTU file of the collection results.pvd opens in both,
 each interface dataset has a point per row of its contact table (contact.csv, or
 contact_NNNN.csv of a load history's step) with the same values, and every body
-file has its displacement. Exits non-zero on any difference.
+file has its displacement, read alike by both, on as many cells in both (polyhedra, VTK type 42,
+for a scene in space). Exits non-zero on any difference.
 
 Usage: PYTHON scripts/check-outputs.py OUT_DIR   (PYTHON from scripts/install-vtu-check.sh)
 """
@@ -107,6 +108,20 @@ def main():
                                          f"unlike {table.name}")
         elif "displacement" not in mesh.point_data:
             raise SystemExit(f"check-outputs: {path}: no displacement")
+        else:
+            by_vtk = vtk_to_numpy(grid.GetPointData().GetArray("displacement"))
+            by_meshio = numpy.asarray(mesh.point_data["displacement"])
+            if by_meshio.shape != by_vtk.shape or not numpy.array_equal(by_meshio, by_vtk):
+                raise SystemExit(f"check-outputs: {path}: meshio and VTK read the displacement "
+                                 "differently")
+            cells = sum(len(block.data) for block in mesh.cells)
+            if cells != grid.GetNumberOfCells():
+                raise SystemExit(f"check-outputs: {path}: meshio reads {cells} cells, VTK "
+                                 f"{grid.GetNumberOfCells()}")
+            polyhedra = sum(1 for k in range(grid.GetNumberOfCells()) if grid.GetCellType(k) == 42)
+            if polyhedra and (polyhedra != cells or by_vtk.shape[1] != 3):
+                raise SystemExit(f"check-outputs: {path}: a body in space is all polyhedra "
+                                 "with a displacement of 3 components")
     print(f"check-outputs: {len(datasets)} datasets of {out} agree "
           f"(VTK {vtk.vtkVersion.GetVTKVersion()}, meshio {meshio.__version__})")
 
