@@ -238,7 +238,7 @@ fn nearly_incompressible_bodies_get_the_locking_free_element_and_tetrahedra_a_wa
     let body = &model.bodies_3d()[0];
     assert_eq!(body.warnings.len(), 1);
     assert!(
-        body.warnings[0].contains("48 of its 48 cells are tetrahedra"),
+        body.warnings[0].contains("12 of its 12 cells are tetrahedra"),
         "{:?}",
         body.warnings
     );
