@@ -32,18 +32,17 @@ fn block3d_gives_the_exact_uniform_state_and_its_files() {
     }
     // The exact state: sigma_xx = 0.5, sigma_zz = -0.2 (E = 100, nu = 0.3), u linear.
     let (e, nu, sx, sz) = (100.0, 0.3, 0.5, -0.2);
-    let strain = Vector3::new(
-        (sx - nu * sz) / e,
-        -nu * (sx + sz) / e,
-        (sz - nu * sx) / e,
-    );
+    let strain = Vector3::new((sx - nu * sz) / e, -nu * (sx + sz) / e, (sz - nu * sx) / e);
     let block = outcome.body_3d("block").unwrap();
     let mesh = block.body.mesh();
     assert!(mesh.n_cells() > 20, "a Voronoi mesh of polyhedra");
     for (v, u) in block.solution.vertex_displacements().iter().enumerate() {
         let p = mesh.vertex(v);
         let exact = Vector3::new(strain.x * p.x, strain.y * p.y, strain.z * p.z);
-        assert!((u - exact).norm() < 1e-10 * strain.norm(), "vertex {v}: {u:?}");
+        assert!(
+            (u - exact).norm() < 1e-10 * strain.norm(),
+            "vertex {v}: {u:?}"
+        );
     }
     for field in &block.fields {
         let s = field.stress;
@@ -65,8 +64,7 @@ fn block3d_gives_the_exact_uniform_state_and_its_files() {
     assert!((0..3).all(|k| force(&rows[1], k).abs() < 1e-10));
     // summary.json: the dimension, the polyhedra and the note about the pictures.
     let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["dimension"], 3);
     assert_eq!(summary["bodies"][0]["polygons"], mesh.n_cells());
     assert_eq!(summary["notes"][0], NO_PICTURES_IN_SPACE);
@@ -79,8 +77,17 @@ fn block3d_gives_the_exact_uniform_state_and_its_files() {
     assert!(pvd.contains("file=\"block.vtu\""), "{pvd}");
     let vtu = std::fs::read(dir.join("block.vtu")).unwrap();
     let head = String::from_utf8_lossy(&vtu[..vtu.len().min(4000)]);
-    for name in ["faces", "faceoffsets", "stress_xx_yy_zz", "stress_yz_xz_xy", "von_mises"] {
-        assert!(head.contains(&format!("Name=\"{name}\"")), "{name} in {head}");
+    for name in [
+        "faces",
+        "faceoffsets",
+        "stress_xx_yy_zz",
+        "stress_yz_xz_xy",
+        "von_mises",
+    ] {
+        assert!(
+            head.contains(&format!("Name=\"{name}\"")),
+            "{name} in {head}"
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

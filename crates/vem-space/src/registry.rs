@@ -357,7 +357,7 @@ impl Registry<Arc<dyn Stabilisation>> {
 
 /// Stabilisations of the lowest-order VEM on polyhedra by name: the same names and settings as
 /// [`StabilisationRegistry`], with their three-dimensional scalings
-/// ([`crate::stabilisation3`]).
+/// ([`crate::PolyhedralStabilisation`]).
 pub type PolyhedralStabilisationRegistry = Registry<Arc<dyn PolyhedralStabilisation>>;
 
 impl Registry<Arc<dyn PolyhedralStabilisation>> {
