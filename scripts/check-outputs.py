@@ -3,7 +3,8 @@
 against the run's own contact.csv: every VTU file of the collection results.pvd opens in both,
 each interface dataset has a point per row of its contact table (contact.csv, or
 contact_NNNN.csv of a load history's step) with the same values, and every body
-file has its displacement. Exits non-zero on any difference.
+file has its displacement, read alike by both, on as many cells in both (polyhedra, VTK type 42,
+for a scene in space). Exits non-zero on any difference.
 
 Usage: PYTHON scripts/check-outputs.py OUT_DIR   (PYTHON from scripts/install-vtu-check.sh)
 """
@@ -68,6 +69,38 @@ def _patched_parse_raw_binary(filename):
 
 meshio_vtu._parse_raw_binary = _patched_parse_raw_binary
 
+def _patched_polyhedron_cells_from_data(offsets, faces, faceoffsets, cell_data_raw):
+    """meshio 5.3.5's reader of polyhedra (VTK type 42), with two fixes. It shapes every
+    DataArray by its NumberOfComponents attribute, so the `faces`, `faceoffsets` and `offsets`
+    streams, which VTK writes with NumberOfComponents="1" as any single-component array, come in
+    as columns (n x 1) and its loop over them fails ("only integer scalar arrays can be converted
+    to a scalar index"): they are flattened here. And it groups the cells into blocks by their
+    number of vertices in order of first appearance but their cell data in increasing order of
+    that number, so the data of a block can be another block's ("Incompatible cell data"): here
+    both are grouped by the same key in the same (increasing) order. VTK and ParaView read the
+    files as written."""
+    offsets, faces, faceoffsets = (numpy.ravel(a) for a in (offsets, faces, faceoffsets))
+    sizes = numpy.diff(numpy.hstack((0, offsets)))
+    starts = numpy.append([0], faceoffsets[:-1])
+    cells, cell_data = {}, {}
+    for size in numpy.unique(sizes):
+        items = numpy.where(sizes == size)[0]
+        block = []
+        for c in items:
+            at, cell = starts[c] + 1, []
+            for _ in range(int(faces[starts[c]])):
+                n = int(faces[at])
+                cell.append(numpy.array(faces[at + 1 : at + 1 + n], dtype=int))
+                at += n + 1
+            block.append(cell)
+        cells[f"polyhedron{size}"] = block
+        for name, values in cell_data_raw.items():
+            cell_data.setdefault(name, []).append(values[items])
+    return cells, cell_data
+
+
+meshio_vtu._polyhedron_cells_from_data = _patched_polyhedron_cells_from_data
+
 
 def vtk_read(path):
     reader = vtk.vtkXMLUnstructuredGridReader()
@@ -107,6 +140,20 @@ def main():
                                          f"unlike {table.name}")
         elif "displacement" not in mesh.point_data:
             raise SystemExit(f"check-outputs: {path}: no displacement")
+        else:
+            by_vtk = vtk_to_numpy(grid.GetPointData().GetArray("displacement"))
+            by_meshio = numpy.asarray(mesh.point_data["displacement"])
+            if by_meshio.shape != by_vtk.shape or not numpy.array_equal(by_meshio, by_vtk):
+                raise SystemExit(f"check-outputs: {path}: meshio and VTK read the displacement "
+                                 "differently")
+            cells = sum(len(block.data) for block in mesh.cells)
+            if cells != grid.GetNumberOfCells():
+                raise SystemExit(f"check-outputs: {path}: meshio reads {cells} cells, VTK "
+                                 f"{grid.GetNumberOfCells()}")
+            polyhedra = sum(1 for k in range(grid.GetNumberOfCells()) if grid.GetCellType(k) == 42)
+            if polyhedra and (polyhedra != cells or by_vtk.shape[1] != 3):
+                raise SystemExit(f"check-outputs: {path}: a body in space is all polyhedra "
+                                 "with a displacement of 3 components")
     print(f"check-outputs: {len(datasets)} datasets of {out} agree "
           f"(VTK {vtk.vtkVersion.GetVTKVersion()}, meshio {meshio.__version__})")
 

@@ -48,9 +48,14 @@ impl Model {
         &self.model
     }
 
-    /// The bodies, in the order of the scene file.
+    /// The bodies in the plane, in the order of the scene file (none in a scene in space).
     pub fn bodies(&self) -> &[ModelBody] {
         self.model.bodies()
+    }
+
+    /// The bodies in space, in the order of the scene file (none in a scene in the plane).
+    pub fn bodies_3d(&self) -> &[ModelBody<3>] {
+        self.model.bodies_3d()
     }
 
     /// Solves the scene.
@@ -79,6 +84,31 @@ impl Model {
                         .parts()
                         .iter()
                         .map(|p| (p.name.clone(), p.edges.len()))
+                        .collect(),
+                    quality: mesh.quality(),
+                    material: vem_scene::describe_material(&b.body),
+                    element: b.element.clone(),
+                    conditions: describe_conditions(spec),
+                    warnings: b.warnings.clone(),
+                }
+            })
+            .collect();
+        let bodies_3d = self
+            .model
+            .bodies_3d()
+            .iter()
+            .zip(&scene.bodies)
+            .map(|(b, spec)| {
+                let mesh = b.body.mesh();
+                CheckedBody {
+                    name: b.body.name().to_string(),
+                    mesh_source: b.mesh_source.clone(),
+                    vertices: mesh.n_vertices(),
+                    polygons: mesh.n_cells(),
+                    parts: mesh
+                        .parts()
+                        .iter()
+                        .map(|p| (p.name.clone(), p.faces.len()))
                         .collect(),
                     quality: mesh.quality(),
                     material: vem_scene::describe_material(&b.body),
@@ -142,6 +172,7 @@ impl Model {
             scene: self.scene.path().display().to_string(),
             title: self.scene.title(),
             bodies,
+            bodies_3d,
             contacts,
             solver: self.model.solver().name.clone(),
             notes: self
@@ -188,9 +219,11 @@ fn describe_conditions(spec: &vem_scene::description::BodyDescription) -> Vec<St
     lines
 }
 
-/// What `vem check` reports for one body.
+/// What `vem check` reports for one body: in the plane, or in space with the figures of
+/// polyhedra (`CheckedBody<PolyhedralQualitySummary>`; `polygons` are then its polyhedra and
+/// the parts count faces).
 #[derive(Debug, Clone)]
-pub struct CheckedBody {
+pub struct CheckedBody<Q = vem_mesh::quality::QualitySummary> {
     /// Name.
     pub name: String,
     /// Where the mesh came from.
@@ -199,10 +232,10 @@ pub struct CheckedBody {
     pub vertices: usize,
     /// Polygons.
     pub polygons: usize,
-    /// Boundary parts and their numbers of edges.
+    /// Boundary parts and their numbers of edges (faces in space).
     pub parts: Vec<(String, usize)>,
-    /// A1 figures.
-    pub quality: vem_mesh::quality::QualitySummary,
+    /// A1 figures (shape-regularity figures of the polyhedra in space).
+    pub quality: Q,
     /// The material.
     pub material: String,
     /// The element (and its stabilisation).
@@ -211,6 +244,41 @@ pub struct CheckedBody {
     pub conditions: Vec<String>,
     /// Warnings about the body's model (a locking element close to incompressibility).
     pub warnings: Vec<String>,
+}
+
+/// One body of `vem check`; `words`: what its parts count, what its cells are, the title of
+/// its quality figures.
+fn write_body<Q: fmt::Display>(
+    f: &mut fmt::Formatter<'_>,
+    b: &CheckedBody<Q>,
+    words: [&str; 3],
+) -> fmt::Result {
+    let [pieces, cells, quality] = words;
+    writeln!(f, "\nbody '{}': {}", b.name, b.mesh_source)?;
+    let parts: Vec<String> = b
+        .parts
+        .iter()
+        .map(|(name, count)| format!("{name} ({count} {pieces})"))
+        .collect();
+    writeln!(
+        f,
+        "  {} vertices, {} {cells}; parts: {}",
+        b.vertices,
+        b.polygons,
+        parts.join(", ")
+    )?;
+    writeln!(f, "  material: {}; element: {}", b.material, b.element)?;
+    for warning in &b.warnings {
+        writeln!(f, "  warning: {warning}")?;
+    }
+    for c in &b.conditions {
+        writeln!(f, "  {c}")?;
+    }
+    writeln!(f, "  {quality}:")?;
+    for line in b.quality.to_string().lines() {
+        writeln!(f, "    {line}")?;
+    }
+    Ok(())
 }
 
 /// What `vem check` reports for a contact pair.
@@ -233,8 +301,10 @@ pub struct CheckReport {
     pub scene: String,
     /// Its title.
     pub title: String,
-    /// Every body.
+    /// Every body in the plane.
     pub bodies: Vec<CheckedBody>,
+    /// Every body in space.
+    pub bodies_3d: Vec<CheckedBody<vem_mesh::polyhedral::quality::PolyhedralQualitySummary>>,
     /// Every contact pair.
     pub contacts: Vec<CheckedContact>,
     /// The contact solver's registry name.
@@ -250,30 +320,10 @@ impl fmt::Display for CheckReport {
             writeln!(f, "note: {note}")?;
         }
         for b in &self.bodies {
-            writeln!(f, "\nbody '{}': {}", b.name, b.mesh_source)?;
-            let parts: Vec<String> = b
-                .parts
-                .iter()
-                .map(|(name, edges)| format!("{name} ({edges} edges)"))
-                .collect();
-            writeln!(
-                f,
-                "  {} vertices, {} polygons; parts: {}",
-                b.vertices,
-                b.polygons,
-                parts.join(", ")
-            )?;
-            writeln!(f, "  material: {}; element: {}", b.material, b.element)?;
-            for warning in &b.warnings {
-                writeln!(f, "  warning: {warning}")?;
-            }
-            for c in &b.conditions {
-                writeln!(f, "  {c}")?;
-            }
-            writeln!(f, "  mesh quality (A1):")?;
-            for line in b.quality.to_string().lines() {
-                writeln!(f, "    {line}")?;
-            }
+            write_body(f, b, ["edges", "polygons", "mesh quality (A1)"])?;
+        }
+        for b in &self.bodies_3d {
+            write_body(f, b, ["faces", "polyhedra", "mesh quality"])?;
         }
         writeln!(f)?;
         if self.contacts.is_empty() {

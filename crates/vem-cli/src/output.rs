@@ -59,6 +59,9 @@ impl Outcome {
 
     /// Writes every output file into the existing folder `dir`.
     fn write_into(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        if self.dimension() == 3 {
+            return self.write_into_3d(dir);
+        }
         let start = Instant::now();
         let mesh_error = |path: &Path| {
             let context = path.display().to_string();

@@ -23,6 +23,7 @@ use crate::description::{
 };
 use crate::error::one_line;
 use crate::resources::{Footprint, LimitOrigin, MemoryLimit};
+use crate::space::BuiltMesh;
 use crate::{KeyPath, SceneError};
 
 /// The names a scene may use for its elements, contact laws and solvers: the built-in ones
@@ -61,11 +62,12 @@ impl Default for BuildOptions {
     }
 }
 
-/// One body as built: its elastic body, where its mesh came from, its element in words.
+/// One body as built: its elastic body (in the plane, or in space for `D = 3`), where its mesh
+/// came from, its element in words.
 #[derive(Debug, Clone)]
-pub struct ModelBody {
+pub struct ModelBody<const D: usize = 2> {
     /// The elastic body.
-    pub body: ElasticBody,
+    pub body: ElasticBody<D>,
     /// Where the mesh came from ("voronoi, n = 16, seed 1, on [0, 1] x [0, 1]" or a file).
     pub mesh_source: String,
     /// The element, in words ("vem1: lowest-order VEM ...").
@@ -98,6 +100,7 @@ pub struct ModelContact {
 pub struct Model {
     pub(crate) checked: Checked,
     pub(crate) bodies: Vec<ModelBody>,
+    pub(crate) bodies_3d: Vec<ModelBody<3>>,
     pub(crate) contacts: Vec<ModelContact>,
     /// The contact problem of the bodies in contact (`None` without a contact pair) and, for
     /// each of its bodies, the index in [`Model::bodies`].
@@ -155,7 +158,48 @@ impl Model {
                 .collect::<Result<Vec<_>, _>>()
         })?;
         let mesh_time = start.elapsed();
-        let mut meshes = meshes;
+        // The meshes decide the dimension: the checks that depend on it, then the bodies in
+        // space apart.
+        let dimensions: Vec<usize> = meshes.iter().map(|(m, _, _)| m.dimension()).collect();
+        let known: Vec<Option<usize>> = dimensions.iter().map(|&d| Some(d)).collect();
+        crate::check::check_one_dimension(scene, &known)?;
+        crate::check::check_dimensions(scene, &dimensions)?;
+        if dimensions.first() == Some(&3) {
+            check_memory_of_meshes_3d(&meshes, &limit)?;
+            let mut bodies_3d = Vec::with_capacity(meshes.len());
+            for (i, (spec, (mesh, source, _))) in scene.bodies.iter().zip(meshes).enumerate() {
+                let BuiltMesh::Space(mesh) = mesh else {
+                    continue;
+                };
+                let path = KeyPath::key("body").index(i);
+                bodies_3d.push(crate::space::build_body(
+                    spec,
+                    mesh,
+                    source,
+                    &options.registries.elements,
+                    scene,
+                    &path,
+                )?);
+            }
+            let solver = solver_choice(scene);
+            return Ok(Self {
+                checked,
+                bodies: Vec::new(),
+                bodies_3d,
+                contacts: Vec::new(),
+                problem: None,
+                solver,
+                registries: options.registries.clone(),
+                mesh_time,
+            });
+        }
+        let mut meshes: Vec<(Mesh, String, Option<f64>)> = meshes
+            .into_iter()
+            .filter_map(|(mesh, source, predicted)| match mesh {
+                BuiltMesh::Plane(mesh) => Some((mesh, source, predicted)),
+                BuiltMesh::Space(_) => None,
+            })
+            .collect();
         // The locking-free default inserts the edge midpoints before the memory check: on
         // triangles they multiply the unknowns by about 4.
         let mut midpoints = vec![false; meshes.len()];
@@ -224,6 +268,7 @@ impl Model {
         Ok(Self {
             checked,
             bodies,
+            bodies_3d: Vec::new(),
             contacts,
             problem,
             solver,
@@ -247,9 +292,23 @@ impl Model {
         self.checked.written(path)
     }
 
-    /// The bodies, in the order of the scene.
+    /// The bodies in the plane, in the order of the scene (none in a scene in space).
     pub fn bodies(&self) -> &[ModelBody] {
         &self.bodies
+    }
+
+    /// The bodies in space, in the order of the scene (none in a scene in the plane).
+    pub fn bodies_3d(&self) -> &[ModelBody<3>] {
+        &self.bodies_3d
+    }
+
+    /// The dimension of the scene's bodies: 2 (in the plane) or 3 (in space).
+    pub fn dimension(&self) -> usize {
+        if self.bodies_3d.is_empty() {
+            2
+        } else {
+            3
+        }
     }
 
     /// The contact pairs, in the order of the scene.
@@ -405,6 +464,9 @@ fn check_planned_memory(scene: &Scene, limit: &MemoryLimit) -> Result<(), SceneE
         if spec.mesh.file.is_some() {
             continue; // a file: counted once read
         }
+        if spec.mesh.cuboid.is_some() {
+            continue; // in space: counted once generated
+        }
         let path = KeyPath::key("body").index(i);
         let (n, _, _) = generated_size(scene, spec, &path)?;
         let (family, rect) = generator(spec, &path)?;
@@ -452,6 +514,26 @@ fn check_memory_of_meshes(
         .fold(Footprint::default(), |sum, (mesh, _, _)| {
             sum + Footprint::of_mesh(mesh)
         });
+    check_footprint(total, limit)
+}
+
+/// Refuses meshes in space whose run would not fit the memory limit.
+fn check_memory_of_meshes_3d(
+    meshes: &[(BuiltMesh, String, Option<f64>)],
+    limit: &MemoryLimit,
+) -> Result<(), SceneError> {
+    let total = meshes
+        .iter()
+        .filter_map(|(m, _, _)| match m {
+            BuiltMesh::Space(mesh) => Some(Footprint::of_polyhedral_mesh(mesh)),
+            BuiltMesh::Plane(_) => None,
+        })
+        .fold(Footprint::default(), |sum, f| sum + f);
+    check_footprint(total, limit)
+}
+
+/// Refuses a run of the footprint `total` beyond the limit.
+fn check_footprint(total: Footprint, limit: &MemoryLimit) -> Result<(), SceneError> {
     limit
         .check(
             total.run_bytes(),
@@ -469,8 +551,13 @@ fn build_mesh(
     spec: &BodyDescription,
     path: &KeyPath,
     base: &Path,
-) -> Result<(Mesh, String, Option<f64>), SceneError> {
+) -> Result<(BuiltMesh, String, Option<f64>), SceneError> {
     let name = &spec.name;
+    if spec.mesh.cuboid.is_some() {
+        let (mesh, source) = crate::space::generate(spec, path)?;
+        let mesh = crate::space::with_sub_parts(mesh, spec, path)?;
+        return Ok((BuiltMesh::Space(mesh), source, None));
+    }
     if let Some(file) = &spec.mesh.file {
         let at = path.at("mesh").at("file");
         let full = base.join(file);
@@ -479,7 +566,22 @@ fn build_mesh(
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         let read = match extension.as_deref() {
-            Some("msh") => vem_mesh::io::read_gmsh(&full),
+            Some("msh") => {
+                let read = crate::space::read_gmsh(&full)
+                    .map_err(|e| SceneError::at(at.clone(), format!("body '{name}': {e}")))?;
+                return match read {
+                    BuiltMesh::Plane(mesh) => Ok((
+                        BuiltMesh::Plane(with_sub_parts(mesh, spec, path)?),
+                        format!("mesh file {file}"),
+                        None,
+                    )),
+                    BuiltMesh::Space(mesh) => Ok((
+                        BuiltMesh::Space(crate::space::with_sub_parts(mesh, spec, path)?),
+                        format!("mesh file {file} (volume elements)"),
+                        None,
+                    )),
+                };
+            }
             Some("vtu") | Some("vtk") => {
                 read_vtk(&full, &spec.mesh.part_names).map_err(|reason| vem_mesh::MeshError::Read {
                     path: full.clone(),
@@ -499,7 +601,7 @@ fn build_mesh(
         }
         .map_err(|e| SceneError::at(at.clone(), format!("body '{name}': {e}")))?;
         let read = with_sub_parts(read, spec, path)?;
-        return Ok((read, format!("mesh file {file}"), None));
+        return Ok((BuiltMesh::Plane(read), format!("mesh file {file}"), None));
     }
     let (n, chosen, predicted) = generated_size(scene, spec, path)?;
     let (family, rect) = generator(spec, path)?;
@@ -515,7 +617,7 @@ fn build_mesh(
     let (a, b) = (rect.min, rect.max);
     let generated = with_sub_parts(generated, spec, path)?;
     Ok((
-        generated,
+        BuiltMesh::Plane(generated),
         format!(
             "{family}, n = {n}{chosen}{random}, on [{}, {}] x [{}, {}]",
             a.x, b.x, a.y, b.y
@@ -817,7 +919,7 @@ pub const NEARLY_INCOMPRESSIBLE: f64 = 0.45;
 pub const LOCKING_FREE: &str = "vem1-bbar";
 
 /// The built-in elements that lock as Poisson's ratio tends to 1/2.
-const LOCKING: [&str; 4] = ["vem1", "vem1-shear", "vem1-drecipe", "p1"];
+pub(crate) const LOCKING: [&str; 4] = ["vem1", "vem1-shear", "vem1-drecipe", "p1"];
 
 /// Poisson's ratio of an isotropic material in plane strain when it exceeds
 /// [`NEARLY_INCOMPRESSIBLE`]; `None` otherwise (plane stress does not lock: its in-plane ratio

@@ -18,8 +18,30 @@ pub const LARGEST: f64 = 1e100;
 pub const SMALLEST: f64 = 1e-100;
 /// The largest `[output] width`, in pixels.
 pub const MAX_WIDTH: f64 = 20_000.0;
-/// The dimension of the bodies a scene describes today (the 3D floors take more).
+/// The dimension of a scene whose meshes say nothing else (a `rectangle`, a planar file).
 pub const DIMENSION: usize = 2;
+
+/// The dimension a body's mesh declares before it is generated or read: 3 for a generated
+/// `box`, 2 for a generated `rectangle` and for the planar file formats (VTK, PolyMesher);
+/// `None` for a Gmsh file, whose elements decide (surfaces in the plane, volumes in space).
+pub fn declared_dimension(body: &BodyDescription) -> Option<usize> {
+    let mesh = &body.mesh;
+    if mesh.cuboid.is_some() {
+        return Some(3);
+    }
+    if mesh.rectangle.is_some() {
+        return Some(2);
+    }
+    let file = mesh.file.as_deref()?;
+    let extension = std::path::Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("msh") => None,
+        _ => Some(2),
+    }
+}
 
 /// A scene in its current form: every earlier key folded into its new place.
 #[derive(Debug, Clone)]
@@ -122,16 +144,110 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
         positive(gib, &KeyPath::key("limits").at("memory_gib"))?;
     }
     crate::history::check_history(scene)?;
-    for (k, body) in scene.bodies.iter().enumerate() {
-        check_body_expressions(body, &KeyPath::key("body").index(k))?;
-    }
-    for (k, contact) in scene.contacts.iter().enumerate() {
-        if let Some(gap) = &contact.imposed_gap {
-            check_scalar(gap, &KeyPath::key("contact").index(k).at("imposed_gap"))?;
-        }
+    let declared: Vec<Option<usize>> = scene.bodies.iter().map(declared_dimension).collect();
+    check_one_dimension(scene, &declared)?;
+    // Gmsh files tell their dimension when read: the rest is checked then
+    // ([`check_dimensions`], by the build).
+    if let Some(dimensions) = declared.iter().copied().collect::<Option<Vec<usize>>>() {
+        check_dimensions(scene, &dimensions)?;
     }
     check_ranges(&checked)?;
     Ok(checked)
+}
+
+/// The bodies of a scene all live in one dimension: the first body of another dimension than
+/// the first body's is an error at its mesh (`dimensions[i]`: body i's, `None` when not known
+/// yet).
+pub fn check_one_dimension(scene: &Scene, dimensions: &[Option<usize>]) -> Result<(), SceneError> {
+    let mut first: Option<(usize, usize)> = None;
+    for (i, dimension) in dimensions.iter().enumerate() {
+        let Some(d) = *dimension else { continue };
+        match first {
+            None => first = Some((i, d)),
+            Some((j, e)) if e != d => {
+                return Err(SceneError::at(
+                    KeyPath::key("body").index(i).at("mesh"),
+                    format!(
+                        "body '{}' is {} ({}) but body '{}' is {}: the bodies of a scene live \
+                         in one dimension",
+                        scene.bodies[i].name,
+                        in_words(d),
+                        what_decides(&scene.bodies[i]),
+                        scene.bodies[j].name,
+                        in_words(e)
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(())
+}
+
+/// "in the plane", "in space".
+fn in_words(dimension: usize) -> &'static str {
+    if dimension == 3 {
+        "in space"
+    } else {
+        "in the plane"
+    }
+}
+
+/// What decides a body's dimension, for messages.
+fn what_decides(body: &BodyDescription) -> &'static str {
+    if body.mesh.cuboid.is_some() {
+        "its mesh is generated on a `box`"
+    } else if body.mesh.rectangle.is_some() {
+        "its mesh is generated on a `rectangle`"
+    } else {
+        "its mesh file"
+    }
+}
+
+/// The checks that depend on the dimension of the bodies (`dimensions[i]`: body i's, 2 or 3):
+/// the length of every point, box and vector; `plane` (required in the plane, refused in
+/// space); `z` components (in space only); the coordinates of expressions; contact pairs (in
+/// the plane only, for now).
+///
+/// # Errors
+/// The first problem found, at its key.
+pub fn check_dimensions(scene: &Scene, dimensions: &[usize]) -> Result<(), SceneError> {
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let path = KeyPath::key("body").index(i);
+        let dimension = dimensions.get(i).copied().unwrap_or(DIMENSION);
+        check_body_in(body, &path, dimension)?;
+        check_body_expressions(body, &path, dimension)?;
+    }
+    for (k, contact) in scene.contacts.iter().enumerate() {
+        let path = KeyPath::key("contact").index(k);
+        let dimension = scene
+            .bodies
+            .iter()
+            .position(|b| b.name == contact.body)
+            .and_then(|i| dimensions.get(i).copied())
+            .unwrap_or(DIMENSION);
+        if dimension == 3 {
+            let what = if contact.obstacle.is_some() {
+                "against a rigid obstacle"
+            } else {
+                "between two bodies"
+            };
+            return Err(SceneError::at(
+                path,
+                format!(
+                    "contact of bodies in space ({what}, body '{}' part '{}') is not available \
+                     yet: a scene in three dimensions solves its bodies without contact; remove \
+                     the [[contact]] tables, or model the contact in the plane",
+                    contact.body, contact.part
+                ),
+            ));
+        }
+        check_contact_in(contact, &path, dimension)?;
+        if let Some(gap) = &contact.imposed_gap {
+            check_scalar(gap, &path.at("imposed_gap"), dimension)?;
+        }
+    }
+    Ok(())
 }
 
 /// `[body.stabilisation]` (earlier form) -> `element = { name = "vem1", stabilisation = .. }`.
@@ -425,21 +541,11 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
     let mesh = &body.mesh;
     let mesh_path = path.at("mesh");
     for (k, part) in mesh.parts.iter().enumerate() {
-        let at = mesh_path.at("parts").index(k);
-        let corners = at.at("box");
-        exact_len(part.bounds.len(), 2, &corners)?;
-        for (c, corner) in part.bounds.iter().enumerate() {
-            exact_len(corner.len(), DIMENSION, &corners.index(c))?;
-        }
-        if (0..DIMENSION).any(|i| part.bounds[0][i] > part.bounds[1][i]) {
-            return Err(SceneError::at(
-                corners,
-                format!(
-                    "body '{name}': the box of part '{}' has its lower corner above its upper one",
-                    part.name
-                ),
-            ));
-        }
+        exact_len(
+            part.bounds.len(),
+            2,
+            &mesh_path.at("parts").index(k).at("box"),
+        )?;
     }
     match (&mesh.family, &mesh.file) {
         (Some(_), Some(_)) | (None, None) => {
@@ -447,24 +553,62 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
                 mesh_path,
                 format!(
                     "body '{name}': the mesh needs either `family` (a generator, with `rectangle` \
-                     and `n`) or `file` (a mesh file), not both"
+                     or `box`, and `n`) or `file` (a mesh file), not both"
                 ),
             ))
         }
         (Some(family), None) => {
-            if let Err(e) = family.parse::<vem_mesh::generators::MeshFamily>() {
-                return Err(SceneError::at(mesh_path.at("family"), e.to_string()));
+            let (domain, key, dimension) = match (&mesh.rectangle, &mesh.cuboid) {
+                (Some(rectangle), None) => (rectangle, "rectangle", 2),
+                (None, Some(cuboid)) => (cuboid, "box", 3),
+                (Some(_), Some(_)) => {
+                    return Err(SceneError::at(
+                        mesh_path.at("box"),
+                        format!(
+                            "body '{name}': give `rectangle` (a mesh in the plane) or `box` (a \
+                             mesh in space), not both"
+                        ),
+                    ))
+                }
+                (None, None) => {
+                    return Err(SceneError::at(
+                        mesh_path,
+                        format!(
+                            "body '{name}': a generated mesh needs `rectangle = [[x0, y0], [x1, \
+                             y1]]` (in the plane) or `box = [[x0, y0, z0], [x1, y1, z1]]` (in \
+                             space)"
+                        ),
+                    ))
+                }
+            };
+            let parsed = if dimension == 3 {
+                family
+                    .parse::<vem_mesh::generators::polyhedral::PolyhedralFamily>()
+                    .map(|_| ())
+                    .map_err(|e| format!("{e} (the families of a `box`)"))
+            } else {
+                family
+                    .parse::<vem_mesh::generators::MeshFamily>()
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            };
+            if let Err(e) = parsed {
+                return Err(SceneError::at(mesh_path.at("family"), e));
             }
-            let Some(rectangle) = &mesh.rectangle else {
+            let corners = mesh_path.at(key);
+            exact_len(domain.len(), 2, &corners)?;
+            for (k, corner) in domain.iter().enumerate() {
+                exact_len(corner.len(), dimension, &corners.index(k))?;
+            }
+            if dimension == 3 && mesh.n.is_none() {
                 return Err(SceneError::at(
                     mesh_path,
-                    format!("body '{name}': a generated mesh needs `rectangle`"),
+                    format!(
+                        "body '{name}': a generated mesh in space needs `n` (the error model \
+                         that chooses it from `accuracy` or `target_error` is fitted in the \
+                         plane)"
+                    ),
                 ));
-            };
-            let corners = mesh_path.at("rectangle");
-            exact_len(rectangle.len(), 2, &corners)?;
-            for (k, corner) in rectangle.iter().enumerate() {
-                exact_len(corner.len(), DIMENSION, &corners.index(k))?;
             }
             if mesh.n.is_none() && scene.accuracy.is_none() && scene.target_error.is_none() {
                 return Err(SceneError::at(
@@ -483,12 +627,16 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
             }
         }
         (None, Some(_)) => {
-            if mesh.rectangle.is_some() || mesh.n.is_some() || mesh.seed.is_some() {
+            if mesh.rectangle.is_some()
+                || mesh.cuboid.is_some()
+                || mesh.n.is_some()
+                || mesh.seed.is_some()
+            {
                 return Err(SceneError::at(
                     mesh_path,
                     format!(
-                        "body '{name}': `rectangle`, `n` and `seed` belong to a generated mesh, \
-                         not to a mesh `file`"
+                        "body '{name}': `rectangle`, `box`, `n` and `seed` belong to a generated \
+                         mesh, not to a mesh `file`"
                     ),
                 ));
             }
@@ -510,15 +658,72 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
             format!("body '{name}': give the material as `E` and `nu`, or as `lambda` and `mu`"),
         ));
     }
-    if m.plane.is_none() {
-        return Err(SceneError::at(
-            path.at("material"),
-            format!(
-                "body '{name}': a two-dimensional body needs `plane = \"strain\"` or \
-                 `plane = \"stress\"`"
-            ),
-        ));
+    for (k, t) in body.traction.iter().enumerate() {
+        if t.value.is_some() == t.pressure.is_some() {
+            return Err(SceneError::at(
+                path.at("traction").index(k),
+                format!(
+                    "body '{name}': the traction on part '{}' needs either `value = [gx, gy]` \
+                     (`[gx, gy, gz]` in space) or `pressure = p`, not both",
+                    t.part
+                ),
+            ));
+        }
     }
+    Ok(())
+}
+
+/// The checks of a body that depend on its dimension (2 or 3).
+fn check_body_in(
+    body: &BodyDescription,
+    path: &KeyPath,
+    dimension: usize,
+) -> Result<(), SceneError> {
+    let name = &body.name;
+    let mesh_path = path.at("mesh");
+    for (k, part) in body.mesh.parts.iter().enumerate() {
+        let corners = mesh_path.at("parts").index(k).at("box");
+        for (c, corner) in part.bounds.iter().enumerate() {
+            exact_len(corner.len(), dimension, &corners.index(c))?;
+        }
+        if (0..dimension).any(|i| part.bounds[0][i] > part.bounds[1][i]) {
+            return Err(SceneError::at(
+                corners,
+                format!(
+                    "body '{name}': the box of part '{}' has its lower corner above its upper one",
+                    part.name
+                ),
+            ));
+        }
+    }
+    let space = dimension == 3;
+    match (body.material.plane.is_some(), space) {
+        (false, false) => {
+            return Err(SceneError::at(
+                path.at("material"),
+                format!(
+                    "body '{name}': a two-dimensional body needs `plane = \"strain\"` or \
+                     `plane = \"stress\"`"
+                ),
+            ))
+        }
+        (true, true) => {
+            return Err(SceneError::at(
+                path.at("material").at("plane"),
+                format!(
+                    "body '{name}': `plane` applies to a body in the plane; a body in space \
+                     ({}) takes the full three-dimensional law: remove `plane`",
+                    what_decides(body)
+                ),
+            ))
+        }
+        _ => {}
+    }
+    let components = if space {
+        "`x`, `y` or `z`"
+    } else {
+        "`x`, `y` or both"
+    };
     for (k, d) in body.dirichlet.iter().enumerate() {
         let at = path.at("dirichlet").index(k);
         if d.x.is_none() && d.y.is_none() && d.z.is_none() {
@@ -526,12 +731,12 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
                 at,
                 format!(
                     "body '{name}': the Dirichlet condition on part '{}' prescribes nothing: give \
-                     `x`, `y` or both",
+                     {components}",
                     d.part
                 ),
             ));
         }
-        if d.z.is_some() {
+        if d.z.is_some() && !space {
             return Err(SceneError::at(
                 at.at("z"),
                 format!("body '{name}': `z` does not apply to a two-dimensional body"),
@@ -541,16 +746,21 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
     for (k, r) in body.rigid_plate.iter().enumerate() {
         let at = path.at("rigid_plate").index(k);
         if r.resultant_x.is_none() && r.resultant_y.is_none() && r.resultant_z.is_none() {
+            let components = if space {
+                "`resultant_x`, `resultant_y` or `resultant_z`"
+            } else {
+                "`resultant_x`, `resultant_y` or both"
+            };
             return Err(SceneError::at(
                 at,
                 format!(
                     "body '{name}': the rigid plate on part '{}' prescribes nothing: give \
-                     `resultant_x`, `resultant_y` or both",
+                     {components}",
                     r.part
                 ),
             ));
         }
-        if r.resultant_z.is_some() {
+        if r.resultant_z.is_some() && !space {
             return Err(SceneError::at(
                 at.at("resultant_z"),
                 format!("body '{name}': `resultant_z` does not apply to a two-dimensional body"),
@@ -558,23 +768,12 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
         }
     }
     for (k, t) in body.traction.iter().enumerate() {
-        let at = path.at("traction").index(k);
-        if t.value.is_some() == t.pressure.is_some() {
-            return Err(SceneError::at(
-                at,
-                format!(
-                    "body '{name}': the traction on part '{}' needs either `value = [gx, gy]` or \
-                     `pressure = p`, not both",
-                    t.part
-                ),
-            ));
-        }
         if let Some(n) = t.value.as_ref().and_then(|v| v.len()) {
-            exact_len(n, DIMENSION, &at.at("value"))?;
+            exact_len(n, dimension, &path.at("traction").index(k).at("value"))?;
         }
     }
     if let Some(n) = body.body_force.as_ref().and_then(|v| v.len()) {
-        exact_len(n, DIMENSION, &path.at("body_force"))?;
+        exact_len(n, dimension, &path.at("body_force"))?;
     }
     Ok(())
 }
@@ -623,22 +822,6 @@ fn check_contact(
                      centre, radius }` or `polyline = [[x, y], ...]`",
                 ));
             }
-            if let Some(line) = &obstacle.line {
-                exact_len(line.point.len(), DIMENSION, &at.at("line").at("point"))?;
-                exact_len(line.normal.len(), DIMENSION, &at.at("line").at("normal"))?;
-            }
-            if let Some(circle) = &obstacle.circle {
-                exact_len(
-                    circle.centre.len(),
-                    DIMENSION,
-                    &at.at("circle").at("centre"),
-                )?;
-            }
-            if let Some(points) = &obstacle.polyline {
-                for (k, p) in points.iter().enumerate() {
-                    exact_len(p.len(), DIMENSION, &at.at("polyline").index(k))?;
-                }
-            }
             if contact.normal.is_some() {
                 return Err(SceneError::at(
                     path.at("normal"),
@@ -659,6 +842,35 @@ fn check_contact(
                 path.at("hertz"),
                 format!("hertz radius {} must be finite and positive", h.radius),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// The checks of a contact pair that depend on the dimension of its bodies.
+fn check_contact_in(
+    contact: &ContactDescription,
+    path: &KeyPath,
+    dimension: usize,
+) -> Result<(), SceneError> {
+    let Some(obstacle) = &contact.obstacle else {
+        return Ok(());
+    };
+    let at = path.at("obstacle");
+    if let Some(line) = &obstacle.line {
+        exact_len(line.point.len(), dimension, &at.at("line").at("point"))?;
+        exact_len(line.normal.len(), dimension, &at.at("line").at("normal"))?;
+    }
+    if let Some(circle) = &obstacle.circle {
+        exact_len(
+            circle.centre.len(),
+            dimension,
+            &at.at("circle").at("centre"),
+        )?;
+    }
+    if let Some(points) = &obstacle.polyline {
+        for (k, p) in points.iter().enumerate() {
+            exact_len(p.len(), dimension, &at.at("polyline").index(k))?;
         }
     }
     Ok(())
@@ -806,12 +1018,14 @@ fn check_ranges(checked: &Checked) -> Result<(), SceneError> {
 
 /// Every expression of the scene uses only the coordinates of its dimension and no `t`
 /// (values change along a load history by their curves).
-fn check_scalar(value: &ScalarValue, path: &KeyPath) -> Result<(), SceneError> {
-    if value.dimension_used() > DIMENSION {
+fn check_scalar(value: &ScalarValue, path: &KeyPath, dimension: usize) -> Result<(), SceneError> {
+    if value.dimension_used() > dimension {
+        let coordinates = if dimension == 3 { "x, y, z" } else { "x, y" };
         return Err(SceneError::at(
             path.clone(),
             format!(
-                "an expression of a coordinate beyond the scene's dimension {DIMENSION} (x, y)"
+                "an expression of a coordinate beyond the scene's dimension {dimension} \
+                 ({coordinates})"
             ),
         ));
     }
@@ -825,31 +1039,35 @@ fn check_scalar(value: &ScalarValue, path: &KeyPath) -> Result<(), SceneError> {
     Ok(())
 }
 
-fn check_vector(value: &VectorValue, path: &KeyPath) -> Result<(), SceneError> {
+fn check_vector(value: &VectorValue, path: &KeyPath, dimension: usize) -> Result<(), SceneError> {
     if let VectorValue::Components(components) = value {
         for (k, c) in components.iter().enumerate() {
-            check_scalar(c, &path.index(k))?;
+            check_scalar(c, &path.index(k), dimension)?;
         }
     }
     Ok(())
 }
 
-fn check_body_expressions(body: &BodyDescription, path: &KeyPath) -> Result<(), SceneError> {
+fn check_body_expressions(
+    body: &BodyDescription,
+    path: &KeyPath,
+    dimension: usize,
+) -> Result<(), SceneError> {
     for (k, d) in body.dirichlet.iter().enumerate() {
         let at = path.at("dirichlet").index(k);
         for (key, value) in [("x", &d.x), ("y", &d.y), ("z", &d.z)] {
             if let Some(value) = value {
-                check_scalar(value, &at.at(key))?;
+                check_scalar(value, &at.at(key), dimension)?;
             }
         }
     }
     for (k, t) in body.traction.iter().enumerate() {
         if let Some(value) = &t.value {
-            check_vector(value, &path.at("traction").index(k).at("value"))?;
+            check_vector(value, &path.at("traction").index(k).at("value"), dimension)?;
         }
     }
     if let Some(force) = &body.body_force {
-        check_vector(force, &path.at("body_force"))?;
+        check_vector(force, &path.at("body_force"), dimension)?;
     }
     Ok(())
 }

@@ -73,7 +73,8 @@ pub struct BodyDescription {
     /// Tractions by part (`[[body.traction]]`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub traction: Vec<TractionDescription>,
-    /// A body force per unit area (per unit volume in 3D): `[fx, fy]`, numbers or expressions.
+    /// A body force per unit area (per unit volume in 3D): `[fx, fy]` (`[fx, fy, fz]`),
+    /// numbers or expressions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body_force: Option<VectorValue>,
     /// The load curve of the body force along the history (as a condition's `curve`).
@@ -81,17 +82,24 @@ pub struct BodyDescription {
     pub body_force_curve: Option<Vec<[f64; 2]>>,
 }
 
-/// A mesh: generated (`family` with `rectangle`, `n`, `seed`) or read (`file`).
+/// A mesh: generated (`family` with `rectangle` in the plane or `box` in space, `n`, `seed`)
+/// or read (`file`). The mesh decides the dimension of its body: a `rectangle` or a planar
+/// file gives a body in the plane, a `box` or a Gmsh file of volume elements a body in space.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDescription {
-    /// A mesh family name ("quads", "triangles", "hexagons", "voronoi", "perturbed",
-    /// "perturbed:0.2", "nonconvex", "hanging").
+    /// A mesh family name: of a `rectangle` "quads", "triangles", "hexagons", "voronoi",
+    /// "perturbed", "perturbed:0.2", "nonconvex", "hanging"; of a `box` "hexahedra",
+    /// "tetrahedra", "perturbed-hexahedra", "perturbed-hexahedra:0.2", "voronoi", "nonconvex",
+    /// "octree".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub family: Option<String>,
-    /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh.
+    /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh in the plane.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rectangle: Option<Vec<Vec<f64>>>,
+    /// The box `[[x0, y0, z0], [x1, y1, z1]]` of a generated mesh in space.
+    #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
+    pub cuboid: Option<Vec<Vec<f64>>>,
     /// The size parameter of a generated mesh (about `n` cells across); may be left out when
     /// the scene gives `accuracy` or `target_error`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -99,9 +107,9 @@ pub struct MeshDescription {
     /// The seed of a random family (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
-    /// A mesh file, relative to the scene file: Gmsh `.msh` (4.1, 2.2), VTK `.vtu` or legacy
-    /// `.vtk` (polygons; boundary parts from line cells), or the PolyMesher/mVEM text layout
-    /// (`.txt`).
+    /// A mesh file, relative to the scene file: Gmsh `.msh` (4.1, 2.2; of surface elements in
+    /// the plane, of volume elements in space), VTK `.vtu` or legacy `.vtk` (polygons; boundary
+    /// parts from line cells), or the PolyMesher/mVEM text layout (`.txt`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
     /// VTK files: the names of the part numbers of the line cells (`{ 1 = "bottom" }`).
@@ -114,8 +122,9 @@ pub struct MeshDescription {
     pub parts: Vec<SubPartDescription>,
 }
 
-/// A boundary part made of the boundary edges whose two end points lie in a box (closed, to
-/// a round-off of the box's size), optionally only among the edges of an existing part.
+/// A boundary part made of the boundary edges (faces in space) whose end points (vertices) all
+/// lie in a box (closed, to a round-off of the box's size), optionally only among the edges
+/// (faces) of an existing part.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SubPartDescription {
@@ -124,12 +133,14 @@ pub struct SubPartDescription {
     /// The part its edges are taken from (default: the whole boundary).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub of: Option<String>,
-    /// The box `[[x0, y0], [x1, y1]]` the edges' end points lie in.
+    /// The box `[[x0, y0], [x1, y1]]` the edges' end points lie in (`[[x0, y0, z0], [x1, y1,
+    /// z1]]` the faces' vertices lie in, in space).
     #[serde(rename = "box")]
     pub bounds: Vec<Vec<f64>>,
 }
 
-/// An isotropic material: `E` and `nu`, or `lambda` and `mu`, and `plane`.
+/// An isotropic material: `E` and `nu`, or `lambda` and `mu`, and `plane` in the plane (a body
+/// in space takes the full three-dimensional law, without `plane`).
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDescription {
@@ -145,7 +156,7 @@ pub struct MaterialDescription {
     /// Shear modulus.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mu: Option<f64>,
-    /// Plane strain or plane stress (two-dimensional bodies).
+    /// Plane strain or plane stress (two-dimensional bodies only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plane: Option<PlaneDescription>,
 }
@@ -243,7 +254,7 @@ pub struct RigidPlateDescription {
 pub struct TractionDescription {
     /// The boundary part.
     pub part: String,
-    /// A traction `[gx, gy]`: numbers or expressions.
+    /// A traction `[gx, gy]` (`[gx, gy, gz]` in space): numbers or expressions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<VectorValue>,
     /// A normal pressure, positive compressive (a number).

@@ -65,6 +65,7 @@ mod error;
 mod history;
 pub mod resources;
 mod solve;
+mod space;
 #[cfg(feature = "toml")]
 pub mod toml_file;
 mod value;

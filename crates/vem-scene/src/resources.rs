@@ -76,6 +76,23 @@ impl Footprint {
         }
     }
 
+    /// The footprint of a polyhedral mesh in memory, in the terms of the planar model: the
+    /// cells as polygons, their vertices as corners, `(3 k)^2` entries for a cell of `k`
+    /// vertices, and 3/2 planar vertices per vertex (three unknowns, not two). The model's
+    /// constants are fitted to planar runs; a factor in space fills more per unknown, so this
+    /// is a floor, not the measured peak of a run in space.
+    pub fn of_polyhedral_mesh(mesh: &vem_mesh::PolyhedralMesh) -> Self {
+        let (corners, entries) = (0..mesh.n_cells())
+            .map(|c| mesh.cell_vertices(c).len() as f64)
+            .fold((0.0, 0.0), |(c, e), k| (c + k, e + 9.0 * k * k));
+        Self {
+            polygons: mesh.n_cells() as f64,
+            vertices: 1.5 * mesh.n_vertices() as f64,
+            corners,
+            element_entries: entries,
+        }
+    }
+
     /// Bytes to hold the mesh.
     pub fn mesh_bytes(&self) -> f64 {
         MESH_BYTES_PER_CORNER * self.corners + BYTES_PER_VERTEX * self.vertices

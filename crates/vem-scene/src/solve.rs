@@ -12,6 +12,7 @@ use vem_contact::{
     ModelSummary, NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
+use vem_mesh::polyhedral::quality::CellQuality;
 use vem_mesh::quality::ElementQuality;
 use vem_mesh::Vector;
 use vem_space::Choice;
@@ -20,25 +21,28 @@ use crate::build::{locate_contact, locate_elastic, Model};
 use crate::error::one_line;
 use crate::{Deprecation, KeyPath, SceneError};
 
-/// One body after the solve.
+/// One body after the solve: in the plane (`SolvedBody`), or in space with the figures of its
+/// polyhedra (`SolvedBody<3, CellQuality>`).
 #[derive(Debug, Clone)]
-pub struct SolvedBody {
+pub struct SolvedBody<const D: usize = 2, Q = ElementQuality> {
     /// The body on the mesh that was solved (with the inserted interface nodes for a body in
     /// contact).
-    pub body: ElasticBody,
+    pub body: ElasticBody<D>,
     /// Displacement, reactions, strain energy.
-    pub solution: Solution,
+    pub solution: Solution<D>,
     /// Strain, stress and von Mises stress of every element.
     pub fields: Vec<ElementField>,
-    /// The A1 figures of every element.
-    pub qualities: Vec<ElementQuality>,
+    /// The shape-regularity figures of every element (A1 in the plane).
+    pub qualities: Vec<Q>,
 }
 
 /// The result of solving a scene, with its summary.
 #[derive(Debug, Clone)]
 pub struct Outcome {
-    /// Every body, in the order of the scene.
+    /// Every body in the plane, in the order of the scene (none in a scene in space).
     pub bodies: Vec<SolvedBody>,
+    /// Every body in space, in the order of the scene (none in a scene in the plane).
+    pub bodies_3d: Vec<SolvedBody<3, CellQuality>>,
     /// The contact result of the bodies in contact (its `bodies` have been moved into
     /// [`Outcome::bodies`]; nodes, report, fixed point and model summary are here).
     pub contact: Option<ContactResult>,
@@ -50,13 +54,23 @@ pub struct Outcome {
     pub steps: Vec<HistoryStep>,
     /// What was computed.
     pub summary: RunSummary,
-    started: Instant,
+    pub(crate) started: Instant,
 }
 
 impl Outcome {
-    /// The solved body named `name`.
+    /// The solved body in the plane named `name`.
     pub fn body(&self, name: &str) -> Option<&SolvedBody> {
         self.bodies.iter().find(|b| b.body.name() == name)
+    }
+
+    /// The solved body in space named `name`.
+    pub fn body_3d(&self, name: &str) -> Option<&SolvedBody<3, CellQuality>> {
+        self.bodies_3d.iter().find(|b| b.body.name() == name)
+    }
+
+    /// The dimension of the bodies: 2 (in the plane) or 3 (in space).
+    pub fn dimension(&self) -> usize {
+        self.summary.dimension
     }
 
     /// Sets the time spent writing outputs and the total time (from the start of the mesh
@@ -73,12 +87,17 @@ impl Outcome {
 pub struct RunSummary {
     /// The scene's title.
     pub title: String,
+    /// The dimension of the bodies: 2 (in the plane) or 3 (in space; `polygons` of a body are
+    /// then its polyhedra).
+    pub dimension: usize,
     /// Every body.
     pub bodies: Vec<BodySummary>,
     /// The contact pairs, if any.
     pub contact: Option<ContactSummary>,
     /// Earlier keys of the scene and their new places.
     pub deprecations: Vec<Deprecation>,
+    /// Notes about the run, one sentence each (outputs left out and why).
+    pub notes: Vec<String>,
     /// Wall-clock times.
     pub times: RunTimes,
 }
@@ -96,7 +115,7 @@ pub struct BodySummary {
     pub vertices: usize,
     /// Vertices inserted by the interface node insertion.
     pub inserted_vertices: usize,
-    /// Polygons.
+    /// Polygons (polyhedra in space).
     pub polygons: usize,
     /// Unknowns (free degrees of freedom).
     pub free_dofs: usize,
@@ -320,7 +339,7 @@ fn contact_zone(nodes: &[InterfaceNode]) -> (f64, [f64; 2]) {
 }
 
 /// Young's modulus and Poisson's ratio of an isotropic body.
-pub fn young_poisson(body: &ElasticBody) -> Option<(f64, f64)> {
+pub fn young_poisson<const D: usize>(body: &ElasticBody<D>) -> Option<(f64, f64)> {
     body.material().lame().map(|(lambda, mu)| {
         (
             mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu),
@@ -329,9 +348,11 @@ pub fn young_poisson(body: &ElasticBody) -> Option<(f64, f64)> {
     })
 }
 
-/// "E = 1, nu = 0.3, plane strain" (isotropic) for reports.
-pub fn describe_material(body: &ElasticBody) -> String {
+/// "E = 1, nu = 0.3, plane strain" (isotropic) for reports; "E = 1, nu = 0.3, in space" for a
+/// body in space.
+pub fn describe_material<const D: usize>(body: &ElasticBody<D>) -> String {
     let plane = match body.material().plane() {
+        _ if D == 3 => "in space",
         Some(Plane::Strain) => "plane strain",
         Some(Plane::Stress) => "plane stress",
         None => "general",
@@ -366,7 +387,7 @@ pub fn short(value: f64) -> String {
 }
 
 /// `value` with a negative zero turned into 0, so that reports do not print "-0".
-fn tidy(value: f64) -> f64 {
+pub(crate) fn tidy(value: f64) -> f64 {
     value + 0.0
 }
 
@@ -425,6 +446,9 @@ impl Model {
     pub fn solve(&self) -> Result<Outcome, SceneError> {
         let now = Instant::now();
         let started = now.checked_sub(self.mesh_time).unwrap_or(now);
+        if self.dimension() == 3 {
+            return crate::space::solve(self, started);
+        }
         let scene = self.scene();
         let mut slots: Vec<Option<(ElasticBody, Solution)>> = vec![None; self.bodies.len()];
         let mut times = RunTimes {
@@ -569,6 +593,7 @@ impl Model {
         let summary = self.summarise(&bodies, contact.as_ref(), times, history);
         Ok(Outcome {
             bodies,
+            bodies_3d: Vec::new(),
             contact,
             contact_bodies,
             steps: earlier_steps,
@@ -682,9 +707,11 @@ impl Model {
                 .title
                 .clone()
                 .unwrap_or_else(|| "scene".to_string()),
+            dimension: 2,
             bodies: body_summaries,
             contact: contact_summary,
             deprecations: self.deprecations().to_vec(),
+            notes: Vec::new(),
             times,
         }
     }
@@ -701,6 +728,11 @@ impl fmt::Display for RunSummary {
         for note in &self.deprecations {
             writeln!(f, "  note: {note}")?;
         }
+        let cells = if self.dimension == 3 {
+            "polyhedra"
+        } else {
+            "polygons"
+        };
         for b in &self.bodies {
             let inserted = if b.inserted_vertices > 0 {
                 format!(" ({} inserted at the interface)", b.inserted_vertices)
@@ -709,7 +741,7 @@ impl fmt::Display for RunSummary {
             };
             writeln!(
                 f,
-                "  body '{}': {}; {} vertices{inserted}, {} polygons, {} DOFs ({} prescribed); \
+                "  body '{}': {}; {} vertices{inserted}, {} {cells}, {} DOFs ({} prescribed); \
                  h = {:.3e}, gamma = {:.3}",
                 b.name,
                 b.mesh,
@@ -755,6 +787,9 @@ impl fmt::Display for RunSummary {
         }
         let Some(c) = &self.contact else {
             writeln!(f, "  no contact: plain linear elasticity")?;
+            for note in &self.notes {
+                writeln!(f, "  note: {note}")?;
+            }
             return self.write_times(f);
         };
         for pair in &c.model.pairs {
@@ -879,6 +914,9 @@ impl fmt::Display for RunSummary {
                 h.peak_pressure,
                 100.0 * h.peak_pressure_error()
             )?;
+        }
+        for note in &self.notes {
+            writeln!(f, "  note: {note}")?;
         }
         self.write_times(f)
     }

@@ -81,7 +81,8 @@ pub use polygon::PolygonGeometry;
 pub use polyhedral::{face_traction_load, PolyhedralElement, SolidElement, SpaceField};
 pub use polyhedron::PolyhedronGeometry;
 pub use registry::{
-    Choice, ElementRegistry, Factory, Registry, RegistryError, StabilisationRegistry,
+    Choice, ElementRegistry, Factory, PolyhedralStabilisationRegistry, Registry, RegistryError,
+    StabilisationRegistry,
 };
 pub use stabilisation::{BBar, DRecipe, DofiDofi, Stabilisation, StabilisationScaling};
 pub use stabilisation3::{

@@ -13,7 +13,8 @@ use std::sync::Arc;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::{
-    BBar, DRecipe, DofiDofi, ElementSpace, LinearTriangle, LowestOrderVem, Options, OptionsError,
+    BBar, DRecipe, DofiDofi, ElementSpace, LinearTetrahedron, LinearTriangle, LowestOrderVem,
+    Options, OptionsError, PolyhedralElement, PolyhedralStabilisation, PolyhedralVem,
     Stabilisation, StabilisationScaling,
 };
 
@@ -341,48 +342,77 @@ impl Registry<Arc<dyn Stabilisation>> {
 
     /// The stabilisations of this crate.
     pub fn builtin_stabilisations() -> Self {
-        let mut registry = Self::empty("stabilisation");
-        type Builtin = (&'static str, &'static str, Factory<Arc<dyn Stabilisation>>);
-        let builtin: [Builtin; 3] = [
-            (
-                "dofi-dofi",
+        builtin_stabilisations_of(
+            [
                 "S = alpha I, alpha = scale * trace(C) (scaling \"trace\", the default) or scale * 5 mu (\"shear\"); scale 1/8",
-                Arc::new(|o: &Options, _: &()| {
-                    let s: DofiDofiSettings = o.parse()?;
-                    let scaling = match s.scaling {
-                        None | Some(ScalingName::Trace) => StabilisationScaling::TraceOfC,
-                        Some(ScalingName::Shear) => StabilisationScaling::ShearModulus,
-                    };
-                    let scale = s.scale.unwrap_or(DofiDofi::DEFAULT_SCALE);
-                    let made = DofiDofi::try_new(scaling, scale)
-                        .map_err(|e| OptionsError::at("scale", e.to_string()))?;
-                    Ok(Arc::new(made) as Arc<dyn Stabilisation>)
-                }),
-            ),
-            (
-                "drecipe",
                 "S = diag(K_c) (Beirao da Veiga, Dassi, Russo 2017)",
-                Arc::new(|o: &Options, _: &()| {
-                    o.refuse_all("the D-recipe")?;
-                    Ok(Arc::new(DRecipe) as Arc<dyn Stabilisation>)
-                }),
-            ),
-            (
-                "bbar",
                 "locking-free: alpha = min(trace(C), 3 trace(C_dev))/8",
-                Arc::new(|o: &Options, _: &()| {
-                    o.refuse_all("bbar")?;
-                    Ok(Arc::new(BBar) as Arc<dyn Stabilisation>)
-                }),
-            ),
-        ];
-        for (name, summary, factory) in builtin {
-            registry
-                .register_with(name, summary, move |o, c| factory(o, c))
-                .expect("built-in names are valid and distinct");
-        }
-        registry
+            ],
+            |s| Arc::new(s) as Arc<dyn Stabilisation>,
+            || Arc::new(DRecipe) as Arc<dyn Stabilisation>,
+            || Arc::new(BBar) as Arc<dyn Stabilisation>,
+        )
     }
+}
+
+/// Stabilisations of the lowest-order VEM on polyhedra by name: the same names and settings as
+/// [`StabilisationRegistry`], with their three-dimensional scalings
+/// ([`crate::PolyhedralStabilisation`]).
+pub type PolyhedralStabilisationRegistry = Registry<Arc<dyn PolyhedralStabilisation>>;
+
+impl Registry<Arc<dyn PolyhedralStabilisation>> {
+    /// The stabilisations of this crate on polyhedra: `"dofi-dofi"` (settings `scaling`,
+    /// `scale`), `"drecipe"`, `"bbar"`.
+    pub fn builtin_polyhedral_stabilisations() -> Self {
+        builtin_stabilisations_of(
+            [
+                "S = alpha I, alpha = scale * trace(C) l_E/6 (scaling \"trace\", the default) or scale * 9 mu l_E/6 (\"shear\"); scale 1/8, l_E = h_E/sqrt(3)",
+                "S_ii = max(K_c,ii, floor): the D-recipe on polyhedra",
+                "locking-free: alpha = min(trace(C), 3 trace(C_dev)) l_E/48",
+            ],
+            |s| Arc::new(s) as Arc<dyn PolyhedralStabilisation>,
+            || Arc::new(DRecipe) as Arc<dyn PolyhedralStabilisation>,
+            || Arc::new(BBar) as Arc<dyn PolyhedralStabilisation>,
+        )
+    }
+}
+
+/// The three built-in stabilisations as items of type `T` (2D or 3D trait objects), with
+/// their summaries in the order dofi-dofi, drecipe, bbar.
+fn builtin_stabilisations_of<T: 'static>(
+    summaries: [&'static str; 3],
+    dofi: fn(DofiDofi) -> T,
+    drecipe: fn() -> T,
+    bbar: fn() -> T,
+) -> Registry<T> {
+    let mut registry = Registry::empty("stabilisation");
+    let [dofi_summary, drecipe_summary, bbar_summary] = summaries;
+    registry
+        .register_with("dofi-dofi", dofi_summary, move |o: &Options, _: &()| {
+            let s: DofiDofiSettings = o.parse()?;
+            let scaling = match s.scaling {
+                None | Some(ScalingName::Trace) => StabilisationScaling::TraceOfC,
+                Some(ScalingName::Shear) => StabilisationScaling::ShearModulus,
+            };
+            let scale = s.scale.unwrap_or(DofiDofi::DEFAULT_SCALE);
+            let made = DofiDofi::try_new(scaling, scale)
+                .map_err(|e| OptionsError::at("scale", e.to_string()))?;
+            Ok(dofi(made))
+        })
+        .and_then(|r| {
+            r.register_with("drecipe", drecipe_summary, move |o: &Options, _: &()| {
+                o.refuse_all("the D-recipe")?;
+                Ok(drecipe())
+            })
+        })
+        .and_then(|r| {
+            r.register_with("bbar", bbar_summary, move |o: &Options, _: &()| {
+                o.refuse_all("bbar")?;
+                Ok(bbar())
+            })
+        })
+        .expect("built-in names are valid and distinct");
+    registry
 }
 
 /// Element types by name, each with a one-line summary and a factory from settings; the
@@ -414,6 +444,8 @@ impl Registry<Arc<dyn Stabilisation>> {
 pub struct ElementRegistry {
     elements: Registry<Arc<dyn ElementSpace>, StabilisationRegistry>,
     stabilisations: StabilisationRegistry,
+    polyhedral: Registry<Arc<dyn PolyhedralElement>, PolyhedralStabilisationRegistry>,
+    polyhedral_stabilisations: PolyhedralStabilisationRegistry,
 }
 
 impl Default for ElementRegistry {
@@ -440,6 +472,9 @@ impl ElementRegistry {
         Self {
             elements: Registry::empty("element"),
             stabilisations: StabilisationRegistry::builtin_stabilisations(),
+            polyhedral: Registry::empty("element in 3D"),
+            polyhedral_stabilisations:
+                PolyhedralStabilisationRegistry::builtin_polyhedral_stabilisations(),
         }
     }
 
@@ -514,7 +549,137 @@ impl ElementRegistry {
                 )
             })
             .expect("built-in names are valid and distinct");
+        registry.register_builtin_polyhedral();
         registry
+    }
+
+    /// The elements on polyhedra, under the names of their planar counterparts: `"vem1"`
+    /// ([`PolyhedralVem`], setting `stabilisation` as in 2D), `"vem1-shear"`, `"vem1-drecipe"`,
+    /// `"vem1-bbar"` and `"p1"` ([`LinearTetrahedron`], tetrahedra only).
+    fn register_builtin_polyhedral(&mut self) {
+        let fixed = |stabilisation: Arc<dyn PolyhedralStabilisation>, what: &'static str| {
+            move |o: &Options, _: &PolyhedralStabilisationRegistry| {
+                o.refuse_all(what)?;
+                let element = PolyhedralVem::try_new(Arc::clone(&stabilisation))
+                    .map_err(|e| OptionsError::at("", e.to_string()))?;
+                Ok(Arc::new(element) as Arc<dyn PolyhedralElement>)
+            }
+        };
+        self.polyhedral
+            .register_with(
+                "vem1",
+                "lowest-order VEM, any polyhedron; stabilisation by setting (default dofi-dofi, alpha = trace(C) l_E/48)",
+                |o: &Options, stabilisations: &PolyhedralStabilisationRegistry| {
+                    let settings: VemSettings = o.parse()?;
+                    let stabilisation = match settings.stabilisation {
+                        None => Arc::new(DofiDofi::default()) as Arc<dyn PolyhedralStabilisation>,
+                        Some(choice) => stabilisations.make_choice(&choice).map_err(|e| {
+                            let path = match e.option_path() {
+                                Some("") | None => "stabilisation".to_string(),
+                                Some(p) => format!("stabilisation.{p}"),
+                            };
+                            OptionsError::at(path, e.to_string())
+                        })?,
+                    };
+                    let element = PolyhedralVem::try_new(stabilisation)
+                        .map_err(|e| OptionsError::at("stabilisation", e.to_string()))?;
+                    Ok(Arc::new(element) as Arc<dyn PolyhedralElement>)
+                },
+            )
+            .and_then(|r| {
+                r.register_with(
+                    "vem1-shear",
+                    "lowest-order VEM, any polyhedron; dofi-dofi stabilisation alpha = 9 mu l_E/48",
+                    fixed(
+                        Arc::new(DofiDofi::new(StabilisationScaling::ShearModulus)),
+                        "vem1-shear",
+                    ),
+                )
+            })
+            .and_then(|r| {
+                r.register_with(
+                    "vem1-drecipe",
+                    "lowest-order VEM, any polyhedron; D-recipe stabilisation S = diag(K_c)",
+                    fixed(Arc::new(DRecipe), "vem1-drecipe"),
+                )
+            })
+            .and_then(|r| {
+                r.register_with(
+                    "vem1-bbar",
+                    "lowest-order VEM, any polyhedron; locking-free: alpha = min(trace(C), 3 trace(C_dev)) l_E/48",
+                    fixed(Arc::new(BBar), "vem1-bbar"),
+                )
+            })
+            .and_then(|r| {
+                r.register_with(
+                    "p1",
+                    "linear tetrahedron (P1 finite element), tetrahedra only",
+                    |o: &Options, _: &PolyhedralStabilisationRegistry| {
+                        o.refuse_all("p1")?;
+                        Ok(Arc::new(LinearTetrahedron) as Arc<dyn PolyhedralElement>)
+                    },
+                )
+            })
+            .expect("built-in names are valid and distinct");
+    }
+
+    /// The names of the elements on polyhedra, in registration order.
+    pub fn polyhedral_names(&self) -> Vec<&str> {
+        self.polyhedral.names()
+    }
+
+    /// The one-line summary of the element on polyhedra `name`, if registered.
+    pub fn polyhedral_summary(&self, name: &str) -> Option<&str> {
+        self.polyhedral.summary(name)
+    }
+
+    /// The element on polyhedra of a [`Choice`]; an unknown name lists the known ones.
+    ///
+    /// ```
+    /// use vem_space::{Choice, ElementRegistry, Options};
+    /// let registry = ElementRegistry::builtin();
+    /// assert_eq!(registry.polyhedral_names(), ["vem1", "vem1-shear", "vem1-drecipe", "vem1-bbar", "p1"]);
+    /// let drecipe = Choice::with_options(
+    ///     "vem1",
+    ///     Options::new().with("stabilisation", "drecipe"),
+    /// );
+    /// assert_eq!(registry.make_polyhedral_choice(&drecipe)?.name(), "vem1-drecipe");
+    /// # Ok::<(), vem_space::RegistryError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`RegistryError::UnknownName`] listing the known names, [`RegistryError::Options`]
+    /// naming the refused setting.
+    pub fn make_polyhedral_choice(
+        &self,
+        choice: &Choice,
+    ) -> Result<Arc<dyn PolyhedralElement>, RegistryError> {
+        self.polyhedral.make_in(
+            &choice.name,
+            &choice.options,
+            &self.polyhedral_stabilisations,
+        )
+    }
+
+    /// Adds the element on polyhedra `name` built from its settings by `factory` (which may
+    /// look up the stabilisations on polyhedra by name).
+    ///
+    /// # Errors
+    /// As [`ElementRegistry::register`].
+    pub fn register_polyhedral(
+        &mut self,
+        name: impl Into<String>,
+        summary: impl Into<String>,
+        factory: impl Fn(
+                &Options,
+                &PolyhedralStabilisationRegistry,
+            ) -> Result<Arc<dyn PolyhedralElement>, OptionsError>
+            + Send
+            + Sync
+            + 'static,
+    ) -> Result<&mut Self, RegistryError> {
+        self.polyhedral.register_with(name, summary, factory)?;
+        Ok(self)
     }
 
     /// Adds the element `name` with a one-line `summary`, built by `factory` (it takes no
@@ -628,6 +793,35 @@ mod tests {
             assert_eq!(registry.make(name).unwrap().name(), name);
             assert!(!registry.summary(name).unwrap().is_empty());
         }
+        // The same names on polyhedra, each element named as registered.
+        assert_eq!(registry.polyhedral_names(), registry.names());
+        for name in registry.polyhedral_names() {
+            let element = registry
+                .make_polyhedral_choice(&Choice::named(name))
+                .unwrap();
+            assert_eq!(element.name(), name);
+            assert!(!registry.polyhedral_summary(name).unwrap().is_empty());
+        }
+        let shear = Choice::with_options(
+            "vem1",
+            Options::new().with(
+                "stabilisation",
+                serde_json::json!({ "name": "dofi-dofi", "scaling": "shear" }),
+            ),
+        );
+        assert_eq!(
+            registry.make_polyhedral_choice(&shear).unwrap().name(),
+            "vem1-shear"
+        );
+        let bad = Choice::with_options(
+            "vem1",
+            Options::new().with(
+                "stabilisation",
+                serde_json::json!({ "name": "dofi-dofi", "scale": -1.0 }),
+            ),
+        );
+        let error = registry.make_polyhedral_choice(&bad).err().unwrap();
+        assert_eq!(error.option_path(), Some("stabilisation.scale"));
         assert!(registry.contains(ElementRegistry::DEFAULT));
     }
 

@@ -1,0 +1,167 @@
+//! `vem run` on a scene in space: the shipped `block3d.toml` (a Voronoi block on rollers,
+//! pulled and pressed) gives its exact uniform state to 1e-10, its reactions balance the
+//! loads in `reactions.csv` and `summary.json`, the bodies are written as VTU polyhedra with
+//! a collection and no picture (a note says why); bad input in space is located in the file.
+
+use std::path::{Path, PathBuf};
+
+use vem_cli::{CliError, Model, Scene, NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
+use vem_mesh::Vector3;
+
+fn scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(format!("{name}.toml"))
+}
+
+#[test]
+fn block3d_gives_the_exact_uniform_state_and_its_files() {
+    let dir = std::env::temp_dir().join(format!("vem-cli-space-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let (outcome, files) = vem_cli::run(&scene("block3d"), Some(&dir)).unwrap();
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        ["block.vtu", "results.pvd", "reactions.csv", "summary.json"]
+    );
+    for file in &files {
+        assert!(file.is_file(), "{}", file.display());
+    }
+    // The exact state: sigma_xx = 0.5, sigma_zz = -0.2 (E = 100, nu = 0.3), u linear.
+    let (e, nu, sx, sz) = (100.0, 0.3, 0.5, -0.2);
+    let strain = Vector3::new((sx - nu * sz) / e, -nu * (sx + sz) / e, (sz - nu * sx) / e);
+    let block = outcome.body_3d("block").unwrap();
+    let mesh = block.body.mesh();
+    assert!(mesh.n_cells() > 20, "a Voronoi mesh of polyhedra");
+    for (v, u) in block.solution.vertex_displacements().iter().enumerate() {
+        let p = mesh.vertex(v);
+        let exact = Vector3::new(strain.x * p.x, strain.y * p.y, strain.z * p.z);
+        assert!(
+            (u - exact).norm() < 1e-10 * strain.norm(),
+            "vertex {v}: {u:?}"
+        );
+    }
+    for field in &block.fields {
+        let s = field.stress;
+        assert!((s[(0, 0)] - sx).abs() < 1e-10 && (s[(2, 2)] - sz).abs() < 1e-10);
+        assert!(s[(1, 1)].abs() < 1e-10 && s[(0, 1)].abs() < 1e-10 && s[(1, 2)].abs() < 1e-10);
+    }
+    // reactions.csv: the left roller carries the pull 0.5 x area 1, the bottom the pressure
+    // 0.2 x area 2; the front nothing.
+    let table = std::fs::read_to_string(dir.join("reactions.csv")).unwrap();
+    let mut lines = table.lines();
+    assert_eq!(lines.next(), Some(REACTION_COLUMNS));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 3);
+    let force = |row: &[&str], k: usize| row[4 + k].parse::<f64>().unwrap();
+    assert_eq!(rows[0][1], "left");
+    assert!((force(&rows[0], 0) + 0.5).abs() < 1e-10);
+    assert_eq!(rows[2][1], "bottom");
+    assert!((force(&rows[2], 2) - 0.4).abs() < 1e-10);
+    assert!((0..3).all(|k| force(&rows[1], k).abs() < 1e-10));
+    // summary.json: the dimension, the polyhedra and the note about the pictures.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["dimension"], 3);
+    assert_eq!(summary["bodies"][0]["polygons"], mesh.n_cells());
+    assert_eq!(summary["notes"][0], NO_PICTURES_IN_SPACE);
+    let energy = summary["bodies"][0]["strain_energy"].as_f64().unwrap();
+    let exact = 0.5 * 2.0 * (sx * strain.x + sz * strain.z);
+    assert!((energy / exact - 1.0).abs() < 1e-10, "{energy}");
+    // The collection lists the body's file; the file holds polyhedra (VTK type 42) with their
+    // faces (the readers of meshio and VTK are run on it by scripts/check-outputs.py in CI).
+    let pvd = std::fs::read_to_string(dir.join("results.pvd")).unwrap();
+    assert!(pvd.contains("file=\"block.vtu\""), "{pvd}");
+    let vtu = std::fs::read(dir.join("block.vtu")).unwrap();
+    let head = String::from_utf8_lossy(&vtu[..vtu.len().min(4000)]);
+    for name in [
+        "faces",
+        "faceoffsets",
+        "stress_xx_yy_zz",
+        "stress_yz_xz_xy",
+        "von_mises",
+    ] {
+        assert!(
+            head.contains(&format!("Name=\"{name}\"")),
+            "{name} in {head}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Parses and builds `text` as the scene `bad.toml`; returns the error.
+fn error_of(text: &str) -> CliError {
+    match Scene::parse("bad.toml", text).and_then(|scene| Model::build(&scene)) {
+        Ok(_) => panic!("the scene was accepted:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+/// `error` is at the line and column of `needle` in `text` and says `words`.
+fn assert_located(error: &CliError, text: &str, needle: &str, words: &str) {
+    let start = text.find(needle).expect("needle in text");
+    let line = text[..start].matches('\n').count() + 1;
+    let column = start - text[..start].rfind('\n').map_or(0, |i| i + 1) + 1;
+    let shown = error.to_string();
+    assert!(
+        shown.starts_with(&format!("bad.toml:{line}:{column}: ")),
+        "{shown}"
+    );
+    assert!(shown.contains(words), "'{words}' missing from: {shown}");
+}
+
+#[test]
+fn bad_input_in_space_is_located_in_the_file() {
+    let block = std::fs::read_to_string(scene("block3d")).unwrap();
+    // A key of the plane in space.
+    let text = block.replace("nu = 0.3 }", "nu = 0.3, plane = \"stress\" }");
+    assert_located(
+        &error_of(&text),
+        &text,
+        "\"stress\"",
+        "`plane` applies to a body in the plane",
+    );
+    // An unknown part of a body in space lists the six sides.
+    let text = block.replace("part = \"front\"", "part = \"frnt\"");
+    assert_located(
+        &error_of(&text),
+        &text,
+        "\"frnt\"",
+        "no boundary part named 'frnt'; its mesh has ['left', 'right', 'front', 'back', 'bottom', 'top']",
+    );
+    // A vector of the plane in space.
+    let text = block.replace("[0.5, 0.0, 0.0]", "[0.5, 0.0]");
+    assert_located(
+        &error_of(&text),
+        &text,
+        "[0.5, 0.0]",
+        "an array of 2 entries where exactly 3 are expected",
+    );
+    // Contact between two bodies in space: not available yet, at the pair.
+    let text = format!(
+        "{block}\n[[body]]\nname = \"base\"\nmesh = {{ family = \"hexahedra\", box = [[0, 0, -1], [2, 1, 0]], n = 2 }}\nmaterial = {{ E = 100.0, nu = 0.3 }}\ndirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0, z = 0.0 }}]\n\n[[contact]]\nbody = \"block\"\npart = \"bottom\"\nother_body = \"base\"\nother_part = \"top\"\n"
+    );
+    assert_located(
+        &error_of(&text),
+        &text,
+        "[[contact]]",
+        "contact of bodies in space (between two bodies, body 'block' part 'bottom') is not available yet",
+    );
+    // `z` in the plane.
+    let text = r#"
+[[body]]
+name = "a"
+mesh = { family = "quads", rectangle = [[0, 0], [1, 1]], n = 2 }
+material = { E = 1.0, nu = 0.3, plane = "strain" }
+dirichlet = [{ part = "left", x = "0.1 * z" }]
+"#;
+    assert_located(
+        &error_of(text),
+        text,
+        "\"0.1 * z\"",
+        "an expression of a coordinate beyond the scene's dimension 2 (x, y)",
+    );
+}
