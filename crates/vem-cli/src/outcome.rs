@@ -23,6 +23,9 @@ pub struct Outcome {
     pub(crate) magnification: Option<f64>,
     /// The scene's `[output] width`.
     pub(crate) output_width: Option<f64>,
+    /// The Coulomb coefficient of every contact pair whose law is `coulomb` (`None` for the
+    /// others), for the Cattaneo-Mindlin curve of the pressure plot.
+    pub(crate) coulomb_coefficients: Vec<Option<f64>>,
     /// The scene's `[output] length_unit`.
     pub(crate) length_unit: Option<String>,
     /// The scene's `[output] stress_unit`.
@@ -47,11 +50,24 @@ impl Outcome {
                     .collect()
             })
         });
+        let coulomb_coefficients = scene
+            .file()
+            .contacts
+            .iter()
+            .map(|c| {
+                let law = c.law.as_ref().filter(|law| law.name == "coulomb")?;
+                law.options
+                    .get("coefficient")
+                    .and_then(|v| v.as_f64())
+                    .or(c.coefficient)
+            })
+            .collect();
         let output = &scene.file().output;
         Self {
             inner,
             obstacles,
             friction_bounds,
+            coulomb_coefficients,
             magnification: output.magnification,
             output_width: output.width,
             length_unit: output.length_unit.clone(),

@@ -115,6 +115,37 @@ impl Outcome {
             .map_err(mesh_error(&path))?;
             written.push(path);
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.first());
+            // Cattaneo-Mindlin beside the friction traction of a Hertz pair with Coulomb
+            // friction carrying a tangential load.
+            let cattaneo = hertz.and_then(|h| {
+                let coefficient = self.coulomb_coefficients.get(h.pair).copied().flatten()?;
+                let tangential_load: f64 = contact
+                    .nodes
+                    .iter()
+                    .filter(|n| n.pair == h.pair)
+                    .map(|n| n.friction_t())
+                    .sum();
+                // Along a load history the last state is Cattaneo-Mindlin's only where the
+                // tangential load is back at the largest of the history, within 1 % (Mindlin
+                // and Deresiewicz: reaching it again erases the unloading's memory).
+                let history = self
+                    .summary
+                    .contact
+                    .as_ref()
+                    .map_or(&[][..], |c| &c.history[..]);
+                let largest = history
+                    .iter()
+                    .map(|s| s.force_on_body_a.first().copied().unwrap_or(0.0).abs())
+                    .fold(0.0, f64::max);
+                let back_at_largest = tangential_load.abs() >= (1.0 - 1e-2) * largest;
+                (coefficient > 0.0
+                    && tangential_load.abs() > 1e-9 * coefficient * h.load
+                    && back_at_largest)
+                    .then_some(plot::CattaneoMindlin {
+                        coefficient,
+                        tangential_load,
+                    })
+            });
             let path = dir.join("pressure.svg");
             plot::pressure(
                 &path,
@@ -122,6 +153,7 @@ impl Outcome {
                 &contact.nodes,
                 hertz,
                 self.friction_bounds.clone(),
+                cattaneo,
                 width,
             )?;
             written.push(path);
