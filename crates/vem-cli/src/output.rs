@@ -995,6 +995,42 @@ mod tests {
     }
 
     #[test]
+    fn automatic_magnification_draws_the_largest_displacement_visibly() {
+        // Extent 2, largest 1e-3: 8 % of 2 is 0.16 = 160 times the displacement, rounded
+        // down to 100; the drawn displacement is then 5 % of the extent.
+        assert_eq!(automatic_magnification(2.0, 1e-3), 100.0);
+        let m = automatic_magnification(2.0, 1e-3);
+        assert!(m * 1e-3 <= AUTO_DISPLACEMENT_FRACTION * 2.0);
+        assert!(m * 1e-3 > 0.4 * AUTO_DISPLACEMENT_FRACTION * 2.0);
+        // Never below 1: a large displacement is drawn at true scale, not shrunk.
+        assert_eq!(automatic_magnification(2.0, 0.5), 1.0);
+        // Nothing moves: 1.
+        assert_eq!(automatic_magnification(2.0, 0.0), 1.0);
+    }
+
+    #[test]
+    fn obstacles_are_translated_whole() {
+        let shift = Vector::new(0.0, -0.25);
+        let Obstacle::Circle { centre, radius } = translated(
+            &Obstacle::Circle {
+                centre: Point::new(1.0, 2.0),
+                radius: 3.0,
+            },
+            shift,
+        ) else {
+            panic!("a circle stays a circle");
+        };
+        assert_eq!((centre, radius), (Point::new(1.0, 1.75), 3.0));
+        let Obstacle::Polyline(points) = translated(
+            &Obstacle::Polyline(vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)]),
+            shift,
+        ) else {
+            panic!("a polyline stays a polyline");
+        };
+        assert_eq!(points, [Point::new(0.0, -0.25), Point::new(1.0, -0.25)]);
+    }
+
+    #[test]
     fn line_obstacle_is_a_band_below_the_bodies() {
         let floor = Obstacle::Line {
             point: Point::new(0.0, 0.0),

@@ -617,8 +617,8 @@ fn cell_size_in_pixels(mesh: &Mesh, scale: f64) -> f64 {
     (area / n as f64).sqrt() * scale
 }
 
-/// Ticks at 1, 2 or 5 times a power of ten in `[lo, hi]`, about `count` of them, and their
-/// step.
+/// Ticks at multiples of 1, 2 or 5 times a power of ten in `[lo, hi]`, the step nearest
+/// `(hi - lo) / count`, and the step.
 fn nice_ticks(lo: f64, hi: f64, count: usize) -> (Vec<f64>, f64) {
     let span = hi - lo;
     if !(span > 0.0 && span.is_finite()) {
@@ -626,11 +626,12 @@ fn nice_ticks(lo: f64, hi: f64, count: usize) -> (Vec<f64>, f64) {
     }
     let raw = span / count.max(1) as f64;
     let power = 10f64.powf(raw.log10().floor());
+    // The round step nearest the even one (in ratio).
     let step = [1.0, 2.0, 5.0, 10.0]
         .into_iter()
         .map(|m| m * power)
-        .find(|&s| s >= raw * (1.0 - 1e-9))
-        .unwrap_or(10.0 * power);
+        .min_by(|a, b| (a / raw).ln().abs().total_cmp(&(b / raw).ln().abs()))
+        .unwrap_or(power);
     let first = (lo / step - 1e-9).ceil() as i64;
     let last = (hi / step + 1e-9).floor() as i64;
     let ticks = (first..=last).map(|k| k as f64 * step).collect();
@@ -1060,6 +1061,32 @@ mod tests {
         // Clamped outside the range, middle colour for a single value.
         assert_eq!(colour_of(-3.0, (0.0, 1.0)), "#440154");
         assert_eq!(colour_of(2.0, (2.0, 2.0)), "#21908d");
+    }
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        let (ticks, step) = nice_ticks(0.0, 1.0, 5);
+        assert_eq!(step, 0.2);
+        assert_eq!(ticks.len(), 6);
+        assert!((ticks[5] - 1.0).abs() < 1e-15);
+        // A step of 0.02125 rounds to 0.02, not up to 0.05.
+        let (ticks, step) = nice_ticks(-0.013, 0.072, 4);
+        assert_eq!(step, 0.02);
+        assert_eq!(ticks, [0.0, 0.02, 0.04, 0.06]);
+        assert_eq!(axis_label(0.05, 0.05), "0.05");
+        assert_eq!(axis_label(-2.0, 1.0), "-2");
+        assert_eq!(axis_label(3.0e-6, 1.0e-6), "3e-6");
+        assert_eq!(axis_label(1.5e5, 5.0e4), "1.5e5");
+    }
+
+    #[test]
+    fn titles_wrap_without_losing_words() {
+        let lines = wrap("one two three four", 9);
+        assert_eq!(lines, ["one two", "three", "four"]);
+        assert_eq!(
+            wrap("averyveryverylongword x", 5),
+            ["averyveryverylongword", "x"]
+        );
     }
 
     #[test]
