@@ -540,7 +540,7 @@ mod tests {
         let exact = cases.make("E1", Lame::default()).unwrap();
         let pairing: MeshPairing = "quads".parse().unwrap();
         let result = Study::new(exact, pairing)
-            .sizes(&[4, 8, 16])
+            .sizes([4, 8, 16])
             .expect(Expectation::OPTIMAL_RATES)
             .run()
             .unwrap();
