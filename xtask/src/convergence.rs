@@ -17,7 +17,7 @@ use vem_space::{ElementRegistry, ElementSpace};
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::Lame;
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
-use vem_verify::study::{Expectation, MeshPairing, Study, StudyResult};
+use vem_verify::study::{Expectation, MeshPairing, SizeRecord, Study, StudyResult};
 
 /// Options of `cargo xtask convergence`.
 #[derive(Debug, Args)]
@@ -229,8 +229,8 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         parts.push(format!("{} studies in the plane", results.len()));
     }
     if let Some(element) = solid_element {
+        // One line per series was printed as it finished; the tables are in the report.
         let outcome = three_d::run(&plan.solid, args.quick, element, &bars, &style)?;
-        println!("{}", three_d::summary_markdown(&outcome));
         if outcome.quick {
             println!("{}\n", three_d::quick_note());
         }
@@ -243,6 +243,10 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         let default_run =
             plan.solid == three_d::DEFAULT_CASES && !args.quick && args.element == DEFAULT_ELEMENT;
         three_d::write(&outcome, &args.out, &command_options(args), default_run)?;
+        println!(
+            "the full tables (errors per size, rates per step, times): {}",
+            args.out.join("convergence-3d.md").display()
+        );
         eprintln!(
             "wrote {}/convergence-3d.md, convergence-3d.json and convergence-3d/*.svg",
             args.out.display()
@@ -286,7 +290,8 @@ fn run_studies(
         .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;
     let cases = CaseRegistry::builtin();
     let mut results: Vec<StudyResult> = Vec::with_capacity(planned.len());
-    for p in planned {
+    let total = planned.len();
+    for (k, p) in planned.iter().enumerate() {
         let exact = cases.make(&p.case, Lame::default())?;
         let pairing: MeshPairing = p.pairing.parse()?;
         let study = Study::new(exact, pairing.clone())
@@ -306,9 +311,12 @@ fn run_studies(
         let bar = bars.add(ProgressBar::new(p.sizes.iter().map(|&n| weight(n)).sum()));
         bar.set_style(style.clone());
         bar.set_prefix(study.title());
+        let label = format!("[{}/{total}] {} on {}", k + 1, p.case, p.pairing);
+        bars.suspend(|| eprintln!("{label}: sizes n = {}", join(p.sizes)));
         let result = study.run_with(|record| {
             bar.inc(weight(record.n[0] / pairing.bodies()[0].factor));
             bar.set_message(format!("n = {:?}", record.n));
+            bars.suspend(|| eprintln!("{}", progress_line(&label, record)));
         })?;
         bar.finish_with_message(if result.verdict.passed {
             "pass"
@@ -317,16 +325,19 @@ fn run_studies(
         });
         let plot = plots.join(format!("{}-{}.svg", result.case, result.slug));
         write_plot(&plot, &result)?;
-        bars.suspend(|| println!("{}", study_markdown(&result)));
         results.push(result);
     }
     let seconds = start.elapsed().as_secs_f64();
     let passed = results.iter().all(|r| r.verdict.passed);
-    println!("{}", summary_markdown(&results));
+    println!("{}", console_summary(&results));
     println!(
         "{} studies in the plane in {seconds:.0} s: {}",
         results.len(),
         verdict_line(passed)
+    );
+    println!(
+        "the full tables (errors per size, contact diagnostics, times): {}",
+        args.out.join("convergence.md").display()
     );
     write_text(
         args.out.join("convergence.md"),
@@ -341,6 +352,104 @@ fn run_studies(
         args.out.display()
     );
     Ok(results)
+}
+
+/// `8, 16, 32`.
+fn join(sizes: &[usize]) -> String {
+    sizes
+        .iter()
+        .map(usize::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// One line of progress: a size of a study measured, with its time and size.
+fn progress_line(label: &str, record: &SizeRecord) -> String {
+    let n: Vec<String> = record.n.iter().map(usize::to_string).collect();
+    format!(
+        "{label}: n = {} done in {:.1} s ({} unknowns, h = {:.3e}, E_grad = {:.3e})",
+        n.join("/"),
+        record.times.total(),
+        record.dofs,
+        record.h,
+        record.errors.grad
+    )
+}
+
+/// What a study must show, in a few characters: the least rates of `E_grad`, `E_a`, `E_0`,
+/// or the tolerance of a patch test or of the resultants.
+fn expected_label(expectation: &Expectation) -> String {
+    match *expectation {
+        Expectation::Rates { grad, energy, l2 } => format!(">= {grad}, {energy}, {l2}"),
+        Expectation::Exact { tolerance } => format!("exact to {tolerance:.0e}"),
+        Expectation::Resultants { tolerance } => format!("resultants to {tolerance:.0e}"),
+    }
+}
+
+/// A fitted rate to two decimals, `-` when undefined.
+fn rate_cell(rate: Option<f64>) -> String {
+    rate.map_or_else(|| "-".to_string(), |r| format!("{r:.2}"))
+}
+
+/// The console's summary of the studies in the plane: per case and meshing the rates fitted
+/// over the finest sizes against what the theorems ask, and the verdict, in a table under 100
+/// characters wide; what falls short listed below. The wide tables are in the report.
+fn console_summary(results: &[StudyResult]) -> String {
+    let header = [
+        "case", "meshes", "sizes", "E_grad", "E_a", "E_0", "expected", "verdict",
+    ];
+    let rows: Vec<[String; 8]> = results
+        .iter()
+        .map(|r| {
+            let sizes = match (r.records.first(), r.records.last()) {
+                (Some(a), Some(b)) => format!("{}..{}", a.n[0], b.n[0]),
+                _ => "-".into(),
+            };
+            [
+                r.case.clone(),
+                r.pairing.clone(),
+                sizes,
+                rate_cell(r.rates.grad),
+                rate_cell(r.rates.energy),
+                rate_cell(r.rates.l2),
+                expected_label(&r.expectation),
+                if r.verdict.passed { "pass" } else { "FAIL" }.into(),
+            ]
+        })
+        .collect();
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            rows.iter()
+                .map(|row| row[c].chars().count())
+                .chain([header[c].len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: &[String]| -> String {
+        let padded: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .map(|(cell, &w)| format!("{cell:<w$}"))
+            .collect();
+        padded.join("  ").trim_end().to_string()
+    };
+    let mut out = String::from(
+        "Rates fitted over the finest sizes (E_grad, E_a, E_0; expected: the least rates of \
+         Theorems 4.1/4.2 and of E_0):\n",
+    );
+    out.push_str(&line(&header.map(String::from)));
+    out.push('\n');
+    for row in &rows {
+        out.push_str(&line(row));
+        out.push('\n');
+    }
+    for r in results.iter().filter(|r| !r.verdict.passed) {
+        for shortfall in &r.verdict.shortfalls {
+            out.push_str(&format!("  {} on {}: {shortfall}\n", r.case, r.pairing));
+        }
+    }
+    out
 }
 
 /// The whole Markdown report: introduction, summary, one section per case with its plots.
@@ -422,6 +531,37 @@ struct JsonReport<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The console's table holds each study's fitted rates as the report has them, the
+    /// expected least rates and the verdict, and stays narrow.
+    #[test]
+    fn the_console_summary_is_a_narrow_table_of_the_rates() {
+        let cases = CaseRegistry::builtin();
+        let exact = cases.make("E1", Lame::default()).unwrap();
+        let pairing: MeshPairing = "quads".parse().unwrap();
+        let result = Study::new(exact, pairing)
+            .sizes([4, 8, 16])
+            .expect(Expectation::OPTIMAL_RATES)
+            .run()
+            .unwrap();
+        let table = console_summary(std::slice::from_ref(&result));
+        let lines: Vec<&str> = table.lines().collect();
+        assert_eq!(lines.len(), 3, "{table}");
+        assert!(lines.iter().all(|l| l.chars().count() < 120), "{table}");
+        let cells: Vec<&str> = lines[2].split_whitespace().collect();
+        assert_eq!(&cells[..3], ["E1", "quads", "4..16"]);
+        let rate = |cell: &str| cell.parse::<f64>().unwrap();
+        assert!((rate(cells[3]) - result.rates.grad.unwrap()).abs() <= 0.005);
+        assert!((rate(cells[4]) - result.rates.energy.unwrap()).abs() <= 0.005);
+        assert!((rate(cells[5]) - result.rates.l2.unwrap()).abs() <= 0.005);
+        // E1 on quads converges at the theorem's rate: first order in E_grad.
+        assert!((rate(cells[3]) - 1.0).abs() < 0.1, "{table}");
+        assert_eq!(&cells[6..], [">=", "0.9,", "0.9,", "1.8", "pass"]);
+        assert_eq!(
+            expected_label(&Expectation::Exact { tolerance: 1e-10 }),
+            "exact to 1e-10"
+        );
+    }
 
     #[test]
     fn the_cases_select_the_parts_in_the_plane_and_in_space() {

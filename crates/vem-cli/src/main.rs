@@ -47,6 +47,11 @@ enum Command {
         /// memory_gib`, else the memory available].
         #[arg(long, value_name = "GIB")]
         memory_limit: Option<f64>,
+        /// Displacement magnification of deformed.svg [default: the scene's `[output]
+        /// magnification`, else the largest displacement drawn as 8% of the picture's extent,
+        /// rounded down to 1, 2 or 5 times a power of ten, never below 1].
+        #[arg(long, value_name = "FACTOR")]
+        magnification: Option<f64>,
     },
     /// Check a scene without solving it.
     ///
@@ -130,7 +135,19 @@ fn command_line_limit(gib: f64) -> Result<MemoryLimit, CliError> {
     MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine).map_err(CliError::Usage)
 }
 
-fn run(scene: &Path, out: Option<PathBuf>, memory_limit: Option<f64>) -> Result<(), CliError> {
+fn run(
+    scene: &Path,
+    out: Option<PathBuf>,
+    memory_limit: Option<f64>,
+    magnification: Option<f64>,
+) -> Result<(), CliError> {
+    if let Some(m) = magnification {
+        if !(m.is_finite() && m > 0.0) {
+            return Err(CliError::Usage(format!(
+                "--magnification {m}: give a finite number > 0"
+            )));
+        }
+    }
     let progress = spinner();
     progress.set_message(format!("reading {}", scene.display()));
     let scene = load(scene, memory_limit)?;
@@ -138,6 +155,9 @@ fn run(scene: &Path, out: Option<PathBuf>, memory_limit: Option<f64>) -> Result<
     let model = Model::build(&scene)?;
     progress.set_message("solving");
     let mut outcome = model.solve()?;
+    if let Some(m) = magnification {
+        outcome.set_magnification(m);
+    }
     let dir = out.unwrap_or_else(|| default_output_dir(&scene));
     progress.set_message(format!("writing {}", dir.display()));
     let files = outcome.write(&dir)?;
@@ -211,7 +231,8 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             scene,
             out,
             memory_limit,
-        } => run(&scene, out, memory_limit),
+            magnification,
+        } => run(&scene, out, memory_limit, magnification),
         Command::Check {
             scene,
             memory_limit,

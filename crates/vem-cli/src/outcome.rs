@@ -13,8 +13,9 @@ use crate::Scene;
 #[derive(Debug, Clone)]
 pub struct Outcome {
     inner: vem_scene::Outcome,
-    /// The rigid obstacles of the contact pairs (for pictures).
-    pub(crate) obstacles: Vec<Obstacle>,
+    /// The rigid obstacles of the contact pairs (for pictures), each with the index of its
+    /// pair.
+    pub(crate) obstacles: Vec<(usize, Obstacle)>,
     /// The friction bound per unit length of every interface node (Tresca `g_F`, Coulomb
     /// `F p`), `None` without friction: the plots draw it.
     pub(crate) friction_bounds: Option<Vec<f64>>,
@@ -22,6 +23,13 @@ pub struct Outcome {
     pub(crate) magnification: Option<f64>,
     /// The scene's `[output] width`.
     pub(crate) output_width: Option<f64>,
+    /// The Coulomb coefficient of every contact pair whose law is `coulomb` (`None` for the
+    /// others), for the Cattaneo-Mindlin curve of the pressure plot.
+    pub(crate) coulomb_coefficients: Vec<Option<f64>>,
+    /// The scene's `[output] length_unit`.
+    pub(crate) length_unit: Option<String>,
+    /// The scene's `[output] stress_unit`.
+    pub(crate) stress_unit: Option<String>,
 }
 
 impl Outcome {
@@ -29,7 +37,8 @@ impl Outcome {
         let obstacles = model
             .contacts()
             .iter()
-            .filter_map(|c| c.obstacle.clone())
+            .enumerate()
+            .filter_map(|(pair, c)| c.obstacle.clone().map(|o| (pair, o)))
             .collect();
         // The bound per unit length at every node, as the solve used it (any law).
         let friction_bounds = inner.contact.as_ref().and_then(|contact| {
@@ -41,14 +50,35 @@ impl Outcome {
                     .collect()
             })
         });
+        let coulomb_coefficients = scene
+            .file()
+            .contacts
+            .iter()
+            .map(|c| {
+                let law = c.law.as_ref().filter(|law| law.name == "coulomb")?;
+                law.options
+                    .get("coefficient")
+                    .and_then(|v| v.as_f64())
+                    .or(c.coefficient)
+            })
+            .collect();
         let output = &scene.file().output;
         Self {
             inner,
             obstacles,
             friction_bounds,
+            coulomb_coefficients,
             magnification: output.magnification,
             output_width: output.width,
+            length_unit: output.length_unit.clone(),
+            stress_unit: output.stress_unit.clone(),
         }
+    }
+
+    /// Draws the displacements of `deformed.svg` magnified `magnification` times (instead of
+    /// the scene's `[output] magnification` or the automatic factor).
+    pub fn set_magnification(&mut self, magnification: f64) {
+        self.magnification = Some(magnification);
     }
 
     /// The summary (its output and total times are set by [`Outcome::write`]).

@@ -12,8 +12,8 @@ use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
 use vem_elastic::ElementField;
 use vem_mesh::io::{
     remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers, write_vtu,
-    CellType, Cells, PvdCollection, SvgLayer, SvgOptions, UnstructuredGrid, VtkArray, VtuData,
-    VtuEncoding,
+    CellType, Cells, PvdCollection, SvgLayer, SvgMarks, SvgOptions, UnstructuredGrid, VtkArray,
+    VtuData, VtuEncoding,
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -118,6 +118,37 @@ impl Outcome {
             .map_err(mesh_error(&path))?;
             written.push(path);
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.first());
+            // Cattaneo-Mindlin beside the friction traction of a Hertz pair with Coulomb
+            // friction carrying a tangential load.
+            let cattaneo = hertz.and_then(|h| {
+                let coefficient = self.coulomb_coefficients.get(h.pair).copied().flatten()?;
+                let tangential_load: f64 = contact
+                    .nodes
+                    .iter()
+                    .filter(|n| n.pair == h.pair)
+                    .map(|n| n.friction_t())
+                    .sum();
+                // Along a load history the last state is Cattaneo-Mindlin's only where the
+                // tangential load is back at the largest of the history, within 1 % (Mindlin
+                // and Deresiewicz: reaching it again erases the unloading's memory).
+                let history = self
+                    .summary
+                    .contact
+                    .as_ref()
+                    .map_or(&[][..], |c| &c.history[..]);
+                let largest = history
+                    .iter()
+                    .map(|s| s.force_on_body_a.first().copied().unwrap_or(0.0).abs())
+                    .fold(0.0, f64::max);
+                let back_at_largest = tangential_load.abs() >= (1.0 - 1e-2) * largest;
+                (coefficient > 0.0
+                    && tangential_load.abs() > 1e-9 * coefficient * h.load
+                    && back_at_largest)
+                    .then_some(plot::CattaneoMindlin {
+                        coefficient,
+                        tangential_load,
+                    })
+            });
             let path = dir.join("pressure.svg");
             plot::pressure(
                 &path,
@@ -125,6 +156,7 @@ impl Outcome {
                 &contact.nodes,
                 hertz,
                 self.friction_bounds.clone(),
+                cattaneo,
                 width,
             )?;
             written.push(path);
@@ -307,8 +339,10 @@ impl Outcome {
         pressure
     }
 
-    /// The deformed bodies, coloured by von Mises stress, over their undeformed outlines; the
-    /// obstacle as an outline.
+    /// The deformed bodies, coloured by von Mises stress, over their undeformed outlines,
+    /// with axes, the displacement scale and the obstacles (each moved by the magnified part
+    /// of the gap its nodes in contact closed, so that the bodies meet it as they do at true
+    /// scale); interface nodes that penetrate are marked.
     fn write_deformed(&self, path: &Path, width: f64) -> Result<(), vem_mesh::MeshError> {
         let displacements: Vec<Vec<Vector>> = self
             .bodies
@@ -327,13 +361,9 @@ impl Outcome {
             .flatten()
             .map(|u| u.norm())
             .fold(0.0, f64::max);
-        let magnification = self.magnification.unwrap_or_else(|| {
-            if largest > 0.0 {
-                round_down_to_nice(AUTO_DISPLACEMENT_FRACTION * extent / largest)
-            } else {
-                1.0
-            }
-        });
+        let magnification = self
+            .magnification
+            .unwrap_or_else(|| automatic_magnification(extent, largest));
         let mut layers: Vec<SvgLayer> = self
             .bodies
             .iter()
@@ -346,10 +376,17 @@ impl Outcome {
                     .with_cell_values(s)
             })
             .collect();
+        let nodes = self.contact.as_ref().map_or(&[][..], |c| &c.nodes[..]);
+        let shifts: Vec<Vector> = self
+            .obstacles
+            .iter()
+            .map(|(pair, _)| obstacle_shift(nodes, *pair, magnification))
+            .collect();
         let outlines: Vec<Mesh> = self
             .obstacles
             .iter()
-            .filter_map(|o| obstacle_outline(o, min, max))
+            .zip(&shifts)
+            .filter_map(|((_, o), &shift)| obstacle_outline(&translated(o, shift), min, max))
             .collect();
         for mesh in &outlines {
             layers.push(SvgLayer::new(mesh).with_label("obstacle"));
@@ -365,19 +402,105 @@ impl Outcome {
             let pad = 0.05 * hi.abs().max(f64::MIN_POSITIVE);
             (lo - pad, hi + pad)
         });
+        // Penetration: interface nodes whose normal jump exceeds the initial gap by more than
+        // a thousandth of the largest displacement, marked where body A is drawn.
+        let tolerance = 1e-3 * largest;
+        let mut deepest = 0.0_f64;
+        let penetrating: Vec<Point> = nodes
+            .iter()
+            .filter(|n| n.normal_jump - n.initial_gap > tolerance)
+            .filter_map(|n| {
+                deepest = deepest.max(n.normal_jump - n.initial_gap);
+                let &body = self.contact_bodies.get(n.body_a)?;
+                let u = displacements.get(body)?.get(n.vertex_a)?;
+                Some(self.bodies[body].body.mesh().vertex(n.vertex_a) + magnification * u)
+            })
+            .collect();
+        let marks = (!penetrating.is_empty()).then(|| SvgMarks {
+            label: format!("penetration (deepest {})", four_digits(deepest)),
+            points: penetrating,
+        });
+        let factor = vem_scene::short(magnification);
+        let mut notes = vec![
+            format!("displacements drawn x {factor}"),
+            format!("(largest |u| = {})", four_digits(largest)),
+        ];
+        if shifts.iter().any(|s| s.norm() > 0.0) {
+            notes.push(format!(
+                "obstacle moved by {} x gap",
+                vem_scene::short(magnification - 1.0)
+            ));
+        }
         let options = SvgOptions {
             width,
             value_range,
-            title: Some(picture_title(
-                &self.summary.title,
-                &format!("von Mises stress, displacement x {magnification}"),
-                width,
+            title: Some(format!(
+                "{}: von Mises stress, displacements x {factor}",
+                self.summary.title
             )),
             magnification,
-            value_label: "von Mises stress".into(),
+            value_label: match &self.stress_unit {
+                Some(unit) => format!("von Mises stress [{unit}]"),
+                None => "von Mises stress (unit of E)".into(),
+            },
+            axes: true,
+            length_unit: self.length_unit.clone(),
+            notes,
+            marks,
             ..SvgOptions::default()
         };
         write_svg_layers(path, &layers, &options)
+    }
+}
+
+/// `value` to four significant digits, as the summary prints numbers.
+fn four_digits(value: f64) -> String {
+    vem_scene::short(format!("{value:.3e}").parse().unwrap_or(value))
+}
+
+/// The displacement magnification of `deformed.svg` when the scene gives none: the largest
+/// displacement drawn as [`AUTO_DISPLACEMENT_FRACTION`] of the bodies' extent (the diagonal
+/// of their box), rounded down to 1, 2 or 5 times a power of ten, and never below 1 (a
+/// displacement already that large is drawn at true scale, not shrunk).
+fn automatic_magnification(extent: f64, largest: f64) -> f64 {
+    if largest > 0.0 && extent > 0.0 {
+        round_down_to_nice(AUTO_DISPLACEMENT_FRACTION * extent / largest).max(1.0)
+    } else {
+        1.0
+    }
+}
+
+/// The translation of the obstacle of pair `pair` in a picture magnified `magnification`
+/// times: `(magnification - 1)` times the mean of `h0 nu` over the pair's nodes in contact.
+/// A node that closed its gap `h0` is drawn `magnification h0` along `nu`; the obstacle moved
+/// so leaves it touching, and a penetration is drawn magnified like the displacements.
+fn obstacle_shift(nodes: &[InterfaceNode], pair: usize, magnification: f64) -> Vector {
+    let (sum, count) = nodes
+        .iter()
+        .filter(|n| n.pair == pair && n.body_b.is_none() && n.status.is_active())
+        .fold((Vector::zeros(), 0usize), |(s, c), n| {
+            (s + n.initial_gap * n.normal, c + 1)
+        });
+    if count == 0 {
+        return Vector::zeros();
+    }
+    (magnification - 1.0) * sum / count as f64
+}
+
+/// `obstacle` translated by `shift`.
+fn translated(obstacle: &Obstacle, shift: Vector) -> Obstacle {
+    match obstacle {
+        Obstacle::Line { point, normal } => Obstacle::Line {
+            point: point + shift,
+            normal: *normal,
+        },
+        Obstacle::Circle { centre, radius } => Obstacle::Circle {
+            centre: centre + shift,
+            radius: *radius,
+        },
+        Obstacle::Polyline(points) => {
+            Obstacle::Polyline(points.iter().map(|p| p + shift).collect())
+        }
     }
 }
 
@@ -502,19 +625,6 @@ impl Drop for Staging {
             let _ = std::fs::remove_dir_all(&self.temporary);
         }
     }
-}
-
-/// "<title>: <detail>", the title shortened with an ellipsis so that the line fits a
-/// picture `width` pixels wide (16-pixel sans-serif: about 9 pixels a character).
-fn picture_title(title: &str, detail: &str, width: f64) -> String {
-    let room = ((width - 40.0) / 9.0).max(0.0) as usize;
-    let full = format!("{title}: {detail}");
-    if full.chars().count() <= room {
-        return full;
-    }
-    let keep = room.saturating_sub(detail.chars().count() + 3);
-    let short: String = title.chars().take(keep).collect();
-    format!("{}…: {detail}", short.trim_end())
 }
 
 /// The largest of 1, 2, 5 times a power of ten not above `value` (value > 0).
@@ -880,19 +990,47 @@ mod tests {
     use super::*;
 
     #[test]
-    fn long_titles_are_shortened_to_fit() {
-        assert_eq!(picture_title("Hertz", "stress", 900.0), "Hertz: stress");
-        let title = picture_title(&"a".repeat(200), "von Mises stress", 900.0);
-        assert_eq!(title.chars().count(), (860.0_f64 / 9.0) as usize);
-        assert!(title.ends_with("a…: von Mises stress"), "{title}");
-    }
-
-    #[test]
     fn nice_magnifications() {
         assert_eq!(round_down_to_nice(37.0), 20.0);
         assert_eq!(round_down_to_nice(0.7), 0.5);
         assert_eq!(round_down_to_nice(1.0), 1.0);
         assert!((round_down_to_nice(1.9e3) - 1e3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn automatic_magnification_draws_the_largest_displacement_visibly() {
+        // Extent 2, largest 1e-3: 8 % of 2 is 0.16 = 160 times the displacement, rounded
+        // down to 100; the drawn displacement is then 5 % of the extent.
+        assert_eq!(automatic_magnification(2.0, 1e-3), 100.0);
+        let m = automatic_magnification(2.0, 1e-3);
+        assert!(m * 1e-3 <= AUTO_DISPLACEMENT_FRACTION * 2.0);
+        assert!(m * 1e-3 > 0.4 * AUTO_DISPLACEMENT_FRACTION * 2.0);
+        // Never below 1: a large displacement is drawn at true scale, not shrunk.
+        assert_eq!(automatic_magnification(2.0, 0.5), 1.0);
+        // Nothing moves: 1.
+        assert_eq!(automatic_magnification(2.0, 0.0), 1.0);
+    }
+
+    #[test]
+    fn obstacles_are_translated_whole() {
+        let shift = Vector::new(0.0, -0.25);
+        let Obstacle::Circle { centre, radius } = translated(
+            &Obstacle::Circle {
+                centre: Point::new(1.0, 2.0),
+                radius: 3.0,
+            },
+            shift,
+        ) else {
+            panic!("a circle stays a circle");
+        };
+        assert_eq!((centre, radius), (Point::new(1.0, 1.75), 3.0));
+        let Obstacle::Polyline(points) = translated(
+            &Obstacle::Polyline(vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)]),
+            shift,
+        ) else {
+            panic!("a polyline stays a polyline");
+        };
+        assert_eq!(points, [Point::new(0.0, -0.25), Point::new(1.0, -0.25)]);
     }
 
     #[test]

@@ -19,12 +19,57 @@ use vem_scene::HertzComparison;
 /// Points of a curve.
 type Curve = Vec<(f64, f64)>;
 
+/// The Cattaneo-Mindlin tangential traction for a Hertz pair under a tangential load: what
+/// the pressure plot draws beside the computed friction traction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CattaneoMindlin {
+    /// The Coulomb coefficient `F`.
+    pub coefficient: f64,
+    /// The tangential load `Q` on body A, signed along the interface's tangent (the sum of
+    /// the pair's nodal friction forces).
+    pub tangential_load: f64,
+}
+
+impl CattaneoMindlin {
+    /// `Q / (F P)` for Hertz's load `P`.
+    pub(crate) fn ratio(&self, hertz: &HertzComparison) -> f64 {
+        self.tangential_load.abs() / (self.coefficient * hertz.load)
+    }
+
+    /// The analytic traction along the tangent at 201 points across Hertz's zone (centred
+    /// where the computed zone is), signed as `Q`: `q(s) = F p0 (sqrt(1 - s^2/a^2) - (c/a)
+    /// sqrt(1 - s^2/c^2))`, the second term only inside the stick zone `|s| < c`,
+    /// `c = a sqrt(1 - Q/(F P))`; and `c`. `None` when Hertz's values are not positive.
+    pub(crate) fn curve(&self, hertz: &HertzComparison, c: usize) -> Option<(Curve, f64)> {
+        let exact = vem_verify::exact::HertzContact::try_new(
+            hertz.radius,
+            hertz.effective_modulus,
+            hertz.load,
+        )
+        .ok()?;
+        let ratio = self.ratio(hertz);
+        let sign = self.tangential_load.signum();
+        let a = exact.half_width();
+        let points = (0..=200)
+            .map(|k| {
+                let s = a * (-1.0 + 2.0 * k as f64 / 200.0);
+                (
+                    hertz.centre[c] + s,
+                    sign * exact.tangential_traction(s, self.coefficient, ratio),
+                )
+            })
+            .collect();
+        Some((points, exact.stick_half_width(ratio)))
+    }
+}
+
 /// A drawing error of plotters, as text.
 type DrawResult = Result<(), Box<dyn std::error::Error>>;
 
 const PRESSURE: RGBColor = RGBColor(31, 119, 180);
 const HERTZ: RGBColor = RGBColor(214, 39, 40);
 const FRICTION: RGBColor = RGBColor(44, 160, 44);
+const CATTANEO: RGBColor = RGBColor(148, 103, 189);
 const BOUND: RGBColor = RGBColor(127, 127, 127);
 const STICK: RGBColor = RGBColor(31, 119, 180);
 const SLIP: RGBColor = RGBColor(214, 39, 40);
@@ -119,9 +164,24 @@ pub(crate) fn pressure(
     nodes: &[InterfaceNode],
     hertz: Option<&HertzComparison>,
     friction_bound: Option<Vec<f64>>,
+    cattaneo: Option<CattaneoMindlin>,
     width: f64,
 ) -> Result<(), CliError> {
     let c = axis(nodes);
+    let cattaneo_curve: Option<(Curve, String)> = hertz
+        .zip(cattaneo)
+        .filter(|_| friction_bound.is_some())
+        .and_then(|(h, cm)| {
+            let (points, stick) = cm.curve(h, c)?;
+            let four = |v: f64| vem_scene::short(format!("{v:.3e}").parse().unwrap_or(v));
+            let label = format!(
+                "Cattaneo-Mindlin: F = {}, Q/(F P) = {}, stick zone c = {}",
+                four(cm.coefficient),
+                four(cm.ratio(h)),
+                four(stick)
+            );
+            Some((points, label))
+        });
     let name = ["x", "y"][c];
     let position = |n: &InterfaceNode| n.position[c];
     let pressure: Vec<(f64, f64)> = nodes.iter().map(|n| (position(n), n.pressure)).collect();
@@ -193,6 +253,7 @@ pub(crate) fn pressure(
             .filter(in_view)
             .chain(consistent.iter().filter(in_view))
             .chain(&hertz_curve)
+            .chain(cattaneo_curve.iter().flat_map(|(points, _)| points))
             .map(|p| p.1)
             .chain(friction.iter().flat_map(|(t, c, b)| {
                 t.iter()
@@ -256,6 +317,17 @@ pub(crate) fn pressure(
             )?
             .label("nodal pressure (normal force / tributary length)")
             .legend(|(x, y)| Circle::new((x + 10, y), 2, PRESSURE.mix(0.5).filled()));
+        if let Some((points, label)) = &cattaneo_curve {
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    CATTANEO.stroke_width(2),
+                ))?
+                .label(label.as_str())
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], CATTANEO.stroke_width(2))
+                });
+        }
         if let Some((traction, consistent_traction, bounds)) = &friction {
             chart
                 .draw_series(LineSeries::new(

@@ -541,6 +541,82 @@ fn cattaneo_mindlin_stick_zone() {
         .count();
     assert!(sticking > 2);
     assert!(dir.join("slip.svg").is_file());
+    // pressure.svg draws Cattaneo-Mindlin's traction for this load: its legend gives F, the
+    // ratio and the stick half-width c = a sqrt(1 - Q/(F P)) of Hertz's a.
+    let plot = std::fs::read_to_string(dir.join("pressure.svg")).unwrap();
+    let legend = plot
+        .split(['<', '>'])
+        .map(str::trim)
+        .find(|t| t.starts_with("Cattaneo-Mindlin: F = 0.3, Q/(F P) = "))
+        .unwrap_or_else(|| panic!("no Cattaneo-Mindlin legend"));
+    let number = |key: &str| -> f64 {
+        let rest = &legend[legend.find(key).unwrap() + key.len()..];
+        rest.split([',', ' ']).next().unwrap().parse().unwrap()
+    };
+    let hertz = &outcome.summary.contact.as_ref().unwrap().hertz[0];
+    let hertz_ratio = q / (f * hertz.load);
+    assert!(
+        (number("Q/(F P) = ") / hertz_ratio - 1.0).abs() < 1e-3,
+        "{legend}"
+    );
+    let c = hertz.half_width * (1.0 - hertz_ratio).sqrt();
+    assert!(
+        (number("stick zone c = ") / c - 1.0).abs() < 1e-3,
+        "{legend}"
+    );
+}
+
+/// A penalty answer that penetrates is marked on the deformed picture, one cross per
+/// penetrating node, the deepest penetration in the legend; the obstacle (a line 0.002 below
+/// the block) is moved by the magnified gap; an exact answer has no marks.
+#[test]
+fn deformed_picture_marks_penetration() {
+    let dir = std::env::temp_dir().join(format!("vem-cli-penetration-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scene("signorini"))
+        .unwrap()
+        .replace("point = [0.0, 0.0]", "point = [0.0, -0.002]");
+    let marks_of = |name: &str, solver: &str| {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("{solver}\n{text}")).unwrap();
+        let out = dir.join(name);
+        let (outcome, _) = vem_cli::run(&path, Some(&out)).unwrap();
+        let svg = std::fs::read_to_string(out.join("deformed.svg")).unwrap();
+        let document = roxmltree::Document::parse(&svg).unwrap();
+        let crosses = document
+            .descendants()
+            .filter(|n| n.has_tag_name("g") && n.attribute("class") == Some("marks"))
+            .map(|g| g.children().filter(|n| n.has_tag_name("path")).count())
+            .sum::<usize>();
+        let notes: Vec<String> = document
+            .descendants()
+            .filter(|n| n.attribute("class") == Some("note"))
+            .map(|n| n.text().unwrap().to_string())
+            .collect();
+        (outcome, crosses, notes)
+    };
+    let (outcome, crosses, notes) = marks_of(
+        "penalty",
+        "solver = { name = \"penalty\", penalty = { factor = 1 } }",
+    );
+    let largest = outcome
+        .bodies
+        .iter()
+        .flat_map(|b| b.solution.vertex_displacements())
+        .map(|u| u.norm())
+        .fold(0.0, f64::max);
+    let penetrating = nodes(&outcome)
+        .iter()
+        .filter(|n| n.normal_jump - n.initial_gap > 1e-3 * largest)
+        .count();
+    assert!(penetrating > 0);
+    assert_eq!(crosses, penetrating);
+    assert_eq!(notes[0], "displacements drawn x 20");
+    assert_eq!(notes[2], "obstacle moved by 19 x gap");
+    let (_, crosses, _) = marks_of("exact", "");
+    assert_eq!(crosses, 0);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Scene 9: the fretting cycle, a load history. The disc is pressed, then moved sideways to

@@ -652,3 +652,150 @@ fn decode_base64(text: &str) -> Vec<u8> {
 fn inflate(stream: &[u8]) -> Vec<u8> {
     miniz_oxide::inflate::decompress_to_vec_zlib(stream).expect("a valid zlib stream")
 }
+
+/// The segments (move-line pairs) of the `<path>` of class `class`, or 0 without one.
+fn path_segments(document: &roxmltree::Document, class: &str) -> usize {
+    document
+        .descendants()
+        .filter(|n| n.has_tag_name("path") && n.attribute("class") == Some(class))
+        .map(|n| n.attribute("d").unwrap().matches('M').count())
+        .sum()
+}
+
+/// Interior edges are drawn where cells are at least `edge_min_pixels` across and left out
+/// below: a coarse mesh's picture draws every edge once, a fine one's only the boundary.
+#[test]
+fn svg_draws_interior_edges_only_where_cells_are_large_enough() {
+    let dir = scratch("svg-edges");
+    // 400 pixels wide, margins 20 and the colour bar's panel 110: 250 pixels for the unit
+    // square.
+    let options = SvgOptions {
+        width: 400.0,
+        parts: false,
+        ..SvgOptions::default()
+    };
+    for (n, edges_drawn) in [(10, true), (41, true), (42, false), (120, false)] {
+        // Cells of 250 / n pixels: the rule (6 pixels) falls between 41 and 42.
+        let mesh = structured_quads(&Rectangle::unit_square(), n, n).unwrap();
+        let values: Vec<f64> = (0..mesh.n_polygons()).map(|p| p as f64).collect();
+        let layers = [SvgLayer::new(&mesh).with_cell_values(&values)];
+        let path = dir.join(format!("quads-{n}.svg"));
+        let options = SvgOptions {
+            vector_cell_limit: 20_000,
+            ..options.clone()
+        };
+        write_svg_layers(&path, &layers, &options).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let document = roxmltree::Document::parse(&text).unwrap();
+        let expected = if edges_drawn { mesh.n_edges() } else { 0 };
+        assert_eq!(path_segments(&document, "edges"), expected, "n = {n}");
+        // The boundary is always drawn: 4 n edges.
+        assert_eq!(path_segments(&document, "boundary"), 4 * n, "n = {n}");
+        // Every cell keeps its colour.
+        assert_eq!(polygons(&document, "cells").len(), n * n);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The colour bar spans the field's smallest and largest values, labels both, and its round
+/// ticks lie between them; the axes' ticks are round values within the drawn box, placed
+/// where the mapping puts them, and the title wraps instead of being cut.
+#[test]
+fn svg_colour_bar_axes_and_title_carry_the_numbers() {
+    let mesh = structured_quads(
+        &Rectangle::new(Point::new(-1.0, 0.0), Point::new(3.0, 2.0)),
+        8,
+        4,
+    )
+    .unwrap();
+    let values: Vec<f64> = (0..mesh.n_polygons())
+        .map(|p| {
+            let c = mesh.centroid(p);
+            0.37 + 2.0 * c.x * c.y
+        })
+        .collect();
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let title = "a title long enough to need two lines in a picture of six hundred pixels, \
+                 with every word kept";
+    let options = SvgOptions {
+        width: 600.0,
+        title: Some(title.into()),
+        axes: true,
+        length_unit: Some("mm".into()),
+        value_label: "stress [MPa]".into(),
+        notes: vec!["displacements drawn x 20".into()],
+        ..SvgOptions::default()
+    };
+    let dir = scratch("svg-numbers");
+    let path = dir.join("numbers.svg");
+    write_svg_layers(
+        &path,
+        &[SvgLayer::new(&mesh).with_cell_values(&values)],
+        &options,
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let document = roxmltree::Document::parse(&text).unwrap();
+    let texts = |class: &str| -> Vec<String> {
+        document
+            .descendants()
+            .filter(|n| n.has_tag_name("text") && n.attribute("class") == Some(class))
+            .map(|n| n.text().unwrap_or("").to_string())
+            .collect()
+    };
+    // Colour bar: the range is the field's, both ends labelled.
+    let bar = document
+        .descendants()
+        .find(|n| n.attribute("class") == Some("colour-bar"))
+        .unwrap();
+    let bar_min: f64 = bar.attribute("data-min").unwrap().parse().unwrap();
+    let bar_max: f64 = bar.attribute("data-max").unwrap().parse().unwrap();
+    assert_eq!((bar_min, bar_max), (lo, hi));
+    let ticks: Vec<f64> = texts("colour-tick")
+        .iter()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert!((ticks[0] - hi).abs() <= 1e-4 * hi.abs(), "{ticks:?}");
+    assert!((ticks[1] - lo).abs() <= 1e-4 * hi.abs(), "{ticks:?}");
+    assert!(ticks.len() >= 5, "round ticks between the ends: {ticks:?}");
+    for &t in &ticks[2..] {
+        assert!(t > lo && t < hi, "{t} outside ({lo}, {hi})");
+        // Round: a multiple of 1, 2 or 5 times a power of ten (here 2).
+        assert!((t / 2.0 - (t / 2.0).round()).abs() < 1e-9, "{t}");
+    }
+    // Axes: x ticks -1, 0, 1, 2, 3 (or a subset of round values) inside [-1, 3].
+    let xs: Vec<f64> = texts("tick-x").iter().map(|t| t.parse().unwrap()).collect();
+    let ys: Vec<f64> = texts("tick-y").iter().map(|t| t.parse().unwrap()).collect();
+    assert!(xs.len() >= 3 && ys.len() >= 3, "{xs:?} {ys:?}");
+    assert!(xs.iter().all(|&x| (-1.0..=3.0).contains(&x)));
+    assert!(ys.iter().all(|&y| (0.0..=2.0).contains(&y)));
+    assert_eq!(xs.first(), Some(&-1.0));
+    assert_eq!(xs.last(), Some(&3.0));
+    // A tick label sits where the drawing maps its value: the x tick of 3 at the right end
+    // of the mesh's top edge as the polygons draw it.
+    let right_edge = polygons(&document, "cells")
+        .iter()
+        .flatten()
+        .map(|p| p.0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let tick_3 = document
+        .descendants()
+        .find(|n| n.attribute("class") == Some("tick-x") && n.text() == Some("3"))
+        .unwrap();
+    let at: f64 = tick_3.attribute("x").unwrap().parse().unwrap();
+    assert!((at - right_edge).abs() < 0.01, "{at} vs {right_edge}");
+    assert_eq!(texts("axis-name"), ["x [mm]", "y [mm]"]);
+    // The title is whole, on two lines.
+    let lines = texts("title");
+    assert_eq!(lines.len(), 2);
+    assert_eq!(
+        lines.join(" "),
+        title.split_whitespace().collect::<Vec<_>>().join(" ")
+    );
+    assert_eq!(texts("note"), ["displacements drawn x 20"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

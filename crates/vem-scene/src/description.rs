@@ -435,6 +435,14 @@ pub struct OutputDescription {
     /// Width of the pictures in pixels (default 900, at most 20000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub width: Option<f64>,
+    /// The unit of the meshes' coordinates, written on the pictures' axes ("mm"); default:
+    /// none written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_unit: Option<String>,
+    /// The unit of stresses (that of the Young's moduli), written on the colour bar and the
+    /// plots ("MPa"); default: none written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress_unit: Option<String>,
 }
 
 /// `[limits]`: what a run may use.

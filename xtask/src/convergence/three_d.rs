@@ -289,6 +289,7 @@ pub fn run(
     let start = Instant::now();
     let mut runs = Vec::new();
     let mut all = Vec::new();
+    let total = cases.len() * LADDERS.len();
     for &case in cases {
         let exact: Arc<dyn ExactSolution3d> = solid_case_by_name(case, Lame::REFERENCE)
             .ok_or_else(|| format!("unknown case in space {case:?}"))?
@@ -303,14 +304,19 @@ pub fn run(
             bar.set_prefix(format!("{case} on {}", ladder.family));
             bar.enable_steady_tick(Duration::from_secs(1));
             let mut series_runs = Vec::with_capacity(sizes.len());
+            let label = format!("[{}/{total}] {case} on {}", all.len() + 1, ladder.family);
             for &n in sizes {
                 bar.set_message(format!("n = {n}"));
-                series_runs.push(run_solid(
-                    Arc::clone(&exact),
-                    ladder.family,
-                    n,
-                    Arc::clone(&element),
-                )?);
+                let solve = Instant::now();
+                let run = run_solid(Arc::clone(&exact), ladder.family, n, Arc::clone(&element))?;
+                bars.suspend(|| {
+                    eprintln!(
+                        "{label}: n = {n} done in {:.1} s ({} unknowns)",
+                        solve.elapsed().as_secs_f64(),
+                        run.unknowns
+                    )
+                });
+                series_runs.push(run);
                 bar.inc(weight(n));
             }
             let rates = solid_rates(&series_runs, FITTED)

@@ -52,7 +52,9 @@ pub use msh::{
 };
 pub use polymesher::{read_polymesher, read_polymesher_bytes};
 #[cfg(feature = "svg")]
-pub use svg::{write_svg, write_svg_layers, SvgLayer, SvgOptions, VECTOR_CELL_LIMIT};
+pub use svg::{
+    write_svg, write_svg_layers, SvgLayer, SvgMarks, SvgOptions, EDGE_MIN_PIXELS, VECTOR_CELL_LIMIT,
+};
 #[cfg(feature = "vtu")]
 pub use vtk::{
     CellType, Cells, PvdCollection, PvdDataSet, UnstructuredGrid, Values, VtkArray, VtuEncoding,

@@ -44,6 +44,18 @@ const TITLE_HEIGHT: f64 = 28.0;
 const LEGEND_ROW: f64 = 18.0;
 /// Height of the colour bar, in pixels.
 const COLOUR_BAR_HEIGHT: f64 = 200.0;
+/// Height of each further line of a wrapped title, in pixels.
+const TITLE_LINE: f64 = 20.0;
+/// Room left of the drawing for the y axis (ticks, labels, name), in pixels.
+const AXIS_LEFT: f64 = 76.0;
+/// Room below the drawing for the x axis (ticks, labels, name), in pixels.
+const AXIS_BOTTOM: f64 = 44.0;
+/// Fill of cells without values whose edges are not drawn.
+const UNCOLOURED: &str = "#e4e4e4";
+/// Colour of the marked points.
+const MARK_COLOUR: &str = "#e8112d";
+/// The default [`SvgOptions::edge_min_pixels`].
+pub const EDGE_MIN_PIXELS: f64 = 6.0;
 
 /// One mesh in a picture, with what to draw on it.
 #[derive(Debug, Clone, Copy)]
@@ -114,11 +126,36 @@ pub struct SvgOptions {
     /// so that the file's size depends on the picture, not on the mesh (vertex dots are then
     /// left out). Below it every polygon is an SVG element.
     pub vector_cell_limit: usize,
+    /// Axes below and left of the drawing, with ticks at round values of the meshes'
+    /// coordinates (as drawn: displaced positions are read on the same axes).
+    pub axes: bool,
+    /// The unit of length written after the axes' names (`x [mm]`); `None`: `x` and `y`.
+    pub length_unit: Option<String>,
+    /// Lines of text written below the legend and colour bar (e.g. the displacement scale).
+    pub notes: Vec<String>,
+    /// Points marked by crosses, with a legend entry.
+    pub marks: Option<SvgMarks>,
+    /// A layer's interior edges are drawn only when its cells are at least this many pixels
+    /// across (the square root of their mean area), and then only the edges at least half
+    /// as long: finer meshes (or the fine parts of graded ones) are drawn as their colours and
+    /// boundary, not as a mesh of lines that hides them.
+    pub edge_min_pixels: f64,
+}
+
+/// Points marked by crosses in a picture (e.g. where a constraint is violated), at the
+/// coordinates they are drawn at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SvgMarks {
+    /// The legend entry of the marks.
+    pub label: String,
+    /// Where the crosses are drawn, in the meshes' coordinates.
+    pub points: Vec<Point>,
 }
 
 impl Default for SvgOptions {
     /// 800 pixels wide, 20 pixels margin, parts with a legend, no dots, magnification 1,
-    /// vectors up to [`VECTOR_CELL_LIMIT`] polygons.
+    /// vectors up to [`VECTOR_CELL_LIMIT`] polygons, no axes, interior edges from
+    /// [`EDGE_MIN_PIXELS`] pixels.
     fn default() -> Self {
         Self {
             width: 800.0,
@@ -130,6 +167,11 @@ impl Default for SvgOptions {
             value_label: "value".into(),
             value_range: None,
             vector_cell_limit: VECTOR_CELL_LIMIT,
+            axes: false,
+            length_unit: None,
+            notes: Vec::new(),
+            marks: None,
+            edge_min_pixels: EDGE_MIN_PIXELS,
         }
     }
 }
@@ -235,24 +277,39 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         }
         part_colours.push(colours);
     }
+    let marks = options.marks.as_ref().filter(|m| !m.points.is_empty());
     let value_range = value_range(layers, options);
 
-    // Layout: drawing on the left, legend and colour bar in a panel on the right.
+    // Layout: title lines on top, the drawing (with its axes) on the left, legend, marks,
+    // colour bar and notes in a panel on the right.
     let longest = legend
         .iter()
         .map(|(_, _, text)| text.chars().count())
+        .chain(marks.map(|m| m.label.chars().count()))
         .chain(value_range.map(|_| options.value_label.chars().count()))
+        .chain(options.notes.iter().map(|n| n.chars().count()))
         .max();
     let panel_width = longest.map_or(0.0, |chars| (chars as f64 * 7.0 + 40.0).max(110.0));
-    let title_height = if options.title.is_some() {
-        TITLE_HEIGHT
-    } else {
+    let title_lines = options
+        .title
+        .as_deref()
+        .map(|t| wrap(t, title_room(options.width - 2.0 * options.margin)))
+        .unwrap_or_default();
+    let title_height = if title_lines.is_empty() {
         0.0
+    } else {
+        TITLE_HEIGHT + TITLE_LINE * (title_lines.len() - 1) as f64
     };
-    let drawing_width = options.width - 2.0 * options.margin - panel_width;
+    let (axis_left, axis_bottom) = if options.axes {
+        (AXIS_LEFT, AXIS_BOTTOM)
+    } else {
+        (0.0, 0.0)
+    };
+    let drawing_width = options.width - 2.0 * options.margin - panel_width - axis_left;
     if drawing_width < 10.0 {
         return Err(format!(
-            "a width of {} pixels leaves no room for the drawing (margins {} and legend {panel_width})",
+            "a width of {} pixels leaves no room for the drawing (margins {}, legend \
+             {panel_width} and axes {axis_left})",
             options.width, options.margin
         ));
     }
@@ -262,16 +319,16 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         2.0 * options.width / (max.y - min.y),
     );
     let top = options.margin + title_height;
-    let to_picture = |p: Point| {
-        (
-            options.margin + (p.x - min.x) * scale,
-            top + (max.y - p.y) * scale,
-        )
-    };
-    let panel_height =
-        legend.len() as f64 * LEGEND_ROW + value_range.map_or(0.0, |_| COLOUR_BAR_HEIGHT + 60.0);
-    let height =
-        (top + (max.y - min.y) * scale + options.margin).max(top + panel_height + options.margin);
+    let left = options.margin + axis_left;
+    let to_picture = |p: Point| (left + (p.x - min.x) * scale, top + (max.y - p.y) * scale);
+    let panel_height = legend.len() as f64 * LEGEND_ROW
+        + marks.map_or(0.0, |_| LEGEND_ROW)
+        + value_range.map_or(0.0, |_| COLOUR_BAR_HEIGHT + 60.0)
+        + options.notes.len() as f64 * LEGEND_ROW;
+    let height = (top + (max.y - min.y) * scale + axis_bottom + options.margin)
+        .max(top + panel_height + options.margin);
+    // Line widths follow the picture's size (a 900-pixel picture: boundary 1, edges 0.5).
+    let line = (options.width / 900.0).clamp(0.5, 4.0);
 
     let mut svg = String::new();
     let out = &mut svg;
@@ -292,24 +349,30 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         out,
         format_args!("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"),
     );
-    if let Some(title) = &options.title {
+    for (k, text) in title_lines.iter().enumerate() {
         emit(
             out,
             format_args!(
-                "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"16\">{}</text>\n",
+                "<text class=\"title\" x=\"{:.2}\" y=\"{:.2}\" font-size=\"16\">{}</text>\n",
                 options.margin,
-                options.margin + 14.0,
-                xml_escape(title)
+                options.margin + 14.0 + TITLE_LINE * k as f64,
+                xml_escape(text)
             ),
         );
     }
 
     let n_polygons: usize = layers.iter().map(|l| l.mesh.n_polygons()).sum();
     let raster = n_polygons > options.vector_cell_limit;
+    // Interior edges only where the cells are large enough for them to be seen.
+    let edges_shown: Vec<bool> = layers
+        .iter()
+        .map(|l| cell_size_in_pixels(l.mesh, scale) >= options.edge_min_pixels)
+        .collect();
     if raster {
         raster_cells(
             out,
             &drawn,
+            &edges_shown,
             value_range,
             &to_picture,
             (options.width, height),
@@ -317,62 +380,89 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
     }
     for (index, d) in drawn.iter().enumerate() {
         let mesh = d.layer.mesh;
+        let edges = edges_shown[index];
         emit(out, format_args!("<g id=\"layer-{index}\">\n"));
-        if raster {
-            // The cells are in the image: the boundary as vectors, undeformed dashed.
-            if d.layer.displacement.is_some() {
-                boundary_path(
-                    out,
-                    mesh,
-                    mesh.vertices(),
-                    &to_picture,
-                    "undeformed",
-                    "stroke=\"#9a9a9a\" stroke-width=\"0.6\" stroke-dasharray=\"3 2\"",
-                );
-            }
-            boundary_path(
-                out,
-                mesh,
-                &d.positions,
-                &to_picture,
-                "boundary",
-                "stroke=\"#303030\" stroke-width=\"0.8\"",
-            );
-        } else {
-            if d.layer.displacement.is_some() {
+        if d.layer.displacement.is_some() {
+            if edges && !raster {
                 emit(
                     out,
                     format_args!(
-                        "<g class=\"undeformed\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"0.6\" \
-                         stroke-dasharray=\"3 2\">\n"
+                        "<g class=\"undeformed\" fill=\"none\" stroke=\"#9a9a9a\" \
+                         stroke-width=\"{:.2}\" stroke-dasharray=\"3 2\">\n",
+                        0.6 * line
                     ),
                 );
                 for polygon in mesh.polygons() {
                     polygon_element(out, polygon, mesh.vertices(), &to_picture, None);
                 }
                 emit(out, format_args!("</g>\n"));
-            }
-            let stroke_width = if d.layer.cell_values.is_some() {
-                0.4
             } else {
-                0.7
-            };
+                boundary_path(
+                    out,
+                    mesh,
+                    mesh.vertices(),
+                    &to_picture,
+                    "undeformed",
+                    &format!(
+                        "stroke=\"#9a9a9a\" stroke-width=\"{:.2}\" stroke-dasharray=\"3 2\"",
+                        0.8 * line
+                    ),
+                );
+            }
+        }
+        if !raster {
+            // Cells filled (stroked in their own colour, which closes the seams between
+            // them); without values, outlines only when the edges are drawn, else grey.
             emit(
                 out,
                 format_args!(
-                    "<g class=\"cells\" fill=\"none\" stroke=\"#303030\" stroke-width=\"{stroke_width}\" \
-                     stroke-linejoin=\"round\">\n"
+                    "<g class=\"cells\" fill=\"none\" stroke-width=\"{:.2}\" stroke-linejoin=\"round\">\n",
+                    0.5 * line
                 ),
             );
             for (p, polygon) in mesh.polygons().enumerate() {
                 let fill = match (d.layer.cell_values, value_range) {
                     (Some(values), Some(range)) => Some(colour_of(values[p], range)),
-                    _ => None,
+                    _ if edges => None,
+                    _ => Some(UNCOLOURED.to_string()),
                 };
                 polygon_element(out, polygon, &d.positions, &to_picture, fill);
             }
             emit(out, format_args!("</g>\n"));
+            if edges {
+                // Where a graded mesh is finer than the rule, its short edges are left out.
+                let mut path = String::new();
+                for edge in mesh.edges() {
+                    let [a, b] = edge.vertices;
+                    let (xa, ya) = to_picture(d.positions[a]);
+                    let (xb, yb) = to_picture(d.positions[b]);
+                    if (xb - xa).hypot(yb - ya) >= 0.5 * options.edge_min_pixels {
+                        emit(&mut path, format_args!("M{xa:.2} {ya:.2}L{xb:.2} {yb:.2}"));
+                    }
+                }
+                let width = if d.layer.cell_values.is_some() {
+                    0.5 * line
+                } else {
+                    0.7 * line
+                };
+                emit(
+                    out,
+                    format_args!(
+                        "<path class=\"edges\" d=\"{path}\" fill=\"none\" stroke=\"#303030\" \
+                         stroke-opacity=\"0.8\" stroke-width=\"{width:.2}\" \
+                         stroke-linecap=\"round\"/>\n"
+                    ),
+                );
+            }
         }
+        boundary_path(
+            out,
+            mesh,
+            &d.positions,
+            &to_picture,
+            "boundary",
+            &format!("stroke=\"#303030\" stroke-width=\"{:.2}\"", line),
+        );
         for (part, colour) in mesh.parts().iter().zip(&part_colours[index]) {
             let mut path = String::new();
             for &e in &part.edges {
@@ -385,8 +475,9 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
                 out,
                 format_args!(
                     "<path class=\"part\" data-part=\"{}\" d=\"{path}\" fill=\"none\" \
-                     stroke=\"{colour}\" stroke-width=\"2.5\" stroke-linecap=\"round\"/>\n",
-                    xml_escape(&part.name)
+                     stroke=\"{colour}\" stroke-width=\"{:.2}\" stroke-linecap=\"round\"/>\n",
+                    xml_escape(&part.name),
+                    2.5 * line
                 ),
             );
         }
@@ -406,8 +497,26 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         }
         emit(out, format_args!("</g>\n"));
     }
+    if let Some(marks) = marks {
+        emit(
+            out,
+            format_args!(
+                "<g class=\"marks\" stroke=\"{MARK_COLOUR}\" stroke-width=\"{:.2}\">\n",
+                1.5 * line
+            ),
+        );
+        let r = 4.0 * line;
+        for &p in &marks.points {
+            let (x, y) = to_picture(p);
+            emit(out, format_args!("{}\n", cross(x, y, r)));
+        }
+        emit(out, format_args!("</g>\n"));
+    }
+    if options.axes {
+        axes(out, options, min, max, &to_picture);
+    }
 
-    // Legend and colour bar.
+    // Legend, marks, colour bar and notes.
     let panel_x = options.width - options.margin - panel_width + 16.0;
     let mut y = top + 8.0;
     for (colour, dashed, text) in &legend {
@@ -430,11 +539,202 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         );
         y += LEGEND_ROW;
     }
+    if let Some(marks) = marks {
+        emit(
+            out,
+            format_args!(
+                "<g stroke=\"{MARK_COLOUR}\" stroke-width=\"1.5\">{}</g>\n\
+                 <text x=\"{:.2}\" y=\"{:.2}\">{}</text>\n",
+                cross(panel_x + 10.0, y, 4.0),
+                panel_x + 26.0,
+                y + 4.0,
+                xml_escape(&marks.label)
+            ),
+        );
+        y += LEGEND_ROW;
+    }
     if let Some((lo, hi)) = value_range {
         colour_bar(out, panel_x, y + 10.0, (lo, hi), &options.value_label);
+        y += COLOUR_BAR_HEIGHT + 60.0;
+    }
+    for note in &options.notes {
+        emit(
+            out,
+            format_args!(
+                "<text class=\"note\" x=\"{panel_x:.2}\" y=\"{:.2}\">{}</text>\n",
+                y + 4.0,
+                xml_escape(note)
+            ),
+        );
+        y += LEGEND_ROW;
     }
     emit(out, format_args!("</svg>\n"));
     Ok(svg)
+}
+
+/// A cross of half-size `r` centred at `(x, y)`, as a `<path>`.
+fn cross(x: f64, y: f64, r: f64) -> String {
+    format!(
+        "<path d=\"M{:.2} {:.2}L{:.2} {:.2}M{:.2} {:.2}L{:.2} {:.2}\"/>",
+        x - r,
+        y - r,
+        x + r,
+        y + r,
+        x - r,
+        y + r,
+        x + r,
+        y - r
+    )
+}
+
+/// The number of characters of 16-pixel sans-serif that fit on a title line `width` pixels
+/// wide (about 8.5 pixels a character).
+fn title_room(width: f64) -> usize {
+    (width / 8.5).max(20.0) as usize
+}
+
+/// `text` broken at spaces into lines of at most `room` characters (a longer word on a line
+/// of its own): nothing is cut.
+fn wrap(text: &str, room: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= room => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// The mean size of the cells of `mesh` in pixels at `scale` pixels per unit of length: the
+/// square root of their mean area.
+fn cell_size_in_pixels(mesh: &Mesh, scale: f64) -> f64 {
+    let n = mesh.n_polygons().max(1);
+    let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p).abs()).sum();
+    (area / n as f64).sqrt() * scale
+}
+
+/// Ticks at multiples of 1, 2 or 5 times a power of ten in `[lo, hi]`, the step nearest
+/// `(hi - lo) / count`, and the step.
+fn nice_ticks(lo: f64, hi: f64, count: usize) -> (Vec<f64>, f64) {
+    let span = hi - lo;
+    if !(span > 0.0 && span.is_finite()) {
+        return (vec![lo], 1.0);
+    }
+    let raw = span / count.max(1) as f64;
+    let power = 10f64.powf(raw.log10().floor());
+    // The round step nearest the even one (in ratio).
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * power)
+        .min_by(|a, b| (a / raw).ln().abs().total_cmp(&(b / raw).ln().abs()))
+        .unwrap_or(power);
+    let first = (lo / step - 1e-9).ceil() as i64;
+    let last = (hi / step + 1e-9).floor() as i64;
+    let ticks = (first..=last).map(|k| k as f64 * step).collect();
+    (ticks, step)
+}
+
+/// A tick label of `value` on a scale of step `step`: as many decimals as the step needs,
+/// scientific notation for very small or large values.
+fn axis_label(value: f64, step: f64) -> String {
+    let value = if value.abs() < 1e-9 * step {
+        0.0
+    } else {
+        value
+    };
+    let magnitude = value.abs().max(step);
+    if (1e-4..1e5).contains(&magnitude) {
+        let decimals = (-step.log10().floor()).max(0.0) as usize;
+        format!("{value:.decimals$}")
+    } else {
+        let digits = ((magnitude.log10().floor() - step.log10().floor()).max(0.0) as usize).min(6);
+        format!("{value:.digits$e}")
+    }
+}
+
+/// Axes below and left of the drawing box (the bounding box `min`, `max`): ticks at nice
+/// values in the meshes' coordinates, their labels and the axes' names with the unit.
+fn axes(
+    out: &mut String,
+    options: &SvgOptions,
+    min: Point,
+    max: Point,
+    to_picture: &impl Fn(Point) -> (f64, f64),
+) {
+    let (x0, y0) = to_picture(min);
+    let (x1, y1) = to_picture(max);
+    let unit = options
+        .length_unit
+        .as_deref()
+        .map_or(String::new(), |u| format!(" [{}]", xml_escape(u)));
+    let (bottom, side) = (y0 + 8.0, x0 - 8.0);
+    emit(
+        out,
+        format_args!(
+            "<g class=\"axes\" stroke=\"#000000\" stroke-width=\"1\">\n\
+             <path class=\"axis-x\" d=\"M{x0:.2} {bottom:.2}L{x1:.2} {bottom:.2}\"/>\n\
+             <path class=\"axis-y\" d=\"M{side:.2} {y0:.2}L{side:.2} {y1:.2}\"/>\n"
+        ),
+    );
+    let count = |pixels: f64| ((pixels / 80.0).round() as usize).clamp(3, 8);
+    let (xs, x_step) = nice_ticks(min.x, max.x, count(x1 - x0));
+    let (ys, y_step) = nice_ticks(min.y, max.y, count(y0 - y1));
+    let mut labels = String::new();
+    for &x in &xs {
+        let (px, _) = to_picture(Point::new(x, min.y));
+        emit(
+            out,
+            format_args!(
+                "<path d=\"M{px:.2} {bottom:.2}L{px:.2} {:.2}\"/>\n",
+                bottom + 5.0
+            ),
+        );
+        emit(
+            &mut labels,
+            format_args!(
+                "<text class=\"tick-x\" x=\"{px:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>\n",
+                bottom + 17.0,
+                axis_label(x, x_step)
+            ),
+        );
+    }
+    for &y in &ys {
+        let (_, py) = to_picture(Point::new(min.x, y));
+        emit(
+            out,
+            format_args!(
+                "<path d=\"M{side:.2} {py:.2}L{:.2} {py:.2}\"/>\n",
+                side - 5.0
+            ),
+        );
+        emit(
+            &mut labels,
+            format_args!(
+                "<text class=\"tick-y\" x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"end\">{}</text>\n",
+                side - 7.0,
+                py + 4.0,
+                axis_label(y, y_step)
+            ),
+        );
+    }
+    emit(out, format_args!("</g>\n{labels}"));
+    let middle_y = 0.5 * (y0 + y1);
+    emit(
+        out,
+        format_args!(
+            "<text class=\"axis-name\" x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">x{unit}</text>\n\
+             <text class=\"axis-name\" x=\"{:.2}\" y=\"{middle_y:.2}\" text-anchor=\"middle\" \
+             transform=\"rotate(-90 {:.2} {middle_y:.2})\">y{unit}</text>\n",
+            0.5 * (x0 + x1),
+            bottom + 32.0,
+            options.margin + 10.0,
+            options.margin + 10.0,
+        ),
+    );
 }
 
 /// Appends formatted text to the document (writing to a `String` cannot fail).
@@ -445,11 +745,12 @@ fn emit(out: &mut String, args: std::fmt::Arguments) {
 
 /// Draws the cells of every layer into one image at [`RASTER_SCALE`] times the picture's
 /// resolution and appends it as an `<image>` covering the picture: cells filled by their
-/// value's colour (light grey without values), their edges drawn when cells are at least 6
-/// pixels across on average.
+/// value's colour (light grey without values), the edges of a layer drawn when
+/// `edges_shown` says so.
 fn raster_cells(
     out: &mut String,
     drawn: &[Drawn],
+    edges_shown: &[bool],
     value_range: Option<(f64, f64)>,
     to_picture: &impl Fn(Point) -> (f64, f64),
     (width, height): (f64, f64),
@@ -465,22 +766,19 @@ fn raster_cells(
         let (x, y) = to_picture(p);
         (x * scale, y * scale)
     };
-    for d in drawn {
+    for (d, &edges) in drawn.iter().zip(edges_shown) {
         let mesh = d.layer.mesh;
         let mut corners = Vec::new();
-        let mut across = 0.0;
         for (p, polygon) in mesh.polygons().enumerate() {
             corners.clear();
             corners.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
             let fill = match (d.layer.cell_values, value_range) {
                 (Some(values), Some(range)) => rgb(colour_of(values[p], range)),
-                _ => [236, 236, 236],
+                _ => rgb(UNCOLOURED.to_string()),
             };
             image.fill_polygon(&corners, [fill[0], fill[1], fill[2], 255]);
-            let (a, b) = (corners[0], corners[corners.len() / 2]);
-            across += ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
         }
-        if across / mesh.n_polygons().max(1) as f64 >= 6.0 {
+        if edges {
             for edge in mesh.edges() {
                 let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
                 image.segment(a, b, [48, 48, 48, 150]);
@@ -532,7 +830,8 @@ fn rgb(hex: String) -> [u8; 3] {
     [channel(0), channel(1), channel(2)]
 }
 
-/// Appends one `<polygon>` with the given vertex positions and optional fill colour.
+/// Appends one `<polygon>` with the given vertex positions and optional fill colour (the
+/// outline stroked in the same colour, which closes the seams between neighbours).
 fn polygon_element(
     out: &mut String,
     polygon: &[usize],
@@ -547,12 +846,16 @@ fn polygon_element(
         emit(out, format_args!("{separator}{x:.2},{y:.2}"));
     }
     match fill {
-        Some(colour) => emit(out, format_args!("\" fill=\"{colour}\"/>\n")),
+        Some(colour) => emit(
+            out,
+            format_args!("\" fill=\"{colour}\" stroke=\"{colour}\"/>\n"),
+        ),
         None => out.push_str("\"/>\n"),
     }
 }
 
-/// A vertical colour bar with its title and the values at both ends and the middle.
+/// A vertical colour bar with its title, its two ends labelled with the range's values (the
+/// rectangle carries them as `data-min` and `data-max`) and ticks at round values between.
 fn colour_bar(out: &mut String, x: f64, y: f64, (lo, hi): (f64, f64), label: &str) {
     emit(
         out,
@@ -577,19 +880,37 @@ fn colour_bar(out: &mut String, x: f64, y: f64, (lo, hi): (f64, f64), label: &st
     emit(
         out,
         format_args!(
-            "</linearGradient></defs>\n<rect class=\"colour-bar\" x=\"{x:.2}\" y=\"{top:.2}\" \
-             width=\"18\" height=\"{COLOUR_BAR_HEIGHT}\" fill=\"url(#colour-map)\" \
-             stroke=\"#303030\" stroke-width=\"0.5\"/>\n"
+            "</linearGradient></defs>\n<rect class=\"colour-bar\" data-min=\"{lo:e}\" \
+             data-max=\"{hi:e}\" x=\"{x:.2}\" y=\"{top:.2}\" width=\"18\" \
+             height=\"{COLOUR_BAR_HEIGHT}\" fill=\"url(#colour-map)\" stroke=\"#303030\" \
+             stroke-width=\"0.5\"/>\n"
         ),
     );
-    for (fraction, value) in [(0.0, hi), (0.5, 0.5 * (lo + hi)), (1.0, lo)] {
+    let at = |value: f64| top + (hi - value) / (hi - lo) * COLOUR_BAR_HEIGHT;
+    let mut ticks = vec![
+        (top, tick_label(hi)),
+        (top + COLOUR_BAR_HEIGHT, tick_label(lo)),
+    ];
+    if hi > lo {
+        let (between, step) = nice_ticks(lo, hi, 5);
+        for value in between {
+            let y = at(value);
+            // Not over the end labels.
+            if y - top >= 14.0 && top + COLOUR_BAR_HEIGHT - y >= 14.0 {
+                ticks.push((y, axis_label(value, step)));
+            }
+        }
+    }
+    for (y, text) in ticks {
         emit(
             out,
             format_args!(
-                "<text x=\"{:.2}\" y=\"{:.2}\">{}</text>\n",
-                x + 24.0,
-                top + fraction * COLOUR_BAR_HEIGHT + 4.0,
-                tick_label(value)
+                "<path d=\"M{:.2} {y:.2}L{:.2} {y:.2}\" stroke=\"#303030\" stroke-width=\"0.8\"/>\n\
+                 <text class=\"colour-tick\" x=\"{:.2}\" y=\"{:.2}\">{text}</text>\n",
+                x + 18.0,
+                x + 22.0,
+                x + 25.0,
+                y + 4.0,
             ),
         );
     }
@@ -740,6 +1061,32 @@ mod tests {
         // Clamped outside the range, middle colour for a single value.
         assert_eq!(colour_of(-3.0, (0.0, 1.0)), "#440154");
         assert_eq!(colour_of(2.0, (2.0, 2.0)), "#21908d");
+    }
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        let (ticks, step) = nice_ticks(0.0, 1.0, 5);
+        assert_eq!(step, 0.2);
+        assert_eq!(ticks.len(), 6);
+        assert!((ticks[5] - 1.0).abs() < 1e-15);
+        // A step of 0.02125 rounds to 0.02, not up to 0.05.
+        let (ticks, step) = nice_ticks(-0.013, 0.072, 4);
+        assert_eq!(step, 0.02);
+        assert_eq!(ticks, [0.0, 0.02, 0.04, 0.06]);
+        assert_eq!(axis_label(0.05, 0.05), "0.05");
+        assert_eq!(axis_label(-2.0, 1.0), "-2");
+        assert_eq!(axis_label(3.0e-6, 1.0e-6), "3e-6");
+        assert_eq!(axis_label(1.5e5, 5.0e4), "1.5e5");
+    }
+
+    #[test]
+    fn titles_wrap_without_losing_words() {
+        let lines = wrap("one two three four", 9);
+        assert_eq!(lines, ["one two", "three", "four"]);
+        assert_eq!(
+            wrap("averyveryverylongword x", 5),
+            ["averyveryverylongword", "x"]
+        );
     }
 
     #[test]
