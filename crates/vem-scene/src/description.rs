@@ -59,8 +59,8 @@ impl Scene {
     /// ```
     ///
     /// # Errors
-    /// [`SceneError`](crate::SceneError) for an unknown key, a value of the wrong type, a missing key; the checks
-    /// of [`crate::check::check`] are separate.
+    /// [`SceneError`](crate::SceneError) for an unknown key, a value of the wrong type, a
+    /// missing key; the checks of [`crate::check::check`] are separate.
     pub fn from_value(value: serde_json::Value) -> Result<Self, crate::SceneError> {
         serde_path_to_error::deserialize(value).map_err(|e| {
             let mut path = crate::KeyPath::root();
