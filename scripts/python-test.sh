@@ -35,10 +35,13 @@ if [ ${#missing[@]} -gt 0 ]; then
     fi
 fi
 
-# The `vem` command the tests compare with.
-cargo build --release -p vem-cli
-# The wheel, for the venv's Python, in release (the libraries are shared with the command's
-# build); then installed as a user would install it.
+# The `vem` command the tests compare with, built together with the package's library: rust-numpy
+# and PyO3 change the features of a few shared dependencies (num-complex, matrixmultiply, syn),
+# so the command built alone would not share its libraries with the wheel's build. Built
+# together (as .ci/run builds them), the wheel's build below compiles only PyO3 and the
+# package's own crate.
+cargo build --release -p vem-cli -p vem-python
+# The wheel, for the venv's Python, in release; then installed as a user would install it.
 wheels=target/python-wheels
 rm -rf "$wheels"
 "$venv/bin/maturin" build --release --quiet --interpreter "$venv/bin/python" \
