@@ -139,6 +139,9 @@ impl PyScene {
     }
 }
 
+/// The name errors give a TOML text that is not a file's.
+const UNNAMED: &str = "<string>";
+
 /// Reads the TOML text `source` as the scene file `file`.
 fn parse_toml(py: Python<'_>, file: PathBuf, source: String) -> PyResult<PyScene> {
     let origin_of = |spans| Origin::Toml {
@@ -165,9 +168,10 @@ fn parse_toml(py: Python<'_>, file: PathBuf, source: String) -> PyResult<PyScene
         }
     };
     let base = file.parent().unwrap_or(Path::new("")).to_path_buf();
-    let stem = file
-        .file_stem()
-        .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+    let stem = match file.file_stem() {
+        Some(stem) if file != Path::new(UNNAMED) => stem.to_string_lossy().into_owned(),
+        _ => "scene".to_string(),
+    };
     PyScene::checked(py, scene, origin_of(spans), base, stem)
 }
 
@@ -284,7 +288,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
 #[pyfunction]
 #[pyo3(signature = (text, path = None))]
 fn loads(py: Python<'_>, text: String, path: Option<PathBuf>) -> PyResult<PyScene> {
-    parse_toml(py, path.unwrap_or_else(|| PathBuf::from("<string>")), text)
+    parse_toml(py, path.unwrap_or_else(|| PathBuf::from(UNNAMED)), text)
 }
 
 /// Reads a scene from a dict with the keys of a scene file (`docs/scenes.md`): the same

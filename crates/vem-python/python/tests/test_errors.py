@@ -140,3 +140,15 @@ def test_writing_into_a_folder_of_other_files_is_refused(tmp_path):
     with pytest.raises(vc.OutputError):
         result.write(tmp_path)
     assert (tmp_path / "notes.txt").read_text() == "mine"
+
+
+def test_titles_and_reprs(scenes):
+    text = ('[[body]]\nname = "a"\nmesh = { family = "quads", rectangle = [[0, 0], [1, 1]], n = 2 }\n'
+            'material = { E = 1.0, nu = 0.3, plane = "strain" }\n')
+    assert vc.loads(text).title == "scene"
+    assert vc.loads(text, path="plate.toml").title == "plate"
+    assert vc.from_dict(GOOD).title == "scene"
+    scene = vc.load(scenes / "patch.toml")
+    assert scene.title.startswith("Contact patch test")
+    assert repr(scene).startswith("Scene(title='Contact patch test")
+    assert scene.body_names == ["upper", "lower"] and scene.n_contacts == 1
