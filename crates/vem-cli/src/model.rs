@@ -61,7 +61,7 @@ impl Model {
     /// Solves the scene.
     pub fn solve(&self) -> Result<Outcome, CliError> {
         let outcome = self.model.solve().map_err(|e| self.scene.error(e))?;
-        Ok(Outcome::new(outcome, &self.model, &self.scene))
+        Ok(Outcome::new(outcome, &self.model))
     }
 
     /// A description of what will be modelled, with the A1 quality figures of every mesh and

@@ -6,8 +6,6 @@ use std::ops::{Deref, DerefMut};
 use vem_contact::Obstacle;
 use vem_scene::RunSummary;
 
-use crate::Scene;
-
 /// The result of solving a scene: the outcome of `vem_scene` (its fields read through this
 /// value) and what the output files need.
 #[derive(Debug, Clone)]
@@ -33,7 +31,9 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    pub(crate) fn new(inner: vem_scene::Outcome, model: &vem_scene::Model, scene: &Scene) -> Self {
+    /// The outcome `inner` of solving `model`, ready to be written ([`Outcome::write`]): the
+    /// way other front ends (the Python package) write what they solved with `vem_scene`.
+    pub fn new(inner: vem_scene::Outcome, model: &vem_scene::Model) -> Self {
         let obstacles = model
             .contacts()
             .iter()
@@ -62,7 +62,7 @@ impl Outcome {
                     .or(c.coefficient)
             })
             .collect();
-        let output = &scene.file().output;
+        let output = &model.scene().output;
         Self {
             inner,
             obstacles,

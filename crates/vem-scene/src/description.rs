@@ -46,6 +46,37 @@ pub struct Scene {
     pub limits: LimitsDescription,
 }
 
+impl Scene {
+    /// Reads a scene from a JSON value (the form of a Python dict): the same keys and types
+    /// as a scene file, every error at the key path of the value at fault.
+    ///
+    /// ```
+    /// use vem_scene::Scene;
+    /// let value = serde_json::json!({ "body": [{ "name": "a", "mesh": { "familly": "quads" } }] });
+    /// let error = Scene::from_value(value).unwrap_err();
+    /// assert_eq!(error.path.to_string(), "body[0].mesh.familly");
+    /// assert!(error.message.contains("familly"), "{}", error.message);
+    /// ```
+    ///
+    /// # Errors
+    /// [`SceneError`](crate::SceneError) for an unknown key, a value of the wrong type, a
+    /// missing key; the checks of [`crate::check::check`] are separate.
+    pub fn from_value(value: serde_json::Value) -> Result<Self, crate::SceneError> {
+        serde_path_to_error::deserialize(value).map_err(|e| {
+            let mut path = crate::KeyPath::root();
+            for segment in e.path().iter() {
+                match segment {
+                    serde_path_to_error::Segment::Seq { index } => path = path.index(*index),
+                    serde_path_to_error::Segment::Map { key } => path = path.at(key),
+                    serde_path_to_error::Segment::Enum { variant } => path = path.at(variant),
+                    serde_path_to_error::Segment::Unknown => {}
+                }
+            }
+            crate::SceneError::at(path, e.inner().to_string())
+        })
+    }
+}
+
 /// One elastic body (`[[body]]`).
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -55,6 +55,42 @@ impl SpanIndex {
         }
     }
 
+    /// The key path at the byte range `span` of `source` (the text this index was made of):
+    /// the innermost written value that holds it, followed by the key written at `span` when
+    /// `span` marks a key rather than a value (an unknown key, as the TOML reader reports
+    /// it). The root when no value holds it.
+    ///
+    /// ```
+    /// use vem_scene::toml_file::{parse, SpanIndex};
+    /// let text = "[[body]]\nname = \"a\"\nmesh = { familly = \"quads\" }\n";
+    /// let error = parse(text).unwrap_err();
+    /// let path = SpanIndex::of(text).path_at(text, error.span.unwrap());
+    /// assert_eq!(path.to_string(), "body[0].mesh.familly");
+    /// ```
+    pub fn path_at(&self, source: &str, span: Range<usize>) -> KeyPath {
+        let holds = |r: &Range<usize>| r.start <= span.start && span.end <= r.end;
+        let Some((path, range)) = self
+            .spans
+            .iter()
+            .filter(|(_, r)| holds(r))
+            .min_by_key(|(p, r)| (r.end - r.start, std::cmp::Reverse(p.0.len())))
+        else {
+            return KeyPath::root();
+        };
+        let mut path = path.clone();
+        if *range != span {
+            let key = source.get(span.clone()).unwrap_or_default().trim();
+            let bare = !key.is_empty()
+                && key
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+            if bare {
+                path.0.push(crate::Segment::Key(key.to_string()));
+            }
+        }
+        path
+    }
+
     /// The span of the value at `path`, or of the nearest enclosing key that is written.
     pub fn span(&self, path: &KeyPath) -> Option<Range<usize>> {
         let known = path.known_prefix(|p| self.spans.contains_key(p));

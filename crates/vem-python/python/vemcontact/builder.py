@@ -1,0 +1,285 @@
+"""Scenes built in Python: the keys of a scene file (docs/scenes.md) as calls.
+
+A :class:`SceneBuilder` holds the same dict that :func:`vemcontact.from_dict` reads, so a
+scene built here is checked by the same code, with the same errors at the same key paths,
+as a scene file::
+
+    import vemcontact as vc
+
+    s = vc.SceneBuilder(title="block on a line", solver=vc.solver("exact", tolerance=1e-13))
+    block = s.add_body("block", vc.generated("voronoi", [[0, 0], [2, 1]], n=6, seed=3),
+                       vc.isotropic(E=100.0, nu=0.3))
+    block.dirichlet("left", x=0.0).traction("top", pressure=0.01)
+    s.add_contact(block, "bottom", obstacle=vc.line([0, 0], [0, 1]))
+    result = s.solve()
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+from . import _native
+
+Number = Union[int, float]
+Value = Union[Number, str]  # a number or an expression of x, y, z, t
+Curve = Sequence[Sequence[Number]]
+
+
+def _keys(**keys: Any) -> Dict[str, Any]:
+    """The keys given (those left at ``None`` are left out)."""
+    return {k: v for k, v in keys.items() if v is not None}
+
+
+# Meshes --------------------------------------------------------------------------------
+
+
+def generated(
+    family: str,
+    rectangle: Sequence[Sequence[Number]],
+    n: Optional[int] = None,
+    seed: Optional[int] = None,
+) -> Dict[str, Any]:
+    """A generated mesh: ``family`` ("quads", "triangles", "hexagons", "voronoi",
+    "perturbed", "nonconvex", "hanging") on ``rectangle = [[x0, y0], [x1, y1]]`` with
+    about ``n`` cells across (left out with ``accuracy`` or ``target_error``)."""
+    return _keys(family=family, rectangle=[list(p) for p in rectangle], n=n, seed=seed)
+
+
+def mesh_file(path: Union[str, os.PathLike], part_names: Optional[Dict[int, str]] = None) -> Dict[str, Any]:
+    """A mesh file (.msh, .vtu, .vtk, .txt, .poly), relative to the scene's base folder;
+    ``part_names`` names the part numbers of a VTK file's line cells."""
+    names = None if part_names is None else {str(k): v for k, v in part_names.items()}
+    return _keys(file=os.fspath(path), part_names=names)
+
+
+# Materials -----------------------------------------------------------------------------
+
+
+def isotropic(E: Number, nu: Number, plane: str = "strain") -> Dict[str, Any]:
+    """An isotropic material by Young's modulus and Poisson's ratio; ``plane`` is
+    "strain" or "stress"."""
+    return {"E": E, "nu": nu, "plane": plane}
+
+
+def lame(lam: Number, mu: Number, plane: str = "strain") -> Dict[str, Any]:
+    """An isotropic material by its Lamé parameters (``lambda``, ``mu``)."""
+    return {"lambda": lam, "mu": mu, "plane": plane}
+
+
+# Obstacles, laws, solvers --------------------------------------------------------------
+
+
+def line(point: Sequence[Number], normal: Sequence[Number]) -> Dict[str, Any]:
+    """A rigid half-plane bounded by the line through ``point``; ``normal`` points out of
+    it, towards the body."""
+    return {"line": {"point": list(point), "normal": list(normal)}}
+
+
+def circle(centre: Sequence[Number], radius: Number) -> Dict[str, Any]:
+    """A rigid disc; the body lies outside it."""
+    return {"circle": {"centre": list(centre), "radius": radius}}
+
+
+def polyline(points: Sequence[Sequence[Number]]) -> Dict[str, Any]:
+    """A rigid polyline; the obstacle lies to the right of the direction of travel."""
+    return {"polyline": [list(p) for p in points]}
+
+
+def law(name: str, **settings: Any) -> Union[str, Dict[str, Any]]:
+    """A contact law by registry name with its settings: ``law("frictionless")``,
+    ``law("tresca", friction_bound=0.05)``, ``law("coulomb", coefficient=0.3)``."""
+    return dict(name=name, **settings) if settings else name
+
+
+def solver(name: str, **settings: Any) -> Union[str, Dict[str, Any]]:
+    """The contact solver by registry name with its settings: ``solver("condensed")``,
+    ``solver("exact", tolerance=1e-12)``, ``solver("penalty", penalty={"factor": 1e4})``."""
+    return dict(name=name, **settings) if settings else name
+
+
+def element(name: str, **settings: Any) -> Union[str, Dict[str, Any]]:
+    """An element by registry name with its settings: ``element("vem1-bbar")``,
+    ``element("vem1", stabilisation="drecipe")``."""
+    return dict(name=name, **settings) if settings else name
+
+
+# Bodies and scenes ---------------------------------------------------------------------
+
+
+class Body:
+    """One body of a :class:`SceneBuilder`: its conditions are added by chained calls."""
+
+    def __init__(self, description: Dict[str, Any]) -> None:
+        self._d = description
+
+    @property
+    def name(self) -> str:
+        """The body's name."""
+        return self._d["name"]
+
+    def dirichlet(
+        self,
+        part: str,
+        x: Optional[Value] = None,
+        y: Optional[Value] = None,
+        curve: Optional[Curve] = None,
+    ) -> "Body":
+        """Prescribes ``u_x`` and/or ``u_y`` (numbers or expressions) on ``part``."""
+        self._d.setdefault("dirichlet", []).append(_keys(part=part, x=x, y=y, curve=_curve(curve)))
+        return self
+
+    def traction(
+        self,
+        part: str,
+        value: Optional[Sequence[Value]] = None,
+        pressure: Optional[Number] = None,
+        curve: Optional[Curve] = None,
+    ) -> "Body":
+        """A traction vector ``value = [gx, gy]`` or a normal ``pressure`` (positive
+        compressive) on ``part``."""
+        vector = None if value is None else list(value)
+        self._d.setdefault("traction", []).append(
+            _keys(part=part, value=vector, pressure=pressure, curve=_curve(curve))
+        )
+        return self
+
+    def rigid_plate(
+        self,
+        part: str,
+        resultant_x: Optional[Number] = None,
+        resultant_y: Optional[Number] = None,
+        curve: Optional[Curve] = None,
+    ) -> "Body":
+        """Moves ``part`` as a rigid plate that applies the given total force (force
+        control)."""
+        self._d.setdefault("rigid_plate", []).append(
+            _keys(part=part, resultant_x=resultant_x, resultant_y=resultant_y, curve=_curve(curve))
+        )
+        return self
+
+    def body_force(self, force: Sequence[Value], curve: Optional[Curve] = None) -> "Body":
+        """A body force per unit area ``[fx, fy]`` (numbers or expressions)."""
+        self._d["body_force"] = list(force)
+        if curve is not None:
+            self._d["body_force_curve"] = _curve(curve)
+        return self
+
+    def __repr__(self) -> str:
+        return f"Body({self._d!r})"
+
+
+def _curve(curve: Optional[Curve]) -> Optional[List[List[Number]]]:
+    return None if curve is None else [list(p) for p in curve]
+
+
+def _name(body: Union[str, Body]) -> str:
+    return body.name if isinstance(body, Body) else body
+
+
+class SceneBuilder:
+    """A scene built call by call; :meth:`to_dict` is the dict of a scene file's keys,
+    :meth:`build` checks it into a :class:`vemcontact.Scene`, :meth:`solve` solves it."""
+
+    def __init__(
+        self,
+        title: Optional[str] = None,
+        solver: Optional[Union[str, Dict[str, Any]]] = None,
+        accuracy: Optional[str] = None,
+        target_error: Optional[float] = None,
+    ) -> None:
+        self._d: Dict[str, Any] = _keys(
+            title=title, solver=solver, accuracy=accuracy, target_error=target_error
+        )
+        self._bodies: List[Body] = []
+
+    def add_body(
+        self,
+        name: str,
+        mesh: Dict[str, Any],
+        material: Dict[str, Any],
+        element: Optional[Union[str, Dict[str, Any]]] = None,
+    ) -> Body:
+        """Adds a body (see :func:`generated`, :func:`mesh_file`, :func:`isotropic`) and
+        returns it for its conditions."""
+        body = Body(_keys(name=name, mesh=mesh, material=material, element=element))
+        self._d.setdefault("body", []).append(body._d)
+        self._bodies.append(body)
+        return body
+
+    def add_contact(
+        self,
+        body: Union[str, Body],
+        part: str,
+        *,
+        other_body: Optional[Union[str, Body]] = None,
+        other_part: Optional[str] = None,
+        obstacle: Optional[Dict[str, Any]] = None,
+        law: Optional[Union[str, Dict[str, Any]]] = None,
+        normal: Optional[str] = None,
+        imposed_gap: Optional[Value] = None,
+        max_distance: Optional[Number] = None,
+        hertz_radius: Optional[Number] = None,
+    ) -> "SceneBuilder":
+        """A contact pair: ``part`` of ``body`` against ``other_part`` of ``other_body``
+        or against a rigid ``obstacle`` (:func:`line`, :func:`circle`, :func:`polyline`)."""
+        self._d.setdefault("contact", []).append(
+            _keys(
+                body=_name(body),
+                part=part,
+                other_body=None if other_body is None else _name(other_body),
+                other_part=other_part,
+                obstacle=obstacle,
+                law=law,
+                normal=normal,
+                imposed_gap=imposed_gap,
+                max_distance=max_distance,
+                hertz=None if hertz_radius is None else {"radius": hertz_radius},
+            )
+        )
+        return self
+
+    def set_solver(self, name: str, **settings: Any) -> "SceneBuilder":
+        """The contact solver of every pair (see :func:`solver`)."""
+        self._d["solver"] = dict(name=name, **settings) if settings else name
+        return self
+
+    def set_history(
+        self,
+        steps: Optional[Sequence[Number]] = None,
+        times: Optional[Sequence[Number]] = None,
+        end: Optional[Number] = None,
+        increments: Optional[int] = None,
+    ) -> "SceneBuilder":
+        """A load history: load factors ``steps``, or ``times``, or ``end`` with
+        ``increments`` (then every condition follows its ``curve``)."""
+        self._d["history"] = _keys(
+            steps=None if steps is None else list(steps),
+            times=None if times is None else list(times),
+            end=end,
+            increments=increments,
+        )
+        return self
+
+    def set_output(self, magnification: Optional[Number] = None, width: Optional[Number] = None) -> "SceneBuilder":
+        """The pictures' displacement magnification and width in pixels."""
+        self._d["output"] = _keys(magnification=magnification, width=width)
+        return self
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The scene as the dict of a scene file's keys."""
+        import copy
+
+        return copy.deepcopy(self._d)
+
+    def build(self, base: Optional[Union[str, os.PathLike]] = None) -> "_native.Scene":
+        """The checked scene; mesh files are looked up from ``base`` (default: the current
+        folder). Raises :class:`vemcontact.SceneError` at the key path at fault."""
+        return _native.from_dict(self._d, None if base is None else os.fspath(base))
+
+    def solve(self, base: Optional[Union[str, os.PathLike]] = None, memory_limit_gib: Optional[float] = None) -> "_native.Result":
+        """Builds and solves (see :meth:`vemcontact.Scene.solve`)."""
+        return self.build(base).solve(memory_limit_gib)
+
+    def __repr__(self) -> str:
+        return f"SceneBuilder({self._d!r})"
