@@ -1097,7 +1097,18 @@ fn candidate_pairs(side_a: &Side, side_b: &Side, reach: f64) -> Vec<(usize, usiz
         .map(|c| (c.bbox.hi - c.bbox.lo).norm())
         .sum::<f64>()
         / side_b.charts.len() as f64;
-    let size = if size > 0.0 { size } else { 1.0 };
+    // Cells of about the mean face size, but no face in more than 17^3 cells.
+    let largest = side_b
+        .charts
+        .iter()
+        .map(|c| (c.bbox.hi - c.bbox.lo).norm())
+        .fold(0.0, f64::max);
+    let size = size.max(largest / 16.0);
+    let size = if size > 0.0 && size.is_finite() {
+        size
+    } else {
+        1.0
+    };
     let origin = side_b.bbox.lo;
     let key = |p: Point3| -> [i64; 3] {
         let r = (p - origin) / size;
@@ -1126,11 +1137,31 @@ fn candidate_pairs(side_a: &Side, side_b: &Side, reach: f64) -> Vec<(usize, usiz
         };
         let (lo, hi) = (key(swept.lo), key(swept.hi));
         found.clear();
-        for i in lo[0].max(0)..=hi[0].min(limit[0]) {
-            for j in lo[1].max(0)..=hi[1].min(limit[1]) {
-                for k in lo[2].max(0)..=hi[2].min(limit[2]) {
-                    if let Some(list) = grid.get(&[i, j, k]) {
-                        found.extend_from_slice(list);
+        let (lo, hi) = (
+            [lo[0].max(0), lo[1].max(0), lo[2].max(0)],
+            [
+                hi[0].min(limit[0]),
+                hi[1].min(limit[1]),
+                hi[2].min(limit[2]),
+            ],
+        );
+        let cells: f64 = (0..3)
+            .map(|d| (hi[d] as f64 - lo[d] as f64 + 1.0).max(0.0))
+            .product();
+        if cells > grid.len() as f64 {
+            // A query larger than the occupied grid (far-flung parts): scan what is there.
+            for (key, list) in &grid {
+                if (0..3).all(|d| key[d] >= lo[d] && key[d] <= hi[d]) {
+                    found.extend_from_slice(list);
+                }
+            }
+        } else {
+            for i in lo[0]..=hi[0] {
+                for j in lo[1]..=hi[1] {
+                    for k in lo[2]..=hi[2] {
+                        if let Some(list) = grid.get(&[i, j, k]) {
+                            found.extend_from_slice(list);
+                        }
                     }
                 }
             }
