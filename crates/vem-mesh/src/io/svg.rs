@@ -368,7 +368,24 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         .iter()
         .map(|l| cell_size_in_pixels(l.mesh, scale) >= options.edge_min_pixels)
         .collect();
+    // The undeformed outlines below the cells: in a raster picture before its image.
+    let undeformed_outline = |out: &mut String, mesh: &Mesh| {
+        boundary_path(
+            out,
+            mesh,
+            mesh.vertices(),
+            &to_picture,
+            "undeformed",
+            &format!(
+                "stroke=\"#9a9a9a\" stroke-width=\"{:.2}\" stroke-dasharray=\"3 2\"",
+                0.8 * line
+            ),
+        );
+    };
     if raster {
+        for d in drawn.iter().filter(|d| d.layer.displacement.is_some()) {
+            undeformed_outline(out, d.layer.mesh);
+        }
         raster_cells(
             out,
             &drawn,
@@ -382,8 +399,8 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
         let mesh = d.layer.mesh;
         let edges = edges_shown[index];
         emit(out, format_args!("<g id=\"layer-{index}\">\n"));
-        if d.layer.displacement.is_some() {
-            if edges && !raster {
+        if d.layer.displacement.is_some() && !raster {
+            if edges {
                 emit(
                     out,
                     format_args!(
@@ -397,17 +414,7 @@ fn render(layers: &[SvgLayer], options: &SvgOptions) -> Result<String, String> {
                 }
                 emit(out, format_args!("</g>\n"));
             } else {
-                boundary_path(
-                    out,
-                    mesh,
-                    mesh.vertices(),
-                    &to_picture,
-                    "undeformed",
-                    &format!(
-                        "stroke=\"#9a9a9a\" stroke-width=\"{:.2}\" stroke-dasharray=\"3 2\"",
-                        0.8 * line
-                    ),
-                );
+                undeformed_outline(out, mesh);
             }
         }
         if !raster {
