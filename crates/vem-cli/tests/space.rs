@@ -92,6 +92,27 @@ fn block3d_gives_the_exact_uniform_state_and_its_files() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn check_lists_the_polyhedra_their_parts_and_quality() {
+    let scene = Scene::load(scene("block3d")).unwrap();
+    let model = Model::build(&scene).unwrap();
+    let report = model.check().unwrap();
+    assert!(report.bodies.is_empty());
+    let body = &report.bodies_3d[0];
+    let mesh = model.bodies_3d()[0].body.mesh();
+    assert_eq!(body.polygons, mesh.n_cells());
+    // Every boundary face is in exactly one of the six sides.
+    let faces: usize = body.parts.iter().map(|(_, n)| n).sum();
+    assert_eq!(faces, mesh.boundary_faces().count());
+    assert_eq!(body.quality.cells, mesh.n_cells());
+    let text = report.to_string();
+    assert!(
+        text.contains(&format!("{} polyhedra; parts: left (", mesh.n_cells())),
+        "{text}"
+    );
+    assert!(text.contains("face warping / h_F"), "{text}");
+}
+
 /// Parses and builds `text` as the scene `bad.toml`; returns the error.
 fn error_of(text: &str) -> CliError {
     match Scene::parse("bad.toml", text).and_then(|scene| Model::build(&scene)) {
