@@ -50,8 +50,8 @@ impl Outcome {
                     .collect()
             })
         });
-        let coulomb_coefficients = scene
-            .file()
+        let coulomb_coefficients = model
+            .scene()
             .contacts
             .iter()
             .map(|c| {
