@@ -236,8 +236,10 @@ pub fn check_dimensions(scene: &Scene, dimensions: &[usize]) -> Result<(), Scene
                 path,
                 format!(
                     "contact of bodies in space ({what}, body '{}' part '{}') is not available \
-                     yet: a scene in three dimensions solves its bodies without contact; remove \
-                     the [[contact]] tables, or model the contact in the plane",
+                     yet in scene files: a scene in three dimensions solves its bodies without \
+                     contact; remove the [[contact]] tables, model the contact in the plane, or \
+                     solve it through the library (vem_contact::ContactProblem<3>, frictionless, \
+                     docs/contact-3d.md)",
                     contact.body, contact.part
                 ),
             ));
