@@ -9,33 +9,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv="${1:-target/vtu-check-venv}"
-python="${PYTHON:-python3}"
-packages=(meshio==5.3.5 vtk==9.7.2 numpy==2.4.6)
-
-if ! command -v "$python" >/dev/null; then
-    echo "install-vtu-check: $python not found; install Python 3 (apt-get install python3 python3-venv)" >&2
-    exit 1
-fi
-if [ ! -x "$venv/bin/python" ]; then
-    "$python" -m venv "$venv" || {
-        echo "install-vtu-check: cannot create a virtual environment in $venv (apt-get install python3-venv?)" >&2
-        exit 1
-    }
-fi
-installed=$("$venv/bin/python" -m pip freeze 2>/dev/null || true)
-missing=()
-for package in "${packages[@]}"; do
-    grep -qix "$package" <<<"$installed" || missing+=("$package")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-    if ! "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-        --timeout 60 --retries 2 "${missing[@]}"; then
-        echo "install-vtu-check: pip could not install ${missing[*]} (is PyPI reachable?)" >&2
-        exit 1
-    fi
-fi
+python=$(scripts/python-venv.sh install-vtu-check "$venv" meshio==5.3.5 vtk==9.7.2 numpy==2.4.6 |
+    tail -n 1)
 check="import meshio, vtk, numpy"
-if ! "$venv/bin/python" -c "$check" >/dev/null 2>&1; then
+if ! "$python" -c "$check" >/dev/null 2>&1; then
     if command -v apt-get >/dev/null; then
         echo "install-vtu-check: vtk does not import; installing its system libraries" >&2
         export DEBIAN_FRONTEND=noninteractive
@@ -44,9 +21,9 @@ if ! "$venv/bin/python" -c "$check" >/dev/null 2>&1; then
             libxinerama1 libglu1-mesa libfontconfig1 >/dev/null
     fi
 fi
-if ! error=$("$venv/bin/python" -c "$check" 2>&1); then
+if ! error=$("$python" -c "$check" 2>&1); then
     echo "install-vtu-check: meshio or vtk still does not import:" >&2
     echo "$error" >&2
     exit 1
 fi
-echo "$venv/bin/python"
+echo "$python"
