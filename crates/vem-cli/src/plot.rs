@@ -129,6 +129,10 @@ fn titled<'a>(
 
 /// Room above the curves for the legend, as a fraction of the value span.
 const LEGEND_ROOM: f64 = 0.35;
+/// Room above the curves for the legend of a pressure plot with friction (twice the rows:
+/// the friction traction, its nodal values, the bound and Cattaneo-Mindlin's curve), so that
+/// the legend stays clear of the pressure's peak.
+const FRICTION_LEGEND_ROOM: f64 = 0.55;
 
 /// Renders `draw` into an SVG document and writes it atomically to `path`.
 fn svg_file(
@@ -262,7 +266,11 @@ pub(crate) fn pressure(
                     .chain(b.iter().flat_map(|p| [p.1, -p.1]))
             }))
             .chain([0.0]),
-        LEGEND_ROOM,
+        if friction.is_some() {
+            FRICTION_LEGEND_ROOM
+        } else {
+            LEGEND_ROOM
+        },
     );
     let hertz_label = hertz.map_or_else(String::new, |h| {
         // Four significant digits, as the summary prints them.
