@@ -644,21 +644,7 @@ impl Model {
                         .iter()
                         .map(|f| f.von_mises)
                         .fold(0.0, f64::max),
-                    reactions: solved
-                        .solution
-                        .reactions()
-                        .iter()
-                        .zip(solved.body.dirichlet())
-                        .map(|(r, condition)| ReactionSummary {
-                            rigid_plate: condition.is_rigid_plate(),
-                            part: r.part.clone(),
-                            components: match r.component {
-                                Component::All => "x, y".to_string(),
-                                other => other.name().to_string(),
-                            },
-                            force: r.force.iter().map(|&f| tidy(f)).collect(),
-                        })
-                        .collect(),
+                    reactions: reaction_summaries(&solved.solution, &solved.body),
                     warnings: built.warnings.clone(),
                 }
             })
@@ -932,4 +918,26 @@ impl RunSummary {
             t.mesh_s, t.assembly_s, t.solve_s, t.post_s, t.output_s, t.total_s
         )
     }
+}
+
+/// The reactions of every Dirichlet condition of `body` in `solution`, as the summary lists
+/// them (components `x, y` or `x, y, z` for a condition on all of them).
+pub(crate) fn reaction_summaries<const D: usize>(
+    solution: &Solution<D>,
+    body: &ElasticBody<D>,
+) -> Vec<ReactionSummary> {
+    solution
+        .reactions()
+        .iter()
+        .zip(body.dirichlet())
+        .map(|(r, condition)| ReactionSummary {
+            rigid_plate: condition.is_rigid_plate(),
+            part: r.part.clone(),
+            components: match r.component {
+                Component::All => ["x", "y", "z"][..D].join(", "),
+                other => other.name().to_string(),
+            },
+            force: r.force.iter().map(|&f| tidy(f)).collect(),
+        })
+        .collect()
 }

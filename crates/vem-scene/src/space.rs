@@ -23,7 +23,7 @@ use crate::build::{
 use crate::check::list;
 use crate::description::{BodyDescription, Scene};
 use crate::solve::{
-    describe_material, tidy, BodySummary, ReactionSummary, RunSummary, RunTimes, SolvedBody,
+    describe_material, reaction_summaries, BodySummary, RunSummary, RunTimes, SolvedBody,
 };
 use crate::{KeyPath, Model, Outcome, SceneError};
 
@@ -510,21 +510,7 @@ fn summarise(model: &Model, bodies: &[SolvedBody<3, CellQuality>], times: RunTim
                     .iter()
                     .map(|f| f.von_mises)
                     .fold(0.0, f64::max),
-                reactions: solved
-                    .solution
-                    .reactions()
-                    .iter()
-                    .zip(solved.body.dirichlet())
-                    .map(|(r, condition)| ReactionSummary {
-                        rigid_plate: condition.is_rigid_plate(),
-                        part: r.part.clone(),
-                        components: match r.component {
-                            Component::All => "x, y, z".to_string(),
-                            other => other.name().to_string(),
-                        },
-                        force: r.force.iter().map(|&f| tidy(f)).collect(),
-                    })
-                    .collect(),
+                reactions: reaction_summaries(&solved.solution, &solved.body),
                 warnings: built.warnings.clone(),
             }
         })
