@@ -51,6 +51,10 @@ pub enum Problem {
     /// E1: elasticity baseline (one clamped body, no contact).
     #[value(name = "E1")]
     E1,
+    /// E2c at nu = 0.4999: the divergence-free two-body contact solution close to
+    /// incompressibility (what the locking-free choice costs).
+    #[value(name = "E2c")]
+    E2c,
 }
 
 impl Problem {
@@ -61,11 +65,12 @@ impl Problem {
             Self::Hertz => "hertz",
             Self::Coulomb => "coulomb",
             Self::E1 => "E1",
+            Self::E2c => "E2c",
         }
     }
 
     fn manufactured(self) -> bool {
-        matches!(self, Self::M1 | Self::M2 | Self::E1)
+        matches!(self, Self::M1 | Self::M2 | Self::E1 | Self::E2c)
     }
 
     /// The error plotted against time.
@@ -141,6 +146,15 @@ const FULL_SETTINGS: [&str; 10] = [
     "active-set",
     "active-set@aug=1e-2",
 ];
+/// Poisson's ratio of the near-incompressible group (E2c).
+const E2C_POISSON_RATIO: f64 = 0.4999;
+/// The elements of the near-incompressible group: the earlier default, the locking-free
+/// element, and the locking-free element with every edge's midpoint inserted (the default
+/// that a scene chooses on triangles close to incompressibility).
+const E2C_ELEMENTS: [&str; 3] = ["vem1", "vem1-bbar", "vem1-bbar+midpoints"];
+/// The suffix of an element label that inserts every edge's midpoint into the meshes.
+const MIDPOINTS: &str = "+midpoints";
+
 /// The settings of `--quick`.
 const QUICK_SETTINGS: [&str; 4] = ["draft", "reference", "exact", "penalty@factor=1e6"];
 
@@ -162,6 +176,10 @@ pub struct TradeoffArgs {
     /// an earlier run in the same `--out`.
     #[arg(long)]
     report_only: bool,
+    /// Measure only the groups of this problem and keep every other row of the
+    /// tradeoff/tradeoff.json of an earlier run in the same `--out` (re-measure one group).
+    #[arg(long, value_enum)]
+    only: Option<Problem>,
 }
 
 /// Options of the hidden `cargo xtask tradeoff-one` (one group, one JSON line per setting).
@@ -173,7 +191,7 @@ pub struct TradeoffOneArgs {
     /// The mesh pairing (manufactured problems), e.g. "quads/quads*3".
     #[arg(long, default_value = "quads/quads")]
     pairing: String,
-    /// The element's registry name.
+    /// The element's registry name, with `+midpoints` to insert every edge's midpoint.
     #[arg(long, default_value = "vem1")]
     element: String,
     /// The size parameter.
@@ -326,6 +344,9 @@ fn plan(args: &TradeoffArgs) -> Plan {
         for problem in [Problem::Hertz, Problem::Coulomb] {
             add(problem, "voronoi/quads", "vem1", &[8, 16], &settings);
         }
+        for element in E2C_ELEMENTS {
+            add(Problem::E2c, "triangles/triangles", element, &[8, 16], &one);
+        }
     } else {
         let sizes = [4, 8, 16, 32, 64, 128];
         for problem in [Problem::M1, Problem::M2] {
@@ -348,6 +369,16 @@ fn plan(args: &TradeoffArgs) -> Plan {
         }
         add(Problem::E1, "quads", "vem1", &sizes, &one);
         add(Problem::E1, "voronoi", "vem1", &sizes, &one);
+        // Near incompressibility on triangles: what the locking-free choice costs.
+        for element in E2C_ELEMENTS {
+            add(
+                Problem::E2c,
+                "triangles/triangles",
+                element,
+                &[4, 8, 16, 32, 64],
+                &one,
+            );
+        }
         for problem in [Problem::Hertz, Problem::Coulomb] {
             add(
                 problem,
@@ -372,6 +403,9 @@ fn plan(args: &TradeoffArgs) -> Plan {
                 reference: true,
             },
         );
+    }
+    if let Some(only) = args.only {
+        groups.retain(|g| g.problem == only);
     }
     Plan { groups }
 }
@@ -408,13 +442,29 @@ fn build(args: &TradeoffOneArgs) -> Result<Built, Box<dyn std::error::Error>> {
                 mesh_generation,
             })
         }
-        Problem::M1 | Problem::M2 | Problem::E1 => {
-            let exact: Arc<dyn ExactSolution> =
-                Arc::from(case_by_name(args.problem.name(), Lame::default())?);
+        Problem::M1 | Problem::M2 | Problem::E1 | Problem::E2c => {
+            let exact: Arc<dyn ExactSolution> = if args.problem == Problem::E2c {
+                // mu = 1, lambda = 2 mu nu / (1 - 2 nu), as in the extremes suite.
+                let nu = E2C_POISSON_RATIO;
+                let lame = Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?;
+                Arc::new(vem_verify::exact::DivergenceFreeContact::new(lame))
+            } else {
+                Arc::from(case_by_name(args.problem.name(), Lame::default())?)
+            };
             let pairing: MeshPairing = args.pairing.parse()?;
-            let meshes =
+            let mut meshes =
                 pairing.generate(&*exact, args.n, vem_verify::study::Study::DEFAULT_SEED)?;
-            let element = ElementRegistry::builtin().make(&args.element)?;
+            let name = match args.element.strip_suffix(MIDPOINTS) {
+                Some(name) => {
+                    meshes = meshes
+                        .iter()
+                        .map(|m| m.with_edge_midpoints())
+                        .collect::<Result<_, _>>()?;
+                    name
+                }
+                None => &args.element,
+            };
+            let element = ElementRegistry::builtin().make(name)?;
             let settings = ProblemSettings::builder().element(element).build()?;
             let problem = DiscreteProblem::try_new(exact, meshes, &settings)?;
             let mesh_generation = seconds(start.elapsed());
@@ -811,6 +861,7 @@ pub fn run(args: &TradeoffArgs) -> Result<bool, Box<dyn std::error::Error>> {
             out: args.out.clone(),
             slow_max_unknowns: args.slow_max_unknowns,
             report_only: true,
+            only: None,
         };
         let (markdown, plots) = report(
             &stored.rows,
@@ -850,7 +901,36 @@ pub fn run(args: &TradeoffArgs) -> Result<bool, Box<dyn std::error::Error>> {
         bar.inc(weight(group));
     }
     bar.finish_with_message("done");
-    let seconds = started.elapsed().as_secs_f64();
+    let mut seconds = started.elapsed().as_secs_f64();
+    if let Some(only) = args.only {
+        // Keep every other group of the earlier run.
+        let path = folder.join("tradeoff.json");
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            format!(
+                "--only keeps the other groups of {}, which cannot be read: {e}",
+                path.display()
+            )
+        })?;
+        let stored: StoredReport =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        if stored.quick != args.quick {
+            return Err(format!(
+                "--only: {} holds a run with quick = {}, this one has quick = {}",
+                path.display(),
+                stored.quick,
+                args.quick
+            )
+            .into());
+        }
+        let mut kept: Vec<Row> = stored
+            .rows
+            .into_iter()
+            .filter(|r| r.problem != only.name())
+            .collect();
+        kept.append(&mut rows);
+        rows = kept;
+        seconds += stored.seconds;
+    }
     let model = fit_model(&rows);
     let (markdown, plots) = report(&rows, &model, args, seconds, &machine())?;
     for (name, svg) in &plots {
@@ -1034,6 +1114,7 @@ fn report(
     ));
     out.push_str(INTRO);
     out.push_str(&findings(rows));
+    out.push_str(&locking_free_cost(rows));
     // Presets.
     out.push_str("\n## Accuracy presets\n\n");
     out.push_str(
@@ -1427,6 +1508,72 @@ fn findings(rows: &[Row]) -> String {
     out
 }
 
+/// The near-incompressible group (E2c at nu = 0.4999 on non-matching triangles): error and
+/// cost of each element at each size, and what the locking-free default costs against the
+/// earlier default at the same error.
+fn locking_free_cost(rows: &[Row]) -> String {
+    let group: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.problem == Problem::E2c.name() && r.role != "reference")
+        .collect();
+    if group.is_empty() {
+        return String::new();
+    }
+    let mut out = format!(
+        "\n## What the locking-free choice costs\n\nE2c (the divergence-free two-body \
+         contact solution) at nu = {E2C_POISSON_RATIO} on non-matching triangles, the reference \
+         preset: `vem1` (the earlier default), `vem1-bbar` on the plain triangles, and \
+         `vem1-bbar+midpoints` (every edge's midpoint inserted: the default a scene chooses on \
+         triangles for nu > 0.45). Time: mesh generation, discretisation and solve.\n\n\
+         | n | element | unknowns | E_grad / \\|u\\|_1 | E_0 / \\|u\\|_0 | time (s) | peak memory (MiB) |\n\
+         |---|---|---|---|---|---|---|\n"
+    );
+    let mut sizes: Vec<usize> = group.iter().map(|r| r.n).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    for n in &sizes {
+        for element in E2C_ELEMENTS {
+            if let Some(r) = group.iter().find(|r| r.n == *n && r.element == element) {
+                out.push_str(&format!(
+                    "| {n} | {element} | {} | {} | {} | {:.3} | {:.0} |\n",
+                    r.unknowns,
+                    opt(r.e_grad),
+                    opt(r.e_0),
+                    r.total_time(),
+                    r.peak_memory as f64 / (1024.0 * 1024.0)
+                ));
+            }
+        }
+    }
+    // The finest size: what the default buys and costs against the earlier default.
+    let finest = sizes.last().copied();
+    let at = |element: &str| {
+        group
+            .iter()
+            .find(|r| Some(r.n) == finest && r.element == element)
+    };
+    if let (Some(n), Some(default), Some(earlier)) =
+        (finest, at(E2C_ELEMENTS[2]), at(E2C_ELEMENTS[0]))
+    {
+        let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
+            _ => "—".to_string(),
+        };
+        out.push_str(&format!(
+            "\nAt n = {n}, `vem1-bbar+midpoints` against `vem1`: E_grad x{}, E_0 x{}, unknowns \
+             x{:.1}, time x{:.1}. On these triangles `vem1` locks only mildly (docs/extremes.md: \
+             E_grad x1.24 from nu = 0.3 to 0.4999), so the midpoints buy little here; where \
+             locking is strong - Hertz on Gmsh triangles, where `vem1` misses the peak pressure \
+             by 60 % at nu = 0.499 (docs/elements.md) - they are what makes the answer right.\n",
+            ratio(default.e_grad, earlier.e_grad),
+            ratio(default.e_0, earlier.e_0),
+            default.unknowns as f64 / earlier.unknowns.max(1) as f64,
+            default.total_time() / earlier.total_time().max(1e-12),
+        ));
+    }
+    out
+}
+
 /// The fixed explanation at the top of the report.
 const INTRO: &str = "\
 What each setting costs and what it buys, on the same problems and the same meshes: every \
@@ -1440,7 +1587,9 @@ frictionless, compared with the plane-strain Hertz pressure of its own load and 
 reference solution; `coulomb`: the same pair sheared 0.006 sideways with Coulomb friction \
 F = 0.3, compared with a fine reference; E1: the elasticity baseline (one clamped body, one \
 Cholesky solve). The stabilisations (`vem1`: dofi-dofi with trace(C), `vem1-shear`, \
-`vem1-drecipe`, `vem1-bbar`) on M1.
+`vem1-drecipe`, `vem1-bbar`) on M1. E2c: the divergence-free two-body contact solution at \
+nu = 0.4999 on non-matching triangles, with `vem1`, `vem1-bbar` and `vem1-bbar+midpoints` \
+(every edge's midpoint inserted as a vertex).
 - **Settings.** The presets `draft`, `balanced`, `reference` (the condensed solver at the \
 tolerances 1e-4, 1e-8, 1e-12), the exact solver (Clarabel, default and `tol=1e-4`), the penalty solver at the factors 1e4, \
 1e6, 1e8 relative to the stiffness, the active-set solver (default and augmentation 1e-2 \
