@@ -37,7 +37,7 @@ pub struct HertzArgs {
     #[arg(long, default_value = "xtask/data/hertz")]
     meshes: PathBuf,
     /// Contact mesh sizes h_c (the meshes must exist), comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "0.08,0.04,0.02")]
+    #[arg(long, value_delimiter = ',', default_value = "0.08,0.04,0.02,0.01")]
     sizes: Vec<String>,
     /// Only the friction section (force control, load histories): `fretting.md`.
     #[arg(long)]
