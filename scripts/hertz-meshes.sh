@@ -7,10 +7,11 @@
 #   (writes DISC_OUT.msh and BLOCK_OUT.msh, MSH 4.1)
 # Example (about 10^5 unknowns, the load-history benchmark of docs/benchmarks.md):
 #   scripts/hertz-meshes.sh 0.002 0.0125 0.039 target/fretting/disc_1e5 target/fretting/block_1e5
+# BLOCK_GEO=crates/vem-cli/scenes/hertz_block_triangles.geo meshes the block with triangles.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -ne 5 ]; then
-    sed -n '2,10p' "$0" >&2
+    sed -n '2,11p' "$0" >&2
     exit 2
 fi
 python=$(scripts/install-gmsh.sh | tail -n 1)
@@ -36,5 +37,5 @@ PY
     rm -f "$2.geo"
 }
 mesh crates/vem-cli/scenes/hertz_disc.geo "$4" "$1" "$2"
-mesh crates/vem-cli/scenes/hertz_block.geo "$5" "$1" "$3"
+mesh "${BLOCK_GEO:-crates/vem-cli/scenes/hertz_block.geo}" "$5" "$1" "$3"
 echo "wrote $4.msh and $5.msh"
