@@ -1,11 +1,12 @@
 //! `cargo xtask extremes`: numerical stability at the extremes. Every row (Poisson ratio up to
 //! 0.49999, stiffness contrasts, units, degenerate cells, penalty factors, gaps, friction
-//! bounds) is solved by every registered solver and judged against an independent expected
-//! answer; the report goes to `target/extremes/extremes.md` (`--out docs/extremes.md` for the
-//! tracked one). The rows themselves are in
-//! [`rows`], shared with the workspace test `tests/tests/extremes.rs`.
+//! bounds; in the plane and in space) is solved by every registered solver and judged against
+//! an independent expected answer; the report goes to `target/extremes/extremes.md`
+//! (`--out docs/extremes.md` for the tracked one). The rows themselves are in [`rows`] and
+//! [`space`], shared with the workspace test `tests/tests/extremes.rs`.
 
 pub mod rows;
+pub mod space;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -107,6 +108,15 @@ against an expected answer that does not come from a solver:
   bodies, with the default element and with `vem1` or `vem1-bbar` forced: the errors of the
   half-width and the peak pressure against plane-strain Hertz within 3 % of those at 0.3; an
   element that misses this must carry the scene's locking warning.
+- **In space.** The divergence-free solution E2-3D on hexahedra, Voronoi cells and tetrahedra
+  at nu = 0.49, 0.4999, 0.49999 against 0.3, for every element on polyhedra (one Cholesky
+  solve each): relative errors within 2x. The contact patch test of two stacked blocks,
+  `[0, 1]^2 x [0, 1]` on `[0, 1]^2 x [-0.5, 0]`, hexahedra on tetrahedra (non-matching: the
+  surface overlay makes the interface node-to-node), rollers on the sides x = 0 and y = 0, the
+  upper top moved down by d = 0.01: the uniform uniaxial stress `p = d / (h_1/E_1 + h_2/E_2)`
+  and its linear displacement, exactly, at stiffness contrasts 1e+-8, lengths 1e+-6 and moduli
+  1e-9, nu = 0.49999 (`vem1`, `vem1-bbar`), a lower block 1e-3 and 1e-6 thin (flat
+  tetrahedra), and warped hexahedra on Voronoi cells.
 
 Verdicts: **PASS** (the expected answer within the tolerance); **FAIL (refused: error)** (the
 solver or the model building returned an error: no answer, but no wrong one);

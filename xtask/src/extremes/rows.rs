@@ -109,6 +109,10 @@ pub struct Size {
     /// Block meshes (files beside the shipped Hertz scene) of the near-incompressible Hertz
     /// rows.
     pub hertz_blocks: Vec<&'static str>,
+    /// Cells across the unit cube in the locking rows in space (E2-3D).
+    pub solid: usize,
+    /// Cells across the upper block of the contact patch tests in space.
+    pub solid_patch: usize,
 }
 
 impl Size {
@@ -134,6 +138,8 @@ impl Size {
                 ],
                 solvers: solver_names(),
                 hertz_blocks: vec!["hertz_block.msh"],
+                solid: 4,
+                solid_patch: 3,
             }
         } else {
             Self {
@@ -143,6 +149,8 @@ impl Size {
                 locking_families: all_families,
                 solvers: solver_names(),
                 hertz_blocks: vec!["hertz_block.msh", "hertz_block_triangles.msh"],
+                solid: 8,
+                solid_patch: 4,
             }
         }
     }
@@ -164,6 +172,8 @@ impl Size {
             ],
             solvers: solver_names(),
             hertz_blocks: vec!["hertz_block.msh"],
+            solid: 3,
+            solid_patch: 3,
         }
     }
 }
@@ -191,6 +201,14 @@ pub fn groups() -> Vec<(&'static str, Group)> {
         ("Penalty factors", penalty),
         ("Gaps", gaps),
         ("Friction bound 0 and huge", friction),
+        (
+            "In space: Poisson ratio up to 0.49999",
+            super::space::solid_poisson,
+        ),
+        (
+            "In space: the contact patch test at the extremes",
+            super::space::solid_contact,
+        ),
     ]
 }
 
@@ -623,11 +641,11 @@ pub fn chain(error: &dyn std::error::Error) -> String {
     text
 }
 
-fn solve(
-    problem: &ContactProblem,
+pub(crate) fn solve<const D: usize>(
+    problem: &ContactProblem<D>,
     solver: &str,
     options: &Options,
-) -> Result<ContactResult, String> {
+) -> Result<ContactResult<D>, String> {
     let mut solver = SolverRegistry::builtin()
         .make(solver, options)
         .map_err(|e| chain(&e))?;
@@ -638,10 +656,10 @@ fn solve(
 
 /// The verdict of one solve: `check` gives what was measured and whether it is the expected
 /// answer.
-fn judge(
+pub(crate) fn judge<const D: usize>(
     solver: &str,
-    outcome: Result<ContactResult, String>,
-    check: impl Fn(&ContactResult) -> (String, bool),
+    outcome: Result<ContactResult<D>, String>,
+    check: impl Fn(&ContactResult<D>) -> (String, bool),
 ) -> Outcome {
     match outcome {
         Err(error) => Outcome {
@@ -688,7 +706,7 @@ fn same_problem_tolerance(solver: &str) -> f64 {
 
 /// Patch tolerance of a solver: the penalty solver answers the penalised problem, whose
 /// error is `O(1 / factor)` (default factor 1e3).
-fn patch_tolerance(solver: &str) -> f64 {
+pub(crate) fn patch_tolerance(solver: &str) -> f64 {
     if solver == "penalty" {
         1e-3
     } else {
@@ -1462,11 +1480,25 @@ fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Optio
         family.name(),
         CONTACT_POISSON_RATIOS[CONTACT_POISSON_RATIOS.len() - 1]
     );
-    let expected = format!("relative E_grad and E_0 within {LOCKING_RATIO}x of those at nu = 0.3");
     let solver = format!("contact ({})", SolverRegistry::DEFAULT);
-    let reference = match errors(0.3) {
+    locking_row(name, solver, &CONTACT_POISSON_RATIOS, |nu| {
+        errors(nu).map(|e| (e.relative_grad(), e.relative_l2()))
+    })
+}
+
+/// The row of a locking measure: the relative errors `(E_grad, E_0)` that `errors` gives at
+/// each of `ratios` against those at nu = 0.3, within [`LOCKING_RATIO`] to pass; an element
+/// that locks is a warning (it answers what it computes; the scene layer warns about it).
+/// `None` when the element does not support the cells (p1 on other cells than simplices).
+pub(crate) fn locking_row(
+    name: String,
+    solver: String,
+    ratios: &[f64],
+    errors: impl Fn(f64) -> Result<(f64, f64), String>,
+) -> Option<Row> {
+    let expected = format!("relative E_grad and E_0 within {LOCKING_RATIO}x of those at nu = 0.3");
+    let (grad, l2) = match errors(0.3) {
         Ok(e) => e,
-        // Elements limited to other cells (p1 on quadrilaterals) have no row there.
         Err(error) if error.contains("support") => return None,
         Err(error) => {
             return Some(one_outcome(
@@ -1478,18 +1510,13 @@ fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Optio
             ))
         }
     };
-    let mut measured = vec![format!(
-        "E_grad {:.2e}, E_0 {:.2e} at 0.3",
-        reference.relative_grad(),
-        reference.relative_l2()
-    )];
+    let mut measured = vec![format!("E_grad {grad:.2e}, E_0 {l2:.2e} at 0.3")];
     let mut worst: f64 = 0.0;
     let mut refused = None;
-    for &nu in &CONTACT_POISSON_RATIOS {
+    for &nu in ratios {
         match errors(nu) {
-            Ok(e) => {
-                let g = e.relative_grad() / reference.relative_grad();
-                let l = e.relative_l2() / reference.relative_l2();
+            Ok((g, l)) => {
+                let (g, l) = (g / grad, l / l2);
                 worst = worst.max(g).max(l);
                 measured.push(format!("{nu}: x{g:.2} / x{l:.2}"));
             }
@@ -1499,7 +1526,6 @@ fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Optio
     let verdict = match refused {
         Some(e) => Verdict::Refused(e),
         None if worst <= LOCKING_RATIO => Verdict::Pass,
-        // An element that locks answers what it computes; the scene layer warns about it.
         None => Verdict::Warned("locking: the element's error grows with lambda".into()),
     };
     Some(one_outcome(
@@ -1613,7 +1639,7 @@ fn hertz_locking(block: &str, element: Option<&str>) -> Row {
 }
 
 /// A row of one outcome.
-fn one_outcome(
+pub(crate) fn one_outcome(
     name: String,
     expected: String,
     solver: String,
