@@ -24,9 +24,10 @@ use vem_elastic::{
     CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
     Plane,
 };
+use vem_mesh::generators::polyhedral::{hexahedra, voronoi_polyhedra, Cuboid};
 use vem_mesh::generators::{structured_quads, voronoi, MeshFamily, Rectangle};
-use vem_mesh::{Mesh, Point, Vector};
-use vem_space::{LowestOrderVem, Options};
+use vem_mesh::{Mesh, Point, Point3, Vector, Vector3};
+use vem_space::{LowestOrderVem, Options, PolyhedralVem};
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 use vem_verify::report::{write_json, write_text};
@@ -45,10 +46,28 @@ pub enum Case {
     /// M2 of vem-verify (Tresca manufactured solution), quads on both bodies.
     #[value(name = "M2")]
     M2,
+    /// Hertz-like in space: a block of Voronoi polyhedra with a paraboloid gap (R = 1) pressed
+    /// 0.02 onto a block of hexahedra (1.25 times finer across), frictionless; the surface
+    /// overlay makes the non-matching interface node-to-node.
+    #[value(name = "hertz-3d")]
+    Hertz3d,
 }
 
 impl Case {
-    const ALL: [Case; 4] = [Case::Hertz, Case::Coulomb, Case::M1, Case::M2];
+    const ALL: [Case; 5] = [
+        Case::Hertz,
+        Case::Coulomb,
+        Case::M1,
+        Case::M2,
+        Case::Hertz3d,
+    ];
+    /// The largest default size of the case in space (the dense interface Schur complement of
+    /// the condensed solver grows with the square of the interface: docs/contact-3d.md).
+    const SPACE_MAX_UNKNOWNS: usize = 100_000;
+    /// The exact solver's limit in space: the interior point factorises the whole KKT system
+    /// of every iteration, whose fill in 3D makes it 500 times the condensed solver at 2.5e4
+    /// unknowns (docs/benchmarks.md).
+    const SPACE_EXACT_MAX_UNKNOWNS: usize = 5_000;
 
     pub(crate) fn name(self) -> &'static str {
         match self {
@@ -56,6 +75,7 @@ impl Case {
             Case::Coulomb => "coulomb",
             Case::M1 => "M1",
             Case::M2 => "M2",
+            Case::Hertz3d => "hertz-3d",
         }
     }
 
@@ -65,6 +85,7 @@ impl Case {
             Case::Coulomb => "Hertz-like, Coulomb F = 0.3 (voronoi / quads)",
             Case::M1 => "M1 frictionless (quads / quads)",
             Case::M2 => "M2 Tresca (quads / quads)",
+            Case::Hertz3d => "Hertz-like in space, frictionless (voronoi polyhedra / hexahedra)",
         }
     }
 
@@ -74,8 +95,19 @@ impl Case {
         let per_n2 = match self {
             Case::Hertz | Case::Coulomb => 2.0 * (2.0 + 1.25 * 1.25),
             Case::M1 | Case::M2 => 4.0,
+            Case::Hertz3d => {
+                // Voronoi polyhedra: about 4.9 vertices per cell (n^3 cells); hexahedra
+                // (1.25 n)^3 vertices; three unknowns per vertex.
+                let per_n3 = 3.0 * (4.9 + 1.25f64.powi(3));
+                return ((unknowns as f64 / per_n3).cbrt().round() as usize).max(2);
+            }
         };
         ((unknowns as f64 / per_n2).sqrt().round() as usize).max(2)
+    }
+
+    /// True for the cases in space.
+    fn in_space(self) -> bool {
+        self == Case::Hertz3d
     }
 }
 
@@ -280,23 +312,68 @@ pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn st
                 .contact_problem()
                 .ok_or_else(|| format!("{} is not a contact case", case.name()).into())
         }
+        Case::Hertz3d => Err(format!("{} is a problem in space", case.name()).into()),
     }
+}
+
+/// The problem of a case in space at size `n`: [`Case::Hertz3d`].
+fn problem_in_space(n: usize) -> Result<ContactProblem<3>, Box<dyn std::error::Error>> {
+    let material = Material::isotropic(100.0, 0.3)?;
+    let element = Arc::new(PolyhedralVem::default());
+    let upper = Cuboid::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
+    let lower = Cuboid::new(Point3::new(0.0, 0.0, -1.0), Point3::new(1.0, 1.0, 0.0));
+    let m = ((1.25 * n as f64).round() as usize).max(1);
+    let indenter = ElasticBody::builder_polyhedral(
+        "indenter",
+        voronoi_polyhedra(&upper, n, 1)?,
+        material,
+        element.clone(),
+    )
+    .dirichlet(Dirichlet::with_values("top", Component::All, |_| {
+        Vector3::new(0.0, 0.0, -0.02)
+    }))
+    .build()?;
+    let block =
+        ElasticBody::builder_polyhedral("block", hexahedra(&lower, m, m, m)?, material, element)
+            .dirichlet(Dirichlet::fixed("bottom", Component::All))
+            .build()?;
+    // A paraboloid indenter of radius 1 over (1/2, 1/2).
+    Ok(
+        ContactProblem::two_bodies(indenter, "bottom", block, "top", Frictionless)
+            .with_imposed_gap(|x| 0.5 * ((x.x - 0.5).powi(2) + (x.y - 0.5).powi(2))),
+    )
 }
 
 /// `cargo xtask bench-one`: measures and prints one JSON line; a failing solve is a line with
 /// `error` set.
 pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let n = args.case.size_for(args.unknowns);
-    let mut m = Measurement {
+    let m = Measurement {
         case: args.case.name().to_string(),
         target_unknowns: args.unknowns,
         solver: args.solver.clone(),
         n,
         ..Measurement::default()
     };
-    let mut solver = SolverRegistry::builtin().make(&args.solver, &Options::new())?;
     let start = Instant::now();
-    let problem = problem(args.case, n)?;
+    if args.case.in_space() {
+        let problem = problem_in_space(n)?;
+        measure_problem(problem, args, m, start)
+    } else {
+        let problem = problem(args.case, n)?;
+        measure_problem(problem, args, m, start)
+    }
+}
+
+/// The measurement of `problem` (built since `start`): discretisation, contact solve, the
+/// elastic reference; prints one JSON line.
+fn measure_problem<const D: usize>(
+    problem: ContactProblem<D>,
+    args: &BenchOneArgs,
+    mut m: Measurement,
+    start: Instant,
+) -> Result<bool, Box<dyn std::error::Error>> {
+    let mut solver = SolverRegistry::builtin().make(&args.solver, &Options::new())?;
     m.mesh_generation = seconds(start.elapsed());
     m.peak_meshes = peak_memory();
     // By value: the original meshes are dropped before the assembly.
@@ -360,7 +437,7 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
             .factorisation_parallelism(faer::Par::rayon(0))
             .build()?,
     };
-    let bodies: Vec<ElasticBody> = discretisation.bodies().to_vec();
+    let bodies: Vec<ElasticBody<D>> = discretisation.bodies().to_vec();
     drop(discretisation);
     for body in &bodies {
         let start = Instant::now();
@@ -428,8 +505,17 @@ fn plan(args: &BenchArgs) -> Result<Vec<Planned>, String> {
     }
     for &case in &cases {
         for &unknowns in &sizes {
+            // The case in space up to its own limit unless the sizes are explicit.
+            if case.in_space() && args.sizes.is_empty() && unknowns > Case::SPACE_MAX_UNKNOWNS {
+                continue;
+            }
             for solver in &solvers {
-                if solver == "exact" && unknowns > args.exact_max_unknowns {
+                let exact_max = if case.in_space() {
+                    args.exact_max_unknowns.min(Case::SPACE_EXACT_MAX_UNKNOWNS)
+                } else {
+                    args.exact_max_unknowns
+                };
+                if solver == "exact" && unknowns > exact_max {
                     continue;
                 }
                 planned.push(Planned {
