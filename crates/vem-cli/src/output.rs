@@ -23,7 +23,7 @@ use vem_scene::SolvedBody;
 
 /// The columns of `contact.csv`, in order.
 pub const CONTACT_COLUMNS: &str =
-    "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,friction_force,\
+    "pair,x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,friction_force,\
      consistent_friction_traction,slip,status";
 
 /// The encoding of the interface datasets: compressed (zlib) binary, which VTK, ParaView and
@@ -113,7 +113,7 @@ impl Outcome {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
             write_atomically(&path, |w| {
-                write_contact_csv(w, &contact.nodes, frictionless)
+                write_contact_csv(w, &contact.nodes, &contact.model.pairs, frictionless)
             })
             .map_err(mesh_error(&path))?;
             written.push(path);
@@ -286,8 +286,10 @@ impl Outcome {
                 written.push(path);
             }
             let path = dir.join(format!("contact_{label}.csv"));
-            write_atomically(&path, |w| write_contact_csv(w, nodes, frictionless))
-                .map_err(mesh_error(&path))?;
+            write_atomically(&path, |w| {
+                write_contact_csv(w, nodes, &last.model.pairs, frictionless)
+            })
+            .map_err(mesh_error(&path))?;
             written.push(path);
             let file = format!("interface_{label}.vtu");
             let path = dir.join(&file);
@@ -720,8 +722,9 @@ fn nodal_stress(mesh: &Mesh, fields: &[ElementField]) -> Vec<f64> {
     sum
 }
 
-/// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`], numbers in
-/// shortest round-trip scientific notation.
+/// `contact.csv`: one row per interface node, columns [`CONTACT_COLUMNS`] (`pair`: the index of
+/// the node's pair, counted from 0 in the order of the `[[contact]]` tables, as the interface
+/// dataset's cell data `pair`), numbers in shortest round-trip scientific notation.
 /// A node's status as the outputs name it: "open", "stick", "slip", and "contact" for a
 /// node in contact without friction (where there is no stick or slip to tell apart).
 pub fn status_label(status: NodeStatus, frictionless: bool) -> &'static str {
@@ -832,13 +835,15 @@ fn write_history_csv(w: &mut dyn Write, steps: &[vem_scene::StepSummary]) -> std
 fn write_contact_csv(
     w: &mut dyn Write,
     nodes: &[InterfaceNode],
+    pairs: &[vem_contact::PairSummary],
     frictionless: bool,
 ) -> std::io::Result<()> {
     writeln!(w, "{CONTACT_COLUMNS}")?;
-    for n in nodes {
+    for (i, n) in nodes.iter().enumerate() {
+        let pair = pairs.iter().position(|p| p.nodes.contains(&i)).unwrap_or(0);
         writeln!(
             w,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+            "{pair},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
             n.position.x + 0.0,
             n.position.y + 0.0,
             n.normal.x + 0.0,

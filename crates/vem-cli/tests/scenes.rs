@@ -44,23 +44,84 @@ fn run(name: &str) -> (Outcome, PathBuf) {
     (outcome, dir)
 }
 
-/// The rows of `contact.csv` (checking its header), as (numbers, status).
+/// The rows of `contact.csv` (checking its header), as (numbers from `x` on, status).
 fn read_contact_csv(dir: &Path) -> Vec<(Vec<f64>, String)> {
+    read_contact_csv_with_pairs(dir)
+        .into_iter()
+        .map(|(_, numbers, status)| (numbers, status))
+        .collect()
+}
+
+/// The rows of `contact.csv` (checking its header), as (pair, numbers from `x` on, status).
+fn read_contact_csv_with_pairs(dir: &Path) -> Vec<(usize, Vec<f64>, String)> {
     let text = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,\
+        "pair,x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,\
          friction_force,consistent_friction_traction,slip,status"
     );
     lines
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            assert_eq!(fields.len(), 13, "{line}");
-            let numbers = fields[..12].iter().map(|f| f.parse().unwrap()).collect();
-            (numbers, fields[12].to_string())
+            assert_eq!(fields.len(), 14, "{line}");
+            let numbers = fields[1..13].iter().map(|f| f.parse().unwrap()).collect();
+            (fields[0].parse().unwrap(), numbers, fields[13].to_string())
         })
         .collect()
+}
+
+#[test]
+fn contact_csv_names_the_pair_of_every_row() {
+    // The two-pair scene of docs/scenes.md ("Several pairs"): two blocks stacked on a rigid
+    // line, the upper one pressed by p = 0.1 over a width of 1. Each pair's rows are its own
+    // interface (y = 1 between the blocks, y = 0 on the line), and each pair carries the whole
+    // load: the sum of its normal forces is p times the width.
+    let dir = std::env::temp_dir().join(format!("vem-cli-two-pairs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("stacked.toml");
+    std::fs::write(
+        &path,
+        r#"title = "Two blocks stacked on a rigid line"
+[[body]]
+name = "upper"
+mesh = { family = "voronoi", rectangle = [[0, 1], [1, 2]], n = 6 }
+material = { E = 100.0, nu = 0.3, plane = "strain" }
+dirichlet = [{ part = "left", x = 0.0 }]
+traction = [{ part = "top", pressure = 0.1 }]
+[[body]]
+name = "lower"
+mesh = { family = "quads", rectangle = [[0, 0], [1, 1]], n = 5 }
+material = { E = 100.0, nu = 0.3, plane = "strain" }
+dirichlet = [{ part = "left", x = 0.0 }]
+[[contact]]
+body = "upper"
+part = "bottom"
+other_body = "lower"
+other_part = "top"
+law = { name = "tresca", friction_bound = 0.01 }
+[[contact]]
+body = "lower"
+part = "bottom"
+obstacle = { line = { point = [0, 0], normal = [0, 1] } }
+"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let (outcome, _) = vem_cli::run(&path, Some(&out)).unwrap();
+    let rows = read_contact_csv_with_pairs(&out);
+    let pairs = &outcome.contact.as_ref().unwrap().model.pairs;
+    assert_eq!(pairs.len(), 2);
+    for (k, pair) in pairs.iter().enumerate() {
+        let mine: Vec<&(usize, Vec<f64>, String)> = rows.iter().filter(|r| r.0 == k).collect();
+        assert_eq!(mine.len(), pair.nodes.len(), "pair {k}");
+        let y = if k == 0 { 1.0 } else { 0.0 };
+        assert!(mine.iter().all(|r| (r.1[1] - y).abs() < 1e-12), "pair {k}");
+        let load: f64 = mine.iter().map(|r| r.1[6]).sum();
+        assert!((load - 0.1).abs() < 1e-8, "pair {k}: {load}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn summary_json(dir: &Path) -> serde_json::Value {
