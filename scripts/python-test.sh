@@ -4,8 +4,17 @@
 # package's numbers against Hertz's solution, the patch test's exact state and the `vem`
 # command's own outputs of the same scenes. .ci/run runs the same two steps.
 #
-# Usage: scripts/python-test.sh [PYTEST_ARGS...]
+# Usage: scripts/python-test.sh [--profile PROFILE] [PYTEST_ARGS...]
+#   --profile test: the quicker build of scripts/install-python-package.sh (default release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python=$(scripts/install-python-package.sh | tail -n 1)
-VEM_BIN="$PWD/target/release/vem" "$python" -m pytest -q crates/vem-python/python/tests "$@"
+profile=release
+if [ "${1:-}" = "--profile" ]; then
+    profile="${2:?--profile needs a cargo profile (release, test)}"
+    shift 2
+fi
+python=$(scripts/install-python-package.sh --profile "$profile" | tail -n 1)
+# The test profile builds into target/debug.
+bin_dir=$profile
+[ "$profile" = "test" ] || [ "$profile" = "dev" ] && bin_dir=debug
+VEM_BIN="$PWD/target/$bin_dir/vem" "$python" -m pytest -q crates/vem-python/python/tests "$@"

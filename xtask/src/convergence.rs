@@ -16,6 +16,7 @@ use vem_contact::SolverRegistry;
 use vem_space::{ElementRegistry, ElementSpace};
 use vem_verify::cases::CaseRegistry;
 use vem_verify::exact::Lame;
+use vem_verify::plan::{planned_studies, PlannedStudy, DEFAULT_CASES};
 use vem_verify::report::{study_markdown, summary_markdown, write_json, write_plot, write_text};
 use vem_verify::study::{Expectation, MeshPairing, SizeRecord, Study, StudyResult};
 
@@ -47,57 +48,18 @@ pub struct ConvergenceArgs {
 /// The element of the default run.
 const DEFAULT_ELEMENT: &str = ElementRegistry::DEFAULT;
 
-/// One planned study.
-struct Planned {
-    case: String,
-    pairing: &'static str,
-    sizes: &'static [usize],
-    expectation: Expectation,
-}
-
-/// Mesh pairings (body 1 / body 2) of the contact studies: matching structured quads,
-/// non-matching 1:3 quads, Voronoi over quads, non-convex over triangles, perturbed quads over
-/// hexagons.
-const CONTACT_PAIRINGS: [&str; 5] = [
-    "quads/quads",
-    "quads/quads*3",
-    "voronoi/quads",
-    "nonconvex/triangles",
-    "perturbed/hexagons",
-];
-/// Mesh families of the elasticity study E1.
-const ELASTICITY_FAMILIES: [&str; 3] = ["quads", "voronoi", "perturbed"];
-
-/// Sizes n of the default run (body 2 of the 1:3 pairing has 3n cells across).
-const SIZES: &[usize] = &[8, 16, 32, 64, 128];
-/// Sizes of the 1:3 pairing in the default run (its finest mesh has 3 x 64 = 192 cells across).
-const SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32, 64];
-/// Sizes of `--quick`.
-const QUICK_SIZES: &[usize] = &[8, 16, 32];
-/// Sizes of the 1:3 pairing with `--quick`.
-const QUICK_SIZES_ONE_TO_THREE: &[usize] = &[8, 16, 32];
-
-/// The cases in the plane of the default run.
-const DEFAULT_CASES: [&str; 3] = ["M1", "M2", "E1"];
-
 /// The planned run: the studies in the plane and the cases in space.
 struct Plan {
     /// The studies in the plane, in the order they run.
-    studies: Vec<Planned>,
+    studies: Vec<PlannedStudy>,
     /// The cases in space, each once, in the order they run.
     solid: Vec<&'static str>,
 }
 
 /// The studies of the cases `wanted` (the default cases in the plane and in space when empty):
 /// each case of `cases` on the contact pairings (two bodies) or the elasticity families (one
-/// body); each case in space on every polyhedral family ([`three_d`]).
+/// body) ([`planned_studies`]); each case in space on every polyhedral family ([`three_d`]).
 fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Plan, String> {
-    let sizes_for = |pairing: &str| match (quick, pairing.contains("*3")) {
-        (false, false) => SIZES,
-        (false, true) => SIZES_ONE_TO_THREE,
-        (true, false) => QUICK_SIZES,
-        (true, true) => QUICK_SIZES_ONE_TO_THREE,
-    };
     let names: Vec<String> = if wanted.is_empty() {
         DEFAULT_CASES
             .iter()
@@ -116,26 +78,10 @@ fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Plan, St
             }
             continue;
         }
-        let case = cases
-            .make(wanted, Lame::default())
-            .map_err(|e| format!("{e}; the cases in space are {}", three_d::case_names()))?;
-        let name = case.name().to_string();
-        let expectation = cases
-            .expectation(&name)
-            .unwrap_or(Expectation::OPTIMAL_RATES);
-        let pairings: &[&'static str] = if case.bodies().len() == 2 {
-            &CONTACT_PAIRINGS
-        } else {
-            &ELASTICITY_FAMILIES
-        };
-        for &pairing in pairings {
-            studies.push(Planned {
-                case: name.clone(),
-                pairing,
-                sizes: sizes_for(pairing),
-                expectation,
-            });
-        }
+        studies.extend(
+            planned_studies(wanted, quick, cases)
+                .map_err(|e| format!("{e}; the cases in space are {}", three_d::case_names()))?,
+        );
     }
     Ok(Plan { studies, solid })
 }
@@ -277,7 +223,7 @@ fn verdict_line(passed: bool) -> &'static str {
 /// Runs the studies in the plane, prints them and their summary and writes `convergence.md`,
 /// `convergence.json` and `convergence/*.svg`.
 fn run_studies(
-    planned: &[Planned],
+    planned: &[PlannedStudy],
     args: &ConvergenceArgs,
     solvers: &SolverRegistry,
     element: Arc<dyn ElementSpace>,
@@ -576,7 +522,7 @@ mod tests {
         let mixed = plan(true, &names(&["e2-3d", "M1", "E2-3D"]), &cases).unwrap();
         assert_eq!(mixed.solid, ["E2-3D"]);
         assert!(mixed.studies.iter().all(|s| s.case == "M1"));
-        assert_eq!(mixed.studies[0].sizes, QUICK_SIZES);
+        assert_eq!(mixed.studies[0].sizes, vem_verify::plan::QUICK_SIZES);
         // A selection of one part runs that part only.
         assert!(plan(false, &names(&["PT0-3D"]), &cases)
             .unwrap()

@@ -13,23 +13,19 @@
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::Arc;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use vem_contact::{
-    AccuracyPreset, ContactDiscretisation, ContactResult, ErrorModel, PenaltyParameter,
-    SolverRegistry, WorkCounters,
+    AccuracyPreset, ContactDiscretisation, ContactResult, ErrorModel, SolverRegistry, WorkCounters,
 };
-use vem_space::{ElementRegistry, Options};
-use vem_verify::diagnostics::contact_diagnostics;
-use vem_verify::exact::{case_by_name, ExactSolution, Lame};
-use vem_verify::norms::ErrorNorms;
-use vem_verify::problem::{DiscreteProblem, DiscreteSolution, InterfaceOutcome, ProblemSettings};
 use vem_verify::report::{write_json, write_text};
-use vem_verify::study::{fitted_rate, MeshPairing};
+use vem_verify::study::fitted_rate;
+use vem_verify::tradeoff::{
+    pressure_errors, SolverSetting, TradeoffGroup, E2C_POISSON_RATIO, FULL_SETTINGS, QUICK_SETTINGS,
+};
 
 use crate::bench::{self, Case};
 use crate::common::{chain, cpu_seconds, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
@@ -83,80 +79,10 @@ impl Problem {
     }
 }
 
-/// One solver setting: a registry name and its options, with a label such as
-/// `penalty@factor=1e6`; the presets go by their names ("draft", "balanced", "reference").
-#[derive(Debug, Clone)]
-struct Setting {
-    label: String,
-    solver: String,
-    options: Options,
-}
-
-fn parse_setting(label: &str) -> Result<Setting, String> {
-    if let Ok(preset) = label.parse::<AccuracyPreset>() {
-        return Ok(Setting {
-            label: preset.name().to_string(),
-            solver: preset.solver().to_string(),
-            options: preset.solver_options(),
-        });
-    }
-    let (solver, option) = match label.split_once('@') {
-        Some((s, o)) => (s, Some(o)),
-        None => (label, None),
-    };
-    let mut options = Options::new();
-    if let Some(option) = option {
-        let (key, value) = option
-            .split_once('=')
-            .ok_or_else(|| format!("setting '{label}': give key=value after '@'"))?;
-        let value: f64 = value
-            .parse()
-            .map_err(|_| format!("setting '{label}': '{value}' is not a number"))?;
-        options = match key {
-            "tol" => options.with("tolerance", value),
-            "factor" => options.with("penalty", PenaltyParameter::RelativeToStiffness(value)),
-            "aug" => options.with("augmentation", PenaltyParameter::RelativeToStiffness(value)),
-            _ => {
-                return Err(format!(
-                    "setting '{label}': unknown key '{key}' (tol, factor, aug)"
-                ))
-            }
-        };
-    }
-    if !SolverRegistry::builtin().contains(solver) {
-        return Err(format!("setting '{label}': unknown solver '{solver}'"));
-    }
-    Ok(Setting {
-        label: label.to_string(),
-        solver: solver.to_string(),
-        options,
-    })
-}
-
-/// The settings of the full study.
-const FULL_SETTINGS: [&str; 10] = [
-    "draft",
-    "balanced",
-    "reference",
-    "exact",
-    "exact@tol=1e-4",
-    "penalty@factor=1e4",
-    "penalty@factor=1e6",
-    "penalty@factor=1e8",
-    "active-set",
-    "active-set@aug=1e-2",
-];
-/// Poisson's ratio of the near-incompressible group (E2c).
-const E2C_POISSON_RATIO: f64 = 0.4999;
 /// The elements of the near-incompressible group: the earlier default, the locking-free
 /// element, and the locking-free element with every edge's midpoint inserted (the default
 /// that a scene chooses on triangles close to incompressibility).
 const E2C_ELEMENTS: [&str; 3] = ["vem1", "vem1-bbar", "vem1-bbar+midpoints"];
-/// The suffix of an element label that inserts every edge's midpoint into the meshes.
-const MIDPOINTS: &str = "+midpoints";
-
-/// The settings of `--quick`.
-const QUICK_SETTINGS: [&str; 4] = ["draft", "reference", "exact", "penalty@factor=1e6"];
 
 /// Options of `cargo xtask tradeoff`.
 #[derive(Debug, Args)]
@@ -412,10 +338,22 @@ fn plan(args: &TradeoffArgs) -> Plan {
 
 /// The discretisation of a group, with what the errors need.
 struct Built {
+    /// The manufactured problems: the library's measurement group.
+    group: Option<TradeoffGroup>,
+    /// Hertz and Coulomb: their discretisation.
     discretisation: Option<ContactDiscretisation>,
-    problem: Option<DiscreteProblem>,
     h: f64,
     mesh_generation: f64,
+}
+
+impl Built {
+    /// The contact discretisation to solve with every setting (`None` for elasticity).
+    fn discretisation(&self) -> Option<&ContactDiscretisation> {
+        match &self.group {
+            Some(group) => group.discretisation(),
+            None => self.discretisation.as_ref(),
+        }
+    }
 }
 
 fn build(args: &TradeoffOneArgs) -> Result<Built, Box<dyn std::error::Error>> {
@@ -436,48 +374,20 @@ fn build(args: &TradeoffOneArgs) -> Result<Built, Box<dyn std::error::Error>> {
                 .map(|b| b.mesh().mesh_size())
                 .fold(0.0, f64::max);
             Ok(Built {
+                group: None,
                 discretisation: Some(discretisation),
-                problem: None,
                 h,
                 mesh_generation,
             })
         }
         Problem::M1 | Problem::M2 | Problem::E1 | Problem::E2c => {
-            let exact: Arc<dyn ExactSolution> = if args.problem == Problem::E2c {
-                // mu = 1, lambda = 2 mu nu / (1 - 2 nu), as in the extremes suite.
-                let nu = E2C_POISSON_RATIO;
-                let lame = Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?;
-                Arc::new(vem_verify::exact::DivergenceFreeContact::new(lame))
-            } else {
-                Arc::from(case_by_name(args.problem.name(), Lame::default())?)
-            };
-            let pairing: MeshPairing = args.pairing.parse()?;
-            let mut meshes =
-                pairing.generate(&*exact, args.n, vem_verify::study::Study::DEFAULT_SEED)?;
-            let name = match args.element.strip_suffix(MIDPOINTS) {
-                Some(name) => {
-                    meshes = meshes
-                        .iter()
-                        .map(|m| m.with_edge_midpoints())
-                        .collect::<Result<_, _>>()?;
-                    name
-                }
-                None => &args.element,
-            };
-            let element = ElementRegistry::builtin().make(name)?;
-            let settings = ProblemSettings::builder().element(element).build()?;
-            let problem = DiscreteProblem::try_new(exact, meshes, &settings)?;
-            let mesh_generation = seconds(start.elapsed());
-            let h = problem.mesh_size();
-            let discretisation = match problem.contact_problem() {
-                Some(contact) => Some(contact.into_discretisation()?),
-                None => None,
-            };
+            let group =
+                TradeoffGroup::build(args.problem.name(), &args.pairing, &args.element, args.n)?;
             Ok(Built {
-                discretisation,
-                problem: Some(problem),
-                h,
-                mesh_generation,
+                h: group.h,
+                mesh_generation: group.mesh_generation,
+                group: Some(group),
+                discretisation: None,
             })
         }
     }
@@ -498,24 +408,6 @@ fn interpolate(reference: &[ReferenceNode], x: f64) -> f64 {
             a.pressure + t * (b.pressure - a.pressure)
         }
     }
-}
-
-/// Discrete L2 (tributary lengths) and max errors of the nodal pressure against `exact(x)`,
-/// relative to the exact pressure's norms.
-fn pressure_errors(result: &ContactResult, exact: impl Fn(f64) -> f64) -> (f64, f64) {
-    let (mut err2, mut norm2, mut err_max, mut norm_max) = (0.0, 0.0, 0.0_f64, 0.0_f64);
-    for node in &result.nodes {
-        let p = exact(node.position.x);
-        err2 += node.tributary_measure * (node.pressure - p).powi(2);
-        norm2 += node.tributary_measure * p * p;
-        err_max = err_max.max((node.pressure - p).abs());
-        norm_max = norm_max.max(p.abs());
-    }
-    let relative = |e: f64, n: f64| if n > 0.0 { e / n } else { e };
-    (
-        relative(err2.sqrt(), norm2.sqrt()),
-        relative(err_max, norm_max),
-    )
 }
 
 /// Plane-strain Hertz pressure of the Hertz problem (two identical bodies E = 100, nu = 0.3,
@@ -547,38 +439,15 @@ fn contact_errors(
     result: ContactResult,
     reference: Option<&[ReferenceNode]>,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    if let Some(problem) = &built.problem {
-        let exact = problem.exact();
-        let contact = exact
-            .contact()
-            .ok_or_else(|| format!("{} has no contact", exact.name()))?;
-        let (l2, max) = pressure_errors(&result, |x| -contact.interface_values(x).sigma_nu);
-        row.pressure_l2 = Some(l2);
-        row.pressure_max = Some(max);
-        let diagnostics = contact_diagnostics(contact, &result.nodes);
-        let scale = diagnostics.normal_resultant_exact.abs();
-        row.resultant = Some(if scale > 0.0 {
-            diagnostics.normal_resultant_error / scale
-        } else {
-            diagnostics.normal_resultant_error
-        });
-        row.misclassified = Some(diagnostics.set_violations.len());
-        let solution = DiscreteSolution {
-            bodies: result.bodies,
-            interface: Some(InterfaceOutcome {
-                nodes: result.nodes,
-                report: result.report,
-                fixed_point: result.fixed_point,
-                inserted_nodes: result.model.inserted_nodes,
-            }),
-            work: result.work,
-            assembly_time: result.work.times.insertion + result.work.times.assembly,
-            solve_time: result.work.times.contact_solve,
-        };
-        let errors = ErrorNorms::combine(&solution.errors(&**exact)?);
-        row.e_grad = Some(errors.relative_grad());
-        row.e_0 = Some(errors.relative_l2());
-        row.e_a = Some(errors.relative_energy());
+    if let Some(group) = &built.group {
+        let errors = group.errors(result)?;
+        row.pressure_l2 = errors.pressure_l2;
+        row.pressure_max = errors.pressure_max;
+        row.resultant = errors.resultant;
+        row.misclassified = errors.misclassified;
+        row.e_grad = Some(errors.e_grad);
+        row.e_0 = Some(errors.e_0);
+        row.e_a = Some(errors.e_a);
         return Ok(());
     }
     // Hertz and Coulomb.
@@ -634,7 +503,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
     let settings = args
         .settings
         .iter()
-        .map(|s| parse_setting(s))
+        .map(|s| s.parse::<SolverSetting>())
         .collect::<Result<Vec<_>, _>>()?;
     let reference: Option<Vec<ReferenceNode>> = match &args.reference {
         Some(path) => {
@@ -663,12 +532,13 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
         ..Row::default()
     };
     let mut stdout = std::io::stdout().lock();
-    let Some(discretisation) = &built.discretisation else {
+    let Some(discretisation) = built.discretisation() else {
         // Elasticity: one Cholesky solve per body.
-        let problem = built
-            .problem
+        let group = built
+            .group
             .as_ref()
             .ok_or("an elasticity group without its problem")?;
+        let problem = group.problem();
         let cpu = cpu_seconds();
         let solution = problem.solve(&mut vem_contact::CondensedSolver::default())?;
         let mut row = base;
@@ -684,11 +554,11 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
             .sum();
         row.work = solution.work;
         let start = Instant::now();
-        let errors = ErrorNorms::combine(&solution.errors(&**problem.exact())?);
+        let errors = group.elasticity_errors(&solution)?;
         row.errors_time = seconds(start.elapsed());
-        row.e_grad = Some(errors.relative_grad());
-        row.e_0 = Some(errors.relative_l2());
-        row.e_a = Some(errors.relative_energy());
+        row.e_grad = Some(errors.e_grad);
+        row.e_0 = Some(errors.e_0);
+        row.e_a = Some(errors.e_a);
         row.status = "Solved".to_string();
         row.peak_memory = peak_memory();
         writeln!(stdout, "{}", serde_json::to_string(&row)?)?;

@@ -1,9 +1,14 @@
 //! The native part of the Python package `vemcontact`: a scene read from a TOML file, a TOML
 //! text or a Python dict into the problem description of `vem_scene` (the same keys, checks
 //! and located errors as the `vem` command), solved with the GIL released, and the results as
-//! numpy arrays. The package's Python part (`python/vemcontact`) adds the builders, the
-//! exception and warning classes and the documentation users read; docs/python.md shows it
-//! at work.
+//! numpy arrays, in the plane and in space. Meshes come from a scene's mesh description
+//! (generated, a file, or given inline by arrays: `vem_scene::inline_mesh`) and go back as
+//! arrays (`Mesh`); the registries' names, the convergence study and the trade-off study's
+//! groups are read from the libraries (`vem_verify::plan`, `vem_verify::tradeoff`). A solve
+//! runs on a worker thread while the caller runs Python's signal handlers, so that Ctrl-C
+//! raises `KeyboardInterrupt`. The package's Python part (`python/vemcontact`) adds the
+//! builders, the meshio conversions, the exception and warning classes and the documentation
+//! users read; docs/python.md shows it at work.
 //!
 //! Errors never cross the boundary as panics: a scene error becomes the package's
 //! `SceneError` with its key path (and the file, line and column of a scene file), a failed
@@ -374,19 +379,17 @@ impl PyScene {
             memory_limit,
             ..BuildOptions::default()
         };
-        let scene = &self.scene;
-        let built = py.detach(|| {
-            catch_unwind(AssertUnwindSafe(|| {
-                let model = vem_scene::Model::build(scene, &options).map_err(|e| ("build", e))?;
-                let outcome = model.solve().map_err(|e| ("solve", e))?;
-                Ok::<_, (&str, SceneError)>(vem_cli::Outcome::new(outcome, &model))
-            }))
-        });
-        let outcome = match built {
-            Err(payload) => return Err(panic_error(py, payload)),
-            Ok(Err(("build", e))) => return Err(scene_error(py, "SceneError", &self.origin, &e)),
-            Ok(Err((_, e))) => return Err(scene_error(py, "SolveError", &self.origin, &e)),
-            Ok(Ok(outcome)) => outcome,
+        let outcome = match run_interruptibly(py, self.scene.clone(), options)? {
+            Run::Panicked(payload) => return Err(panic_error(py, payload)),
+            Run::Refused(e) => return Err(scene_error(py, "SceneError", &self.origin, &e)),
+            Run::Failed(e) => return Err(scene_error(py, "SolveError", &self.origin, &e)),
+            Run::Solved(outcome) => *outcome,
+            // Only a run interrupted stops there, and its result is never received.
+            Run::Cancelled => {
+                return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
+                    "the run was interrupted",
+                ))
+            }
         };
         let result = PyResultSet::new(py, outcome)?;
         // Every warning of the run as a Python warning (filtered, shown once or turned into
@@ -415,6 +418,92 @@ impl PyScene {
     }
 }
 
+/// How a run on the worker thread ended.
+enum Run {
+    /// Built and solved.
+    Solved(Box<vem_cli::Outcome>),
+    /// Refused when building (a scene error).
+    Refused(SceneError),
+    /// The solve failed.
+    Failed(SceneError),
+    /// A panic inside the libraries.
+    Panicked(Box<dyn std::any::Any + Send>),
+    /// Stopped at a stage boundary after an interrupt.
+    Cancelled,
+}
+
+/// How often the waiting thread looks for signals (Ctrl-C) while a run computes.
+const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// Builds and solves `scene` on a worker thread while this thread, which holds the GIL every
+/// [`SIGNAL_POLL`], runs Python's signal handlers (`Python::check_signals`): a Ctrl-C (or
+/// any handler that raises) ends the wait at once with the handler's exception
+/// (`KeyboardInterrupt`). The worker stops at the next stage boundary (after the model is
+/// built, before the solve); a stage under way (the mesh generation and assembly, or the
+/// contact solve) runs to its end on the worker and its result is dropped: the libraries'
+/// solvers have no cancellation point inside a stage.
+fn run_interruptibly(
+    py: Python<'_>,
+    scene: vem_scene::Scene,
+    options: BuildOptions,
+) -> PyResult<Run> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::mpsc;
+    use std::sync::Arc;
+
+    let cancelled = Arc::new(AtomicBool::new(false));
+    let (sender, receiver) = mpsc::channel();
+    let worker_cancelled = Arc::clone(&cancelled);
+    let worker = std::thread::Builder::new()
+        .name("vemcontact-solve".into())
+        .spawn(move || {
+            let run = catch_unwind(AssertUnwindSafe(|| {
+                let model = match vem_scene::Model::build(&scene, &options) {
+                    Ok(model) => model,
+                    Err(e) => return Run::Refused(e),
+                };
+                if worker_cancelled.load(Ordering::Relaxed) {
+                    return Run::Cancelled;
+                }
+                match model.solve() {
+                    Ok(outcome) => Run::Solved(Box::new(vem_cli::Outcome::new(outcome, &model))),
+                    Err(e) => Run::Failed(e),
+                }
+            }))
+            .unwrap_or_else(Run::Panicked);
+            // The receiver is gone after an interrupt: the result is dropped.
+            let _ = sender.send(run);
+        })
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solve's thread: {e}")))?;
+    let mut receiver = receiver;
+    loop {
+        // The receiver goes into the wait and comes back (it is not `Sync`).
+        let (back, received) = py.detach(move || {
+            let received = receiver.recv_timeout(SIGNAL_POLL);
+            (receiver, received)
+        });
+        receiver = back;
+        match received {
+            Ok(run) => {
+                let _ = worker.join();
+                return Ok(run);
+            }
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                if let Err(interrupt) = py.check_signals() {
+                    cancelled.store(true, Ordering::Relaxed);
+                    return Err(interrupt);
+                }
+            }
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                let _ = worker.join();
+                return Ok(Run::Panicked(Box::new(
+                    "the solve's thread ended without a result",
+                )));
+            }
+        }
+    }
+}
+
 /// `text` as Python writes a string literal (`'a'`, `"it's"`).
 fn quote(text: &str) -> String {
     if text.contains('\'') && !text.contains('"') {
@@ -436,19 +525,17 @@ fn matrix<'py>(
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
-/// One body after the solve (or after one step of a load history).
+/// One body after the solve (or after one step of a load history), in the plane or in space.
 ///
-/// Arrays: `vertices` (n, 2), `displacement` (n, 2) at the vertices, the polygons as
-/// `cells` (a list of index arrays) or `cell_offsets`/`cell_connectivity`, and per element
-/// `stress` and `strain` (m, 3, 3; plane strain has `stress[:, 2, 2] = lambda tr(eps)`) and
-/// `von_mises` (m,). The mesh is the one solved: a body in contact has the interface nodes
-/// inserted into its contact part.
+/// Arrays: `vertices` (n, d) with d = 2 in the plane and 3 in space, `displacement` (n, d) at
+/// the vertices, the cells as `cells` or `cell_offsets`/`cell_connectivity` (see `Mesh`), and
+/// per element `stress` and `strain` (m, 3, 3; plane strain has `stress[:, 2, 2] = lambda
+/// tr(eps)`) and `von_mises` (m,); `mesh` is the mesh solved, with its parts: a body in
+/// contact has the interface nodes inserted into its contact part.
 #[pyclass(module = "vemcontact", name = "BodyResult", frozen)]
 struct PyBody {
     name: String,
-    vertices: Vec<f64>,
-    offsets: Vec<usize>,
-    connectivity: Vec<usize>,
+    mesh: Py<PyMesh>,
     displacement: Vec<f64>,
     fields: Vec<ElementField>,
     strain_energy: f64,
@@ -456,23 +543,38 @@ struct PyBody {
 }
 
 impl PyBody {
+    /// A body in the plane.
     fn new(
+        py: Python<'_>,
         body: &vem_elastic::ElasticBody,
         solution: &vem_elastic::Solution,
         fields: Vec<ElementField>,
-    ) -> Self {
-        let mesh = body.mesh();
-        let mut offsets = vec![0];
-        let mut connectivity = Vec::new();
-        for polygon in mesh.polygons() {
-            connectivity.extend_from_slice(polygon);
-            offsets.push(connectivity.len());
-        }
-        Self {
-            name: body.name().to_string(),
-            vertices: mesh.vertices().iter().flat_map(|p| [p.x, p.y]).collect(),
-            offsets,
-            connectivity,
+    ) -> PyResult<Self> {
+        let mesh = vem_scene::BuiltMesh::Plane(body.mesh().clone());
+        Self::of(py, body.name(), &mesh, solution, fields)
+    }
+
+    /// A body in space.
+    fn new_3d(
+        py: Python<'_>,
+        body: &vem_elastic::ElasticBody<3>,
+        solution: &vem_elastic::Solution<3>,
+        fields: Vec<ElementField>,
+    ) -> PyResult<Self> {
+        let mesh = vem_scene::BuiltMesh::Space(body.mesh().clone());
+        Self::of(py, body.name(), &mesh, solution, fields)
+    }
+
+    fn of<const D: usize>(
+        py: Python<'_>,
+        name: &str,
+        mesh: &vem_scene::BuiltMesh,
+        solution: &vem_elastic::Solution<D>,
+        fields: Vec<ElementField>,
+    ) -> PyResult<Self> {
+        Ok(Self {
+            name: name.to_string(),
+            mesh: Py::new(py, PyMesh::new(mesh, format!("the mesh of body '{name}'")))?,
             displacement: solution.displacement().to_vec(),
             fields,
             strain_energy: solution.strain_energy(),
@@ -481,7 +583,7 @@ impl PyBody {
                 .iter()
                 .map(|r| (r.part.clone(), r.force.iter().copied().collect()))
                 .collect(),
-        }
+        })
     }
 
     fn tensors<'py>(
@@ -512,42 +614,63 @@ impl PyBody {
         self.name.clone()
     }
 
-    /// Vertex coordinates, (n, 2).
+    /// 2 (a body in the plane) or 3 (in space).
     #[getter]
-    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        matrix(py, self.vertices.len() / 2, 2, self.vertices.clone())
+    fn dimension(&self) -> usize {
+        self.mesh.get().dimension
     }
 
-    /// Nodal displacement, (n, 2), in the order of `vertices`.
+    /// The mesh solved, with its boundary parts (interface nodes inserted into a contact
+    /// part).
+    #[getter]
+    fn mesh(&self, py: Python<'_>) -> Py<PyMesh> {
+        self.mesh.clone_ref(py)
+    }
+
+    /// Vertex coordinates, (n, d).
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        self.mesh.get().vertices(py)
+    }
+
+    /// Nodal displacement, (n, d), in the order of `vertices`.
     #[getter]
     fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let d = self.dimension();
         matrix(
             py,
-            self.displacement.len() / 2,
-            2,
+            self.displacement.len() / d,
+            d,
             self.displacement.clone(),
         )
     }
 
-    /// The polygons: a list of arrays of vertex indices, counter-clockwise.
+    /// The cells: polygons as arrays of vertex indices (counter-clockwise), polyhedra as
+    /// lists of outward face loops.
     #[getter]
-    fn cells<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray1<usize>>> {
-        self.offsets
-            .windows(2)
-            .map(|w| PyArray1::from_slice(py, &self.connectivity[w[0]..w[1]]))
-            .collect()
+    fn cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        self.mesh.get().cells(py)
     }
 
-    /// Where each polygon starts in `cell_connectivity` (m + 1 entries).
+    /// Where each cell starts in `cell_connectivity` (m + 1 entries).
     #[getter]
     fn cell_offsets<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<usize>> {
-        PyArray1::from_slice(py, &self.offsets)
+        self.mesh.get().cell_offsets(py)
     }
 
-    /// The vertex indices of every polygon, one after the other.
+    /// The vertex indices of every cell, one after the other (a polygon's loop, a
+    /// polyhedron's distinct vertices).
     #[getter]
     fn cell_connectivity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<usize>> {
-        PyArray1::from_slice(py, &self.connectivity)
+        self.mesh.get().cell_connectivity(py)
+    }
+
+    /// The body as a `meshio.Mesh` (needs the package meshio): the mesh solved with the
+    /// point data `displacement` and the cell data `stress` (m x 9) and `von_mises`.
+    fn to_meshio<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        slf.py()
+            .import("vemcontact._meshio")?
+            .call_method1("body_to_meshio", (slf,))
     }
 
     /// The stress tensor of every element, (m, 3, 3).
@@ -593,11 +716,13 @@ impl PyBody {
     }
 
     fn __repr__(&self) -> String {
+        let mesh = self.mesh.get();
         format!(
-            "BodyResult(name={}, vertices={}, cells={}, strain_energy={:.6e})",
+            "BodyResult(name={}, dimension={}, vertices={}, cells={}, strain_energy={:.6e})",
             quote(&self.name),
-            self.vertices.len() / 2,
-            self.offsets.len() - 1,
+            mesh.dimension,
+            mesh.n_vertices(),
+            mesh.n_cells(),
             self.strain_energy
         )
     }
@@ -894,11 +1019,15 @@ struct PyResultSet {
 
 impl PyResultSet {
     fn new(py: Python<'_>, outcome: vem_cli::Outcome) -> PyResult<Self> {
-        let bodies = outcome
-            .bodies
-            .iter()
-            .map(|b| Py::new(py, PyBody::new(&b.body, &b.solution, b.fields.clone())))
-            .collect::<PyResult<Vec<_>>>()?;
+        let mut bodies = Vec::new();
+        for b in &outcome.bodies {
+            let body = PyBody::new(py, &b.body, &b.solution, b.fields.clone())?;
+            bodies.push(Py::new(py, body)?);
+        }
+        for b in &outcome.bodies_3d {
+            let body = PyBody::new_3d(py, &b.body, &b.solution, b.fields.clone())?;
+            bodies.push(Py::new(py, body)?);
+        }
         let pairs = match &outcome.contact {
             Some(result) => pairs_of(result)
                 .into_iter()
@@ -914,7 +1043,7 @@ impl PyResultSet {
                     .body
                     .element_fields(b.solution.displacement())
                     .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-                step_bodies.push(Py::new(py, PyBody::new(&b.body, &b.solution, fields))?);
+                step_bodies.push(Py::new(py, PyBody::new(py, &b.body, &b.solution, fields)?)?);
             }
             let step_pairs = pairs_of(&step.result)
                 .into_iter()
@@ -988,6 +1117,13 @@ impl PyResultSet {
                     names.join(", ")
                 ))
             })
+    }
+
+    /// The body named `name` as a `meshio.Mesh` (see `BodyResult.to_meshio`).
+    fn to_meshio<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let body = self.body(py, name)?.into_bound(py);
+        py.import("vemcontact._meshio")?
+            .call_method1("body_to_meshio", (body,))
     }
 
     /// The contact pairs, in the order of the scene (empty without contact).
@@ -1085,9 +1221,495 @@ impl PyResultSet {
     }
 }
 
+/// A key path of a one-body scene (`body[0].mesh.polygons[3]`) as the path in the mesh
+/// description the user gave (`polygons[3]`).
+fn mesh_path(path: &KeyPath) -> KeyPath {
+    let prefix = [
+        Segment::Key("body".into()),
+        Segment::Index(0),
+        Segment::Key("mesh".into()),
+    ];
+    if path.0.starts_with(&prefix) {
+        KeyPath(path.0[prefix.len()..].to_vec())
+    } else {
+        path.clone()
+    }
+}
+
+/// Builds the mesh of the mesh description `description` (the keys of a body's `mesh`:
+/// generated, a file relative to `base`, or given inline), validated as a scene's.
+///
+/// Raises `SceneError` at the key path in `description` (`polygons[3]`) with the located
+/// message of the library (naming the cell and the vertex).
+#[pyfunction]
+#[pyo3(signature = (description, base = None))]
+fn mesh(py: Python<'_>, description: &Bound<'_, PyAny>, base: Option<PathBuf>) -> PyResult<PyMesh> {
+    let origin = Origin::Value;
+    let refuse = |e: SceneError| {
+        let error = SceneError {
+            path: mesh_path(&e.path),
+            ..e
+        };
+        scene_error(py, "SceneError", &origin, &error)
+    };
+    let value = to_value(description, &KeyPath::key("body").index(0).at("mesh")).map_err(refuse)?;
+    let scene_of = |plane: bool| {
+        let mut material = serde_json::json!({ "E": 1.0, "nu": 0.25 });
+        if plane {
+            material["plane"] = Value::from("strain");
+        }
+        vem_scene::Scene::from_value(serde_json::json!({
+            "body": [{ "name": "mesh", "mesh": value.clone(), "material": material }]
+        }))
+    };
+    let scene = scene_of(true).map_err(refuse)?;
+    let scene = if vem_scene::check::declared_dimension(&scene.bodies[0]) == Some(3) {
+        scene_of(false).map_err(refuse)?
+    } else {
+        scene
+    };
+    let base = base.unwrap_or_default();
+    let built =
+        py.detach(|| catch_unwind(AssertUnwindSafe(|| vem_scene::body_mesh(&scene, 0, &base))));
+    match built {
+        Err(payload) => Err(panic_error(py, payload)),
+        Ok(Err(e)) => Err(refuse(e)),
+        Ok(Ok((built, source))) => Ok(PyMesh::new(&built, source)),
+    }
+}
+
+/// A mesh in the plane (polygons) or in space (polyhedra) with its named boundary parts: made
+/// by `vemcontact.mesh(description)`, `vemcontact.generate(...)`, `vemcontact.from_meshio(m)`
+/// or read off a result (`BodyResult.mesh`, the mesh solved, interface nodes inserted).
+///
+/// Arrays: `vertices` (n, 2) or (n, 3); `cell_offsets` and `cell_connectivity` (the polygons'
+/// vertex loops, or the polyhedra's vertices); `cells` (polygons: a list of index arrays;
+/// polyhedra: a list of lists of outward face loops); `parts` (name -> (k, 2) edges, or a
+/// list of face loops). `to_dict()` is the mesh as the keys of a mesh given inline, for a
+/// scene.
+#[pyclass(module = "vemcontact", name = "Mesh", frozen)]
+struct PyMesh {
+    description: vem_scene::MeshDescription,
+    dimension: usize,
+    source: String,
+}
+
+impl PyMesh {
+    fn new(mesh: &vem_scene::BuiltMesh, source: String) -> Self {
+        Self {
+            description: mesh.to_inline(),
+            dimension: mesh.dimension(),
+            source,
+        }
+    }
+
+    fn vertex_list(&self) -> &[Vec<f64>] {
+        self.description.vertices.as_deref().unwrap_or_default()
+    }
+
+    /// The vertex lists of the cells: a polygon's loop, a polyhedron's distinct vertices in
+    /// increasing order.
+    fn cell_vertex_lists(&self) -> Vec<Vec<usize>> {
+        match (&self.description.polygons, &self.description.polyhedra) {
+            (Some(polygons), _) => polygons.clone(),
+            (None, Some(polyhedra)) => polyhedra
+                .iter()
+                .map(|faces| {
+                    let mut all: Vec<usize> = faces.iter().flatten().copied().collect();
+                    all.sort_unstable();
+                    all.dedup();
+                    all
+                })
+                .collect(),
+            (None, None) => Vec::new(),
+        }
+    }
+}
+
+#[pymethods]
+impl PyMesh {
+    /// 2 (polygons in the plane) or 3 (polyhedra in space).
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.dimension
+    }
+
+    /// Where the mesh came from, in words ("voronoi, n = 8, seed 1, on [0, 1] x [0, 1]").
+    #[getter]
+    fn source(&self) -> String {
+        self.source.clone()
+    }
+
+    /// The number of vertices.
+    #[getter]
+    fn n_vertices(&self) -> usize {
+        self.vertex_list().len()
+    }
+
+    /// The number of cells (polygons or polyhedra).
+    #[getter]
+    fn n_cells(&self) -> usize {
+        match (&self.description.polygons, &self.description.polyhedra) {
+            (Some(p), _) => p.len(),
+            (None, Some(p)) => p.len(),
+            (None, None) => 0,
+        }
+    }
+
+    /// Vertex coordinates, (n, 2) or (n, 3).
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let flat = self.vertex_list().iter().flatten().copied().collect();
+        matrix(py, self.vertex_list().len(), self.dimension, flat)
+    }
+
+    /// The cells: polygons as arrays of vertex indices (counter-clockwise), polyhedra as
+    /// lists of face loops (arrays of vertex indices, outward).
+    #[getter]
+    fn cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        if let Some(polygons) = &self.description.polygons {
+            for polygon in polygons {
+                list.append(PyArray1::from_slice(py, polygon))?;
+            }
+        }
+        if let Some(polyhedra) = &self.description.polyhedra {
+            for faces in polyhedra {
+                let faces: Vec<_> = faces.iter().map(|f| PyArray1::from_slice(py, f)).collect();
+                list.append(PyList::new(py, faces)?)?;
+            }
+        }
+        Ok(list)
+    }
+
+    /// Where each cell starts in `cell_connectivity` (m + 1 entries).
+    #[getter]
+    fn cell_offsets<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<usize>> {
+        let mut offsets = vec![0];
+        for cell in self.cell_vertex_lists() {
+            offsets.push(offsets[offsets.len() - 1] + cell.len());
+        }
+        PyArray1::from_vec(py, offsets)
+    }
+
+    /// The vertex indices of every cell, one after the other: a polygon's loop
+    /// (counter-clockwise), a polyhedron's distinct vertices (increasing).
+    #[getter]
+    fn cell_connectivity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<usize>> {
+        PyArray1::from_vec(py, self.cell_vertex_lists().concat())
+    }
+
+    /// The named boundary parts: in the plane name -> (k, 2) array of edges (vertex pairs);
+    /// in space name -> list of face loops.
+    #[getter]
+    fn parts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for (name, edges) in &self.description.part_edges {
+            let flat: Vec<usize> = edges.iter().flatten().copied().collect();
+            let array = Array2::from_shape_vec((edges.len(), 2), flat)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            dict.set_item(name, array.into_pyarray(py))?;
+        }
+        for (name, faces) in &self.description.part_faces {
+            let faces: Vec<_> = faces.iter().map(|f| PyArray1::from_slice(py, f)).collect();
+            dict.set_item(name, PyList::new(py, faces)?)?;
+        }
+        Ok(dict)
+    }
+
+    /// The mesh as a `meshio.Mesh` (needs the package meshio): the cells in order, the parts
+    /// as boundary cell blocks named by `cell_sets`.
+    fn to_meshio<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        slf.py()
+            .import("vemcontact._meshio")?
+            .call_method1("mesh_to_meshio", (slf,))
+    }
+
+    /// The mesh as the keys of a mesh given inline (`vertices`, `polygons` or `polyhedra`,
+    /// `part_edges` or `part_faces`): a body's `mesh` in a scene dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.description)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Mesh(dimension={}, vertices={}, cells={}, parts=[{}])",
+            self.dimension,
+            self.n_vertices(),
+            self.n_cells(),
+            self.description
+                .part_edges
+                .keys()
+                .chain(self.description.part_faces.keys())
+                .map(|n| quote(n))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
+/// The names the scenes accept, read from the library's registries: `solvers`, `elements`,
+/// `laws`, `accuracy_presets`, `mesh_families` (of a `rectangle`) and
+/// `mesh_families_3d` (of a `box`).
+#[pyfunction]
+fn names<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    let registries = vem_scene::Registries::default();
+    let dict = PyDict::new(py);
+    dict.set_item("solvers", registries.solvers.names())?;
+    dict.set_item("elements", registries.elements.names())?;
+    dict.set_item("laws", registries.laws.names())?;
+    dict.set_item(
+        "accuracy_presets",
+        vem_contact::AccuracyPreset::ALL
+            .iter()
+            .map(|p| p.name())
+            .collect::<Vec<_>>(),
+    )?;
+    dict.set_item(
+        "mesh_families",
+        vem_mesh::generators::MeshFamily::all()
+            .iter()
+            .map(|f| f.name())
+            .collect::<Vec<_>>(),
+    )?;
+    dict.set_item(
+        "mesh_families_3d",
+        vem_mesh::generators::polyhedral::PolyhedralFamily::all()
+            .iter()
+            .map(|f| f.name())
+            .collect::<Vec<_>>(),
+    )?;
+    Ok(dict)
+}
+
+/// A study's failure as the package's exception: a name the registries lack or a setting
+/// refused as `ValueError`, a computation that fails as `SolveError`.
+fn study_error(py: Python<'_>, error: vem_verify::VerifyError) -> PyErr {
+    use vem_verify::VerifyError as E;
+    match error {
+        E::InvalidSetting { .. } | E::Exact(_) | E::Solver { .. } => {
+            pyo3::exceptions::PyValueError::new_err(vem_scene::one_line(&error))
+        }
+        other => scene_error(
+            py,
+            "SolveError",
+            &Origin::Value,
+            &SceneError::at(KeyPath::root(), vem_scene::one_line(&other)),
+        ),
+    }
+}
+
+/// Runs the convergence study of the case `case` (a name of the case registry: M1..M4, E1,
+/// E2, PT0a, ...) on the mesh pairing `pairing` ("quads/quads*3", "voronoi/quads", "quads")
+/// at the sizes `sizes`, with the contact solver `solver` and the element `element`, with
+/// the GIL released; judged by the case's expectation (its registry's, else the optimal
+/// rates). Returns the study's result as a dict (what `convergence.json` holds per study:
+/// records per size, fitted rates, verdict).
+#[pyfunction]
+#[pyo3(signature = (case, pairing, sizes, solver = None, element = None, seed = None))]
+fn convergence_study<'py>(
+    py: Python<'py>,
+    case: &str,
+    pairing: &str,
+    sizes: Vec<usize>,
+    solver: Option<String>,
+    element: Option<String>,
+    seed: Option<u64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use vem_verify::study::{Expectation, Study};
+    let cases = vem_verify::cases::CaseRegistry::builtin();
+    let exact = cases
+        .make(case, vem_verify::exact::Lame::default())
+        .map_err(|e| study_error(py, e.into()))?;
+    let expectation = cases
+        .expectation(exact.name())
+        .unwrap_or(Expectation::OPTIMAL_RATES);
+    let pairing: vem_verify::study::MeshPairing =
+        pairing.parse().map_err(|e| study_error(py, e))?;
+    let element = vem_space::ElementRegistry::builtin()
+        .make(
+            element
+                .as_deref()
+                .unwrap_or(vem_space::ElementRegistry::DEFAULT),
+        )
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    let mut study = Study::new(exact, pairing)
+        .sizes(sizes)
+        .element(element)
+        .expect(expectation);
+    if let Some(solver) = solver {
+        study = study.solver(solver);
+    }
+    if let Some(seed) = seed {
+        study = study.seed(seed);
+    }
+    let run = py.detach(|| catch_unwind(AssertUnwindSafe(|| study.run())));
+    match run {
+        Err(payload) => Err(panic_error(py, payload)),
+        Ok(Err(e)) => Err(study_error(py, e)),
+        Ok(Ok(result)) => to_python(py, &result),
+    }
+}
+
+/// The studies of the project's convergence run in the plane for the cases `cases` (default
+/// M1, M2, E1), quick or full: a list of dicts `{case, pairing, sizes}` (the same plan as
+/// `cargo xtask convergence`).
+#[pyfunction]
+#[pyo3(signature = (quick = true, cases = None))]
+fn convergence_plan<'py>(
+    py: Python<'py>,
+    quick: bool,
+    cases: Option<Vec<String>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let registry = vem_verify::cases::CaseRegistry::builtin();
+    let names = cases.unwrap_or_else(|| {
+        vem_verify::plan::DEFAULT_CASES
+            .iter()
+            .map(|c| c.to_string())
+            .collect()
+    });
+    let list = PyList::empty(py);
+    for name in &names {
+        let planned = vem_verify::plan::planned_studies(name, quick, &registry)
+            .map_err(|e| study_error(py, e.into()))?;
+        for study in planned {
+            let item = PyDict::new(py);
+            item.set_item("case", &study.case)?;
+            item.set_item("pairing", study.pairing)?;
+            item.set_item("sizes", study.sizes.to_vec())?;
+            list.append(item)?;
+        }
+    }
+    Ok(list)
+}
+
+/// The solver settings of the trade-off study: the quick ones or the full ones (labels such
+/// as "draft", "exact", "penalty@factor=1e6").
+#[pyfunction]
+#[pyo3(signature = (quick = true))]
+fn tradeoff_settings(quick: bool) -> Vec<&'static str> {
+    if quick {
+        vem_verify::tradeoff::QUICK_SETTINGS.to_vec()
+    } else {
+        vem_verify::tradeoff::FULL_SETTINGS.to_vec()
+    }
+}
+
+/// One group of the trade-off study: the manufactured case `case` (M1, M2, E1, ...) on
+/// `pairing` at size `n` with `element`, discretised once and solved with every setting of
+/// `settings` (labels of `tradeoff_settings`), with the GIL released. Returns one dict per
+/// setting: `setting`, `solver`, `status`, `error`, `n`, `h`, `unknowns`, `contact_rows`,
+/// `iterations`, the errors `e_grad`, `e_0`, `e_a`, `pressure_l2`, `pressure_max`,
+/// `resultant`, `misclassified`, and the seconds `mesh_generation`, `discretisation`,
+/// `solve`, `errors`.
+#[pyfunction]
+#[pyo3(signature = (case, pairing, n, settings, element = None))]
+fn tradeoff_group<'py>(
+    py: Python<'py>,
+    case: &str,
+    pairing: &str,
+    n: usize,
+    settings: Vec<String>,
+    element: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use vem_verify::tradeoff::{SolverSetting, TradeoffGroup};
+    let settings = settings
+        .iter()
+        .map(|s| s.parse::<SolverSetting>())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| study_error(py, e))?;
+    let element = element.unwrap_or_else(|| vem_space::ElementRegistry::DEFAULT.to_string());
+    let run = py.detach(|| {
+        catch_unwind(AssertUnwindSafe(
+            || -> Result<Vec<Value>, vem_verify::VerifyError> {
+                let group = TradeoffGroup::build(case, pairing, &element, n)?;
+                let base = serde_json::json!({
+                    "case": case, "pairing": pairing, "element": element, "n": n,
+                    "h": group.h, "mesh_generation": group.mesh_generation,
+                });
+                let mut rows = Vec::new();
+                let Some(discretisation) = group.discretisation() else {
+                    // Elasticity: one Cholesky solve per body, whatever the settings.
+                    let solution = group
+                        .problem()
+                        .solve(&mut vem_contact::CondensedSolver::default())?;
+                    let start = std::time::Instant::now();
+                    let errors = group.elasticity_errors(&solution)?;
+                    let mut row = base.clone();
+                    row["setting"] = "cholesky".into();
+                    row["solver"] = "cholesky".into();
+                    row["status"] = "Solved".into();
+                    row["unknowns"] = solution
+                        .bodies
+                        .iter()
+                        .map(|b| b.system.dofs().n_free())
+                        .sum::<usize>()
+                        .into();
+                    row["discretisation"] = solution.assembly_time.as_secs_f64().into();
+                    row["solve"] = solution.solve_time.as_secs_f64().into();
+                    row["errors"] = start.elapsed().as_secs_f64().into();
+                    merge(&mut row, serde_json::to_value(errors).unwrap_or_default());
+                    rows.push(row);
+                    return Ok(rows);
+                };
+                let work = discretisation.work();
+                for setting in &settings {
+                    let mut row = base.clone();
+                    row["setting"] = setting.label.clone().into();
+                    row["solver"] = setting.solver.clone().into();
+                    row["unknowns"] = discretisation.n_dofs().into();
+                    row["contact_rows"] = discretisation.normal_rows().nrows().into();
+                    row["discretisation"] = (work.times.insertion + work.times.assembly)
+                        .as_secs_f64()
+                        .into();
+                    let mut solver = setting.make()?;
+                    let start = std::time::Instant::now();
+                    match discretisation.solve(solver.as_mut()) {
+                        Ok(result) => {
+                            row["solve"] = start.elapsed().as_secs_f64().into();
+                            row["iterations"] = result
+                                .fixed_point
+                                .as_ref()
+                                .map_or(result.report.iterations, |fp| fp.solver_iterations)
+                                .into();
+                            row["status"] = format!("{:?}", result.report.status).into();
+                            let start = std::time::Instant::now();
+                            let errors = group.errors(result)?;
+                            row["errors"] = start.elapsed().as_secs_f64().into();
+                            merge(&mut row, serde_json::to_value(errors).unwrap_or_default());
+                        }
+                        Err(error) => {
+                            row["solve"] = start.elapsed().as_secs_f64().into();
+                            row["status"] = "failed".into();
+                            row["error"] = vem_scene::one_line(&error).into();
+                        }
+                    }
+                    rows.push(row);
+                }
+                Ok(rows)
+            },
+        ))
+    });
+    match run {
+        Err(payload) => Err(panic_error(py, payload)),
+        Ok(Err(e)) => Err(study_error(py, e)),
+        Ok(Ok(rows)) => to_python(py, &rows),
+    }
+}
+
+/// The keys of the object `extra` set on the object `row`.
+fn merge(row: &mut Value, extra: Value) {
+    if let (Some(row), Value::Object(extra)) = (row.as_object_mut(), extra) {
+        row.extend(extra);
+    }
+}
+
 /// The native module `vemcontact._native`.
 #[pymodule(name = "_native")]
 mod native {
     #[pymodule_export]
-    use super::{from_dict, load, loads, PyBody, PyPair, PyResultSet, PyScene, PyStep};
+    use super::{
+        convergence_plan, convergence_study, from_dict, load, loads, mesh, names, tradeoff_group,
+        tradeoff_settings, PyBody, PyMesh, PyPair, PyResultSet, PyScene, PyStep,
+    };
 }

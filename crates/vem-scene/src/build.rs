@@ -461,8 +461,8 @@ fn check_planned_memory(scene: &Scene, limit: &MemoryLimit) -> Result<(), SceneE
     let mut total = Footprint::default();
     let mut largest: Option<(f64, usize)> = None;
     for (i, spec) in scene.bodies.iter().enumerate() {
-        if spec.mesh.file.is_some() {
-            continue; // a file: counted once read
+        if spec.mesh.file.is_some() || spec.mesh.vertices.is_some() {
+            continue; // a file or an inline mesh: counted once read
         }
         if spec.mesh.cuboid.is_some() {
             continue; // in space: counted once generated
@@ -545,6 +545,35 @@ fn check_footprint(total: Footprint, limit: &MemoryLimit) -> Result<(), SceneErr
         .map_err(|message| SceneError::at(KeyPath::root(), message))
 }
 
+/// The mesh of the body `body` of `scene` as [`Model::build`] makes it before interface nodes
+/// are inserted (generated, read from a file relative to `base` or given inline, with the
+/// parts `parts` cut out), and where it came from in words. The scene is checked first (as
+/// [`Model::build`] checks it); errors are at the scene's keys (`body[0].mesh.polygons[3]`).
+///
+/// # Errors
+/// [`SceneError`] for a scene that is not valid, a body index out of range, a mesh that
+/// cannot be generated, read or validated.
+pub fn body_mesh(
+    scene: &Scene,
+    body: usize,
+    base: &Path,
+) -> Result<(BuiltMesh, String), SceneError> {
+    let checked = crate::check::check(scene)?;
+    let scene = &checked.scene;
+    let Some(spec) = scene.bodies.get(body) else {
+        return Err(SceneError::at(
+            KeyPath::key("body"),
+            format!("no body {body}: the scene has {}", scene.bodies.len()),
+        ));
+    };
+    let path = KeyPath::key("body").index(body);
+    let (mesh, source, _) = build_mesh(scene, spec, &path, base).map_err(|e| SceneError {
+        path: checked.written(&e.path),
+        ..e
+    })?;
+    Ok((mesh, source))
+}
+
 /// The mesh of one body, where it came from and, with a target error, the error predicted.
 fn build_mesh(
     scene: &Scene,
@@ -557,6 +586,36 @@ fn build_mesh(
         let (mesh, source) = crate::space::generate(spec, path)?;
         let mesh = crate::space::with_sub_parts(mesh, spec, path)?;
         return Ok((BuiltMesh::Space(mesh), source, None));
+    }
+    if spec.mesh.vertices.is_some() {
+        return Ok(
+            match inline_mesh(&spec.mesh, &spec.name, &path.at("mesh"))? {
+                BuiltMesh::Plane(mesh) => {
+                    let source = format!(
+                        "given inline ({} polygons, {} vertices)",
+                        mesh.n_polygons(),
+                        mesh.n_vertices()
+                    );
+                    (
+                        BuiltMesh::Plane(with_sub_parts(mesh, spec, path)?),
+                        source,
+                        None,
+                    )
+                }
+                BuiltMesh::Space(mesh) => {
+                    let source = format!(
+                        "given inline ({} polyhedra, {} vertices)",
+                        mesh.n_cells(),
+                        mesh.n_vertices()
+                    );
+                    (
+                        BuiltMesh::Space(crate::space::with_sub_parts(mesh, spec, path)?),
+                        source,
+                        None,
+                    )
+                }
+            },
+        );
     }
     if let Some(file) = &spec.mesh.file {
         let at = path.at("mesh").at("file");
@@ -624,6 +683,117 @@ fn build_mesh(
         ),
         predicted,
     ))
+}
+
+/// The mesh given inline by `vertices` with `polygons` (in the plane) or `polyhedra` (in
+/// space) and its parts (`part_edges`, `part_faces`) of the body `name`, whose mesh
+/// description is at the key `at`: checked as a scene's ([`crate::check::check`]) and
+/// validated as every mesh of the library. An error is at the key of the polygon,
+/// polyhedron, vertex or part it names (`body[0].mesh.polygons[3]`), its message naming the
+/// cell and the vertex.
+///
+/// ```
+/// use vem_scene::{inline_mesh, BuiltMesh, KeyPath, MeshDescription};
+/// let mut mesh = MeshDescription::default();
+/// mesh.vertices = Some(vec![vec![0.0, 0.0], vec![1.0, 0.0], vec![0.0, 1.0]]);
+/// mesh.polygons = Some(vec![vec![0, 2, 1]]);
+/// let error = inline_mesh(&mesh, "a", &KeyPath::key("mesh")).unwrap_err();
+/// assert_eq!(error.path.to_string(), "mesh.polygons[0]");
+/// assert!(error.message.contains("polygon 0 is clockwise"), "{}", error.message);
+/// mesh.polygons = Some(vec![vec![0, 1, 2]]);
+/// let BuiltMesh::Plane(built) = inline_mesh(&mesh, "a", &KeyPath::key("mesh"))? else {
+///     panic!("a mesh in the plane")
+/// };
+/// assert_eq!(built.n_edges(), 3);
+/// # Ok::<(), vem_scene::SceneError>(())
+/// ```
+///
+/// # Errors
+/// [`SceneError`] for a description that is not an inline mesh, points of the wrong length,
+/// keys of another mesh source, and every error of the mesh's validation.
+pub fn inline_mesh(
+    mesh: &crate::description::MeshDescription,
+    name: &str,
+    at: &KeyPath,
+) -> Result<BuiltMesh, SceneError> {
+    crate::check::check_inline_mesh(mesh, name, at)?;
+    let vertices = mesh.vertices.as_deref().unwrap_or_default();
+    if let Some(polygons) = &mesh.polygons {
+        let points = vertices.iter().map(|p| Point::new(p[0], p[1])).collect();
+        let parts = mesh
+            .part_edges
+            .iter()
+            .map(|(part, edges)| vem_mesh::PartSpec::new(part.clone(), edges.clone()))
+            .collect();
+        return Mesh::from_polygons(points, polygons, parts)
+            .map(BuiltMesh::Plane)
+            .map_err(|e| {
+                SceneError::at(inline_error_path(&e, at, 2), format!("body '{name}': {e}"))
+            });
+    }
+    let polyhedra = mesh.polyhedra.as_deref().unwrap_or_default();
+    let points = vertices
+        .iter()
+        .map(|p| vem_mesh::Point3::new(p[0], p[1], p[2]))
+        .collect();
+    let parts = mesh
+        .part_faces
+        .iter()
+        .map(|(part, faces)| vem_mesh::FacePartSpec::new(part.clone(), faces.clone()))
+        .collect();
+    vem_mesh::PolyhedralMesh::from_polyhedra(points, polyhedra, parts)
+        .map(BuiltMesh::Space)
+        .map_err(|e| SceneError::at(inline_error_path(&e, at, 3), format!("body '{name}': {e}")))
+}
+
+/// The key of an inline mesh (at `mesh`) that the mesh error `error` is about: the polygon
+/// or polyhedron, the vertex or the part it names, else the cells as a whole.
+fn inline_error_path(error: &vem_mesh::MeshError, mesh: &KeyPath, dimension: usize) -> KeyPath {
+    use vem_mesh::MeshError as E;
+    let cells = mesh.at(if dimension == 2 {
+        "polygons"
+    } else {
+        "polyhedra"
+    });
+    let parts = mesh.at(if dimension == 2 {
+        "part_edges"
+    } else {
+        "part_faces"
+    });
+    match error {
+        E::TooFewVertices { polygon, .. }
+        | E::VertexOutOfRange { polygon, .. }
+        | E::RepeatedVertex { polygon, .. }
+        | E::Clockwise { polygon, .. }
+        | E::DegenerateArea { polygon, .. }
+        | E::SelfIntersecting { polygon, .. }
+        | E::NonConforming {
+            polygon_a: polygon, ..
+        }
+        | E::Overlapping { b: polygon, .. } => cells.index(*polygon),
+        // The polygon that used the edge once too often.
+        E::OverusedEdge { polygons, .. } if !polygons.is_empty() => {
+            cells.index(polygons[polygons.len() - 1])
+        }
+        E::CellTooFewFaces { cell, .. }
+        | E::CellRepeatedFace { cell, .. }
+        | E::CellNotClosed { cell, .. }
+        | E::DisconnectedCell { cell, .. }
+        | E::InvertedCell { cell, .. }
+        | E::DegenerateCell { cell, .. } => cells.index(*cell),
+        E::NonFiniteVertex { vertex, .. }
+        | E::NonFiniteVertex3 { vertex, .. }
+        | E::UnusedVertex { vertex }
+        | E::HangingVertex { vertex, .. }
+        | E::DuplicateVertices { b: vertex, .. } => mesh.at("vertices").index(*vertex),
+        E::UnknownEdge { part, .. }
+        | E::InteriorEdgeInPart { part, .. }
+        | E::UnknownFace { part, .. }
+        | E::InteriorFaceInPart { part, .. }
+        | E::PartFaceOutOfRange { part, .. }
+        | E::DuplicatePart { part } => parts.at(part),
+        _ => cells,
+    }
 }
 
 /// `mesh` with the body's further parts (`mesh.parts`): the boundary edges whose two end

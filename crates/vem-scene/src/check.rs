@@ -8,7 +8,7 @@ use vem_space::{Choice, Options};
 
 use crate::description::{
     BodyDescription, ContactDescription, LegacyPenalty, LegacyScaling, LegacyStabilisationKind,
-    Scene,
+    MeshDescription, Scene,
 };
 use crate::{Deprecation, KeyPath, ScalarValue, SceneError, VectorValue};
 
@@ -22,15 +22,19 @@ pub const MAX_WIDTH: f64 = 20_000.0;
 pub const DIMENSION: usize = 2;
 
 /// The dimension a body's mesh declares before it is generated or read: 3 for a generated
-/// `box`, 2 for a generated `rectangle` and for the planar file formats (VTK, PolyMesher);
+/// `box` and inline `polyhedra`, 2 for a generated `rectangle`, inline `polygons` and the
+/// planar file formats (VTK, PolyMesher);
 /// `None` for a Gmsh file, whose elements decide (surfaces in the plane, volumes in space).
 pub fn declared_dimension(body: &BodyDescription) -> Option<usize> {
     let mesh = &body.mesh;
     if mesh.cuboid.is_some() {
         return Some(3);
     }
-    if mesh.rectangle.is_some() {
+    if mesh.rectangle.is_some() || mesh.polygons.is_some() {
         return Some(2);
+    }
+    if mesh.polyhedra.is_some() {
+        return Some(3);
     }
     let file = mesh.file.as_deref()?;
     let extension = std::path::Path::new(file)
@@ -199,6 +203,10 @@ fn what_decides(body: &BodyDescription) -> &'static str {
         "its mesh is generated on a `box`"
     } else if body.mesh.rectangle.is_some() {
         "its mesh is generated on a `rectangle`"
+    } else if body.mesh.polygons.is_some() {
+        "its mesh is given as `polygons`"
+    } else if body.mesh.polyhedra.is_some() {
+        "its mesh is given as `polyhedra`"
     } else {
         "its mesh file"
     }
@@ -549,16 +557,37 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
             &mesh_path.at("parts").index(k).at("box"),
         )?;
     }
+    let inline = mesh.vertices.is_some() || mesh.polygons.is_some() || mesh.polyhedra.is_some();
+    let sources = [mesh.family.is_some(), mesh.file.is_some(), inline];
+    if sources.iter().filter(|&&given| given).count() != 1 {
+        return Err(SceneError::at(
+            mesh_path,
+            format!(
+                "body '{name}': the mesh needs one of `family` (a generator, with `rectangle` or \
+                 `box`, and `n`), `file` (a mesh file) or `vertices` (a mesh given inline, with \
+                 `polygons` or `polyhedra`)"
+            ),
+        ));
+    }
+    let named_parts = !mesh.part_edges.is_empty() || !mesh.part_faces.is_empty();
+    if named_parts && !inline {
+        let key = if mesh.part_edges.is_empty() {
+            "part_faces"
+        } else {
+            "part_edges"
+        };
+        return Err(SceneError::at(
+            mesh_path.at(key),
+            format!(
+                "body '{name}': `{key}` names the boundary parts of a mesh given inline \
+                 (`vertices`); cut parts out of a generated or read mesh with `parts`"
+            ),
+        ));
+    }
     match (&mesh.family, &mesh.file) {
-        (Some(_), Some(_)) | (None, None) => {
-            return Err(SceneError::at(
-                mesh_path,
-                format!(
-                    "body '{name}': the mesh needs either `family` (a generator, with `rectangle` \
-                     or `box`, and `n`) or `file` (a mesh file), not both"
-                ),
-            ))
-        }
+        _ if inline => check_inline_mesh(mesh, name, &mesh_path)?,
+        // Exactly one source, checked above.
+        (None, None) | (Some(_), Some(_)) => {}
         (Some(family), None) => {
             let (domain, key, dimension) = match (&mesh.rectangle, &mesh.cuboid) {
                 (Some(rectangle), None) => (rectangle, "rectangle", 2),
@@ -671,6 +700,88 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// The checks of a mesh given inline (`vertices` with `polygons` or `polyhedra`) that need no
+/// mesh: one kind of cells, the points' lengths, the generator's and file's keys left out, the
+/// parts' kind. The mesh itself (indices in range, orientation, conformity, parts on the
+/// boundary) is validated when it is built, each error naming its cell and vertex.
+pub(crate) fn check_inline_mesh(
+    mesh: &MeshDescription,
+    name: &str,
+    mesh_path: &KeyPath,
+) -> Result<(), SceneError> {
+    let Some(vertices) = &mesh.vertices else {
+        return Err(SceneError::at(
+            mesh_path.clone(),
+            format!(
+                "body '{name}': a mesh given inline needs `vertices = [[x, y], ...]` with its \
+                 `polygons` (`[[x, y, z], ...]` with its `polyhedra`)"
+            ),
+        ));
+    };
+    let dimension = match (&mesh.polygons, &mesh.polyhedra) {
+        (Some(_), None) => 2,
+        (None, Some(_)) => 3,
+        (Some(_), Some(_)) => {
+            return Err(SceneError::at(
+                mesh_path.at("polyhedra"),
+                format!(
+                    "body '{name}': give `polygons` (a mesh in the plane) or `polyhedra` (a mesh \
+                     in space), not both"
+                ),
+            ))
+        }
+        (None, None) => {
+            return Err(SceneError::at(
+                mesh_path.clone(),
+                format!(
+                    "body '{name}': the mesh's `vertices` need its cells: `polygons = [[0, 1, \
+                     2], ...]` (vertex loops, counter-clockwise) or `polyhedra` (each a list \
+                     of outward face loops)"
+                ),
+            ))
+        }
+    };
+    for (k, point) in vertices.iter().enumerate() {
+        exact_len(point.len(), dimension, &mesh_path.at("vertices").index(k))?;
+    }
+    let foreign = [
+        ("rectangle", mesh.rectangle.is_some()),
+        ("box", mesh.cuboid.is_some()),
+        ("n", mesh.n.is_some()),
+        ("seed", mesh.seed.is_some()),
+        ("part_names", !mesh.part_names.is_empty()),
+    ];
+    if let Some((key, _)) = foreign.iter().find(|(_, given)| *given) {
+        return Err(SceneError::at(
+            mesh_path.at(key),
+            format!(
+                "body '{name}': `{key}` belongs to a generated mesh or a mesh file, not to a mesh \
+                 given inline (`vertices`)"
+            ),
+        ));
+    }
+    let (wrong, right) = if dimension == 2 {
+        ("part_faces", "part_edges")
+    } else {
+        ("part_edges", "part_faces")
+    };
+    let given_wrong = if dimension == 2 {
+        !mesh.part_faces.is_empty()
+    } else {
+        !mesh.part_edges.is_empty()
+    };
+    if given_wrong {
+        return Err(SceneError::at(
+            mesh_path.at(wrong),
+            format!(
+                "body '{name}': a mesh {} names its boundary parts by `{right}`",
+                in_words(dimension)
+            ),
+        ));
     }
     Ok(())
 }

@@ -113,9 +113,11 @@ pub struct BodyDescription {
     pub body_force_curve: Option<Vec<[f64; 2]>>,
 }
 
-/// A mesh: generated (`family` with `rectangle` in the plane or `box` in space, `n`, `seed`)
-/// or read (`file`). The mesh decides the dimension of its body: a `rectangle` or a planar
-/// file gives a body in the plane, a `box` or a Gmsh file of volume elements a body in space.
+/// A mesh: generated (`family` with `rectangle` in the plane or `box` in space, `n`, `seed`),
+/// read (`file`) or given inline (`vertices` with `polygons` in the plane or `polyhedra` in
+/// space, boundary parts by `part_edges` or `part_faces`). The mesh decides the dimension of
+/// its body: a `rectangle`, a planar file or `polygons` give a body in the plane, a `box`, a
+/// Gmsh file of volume elements or `polyhedra` a body in space.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDescription {
@@ -146,6 +148,27 @@ pub struct MeshDescription {
     /// VTK files: the names of the part numbers of the line cells (`{ 1 = "bottom" }`).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub part_names: BTreeMap<String, String>,
+    /// The vertices of a mesh given inline: `[[x, y], ...]` with `polygons`, `[[x, y, z], ...]`
+    /// with `polyhedra`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<Vec<Vec<f64>>>,
+    /// The cells of an inline mesh in the plane: each a loop of vertex indices (from 0),
+    /// counter-clockwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygons: Option<Vec<Vec<usize>>>,
+    /// The cells of an inline mesh in space: each a list of faces, each face a loop of vertex
+    /// indices oriented outward for that cell (a face shared by two cells is listed by both,
+    /// in opposite directions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polyhedra: Option<Vec<Vec<Vec<usize>>>>,
+    /// The boundary parts of an inline mesh in the plane: each part's boundary edges as pairs of
+    /// vertex indices (`part_edges = { bottom = [[0, 1], [1, 2]] }`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub part_edges: BTreeMap<String, Vec<[usize; 2]>>,
+    /// The boundary parts of an inline mesh in space: each part's boundary faces as vertex
+    /// loops (any starting vertex, either orientation: `part_faces = { left = [[0, 6, 9, 3]] }`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub part_faces: BTreeMap<String, Vec<Vec<usize>>>,
     /// Further boundary parts cut out of the mesh's boundary (a strip load, a partial clamp, a
     /// contact zone on part of an edge): `parts = [{ name = "strip", of = "top", box =
     /// [[0.4, 0.9], [0.6, 1.1]] }]`.

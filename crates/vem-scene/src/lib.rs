@@ -71,13 +71,15 @@ pub mod toml_file;
 mod value;
 
 pub use build::{
-    BuildOptions, Model, ModelBody, ModelContact, Registries, LOCKING_FREE, NEARLY_INCOMPRESSIBLE,
+    body_mesh, inline_mesh, BuildOptions, Model, ModelBody, ModelContact, Registries, LOCKING_FREE,
+    NEARLY_INCOMPRESSIBLE,
 };
-pub use description::Scene;
+pub use description::{MeshDescription, Scene};
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
 pub use history::MAX_STEPS;
 pub use solve::{
     describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison, Outcome,
     ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody, StepSummary,
 };
+pub use space::BuiltMesh;
 pub use value::{ScalarFunction, ScalarValue, VectorFunction, VectorValue};

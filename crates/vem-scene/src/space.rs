@@ -27,9 +27,9 @@ use crate::solve::{
 };
 use crate::{KeyPath, Model, Outcome, SceneError};
 
-/// A mesh as generated or read: in the plane or in space.
+/// A body's mesh as generated, read or given inline: in the plane or in space.
 #[derive(Debug, Clone)]
-pub(crate) enum BuiltMesh {
+pub enum BuiltMesh {
     /// Polygons.
     Plane(Mesh),
     /// Polyhedra.
@@ -38,11 +38,54 @@ pub(crate) enum BuiltMesh {
 
 impl BuiltMesh {
     /// 2 or 3.
-    pub(crate) fn dimension(&self) -> usize {
+    pub fn dimension(&self) -> usize {
         match self {
             BuiltMesh::Plane(_) => 2,
             BuiltMesh::Space(_) => 3,
         }
+    }
+
+    /// The mesh as the keys of a mesh given inline: `vertices`, the cells (`polygons`, or
+    /// `polyhedra` as outward face loops) and the boundary parts (`part_edges`, or
+    /// `part_faces` as face loops). [`crate::inline_mesh`] of it builds the same mesh: the
+    /// same vertices and cells in the same order (in space, faces numbered as they first
+    /// appear in the cells).
+    pub fn to_inline(&self) -> crate::MeshDescription {
+        let mut description = crate::MeshDescription::default();
+        match self {
+            BuiltMesh::Plane(mesh) => {
+                description.vertices =
+                    Some(mesh.vertices().iter().map(|p| vec![p.x, p.y]).collect());
+                description.polygons = Some(mesh.polygons().map(<[usize]>::to_vec).collect());
+                description.part_edges = mesh
+                    .part_specs()
+                    .into_iter()
+                    .map(|part| (part.name, part.edges))
+                    .collect();
+            }
+            BuiltMesh::Space(mesh) => {
+                description.vertices = Some(
+                    mesh.vertices()
+                        .iter()
+                        .map(|p| vec![p.x, p.y, p.z])
+                        .collect(),
+                );
+                description.polyhedra = Some(
+                    (0..mesh.n_cells())
+                        .map(|c| mesh.cell_face_loops(c))
+                        .collect(),
+                );
+                description.part_faces = mesh
+                    .parts()
+                    .iter()
+                    .map(|part| {
+                        let faces = part.faces.iter().map(|&f| mesh.face(f).to_vec()).collect();
+                        (part.name.clone(), faces)
+                    })
+                    .collect();
+            }
+        }
+        description
     }
 }
 

@@ -45,10 +45,12 @@ pub mod diagnostics;
 mod error;
 pub mod exact;
 pub mod norms;
+pub mod plan;
 pub mod problem;
 pub mod report;
 pub mod study;
 pub mod three_d;
+pub mod tradeoff;
 
 pub use error::VerifyError;
 pub use exact::{

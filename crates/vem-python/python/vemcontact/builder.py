@@ -36,14 +36,88 @@ def _keys(**keys: Any) -> Dict[str, Any]:
 
 def generated(
     family: str,
-    rectangle: Sequence[Sequence[Number]],
+    rectangle: Optional[Sequence[Sequence[Number]]] = None,
     n: Optional[int] = None,
     seed: Optional[int] = None,
+    *,
+    box: Optional[Sequence[Sequence[Number]]] = None,
+    parts: Optional[Sequence[Dict[str, Any]]] = None,
 ) -> Dict[str, Any]:
-    """A generated mesh: ``family`` ("quads", "triangles", "hexagons", "voronoi",
-    "perturbed", "nonconvex", "hanging") on ``rectangle = [[x0, y0], [x1, y1]]`` with
-    about ``n`` cells across (left out with ``accuracy`` or ``target_error``)."""
-    return _keys(family=family, rectangle=[list(p) for p in rectangle], n=n, seed=seed)
+    """A generated mesh: ``family`` (``names()["mesh_families"]``: "quads", "triangles",
+    "hexagons", "voronoi", ...) on ``rectangle = [[x0, y0], [x1, y1]]``, or a family of
+    ``names()["mesh_families_3d"]`` ("hexahedra", "tetrahedra", "voronoi", ...) on ``box =
+    [[x0, y0, z0], [x1, y1, z1]]``, with about ``n`` cells across (left out in the plane with
+    ``accuracy`` or ``target_error``); ``parts`` cuts further boundary parts out by boxes
+    (:func:`part_box`)."""
+    return _keys(
+        family=family,
+        rectangle=None if rectangle is None else [list(p) for p in rectangle],
+        box=None if box is None else [list(p) for p in box],
+        n=n,
+        seed=seed,
+        parts=None if parts is None else list(parts),
+    )
+
+
+def part_box(name: str, box: Sequence[Sequence[Number]], of: Optional[str] = None) -> Dict[str, Any]:
+    """A boundary part cut out of a mesh's boundary: the edges (faces in space) whose vertices
+    all lie in ``box = [[x0, y0], [x1, y1]]`` (``[[x0, y0, z0], [x1, y1, z1]]``), among those
+    of the part ``of`` when given (the key ``parts`` of a mesh)."""
+    return _keys(name=name, of=of, box=[list(p) for p in box])
+
+
+def inline(
+    vertices: Any,
+    polygons: Optional[Sequence[Sequence[int]]] = None,
+    *,
+    offsets: Optional[Sequence[int]] = None,
+    connectivity: Optional[Sequence[int]] = None,
+    polyhedra: Optional[Sequence[Sequence[Sequence[int]]]] = None,
+    parts: Optional[Dict[str, Any]] = None,
+    boxes: Optional[Sequence[Dict[str, Any]]] = None,
+) -> Dict[str, Any]:
+    """A mesh given inline, as a body's ``mesh`` in a scene: ``vertices`` (n x 2 with
+    polygons, n x 3 with polyhedra; numpy arrays or lists) and the cells, either ``polygons``
+    (vertex loops, counter-clockwise) or ``offsets`` with ``connectivity`` (polygon k is
+    ``connectivity[offsets[k]:offsets[k + 1]]``), or ``polyhedra`` (each a list of face loops,
+    outward). ``parts`` names boundary parts: ``{"bottom": edges}`` with edges as vertex pairs
+    (k x 2) in the plane, ``{"left": faces}`` with faces as vertex loops in space; ``boxes``
+    cuts further parts out by boxes (:func:`part_box`). The mesh is validated when the scene
+    is built (or by :func:`vemcontact.mesh`): an error names the polygon and the vertex, at
+    its key (``polygons[3]``)."""
+    import numpy as np
+
+    points = np.asarray(vertices, dtype=float)
+    if points.ndim != 2 or points.shape[1] not in (2, 3):
+        raise ValueError(f"vertices: an (n, 2) or (n, 3) array is expected, not shape {points.shape}")
+    given = [polygons is not None, offsets is not None or connectivity is not None, polyhedra is not None]
+    if sum(given) != 1:
+        raise ValueError("give the cells as `polygons`, as `offsets` with `connectivity`, or as `polyhedra`")
+    description: Dict[str, Any] = {"vertices": points.tolist()}
+    if polyhedra is not None:
+        description["polyhedra"] = [[[int(v) for v in face] for face in cell] for cell in polyhedra]
+    elif polygons is not None:
+        description["polygons"] = [[int(v) for v in polygon] for polygon in polygons]
+    else:
+        if offsets is None or connectivity is None:
+            raise ValueError("`offsets` and `connectivity` go together")
+        offsets = np.asarray(offsets, dtype=np.int64)
+        connectivity = np.asarray(connectivity, dtype=np.int64)
+        if offsets.ndim != 1 or len(offsets) < 1 or offsets[0] != 0 or offsets[-1] != len(connectivity) or np.any(np.diff(offsets) < 0):
+            raise ValueError(
+                "offsets: must start at 0, increase and end at len(connectivity) "
+                f"= {len(connectivity)} (one entry per polygon plus one)"
+            )
+        description["polygons"] = [connectivity[a:b].tolist() for a, b in zip(offsets[:-1], offsets[1:])]
+    if parts:
+        key = "part_faces" if polyhedra is not None else "part_edges"
+        if key == "part_edges":
+            description[key] = {name: np.asarray(edges, dtype=np.int64).reshape(-1, 2).tolist() for name, edges in parts.items()}
+        else:
+            description[key] = {name: [[int(v) for v in face] for face in faces] for name, faces in parts.items()}
+    if boxes:
+        description["parts"] = list(boxes)
+    return description
 
 
 def mesh_file(path: Union[str, os.PathLike], part_names: Optional[Dict[int, str]] = None) -> Dict[str, Any]:
@@ -124,9 +198,11 @@ class Body:
         x: Optional[Value] = None,
         y: Optional[Value] = None,
         curve: Optional[Curve] = None,
+        z: Optional[Value] = None,
     ) -> "Body":
-        """Prescribes ``u_x`` and/or ``u_y`` (numbers or expressions) on ``part``."""
-        self._d.setdefault("dirichlet", []).append(_keys(part=part, x=x, y=y, curve=_curve(curve)))
+        """Prescribes ``u_x``, ``u_y`` and/or ``u_z`` (in space; numbers or expressions) on
+        ``part``."""
+        self._d.setdefault("dirichlet", []).append(_keys(part=part, x=x, y=y, z=z, curve=_curve(curve)))
         return self
 
     def traction(
@@ -196,12 +272,14 @@ class SceneBuilder:
     def add_body(
         self,
         name: str,
-        mesh: Dict[str, Any],
+        mesh: Union[Dict[str, Any], "_native.Mesh"],
         material: Dict[str, Any],
         element: Optional[Union[str, Dict[str, Any]]] = None,
     ) -> Body:
-        """Adds a body (see :func:`generated`, :func:`mesh_file`, :func:`isotropic`) and
-        returns it for its conditions."""
+        """Adds a body (see :func:`generated`, :func:`mesh_file`, :func:`inline`, a
+        :class:`vemcontact.Mesh`, :func:`isotropic`) and returns it for its conditions."""
+        if hasattr(mesh, "to_dict") and not isinstance(mesh, dict):
+            mesh = mesh.to_dict()
         body = Body(_keys(name=name, mesh=mesh, material=material, element=element))
         self._d.setdefault("body", []).append(body._d)
         self._bodies.append(body)
