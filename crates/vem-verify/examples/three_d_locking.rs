@@ -8,10 +8,12 @@
 //! cargo run --release -p vem-verify --example three_d_locking               # n = 4, 8, 16
 //! cargo run --release -p vem-verify --example three_d_locking -- 4,8 hexahedra,voronoi
 //! cargo run --release -p vem-verify --example three_d_locking -- 2,4,8 tetrahedra midpoints
+//! cargo run --release -p vem-verify --example three_d_locking -- 4,8,16 all plain
 //! ```
 //!
-//! The third argument chooses the meshes: `plain` (as generated), `midpoints` (with the edge
-//! midpoints) or both (`plain,midpoints`, the default). The fourth, if given, keeps only the
+//! The first argument lists the sizes; the second the families (`all`, the default, for every
+//! one); the third chooses the meshes: `plain` (as generated), `midpoints` (with the edge
+//! midpoints) or both (`plain,midpoints`, the default); the fourth, if given, keeps only the
 //! elements named (`vem1-bbar`, ...).
 //!
 //! Material: `mu = 1`, `lambda = 2 nu / (1 - 2 nu)`; nu = 0.49999 is `lambda/mu = 5e4`,
@@ -99,11 +101,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => vec![4, 8, 16],
     };
     let families: Vec<PolyhedralFamily> = match args.get(1) {
-        Some(list) => list
+        Some(list) if list != "all" => list
             .split(',')
             .map(|s| s.parse())
             .collect::<Result<_, _>>()?,
-        None => PolyhedralFamily::all().to_vec(),
+        _ => PolyhedralFamily::all().to_vec(),
     };
     let meshes: Vec<bool> = match args.get(2).map(String::as_str) {
         None | Some("plain,midpoints") | Some("midpoints,plain") => vec![false, true],

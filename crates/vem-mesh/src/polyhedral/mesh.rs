@@ -533,11 +533,12 @@ impl PolyhedralMesh {
     /// (m_k, x_{k+1}, xbar_F) ([`super::geometry`]): face vector areas, volumes, centroids and
     /// part areas are those of the mesh without the midpoints, to round-off.
     ///
-    /// On tetrahedra this is the locking-free element of the lowest-order VEM in space: the
-    /// virtual element space of a tetrahedron is P1 (its stabilisation vanishes) and locks at
-    /// Poisson's ratio close to 1/2 with every stabilisation; with the edge midpoints it has the
-    /// 30 displacement degrees of freedom of P2 against one pressure mode, the P2-P0 pair that
-    /// is stable in space (docs/elements.md).
+    /// On tetrahedra this is the cure of near-incompressible locking of the lowest-order VEM in
+    /// space: the virtual element space of a tetrahedron is P1 (its stabilisation vanishes) and
+    /// locks at Poisson's ratio close to 1/2 with every stabilisation; with the edge midpoints a
+    /// tetrahedron has the 10 vertices (30 displacement degrees of freedom) of a P2 tetrahedron
+    /// against one divergence constraint, the count of the P2-P0 pair that is stable in space,
+    /// and with the locking-free stabilisation `vem1-bbar` it does not lock (docs/elements.md).
     ///
     /// ```
     /// use vem_mesh::generators::polyhedral::{tetrahedra, Cuboid};
