@@ -109,8 +109,9 @@ against an expected answer that does not come from a solver:
   half-width and the peak pressure against plane-strain Hertz within 3 % of those at 0.3; an
   element that misses this must carry the scene's locking warning.
 - **In space.** The divergence-free solution E2-3D on hexahedra, Voronoi cells and tetrahedra
-  at nu = 0.49, 0.4999, 0.49999 against 0.3, for every element on polyhedra (one Cholesky
-  solve each): relative errors within 2x. The contact patch test of two stacked blocks,
+  at nu = 0.49, 0.4999, 0.49999 against 0.3, for every element on polyhedra (and `vem1-bbar`
+  on tetrahedra with edge midpoints, the default's choice there; one Cholesky solve each):
+  relative errors within 2x. The contact patch test of two stacked blocks,
   `[0, 1]^2 x [0, 1]` on `[0, 1]^2 x [-0.5, 0]`, hexahedra on tetrahedra (non-matching: the
   surface overlay makes the interface node-to-node), rollers on the sides x = 0 and y = 0, the
   upper top moved down by d = 0.01: the uniform uniaxial stress `p = d / (h_1/E_1 + h_2/E_2)`

@@ -352,6 +352,106 @@ fn edges_know_their_faces() {
     assert!(around >= 4, "{around}");
 }
 
+/// The edge midpoints inserted as vertices on every family (hexahedra, tetrahedra, warped
+/// perturbed hexahedra, Voronoi, non-convex prisms, octree with hanging nodes): V grows by E,
+/// every face doubles its vertices (the old ones in their old order, every other one, each
+/// midpoint halfway along its edge), E doubles, F and C stay, so V - E + F - C stays 1; every
+/// cell's volume and centroid, every face's vector area and every part's area are unchanged to
+/// round-off (the fan centre of a face is the mean of its edge midpoints too); on tetrahedra
+/// every face is a hexagon and every cell has 10 vertices.
+#[test]
+fn edge_midpoints_keep_the_geometry_and_the_parts() {
+    let cuboid = cuboids()[1];
+    for family in families() {
+        for n in [1, 3] {
+            let what = format!("{family} n = {n}");
+            let mesh = family.generate(&cuboid, n, 7).unwrap();
+            let refined = mesh.with_edge_midpoints().unwrap();
+            assert_eq!(
+                refined.n_vertices(),
+                mesh.n_vertices() + mesh.n_edges(),
+                "{what}"
+            );
+            assert_eq!(refined.n_edges(), 2 * mesh.n_edges(), "{what}");
+            assert_eq!(refined.n_faces(), mesh.n_faces(), "{what}");
+            assert_eq!(refined.n_cells(), mesh.n_cells(), "{what}");
+            assert_eq!(refined.euler_characteristic(), 1, "{what}");
+            let scale = cuboid.extent().norm();
+            for f in 0..mesh.n_faces() {
+                let (old, new) = (mesh.face(f), refined.face(f));
+                assert_eq!(new.len(), 2 * old.len(), "{what}: face {f}");
+                let corners: Vec<usize> = new.iter().copied().step_by(2).collect();
+                assert_eq!(corners, old, "{what}: face {f}");
+                for k in 0..old.len() {
+                    let (a, b) = (mesh.vertex(old[k]), mesh.vertex(old[(k + 1) % old.len()]));
+                    let m = refined.vertex(new[2 * k + 1]);
+                    assert!(
+                        (m - Point3::from((a.coords + b.coords) / 2.0)).norm() < 1e-15 * scale,
+                        "{what}: face {f}"
+                    );
+                }
+                let area = mesh.face_vector_area(f);
+                assert!(
+                    (refined.face_vector_area(f) - area).norm() <= 1e-13 * area.norm(),
+                    "{what}: face {f}"
+                );
+                assert_eq!(
+                    refined.face_cells(f),
+                    mesh.face_cells(f),
+                    "{what}: face {f}"
+                );
+            }
+            for c in 0..mesh.n_cells() {
+                let volume = mesh.volume(c);
+                assert!(
+                    (refined.volume(c) - volume).abs() <= 1e-12 * volume,
+                    "{what}: cell {c}"
+                );
+                assert!(
+                    (refined.centroid(c) - mesh.centroid(c)).norm() <= 1e-12 * scale,
+                    "{what}: cell {c}"
+                );
+                assert_eq!(
+                    refined.cell_faces(c),
+                    mesh.cell_faces(c),
+                    "{what}: cell {c}"
+                );
+            }
+            assert!(
+                ((total_volume(&refined) - cuboid.volume()) / cuboid.volume()).abs() < 1e-12,
+                "{what}"
+            );
+            assert_eq!(refined.part_names(), mesh.part_names(), "{what}");
+            for part in mesh.parts() {
+                let faces = refined.part_faces(&part.name).unwrap();
+                assert_eq!(faces, part.faces.as_slice(), "{what}: {}", part.name);
+                let area =
+                    |m: &PolyhedralMesh| -> f64 { faces.iter().map(|&f| m.face_area(f)).sum() };
+                assert!(
+                    (area(&refined) - area(&mesh)).abs() <= 1e-12 * area(&mesh),
+                    "{what}: {}",
+                    part.name
+                );
+                // Every midpoint of a part's edge is a vertex of the part.
+                let vertices = refined.part_vertices(&part.name).unwrap();
+                let old = mesh.part_vertices(&part.name).unwrap();
+                let edges: std::collections::BTreeSet<usize> = faces
+                    .iter()
+                    .flat_map(|&f| mesh.face_edges(f).iter().copied())
+                    .collect();
+                assert_eq!(vertices.len(), old.len() + edges.len(), "{what}");
+            }
+            if family == PolyhedralFamily::Tetrahedra {
+                assert!(refined.faces().all(|f| f.len() == 6), "{what}");
+                assert!(
+                    (0..refined.n_cells()).all(|c| refined.cell_vertices(c).len() == 10),
+                    "{what}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn random_families_are_reproducible_and_depend_on_the_seed() {
     let cube = Cuboid::unit_cube();

@@ -164,6 +164,22 @@ impl Model {
         let known: Vec<Option<usize>> = dimensions.iter().map(|&d| Some(d)).collect();
         crate::check::check_one_dimension(scene, &known)?;
         crate::check::check_dimensions(scene, &dimensions)?;
+        // The locking-free default inserts the edge midpoints on a mesh with simplices before
+        // the memory check: they multiply the unknowns by about 4 on triangles and about 8 on
+        // tetrahedra.
+        let mut meshes = meshes;
+        let mut midpoints = vec![false; meshes.len()];
+        for (i, (spec, (mesh, _, _))) in scene.bodies.iter().zip(meshes.iter_mut()).enumerate() {
+            if locking_free_default(spec).is_some() && mesh.n_simplices() > 0 {
+                *mesh = mesh.with_edge_midpoints().map_err(|e| {
+                    SceneError::at(
+                        KeyPath::key("body").index(i).at("mesh"),
+                        format!("body '{}': edge midpoints: {e}", spec.name),
+                    )
+                })?;
+                midpoints[i] = true;
+            }
+        }
         if dimensions.first() == Some(&3) {
             check_memory_of_meshes_3d(&meshes, &limit)?;
             let mut bodies_3d = Vec::with_capacity(meshes.len());
@@ -176,6 +192,7 @@ impl Model {
                     spec,
                     mesh,
                     source,
+                    midpoints[i],
                     &options.registries.elements,
                     scene,
                     &path,
@@ -193,32 +210,13 @@ impl Model {
                 mesh_time,
             });
         }
-        let mut meshes: Vec<(Mesh, String, Option<f64>)> = meshes
+        let meshes: Vec<(Mesh, String, Option<f64>)> = meshes
             .into_iter()
             .filter_map(|(mesh, source, predicted)| match mesh {
                 BuiltMesh::Plane(mesh) => Some((mesh, source, predicted)),
                 BuiltMesh::Space(_) => None,
             })
             .collect();
-        // The locking-free default inserts the edge midpoints before the memory check: on
-        // triangles they multiply the unknowns by about 4.
-        let mut midpoints = vec![false; meshes.len()];
-        for (i, (spec, (mesh, _, _))) in scene.bodies.iter().zip(meshes.iter_mut()).enumerate() {
-            let locking_free = spec.element.is_none()
-                && body_material(spec, &KeyPath::root())
-                    .ok()
-                    .and_then(|m| nearly_incompressible(&m))
-                    .is_some();
-            if locking_free && mesh.polygons().any(|p| p.len() == 3) {
-                *mesh = mesh.with_edge_midpoints().map_err(|e| {
-                    SceneError::at(
-                        KeyPath::key("body").index(i).at("mesh"),
-                        format!("body '{}': edge midpoints: {e}", spec.name),
-                    )
-                })?;
-                midpoints[i] = true;
-            }
-        }
         check_memory_of_meshes(&meshes, &limit)?;
         let registries = &options.registries;
         let mut bodies = Vec::with_capacity(meshes.len());
@@ -916,26 +914,9 @@ fn build_body(
         midpoints,
     } = mesh;
     let material = body_material(spec, path)?;
-    let nearly_incompressible = nearly_incompressible(&material);
-    let has_triangles = mesh.polygons().any(|p| p.len() == 3);
-    let (choice, why) = match (&spec.element, nearly_incompressible) {
-        (Some(choice), _) => (choice.clone(), None),
-        (None, None) => (Choice::named(ElementRegistry::DEFAULT), None),
-        (None, Some(nu)) => {
-            let why = format!(
-                "nu = {nu} > {NEARLY_INCOMPRESSIBLE} in plane strain, the locking-free default"
-            );
-            let with = if midpoints {
-                " with edge midpoints"
-            } else {
-                ""
-            };
-            (
-                Choice::named(LOCKING_FREE),
-                Some(format!("{LOCKING_FREE}{with}: {why}")),
-            )
-        }
-    };
+    let nearly = nearly_incompressible(&material);
+    let simplices = mesh.polygons().filter(|p| p.len() == 3).count();
+    let (choice, why) = element_choice(spec, nearly, midpoints, 2);
     let element = elements
         .make_choice(&choice)
         .map_err(|e| registry_error(e, &path.at("element")))?;
@@ -945,23 +926,9 @@ fn build_body(
         (None, Some(s)) => format!("{}: {s}", element.name()),
         (None, None) => element.name().to_string(),
     };
-    let mut warnings = Vec::new();
-    if let (Some(nu), Some(_)) = (nearly_incompressible, &spec.element) {
-        let remedy = "remove `element` for the locking-free default (vem1-bbar, with the edge \
-                      midpoints inserted on triangles)";
-        if LOCKING.contains(&element.name()) {
-            warnings.push(format!(
-                "body '{name}': element '{}' locks at nu = {nu} > {NEARLY_INCOMPRESSIBLE} in \
-                 plane strain (contact zones too small, pressure peaks too high); {remedy}",
-                element.name()
-            ));
-        } else if element.name() == LOCKING_FREE && has_triangles {
-            warnings.push(format!(
-                "body '{name}': element '{LOCKING_FREE}' on triangles locks mildly at nu = {nu} \
-                 > {NEARLY_INCOMPRESSIBLE} in plane strain; {remedy}"
-            ));
-        }
-    }
+    let warnings: Vec<String> = locking_warning(spec, element.name(), nearly, simplices, 2)
+        .into_iter()
+        .collect();
     for (k, d) in spec.dirichlet.iter().enumerate() {
         check_part(
             &mesh,
@@ -1080,21 +1047,126 @@ fn body_material(spec: &BodyDescription, path: &KeyPath) -> Result<Material, Sce
     .map_err(|e| SceneError::at(path.at("material"), format!("body '{}': {e}", spec.name)))
 }
 
-/// The Poisson's ratio above which a body in plane strain counts as nearly incompressible:
-/// the scene then chooses [`LOCKING_FREE`] by default and warns about a locking element.
+/// Poisson's ratio of the body `spec` when it names no element and is nearly incompressible
+/// (isotropic, nu > [`NEARLY_INCOMPRESSIBLE`], in plane strain in the plane): the bodies for
+/// which the locking-free default applies, in the plane and in space. A body in space has no
+/// `plane` and its material is the full law, which is the plane-strain one here.
+fn locking_free_default(spec: &BodyDescription) -> Option<f64> {
+    if spec.element.is_some() {
+        return None;
+    }
+    body_material(spec, &KeyPath::root())
+        .ok()
+        .and_then(|m| nearly_incompressible(&m))
+}
+
+/// The words in which the rule speaks of a body in the plane (`dimension` 2) or in space:
+/// where nu is meant ("in plane strain" or nothing) and the simplices ("triangles",
+/// "tetrahedra").
+fn rule_words(dimension: usize) -> (&'static str, &'static str) {
+    if dimension == 2 {
+        (" in plane strain", "triangles")
+    } else {
+        ("", "tetrahedra")
+    }
+}
+
+/// The element of the body `spec` by the rule shared by the plane and space: the element it
+/// names; else [`LOCKING_FREE`] when it is nearly incompressible (`nearly`: its nu), with the
+/// edge midpoints when the scene inserted them (`midpoints`: its mesh has simplices); else the
+/// registry's default. With why, when the rule chose the locking-free element.
+pub(crate) fn element_choice(
+    spec: &BodyDescription,
+    nearly: Option<f64>,
+    midpoints: bool,
+    dimension: usize,
+) -> (Choice, Option<String>) {
+    match (&spec.element, nearly) {
+        (Some(choice), _) => (choice.clone(), None),
+        (None, None) => (Choice::named(ElementRegistry::DEFAULT), None),
+        (None, Some(nu)) => {
+            let (strain, _) = rule_words(dimension);
+            let with = if midpoints {
+                " with edge midpoints"
+            } else {
+                ""
+            };
+            (
+                Choice::named(LOCKING_FREE),
+                Some(format!(
+                    "{LOCKING_FREE}{with}: nu = {nu} > {NEARLY_INCOMPRESSIBLE}{strain}, the \
+                     locking-free default"
+                )),
+            )
+        }
+    }
+}
+
+/// The warning about an element named for a nearly incompressible body (`nearly`: its nu), by
+/// the rule shared by the plane and space: a locking element ([`LOCKING`]) locks; the
+/// locking-free element on a mesh with `simplices` (triangles, tetrahedra) locks there, mildly
+/// on triangles, fully on tetrahedra (the space of a tetrahedron is P1, whatever the
+/// stabilisation); the remedy is the default, which inserts the edge midpoints. `None` for a
+/// body that names no element (the default does not lock) or is not nearly incompressible.
+pub(crate) fn locking_warning(
+    spec: &BodyDescription,
+    element: &str,
+    nearly: Option<f64>,
+    simplices: usize,
+    dimension: usize,
+) -> Option<String> {
+    let (Some(nu), Some(_)) = (nearly, &spec.element) else {
+        return None;
+    };
+    let name = &spec.name;
+    let (strain, simplex) = rule_words(dimension);
+    let remedy = format!(
+        "remove `element` for the locking-free default ({LOCKING_FREE}, with the edge midpoints \
+         inserted on {simplex})"
+    );
+    if LOCKING.contains(&element) {
+        let effect = if dimension == 2 {
+            " (contact zones too small, pressure peaks too high)"
+        } else {
+            ""
+        };
+        Some(format!(
+            "body '{name}': element '{element}' locks at nu = {nu} > \
+             {NEARLY_INCOMPRESSIBLE}{strain}{effect}; {remedy}"
+        ))
+    } else if element == LOCKING_FREE && simplices > 0 {
+        let how = if dimension == 2 {
+            "locks mildly".to_string()
+        } else {
+            "locks (the virtual element space of a tetrahedron is P1, which no stabilisation \
+             changes)"
+                .to_string()
+        };
+        Some(format!(
+            "body '{name}': element '{LOCKING_FREE}' on {simplex} {how} at nu = {nu} > \
+             {NEARLY_INCOMPRESSIBLE}{strain}; {remedy}"
+        ))
+    } else {
+        None
+    }
+}
+
+/// The Poisson's ratio above which a body in plane strain or in space counts as nearly
+/// incompressible: the scene then chooses [`LOCKING_FREE`] by default (with the edge midpoints
+/// on a mesh with triangles or tetrahedra) and warns about a locking element.
 pub const NEARLY_INCOMPRESSIBLE: f64 = 0.45;
 
 /// The element chosen by default for a nearly incompressible body (with the edge midpoints
-/// inserted on a mesh with triangles).
+/// inserted on a mesh with triangles or tetrahedra).
 pub const LOCKING_FREE: &str = "vem1-bbar";
 
 /// The built-in elements that lock as Poisson's ratio tends to 1/2.
 pub(crate) const LOCKING: [&str; 4] = ["vem1", "vem1-shear", "vem1-drecipe", "p1"];
 
-/// Poisson's ratio of an isotropic material in plane strain when it exceeds
-/// [`NEARLY_INCOMPRESSIBLE`]; `None` otherwise (plane stress does not lock: its in-plane ratio
+/// Poisson's ratio of an isotropic material in plane strain (or in space, whose law is the
+/// plane-strain one) when it exceeds [`NEARLY_INCOMPRESSIBLE`]; `None` otherwise (plane stress does not lock: its in-plane ratio
 /// `nu / (1 + nu)` stays below 1/3).
-fn nearly_incompressible(material: &Material) -> Option<f64> {
+pub(crate) fn nearly_incompressible(material: &Material) -> Option<f64> {
     let (lambda, mu) = material.lame()?;
     if material.plane()? != Plane::Strain {
         return None;

@@ -15,10 +15,11 @@ use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, P
 use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
 use vem_mesh::polyhedral::quality::{cell_qualities, CellQuality};
 use vem_mesh::{Mesh, MeshError, Point3, PolyhedralMesh, Vector3};
-use vem_space::{Choice, ElementRegistry};
+use vem_space::ElementRegistry;
 
 use crate::build::{
-    locate_elastic, registry_error, ModelBody, LOCKING, LOCKING_FREE, NEARLY_INCOMPRESSIBLE,
+    element_choice, locate_elastic, locking_warning, nearly_incompressible, registry_error,
+    ModelBody,
 };
 use crate::check::list;
 use crate::description::{BodyDescription, Scene};
@@ -87,6 +88,32 @@ impl BuiltMesh {
         }
         description
     }
+
+    /// Number of simplices: triangles in the plane, tetrahedra in space (the cells whose
+    /// virtual element space is P1, on which every lowest-order element locks close to
+    /// incompressibility).
+    pub(crate) fn n_simplices(&self) -> usize {
+        match self {
+            BuiltMesh::Plane(mesh) => mesh.polygons().filter(|p| p.len() == 3).count(),
+            BuiltMesh::Space(mesh) => tetrahedra(mesh),
+        }
+    }
+
+    /// The mesh with the midpoint of every edge inserted as a vertex
+    /// ([`Mesh::with_edge_midpoints`], [`PolyhedralMesh::with_edge_midpoints`]).
+    pub(crate) fn with_edge_midpoints(&self) -> Result<Self, MeshError> {
+        Ok(match self {
+            BuiltMesh::Plane(mesh) => BuiltMesh::Plane(mesh.with_edge_midpoints()?),
+            BuiltMesh::Space(mesh) => BuiltMesh::Space(mesh.with_edge_midpoints()?),
+        })
+    }
+}
+
+/// Number of tetrahedra (cells of four vertices) of `mesh`.
+fn tetrahedra(mesh: &PolyhedralMesh) -> usize {
+    (0..mesh.n_cells())
+        .filter(|&c| mesh.cell_vertices(c).len() == 4)
+        .count()
 }
 
 /// A Gmsh file: of volume elements, a polyhedral mesh; otherwise a planar one (whose reader
@@ -233,20 +260,15 @@ fn material(spec: &BodyDescription, path: &KeyPath) -> Result<Material, SceneErr
     .map_err(|e| SceneError::at(path.at("material"), format!("body '{}': {e}", spec.name)))
 }
 
-/// Poisson's ratio of an isotropic material when it exceeds [`NEARLY_INCOMPRESSIBLE`].
-fn nearly_incompressible(material: &Material) -> Option<f64> {
-    let (lambda, mu) = material.lame()?;
-    let nu = lambda / (2.0 * (lambda + mu));
-    let nu = (nu * 1e12).round() / 1e12;
-    (nu > NEARLY_INCOMPRESSIBLE).then_some(nu)
-}
-
 /// The body in space of `spec` on `mesh`: material, element (by the registry's elements on
-/// polyhedra), conditions by part.
+/// polyhedra, and the rule of the plane: the locking-free default close to incompressibility,
+/// with the edge midpoints the scene inserted on a mesh with tetrahedra when `midpoints`),
+/// conditions by part.
 pub(crate) fn build_body(
     spec: &BodyDescription,
     mesh: PolyhedralMesh,
     source: String,
+    midpoints: bool,
     elements: &ElementRegistry,
     scene: &Scene,
     path: &KeyPath,
@@ -254,19 +276,8 @@ pub(crate) fn build_body(
     let name = spec.name.clone();
     let material = material(spec, path)?;
     let nearly = nearly_incompressible(&material);
-    let tetrahedra = (0..mesh.n_cells())
-        .filter(|&c| mesh.cell_vertices(c).len() == 4)
-        .count();
-    let (choice, why) = match (&spec.element, nearly) {
-        (Some(choice), _) => (choice.clone(), None),
-        (None, None) => (Choice::named(ElementRegistry::DEFAULT), None),
-        (None, Some(nu)) => (
-            Choice::named(LOCKING_FREE),
-            Some(format!(
-                "{LOCKING_FREE}: nu = {nu} > {NEARLY_INCOMPRESSIBLE}, the locking-free default"
-            )),
-        ),
-    };
+    let simplices = tetrahedra(&mesh);
+    let (choice, why) = element_choice(spec, nearly, midpoints, 3);
     let element = elements
         .make_polyhedral_choice(&choice)
         .map_err(|e| registry_error(e, &path.at("element")))?;
@@ -276,24 +287,9 @@ pub(crate) fn build_body(
         (None, Some(s)) => format!("{}: {s}", element.name()),
         (None, None) => element.name().to_string(),
     };
-    let mut warnings = Vec::new();
-    if let Some(nu) = nearly {
-        if tetrahedra > 0 {
-            warnings.push(format!(
-                "body '{name}': {tetrahedra} of its {} cells are tetrahedra, on which every \
-                 lowest-order element locks at nu = {nu} > {NEARLY_INCOMPRESSIBLE} (the virtual \
-                 element space of a tetrahedron is P1, which no stabilisation changes): mesh \
-                 with hexahedra or polyhedra",
-                mesh.n_cells()
-            ));
-        } else if spec.element.is_some() && LOCKING.contains(&element.name()) {
-            warnings.push(format!(
-                "body '{name}': element '{}' locks at nu = {nu} > {NEARLY_INCOMPRESSIBLE}; \
-                 remove `element` for the locking-free default ({LOCKING_FREE})",
-                element.name()
-            ));
-        }
-    }
+    let warnings: Vec<String> = locking_warning(spec, element.name(), nearly, simplices, 3)
+        .into_iter()
+        .collect();
     for (k, d) in spec.dirichlet.iter().enumerate() {
         check_part(
             &mesh,

@@ -19,7 +19,7 @@ use vem_mesh::generators::polyhedral::{
 use vem_mesh::{Point3, PolyhedralMesh, Vector3};
 use vem_space::{Choice, ElementRegistry, Options, PolyhedralElement};
 use vem_verify::exact::Lame;
-use vem_verify::three_d::{run_solid, DivergenceFreeSolid};
+use vem_verify::three_d::{solve_solid, DivergenceFreeSolid, SOLID_SEED};
 
 use super::rows::{chain, judge, locking_row, patch_tolerance, solve, Outcome, Row, Size};
 
@@ -34,8 +34,9 @@ const LOCKING_FAMILIES: [PolyhedralFamily; 3] = [
 ];
 
 /// Locking in space: E2-3D for every element on polyhedra on hexahedra, Voronoi cells and
-/// tetrahedra, the errors at each nu of [`SOLID_POISSON_RATIOS`] against nu = 0.3 (one Cholesky
-/// solve each).
+/// tetrahedra, and `vem1-bbar` on tetrahedra with every edge's midpoint inserted (the choice of
+/// a scene there): the errors at each nu of [`SOLID_POISSON_RATIOS`] against nu = 0.3 (one
+/// Cholesky solve each).
 pub fn solid_poisson(size: &Size) -> Vec<Row> {
     let registry = ElementRegistry::builtin();
     let mut rows = Vec::new();
@@ -44,11 +45,22 @@ pub fn solid_poisson(size: &Size) -> Vec<Row> {
             .make_polyhedral_choice(&Choice::named(name))
             .expect("a registered element");
         for family in LOCKING_FAMILIES {
-            if let Some(row) = solid_locking(name, &element, family, size.solid) {
+            if let Some(row) = solid_locking(name, &element, family, size.solid, false) {
                 rows.push(row);
             }
         }
     }
+    // What a scene chooses on tetrahedra close to incompressibility.
+    let bbar = registry
+        .make_polyhedral_choice(&Choice::named("vem1-bbar"))
+        .expect("a registered element");
+    rows.extend(solid_locking(
+        "vem1-bbar with edge midpoints",
+        &bbar,
+        PolyhedralFamily::Tetrahedra,
+        size.solid,
+        true,
+    ));
     rows
 }
 
@@ -57,17 +69,23 @@ fn solid_locking(
     element: &Arc<dyn PolyhedralElement>,
     family: PolyhedralFamily,
     n: usize,
+    midpoints: bool,
 ) -> Option<Row> {
     let errors = |nu: f64| -> Result<(f64, f64), String> {
         let lame = Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0).map_err(|e| chain(&e))?;
-        let run = run_solid(
+        let mut mesh = family
+            .generate(&Cuboid::unit_cube(), n, SOLID_SEED)
+            .map_err(|e| chain(&e))?;
+        if midpoints {
+            mesh = mesh.with_edge_midpoints().map_err(|e| chain(&e))?;
+        }
+        let (_, _, errors) = solve_solid(
             Arc::new(DivergenceFreeSolid::new(lame)),
-            family,
-            n,
+            mesh,
             Arc::clone(element),
         )
         .map_err(|e| chain(&e))?;
-        Ok((run.errors.relative_grad(), run.errors.relative_l2()))
+        Ok((errors.relative_grad(), errors.relative_l2()))
     };
     let last = SOLID_POISSON_RATIOS[SOLID_POISSON_RATIOS.len() - 1];
     let row_name = format!(

@@ -519,6 +519,70 @@ impl PolyhedralMesh {
         Ok(mesh)
     }
 
+    /// A copy of this mesh with the midpoint of every edge inserted as a vertex: the midpoint of
+    /// an edge becomes a vertex of every face around that edge (a hanging node of each, collinear
+    /// with the edge's ends), so that a face of `n` vertices becomes one of `2n` (a triangle a
+    /// hexagon) and a tetrahedron a polyhedron of 10 vertices. Faces, cells and boundary parts
+    /// keep their indices, names and orientations; the new vertices are numbered after the old
+    /// ones, in the order of [`Self::edges`]. The three-dimensional counterpart of
+    /// [`crate::Mesh::with_edge_midpoints`].
+    ///
+    /// Nothing of the geometry changes, not even on a warped face: the mean of a face's edge
+    /// midpoints is the mean of its vertices, so the fan centre stays where it was and every fan
+    /// triangle (x_k, x_{k+1}, xbar_F) splits into the two halves (x_k, m_k, xbar_F) and
+    /// (m_k, x_{k+1}, xbar_F) ([`super::geometry`]): face vector areas, volumes, centroids and
+    /// part areas are those of the mesh without the midpoints, to round-off.
+    ///
+    /// On tetrahedra this is the cure of near-incompressible locking of the lowest-order VEM in
+    /// space: the virtual element space of a tetrahedron is P1 (its stabilisation vanishes) and
+    /// locks at Poisson's ratio close to 1/2 with every stabilisation; with the edge midpoints a
+    /// tetrahedron has the 10 vertices (30 displacement degrees of freedom) of a P2 tetrahedron
+    /// against one divergence constraint, the count of the P2-P0 pair that is stable in space,
+    /// and with the locking-free stabilisation `vem1-bbar` it does not lock (docs/elements.md).
+    ///
+    /// ```
+    /// use vem_mesh::generators::polyhedral::{tetrahedra, Cuboid};
+    /// let mesh = tetrahedra(&Cuboid::unit_cube(), 2, 2, 2)?;
+    /// let refined = mesh.with_edge_midpoints()?;
+    /// assert_eq!(refined.n_vertices(), mesh.n_vertices() + mesh.n_edges());
+    /// assert_eq!(refined.n_edges(), 2 * mesh.n_edges());
+    /// assert!(refined.faces().all(|f| f.len() == 6));
+    /// assert!((0..refined.n_cells()).all(|c| refined.cell_vertices(c).len() == 10));
+    /// assert_eq!(refined.part_names(), mesh.part_names());
+    /// # Ok::<(), vem_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The validation of [`Self::from_compact`] (a valid mesh gives a valid refined one).
+    pub fn with_edge_midpoints(&self) -> Result<Self, MeshError> {
+        let n = self.vertices.len();
+        let mut vertices = Vec::with_capacity(n + self.edges.len());
+        vertices.extend_from_slice(&self.vertices);
+        vertices.extend(self.edges.iter().map(|&[a, b]| {
+            Point3::from((self.vertices[a].coords + self.vertices[b].coords) * 0.5)
+        }));
+        let mut face_offsets = Vec::with_capacity(self.face_offsets.len());
+        face_offsets.push(0);
+        let mut face_vertices = Vec::with_capacity(2 * self.face_vertices.len());
+        for f in 0..self.n_faces() {
+            face_vertices.extend(
+                self.face(f)
+                    .iter()
+                    .zip(self.face_edges(f))
+                    .flat_map(|(&v, &e)| [v, n + e]),
+            );
+            face_offsets.push(face_vertices.len());
+        }
+        Self::from_compact(
+            vertices,
+            face_offsets,
+            face_vertices,
+            self.cell_offsets.clone(),
+            self.cell_faces.clone(),
+            self.parts.clone(),
+        )
+    }
+
     /// This mesh with `parts` (boundary faces by index) in place of its parts, checked like the
     /// parts given to [`Self::from_compact`].
     pub fn with_parts(mut self, parts: Vec<FacePart>) -> Result<Self, MeshError> {
