@@ -284,7 +284,7 @@ fn m1_3d_converges_at_first_order_on_non_matching_meshes_and_finds_the_disc() {
     // Theorem 4.1 in space: E_grad = O(h) on two pairings whose interfaces do not match
     // (hexahedra 4:3 over tetrahedra; perturbed hexahedra over octree cubes with hanging
     // nodes), at the smallest sizes past the early slopes (measured: least-squares rates 0.98
-    // and 0.95; successive 0.95, 1.01 and 0.91, 0.98; docs/convergence-3d.md has the larger
+    // and 0.94; successive 0.95, 1.01 and 0.91, 0.98; docs/convergence-3d.md has the larger
     // sizes).
     let r_c = DiscContact::CONTACT_RADIUS;
     let exact_resultant = DiscContact::normal_resultant();
