@@ -6,6 +6,7 @@
 //! `f = -div sigma = -[(lambda + mu) grad div u + mu Laplace u]`.
 
 use nalgebra::Matrix3;
+use vem_mesh::generators::polyhedral::Cuboid;
 use vem_mesh::{Point3, Vector3};
 
 use crate::exact::{Jet, Lame};
@@ -21,9 +22,10 @@ pub const CUBE_PARTS: [(&str, [f64; 3]); 6] = [
     ("top", [0.0, 0.0, 1.0]),
 ];
 
-/// An exact solution of linear elasticity on the unit cube `(0, 1)^3`: displacement, gradient
-/// and body force for an isotropic material, and which sides carry a traction (the others
-/// carry the Dirichlet data `u`).
+/// An exact solution of linear elasticity on a box (the unit cube `(0, 1)^3` unless
+/// [`domain`](ExactSolution3d::domain) says otherwise): displacement, gradient and body force for
+/// an isotropic material, which sides carry a traction, which lie on a contact interface (the
+/// others carry the Dirichlet data `u`).
 pub trait ExactSolution3d: Send + Sync {
     /// The case's name ("E1-3D", ...).
     fn name(&self) -> &str;
@@ -44,6 +46,19 @@ pub trait ExactSolution3d: Send + Sync {
     /// then carries `u`).
     fn traction_sides(&self) -> &[&'static str] {
         &[]
+    }
+
+    /// The sides of [`CUBE_PARTS`] on a contact interface (default: none): they carry neither
+    /// Dirichlet data nor a traction, the contact problem imposes their conditions (the bodies
+    /// of [`DiscContact`](super::DiscContact)).
+    fn contact_sides(&self) -> &[&'static str] {
+        &[]
+    }
+
+    /// The box the solution lives on (default: the unit cube `(0, 1)^3`), whose sides the
+    /// polyhedral generators name as [`CUBE_PARTS`] does.
+    fn domain(&self) -> Cuboid {
+        Cuboid::unit_cube()
     }
 
     /// The displacement and its gradient together (default: [`Self::displacement`] and
@@ -102,11 +117,32 @@ struct Term {
     factors: [Factor; 3],
 }
 
-/// Value, gradient and Hessian of one scalar sum of separable terms.
-struct Evaluated {
-    value: f64,
-    gradient: Vector3,
-    hessian: Matrix3<f64>,
+/// Value, gradient and Hessian of one scalar field at a point.
+pub(super) struct Evaluated {
+    pub(super) value: f64,
+    pub(super) gradient: Vector3,
+    pub(super) hessian: Matrix3<f64>,
+}
+
+/// The displacement of the three evaluated components.
+pub(super) fn displacement_of(e: &[Evaluated; 3]) -> Vector3 {
+    Vector3::new(e[0].value, e[1].value, e[2].value)
+}
+
+/// The displacement gradient, `(i, j) = d_j u_i`, of the three evaluated components.
+pub(super) fn gradient_of(e: &[Evaluated; 3]) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| e[i].gradient[j])
+}
+
+/// The body force `-[(lambda + mu) grad div u + mu Laplace u]` of the three evaluated
+/// components.
+pub(super) fn body_force_of(lame: Lame, e: &[Evaluated; 3]) -> Vector3 {
+    Vector3::from_fn(|i, _| {
+        // d_i div u = sum_j d_i d_j u_j.
+        let grad_div: f64 = (0..3).map(|j| e[j].hessian[(i, j)]).sum();
+        let laplace = e[i].hessian.trace();
+        -((lame.lambda() + lame.mu()) * grad_div + lame.mu() * laplace)
+    })
 }
 
 /// A vector field whose every component is a sum of separable terms.
@@ -167,32 +203,21 @@ impl Separable {
     }
 
     fn displacement(&self, x: Point3) -> Vector3 {
-        let e = self.evaluate_all(x);
-        Vector3::new(e[0].value, e[1].value, e[2].value)
+        displacement_of(&self.evaluate_all(x))
     }
 
     fn gradient(&self, x: Point3) -> Matrix3<f64> {
-        let e = self.evaluate_all(x);
-        Matrix3::from_fn(|i, j| e[i].gradient[j])
+        gradient_of(&self.evaluate_all(x))
     }
 
     fn displacement_and_gradient(&self, x: Point3) -> (Vector3, Matrix3<f64>) {
         let e = self.evaluate_all(x);
-        (
-            Vector3::new(e[0].value, e[1].value, e[2].value),
-            Matrix3::from_fn(|i, j| e[i].gradient[j]),
-        )
+        (displacement_of(&e), gradient_of(&e))
     }
 
     /// `-[(lambda + mu) grad div u + mu Laplace u]`.
     fn body_force(&self, lame: Lame, x: Point3) -> Vector3 {
-        let e = self.evaluate_all(x);
-        Vector3::from_fn(|i, _| {
-            // d_i div u = sum_j d_i d_j u_j.
-            let grad_div: f64 = (0..3).map(|j| e[j].hessian[(i, j)]).sum();
-            let laplace = e[i].hessian.trace();
-            -((lame.lambda() + lame.mu()) * grad_div + lame.mu() * laplace)
-        })
+        body_force_of(lame, &self.evaluate_all(x))
     }
 }
 

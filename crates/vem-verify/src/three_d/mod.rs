@@ -5,10 +5,14 @@
 //! - [`ExactSolution3d`] and the built-in cases [`LinearSolid`] ("PT0-3D", the patch test),
 //!   [`SmoothSolid`] ("E1-3D", with a traction side) and [`DivergenceFreeSolid`] ("E2-3D", for
 //!   the locking study);
+//! - [`DiscContact`] ("M1-3D"): frictionless contact of two stacked boxes on a disc, the case
+//!   of Theorem 4.1 in space, each body an [`ExactSolution3d`] ([`DiscContact::body`]);
 //! - [`projection_errors_3d`], [`energy_error_3d`], [`body_errors_3d`]: `E_grad`, `E_0`, `E_a`;
 //! - [`solid_body`], [`solve_solid`], [`run_solid`], [`three_d_convergence`]: the discrete
 //!   problems on the families of `vem_mesh::generators::polyhedral` and the study over sizes;
-//!   [`solid_rates`] and [`solid_markdown`] fit and print the rates.
+//!   [`disc_contact_problem`], [`solve_disc_contact`], [`run_disc_contact`]: the contact
+//!   problem of [`DiscContact`] on two non-matching meshes; [`solid_rates`] and
+//!   [`solid_markdown`] fit and print the rates of both.
 //!
 //! ```
 //! use std::sync::Arc;
@@ -27,16 +31,19 @@
 //! # Ok::<(), vem_verify::VerifyError>(())
 //! ```
 
+mod disc_contact;
 mod exact;
 mod norms;
 mod study;
 
+pub use disc_contact::{DiscContact, DiscContactBody, InterfaceValues3d};
 pub use exact::{
     solid_case_by_name, DivergenceFreeSolid, ExactSolution3d, LinearSolid, SmoothSolid, CUBE_PARTS,
     SOLID_CASE_NAMES,
 };
 pub use norms::{body_errors_3d, energy_error_3d, nodal_interpolant_3d, projection_errors_3d};
 pub use study::{
-    run_solid, solid_body, solid_markdown, solid_rates, solve_solid, three_d_convergence,
-    SolidRates, SolidRun, SOLID_SEED,
+    disc_contact_problem, run_disc_contact, run_solid, solid_body, solid_markdown, solid_rates,
+    solve_disc_contact, solve_solid, three_d_convergence, SolidContact, SolidRates, SolidRun,
+    SOLID_SEED,
 };

@@ -4,13 +4,15 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
+use vem_contact::{ContactProblem, ContactResult, ContactSolver, Frictionless};
 use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
-use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
+use vem_mesh::generators::polyhedral::PolyhedralFamily;
 use vem_mesh::{PolyhedralMesh, Vector3};
 use vem_space::PolyhedralElement;
 
 use super::norms::{body_errors_3d, nodal_interpolant_3d};
-use super::{ExactSolution3d, CUBE_PARTS};
+use super::{DiscContact, ExactSolution3d, CUBE_PARTS};
+use crate::exact::BodyId;
 use crate::norms::ErrorNorms;
 use crate::study::fitted_rate;
 use crate::VerifyError;
@@ -48,11 +50,45 @@ pub struct SolidRun {
     pub nodal_error: f64,
     /// Wall-clock seconds of mesh generation, assembly, solve and measures.
     pub seconds: f64,
+    /// A two-body contact case: what the contact solve found on the interface (the other
+    /// fields then sum or take the largest over both bodies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<SolidContact>,
+}
+
+/// What a contact solve of [`DiscContact`] found on the interface, against the exact contact
+/// disc `r < r_c`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SolidContact {
+    /// The family of the lower body (the upper body's is the run's family's first word).
+    pub lower_family: String,
+    /// The size of the lower body's mesh.
+    pub lower_n: usize,
+    /// The contact solver.
+    pub solver: String,
+    /// How the solve ended, as `vem_contact::SolveStatus` spells it ("Converged", ...).
+    pub status: String,
+    /// The solver's iterations.
+    pub iterations: usize,
+    /// Interface nodes (node pairs after the surface overlay).
+    pub interface_nodes: usize,
+    /// Vertices the overlay inserted into the two meshes.
+    pub inserted_nodes: usize,
+    /// Interface nodes in contact.
+    pub active_nodes: usize,
+    /// The largest distance `r` to the disc's centre of a node in contact (0 without any).
+    pub outermost_contact: f64,
+    /// The smallest distance `r` of a node out of contact (infinite without any).
+    pub innermost_open: f64,
+    /// The sum of the nodal contact forces.
+    pub normal_resultant: f64,
+    /// The exact resultant `int p dA` ([`DiscContact::normal_resultant`]).
+    pub exact_resultant: f64,
 }
 
 /// The body of `exact` on `mesh` with `element`: the material of the case, the Dirichlet data
-/// `u` on every side of the unit cube but the traction sides, `sigma n` on those, the body
-/// force `f`.
+/// `u` on every side of its box but the traction and contact sides, `sigma n` on the traction
+/// sides, nothing on the contact sides, the body force `f`.
 pub fn solid_body(
     exact: Arc<dyn ExactSolution3d>,
     mesh: PolyhedralMesh,
@@ -66,6 +102,9 @@ pub fn solid_body(
     let material = Material::from_lame(lame.lambda(), lame.mu(), Plane::Strain).map_err(elastic)?;
     let mut builder = ElasticBody::builder_polyhedral(exact.name(), mesh, material, element);
     for (part, normal) in CUBE_PARTS {
+        if exact.contact_sides().contains(&part) {
+            continue;
+        }
         let normal = Vector3::from(normal);
         let exact = Arc::clone(&exact);
         builder = if exact.traction_sides().contains(&part) {
@@ -103,7 +142,7 @@ pub fn solve_solid(
     Ok((body, displacement, errors))
 }
 
-/// Generates the mesh of `family` with size `n` on the unit cube and solves `exact` on it.
+/// Generates the mesh of `family` with size `n` on the box of `exact` and solves it there.
 pub fn run_solid(
     exact: Arc<dyn ExactSolution3d>,
     family: PolyhedralFamily,
@@ -112,7 +151,7 @@ pub fn run_solid(
 ) -> Result<SolidRun, VerifyError> {
     let start = Instant::now();
     let mesh = family
-        .generate(&Cuboid::unit_cube(), n, SOLID_SEED)
+        .generate(&exact.domain(), n, SOLID_SEED)
         .map_err(|source| VerifyError::Mesh {
             case: exact.name().to_string(),
             body: 1,
@@ -124,6 +163,26 @@ pub fn run_solid(
     let element_name = element.name().to_string();
     let (body, displacement, errors) = solve_solid(Arc::clone(&exact), mesh, element)?;
     let interpolant = nodal_interpolant_3d(&*exact, body.mesh());
+    Ok(SolidRun {
+        case: exact.name().to_string(),
+        family: family.name().to_string(),
+        element: element_name,
+        n,
+        cells,
+        vertices,
+        unknowns: body.dofs().n_unknowns(),
+        h,
+        spacing: (exact.domain().volume() / cells as f64).cbrt(),
+        errors,
+        nodal_error: relative_nodal_error(&interpolant, &displacement),
+        seconds: start.elapsed().as_secs_f64(),
+        contact: None,
+    })
+}
+
+/// `max_v |u_h(v) - u(v)| / max_v |u(v)|` over the vertices (`interpolant` holds `u(v)`); the
+/// absolute value when `u` vanishes at every vertex.
+fn relative_nodal_error(interpolant: &[f64], displacement: &[f64]) -> f64 {
     let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, f64::max);
     let difference = largest(
         &mut interpolant
@@ -137,23 +196,148 @@ pub fn run_solid(
             .chunks(3)
             .map(|a| Vector3::from_column_slice(a).norm()),
     );
+    if scale > 0.0 {
+        difference / scale
+    } else {
+        difference
+    }
+}
+
+/// The frictionless contact problem of `exact` on the meshes `upper` (of body one's box) and
+/// `lower` (of body two's box) with `element`: body one's bottom against body two's top, the
+/// initial gap `h0` imposed (the two sides coincide, the geometric gap is zero), each body's data
+/// by [`solid_body`].
+///
+/// # Errors
+/// As [`solid_body`].
+pub fn disc_contact_problem(
+    exact: &DiscContact,
+    upper: PolyhedralMesh,
+    lower: PolyhedralMesh,
+    element: Arc<dyn PolyhedralElement>,
+) -> Result<ContactProblem<3>, VerifyError> {
+    let one = solid_body(
+        Arc::new(exact.body(BodyId::One)),
+        upper,
+        Arc::clone(&element),
+    )?;
+    let two = solid_body(Arc::new(exact.body(BodyId::Two)), lower, element)?;
+    Ok(
+        ContactProblem::two_bodies(one, "bottom", two, "top", Frictionless)
+            .with_imposed_gap(|x| DiscContact::initial_gap(x.x, x.y)),
+    )
+}
+
+/// Solves the contact problem of `exact` on `upper` and `lower` ([`disc_contact_problem`]) with
+/// `solver` and measures the errors of each body on its own mesh after the overlay (the
+/// vertices it inserted included), in the order body one, body two.
+///
+/// # Errors
+/// As [`disc_contact_problem`], a failed contact solve, the error measures.
+pub fn solve_disc_contact(
+    exact: &DiscContact,
+    upper: PolyhedralMesh,
+    lower: PolyhedralMesh,
+    element: Arc<dyn PolyhedralElement>,
+    solver: &mut dyn ContactSolver,
+) -> Result<(ContactResult<3>, [ErrorNorms; 2]), VerifyError> {
+    let problem = disc_contact_problem(exact, upper, lower, element)?;
+    let result = problem
+        .solve(solver)
+        .map_err(|source| VerifyError::Contact {
+            case: DiscContact::NAME.to_string(),
+            source: Box::new(source),
+        })?;
+    let mut errors = [ErrorNorms::default(); 2];
+    for (k, id) in BodyId::BOTH.into_iter().enumerate() {
+        let solved = &result.bodies[k];
+        errors[k] = body_errors_3d(
+            &exact.body(id),
+            &solved.body,
+            &solved.system,
+            solved.solution.displacement(),
+        )?;
+    }
+    Ok((result, errors))
+}
+
+/// Generates the upper body's mesh of family `upper.0` with size `upper.1` and the lower body's
+/// of `lower.0`, `lower.1` (with [`SOLID_SEED`]), solves [`DiscContact`] on them with `solver`
+/// and measures: the run's family is "`upper` over `lower`", its size the upper body's, its
+/// cells, vertices and unknowns the sums over both bodies (after the overlay), `h` the larger
+/// largest cell diameter, the spacing the larger mean cell size `(|Omega_i| / cells_i)^(1/3)`
+/// (`h = max(h_1, h_2)` of Theorem 4.1: the coarser body's), the errors combined over both
+/// bodies ([`ErrorNorms::combine`]), [`SolidRun::contact`] what the interface shows.
+///
+/// # Errors
+/// A mesh that cannot be generated, as [`solve_disc_contact`].
+pub fn run_disc_contact(
+    exact: &DiscContact,
+    upper: (PolyhedralFamily, usize),
+    lower: (PolyhedralFamily, usize),
+    element: Arc<dyn PolyhedralElement>,
+    solver: &mut dyn ContactSolver,
+) -> Result<SolidRun, VerifyError> {
+    let start = Instant::now();
+    let mesh = |id: BodyId, (family, n): (PolyhedralFamily, usize)| {
+        family
+            .generate(&DiscContact::domain(id), n, SOLID_SEED)
+            .map_err(|source| VerifyError::Mesh {
+                case: DiscContact::NAME.to_string(),
+                body: id.index() + 1,
+                family: family.name().to_string(),
+                n,
+                source: Box::new(source),
+            })
+    };
+    let (upper_mesh, lower_mesh) = (mesh(BodyId::One, upper)?, mesh(BodyId::Two, lower)?);
+    let element_name = element.name().to_string();
+    let (result, errors) = solve_disc_contact(exact, upper_mesh, lower_mesh, element, solver)?;
+    let (mut interpolant, mut displacement) = (Vec::new(), Vec::new());
+    let (mut cells, mut vertices, mut unknowns, mut h, mut spacing) = (0, 0, 0, 0.0f64, 0.0f64);
+    for (k, id) in BodyId::BOTH.into_iter().enumerate() {
+        let solved = &result.bodies[k];
+        let mesh = solved.body.mesh();
+        interpolant.extend(nodal_interpolant_3d(&exact.body(id), mesh));
+        displacement.extend_from_slice(solved.solution.displacement());
+        cells += mesh.n_cells();
+        vertices += mesh.n_vertices();
+        unknowns += solved.body.dofs().n_unknowns();
+        h = h.max(mesh.mesh_size());
+        spacing = spacing.max((1.0 / mesh.n_cells() as f64).cbrt());
+    }
+    let radius =
+        |n: &vem_contact::InterfaceNode<3>| DiscContact::radius(n.position.x, n.position.y);
+    let active = result.nodes.iter().filter(|n| n.status.is_active());
+    let open = result.nodes.iter().filter(|n| !n.status.is_active());
+    let contact = SolidContact {
+        lower_family: lower.0.name().to_string(),
+        lower_n: lower.1,
+        solver: result.report.solver.to_string(),
+        status: format!("{:?}", result.report.status),
+        iterations: result.report.iterations,
+        interface_nodes: result.nodes.len(),
+        inserted_nodes: result.model.inserted_nodes,
+        active_nodes: active.clone().count(),
+        outermost_contact: active.map(radius).fold(0.0, f64::max),
+        innermost_open: open.map(radius).fold(f64::INFINITY, f64::min),
+        normal_resultant: result.normal_resultant(),
+        exact_resultant: DiscContact::normal_resultant(),
+    };
     Ok(SolidRun {
-        case: exact.name().to_string(),
-        family: family.name().to_string(),
+        case: DiscContact::NAME.to_string(),
+        family: format!("{} over {}", upper.0.name(), lower.0.name()),
         element: element_name,
-        n,
+        n: upper.1,
         cells,
         vertices,
-        unknowns: body.dofs().n_unknowns(),
+        unknowns,
         h,
-        spacing: (1.0 / cells as f64).cbrt(),
-        errors,
-        nodal_error: if scale > 0.0 {
-            difference / scale
-        } else {
-            difference
-        },
+        spacing,
+        errors: ErrorNorms::combine(&errors),
+        nodal_error: relative_nodal_error(&interpolant, &displacement),
         seconds: start.elapsed().as_secs_f64(),
+        contact: Some(contact),
     })
 }
 
