@@ -496,3 +496,65 @@ fn coulomb_in_space_costs_one_factorisation_per_body() {
         assert!((a.friction_force - b.friction_force).norm() < 1e-3 * scale);
     }
 }
+
+/// The cost of friction in space against one elastic solve (not a check: figures for
+/// `docs/contact-3d.md`). `cargo test -p vem-contact --test friction_3d -- --ignored
+/// --nocapture cost` (the test profile is optimised).
+#[test]
+#[ignore = "timing figures, run by hand"]
+fn cost_of_friction_in_space() {
+    use std::time::Instant;
+    for n in [8usize, 16, 24] {
+        let mesh = || cube([0.0; 3], [1.0, 1.0, 0.5], [n, n, n / 2]);
+        let top = |b: vem_elastic::ElasticBodyBuilder<3>| {
+            b.dirichlet(Dirichlet::with_values("top", Component::All, move |_| {
+                Vector3::new(SHEAR[0], SHEAR[1], -PRESS)
+            }))
+        };
+        let held = top(ElasticBody::builder_polyhedral(
+            "block",
+            mesh(),
+            material(),
+            element(),
+        ))
+        .clamp("bottom")
+        .build()
+        .unwrap();
+        let start = Instant::now();
+        let _ = held.solve().unwrap();
+        let elastic = start.elapsed().as_secs_f64();
+        let unknowns = 3 * (n + 1) * (n + 1) * (n / 2 + 1);
+        for (law, name) in [
+            (Arc::new(steep_tresca()) as Arc<dyn ContactLaw<3>>, "tresca"),
+            (Arc::new(Coulomb::try_new(COEFFICIENT).unwrap()), "coulomb"),
+        ] {
+            let body = top(ElasticBody::builder_polyhedral(
+                "block",
+                mesh(),
+                material(),
+                element(),
+            ))
+            .build()
+            .unwrap();
+            let plane = Obstacle3::Plane {
+                point: Point3::origin(),
+                normal: Vector3::z(),
+            };
+            let problem = ContactProblem::against_obstacle(body, "bottom", plane, law);
+            let start = Instant::now();
+            let result = problem.solve(&mut CondensedSolver::default()).unwrap();
+            let total = start.elapsed().as_secs_f64();
+            println!(
+                "| {n} | {unknowns} | {} | {name} | {:?} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} |",
+                result.nodes.len(),
+                stick_and_slip(&result),
+                result.report.iterations,
+                result.fixed_point.as_ref().map_or(0, |f| f.steps),
+                result.work.times.contact_solve.as_secs_f64(),
+                total,
+                elastic,
+                total / elastic
+            );
+        }
+    }
+}
