@@ -214,14 +214,6 @@ impl<const D: usize> ContactDiscretisation<D> {
         discretisation.normal_rows = normal_rows;
         discretisation.normal_lifting = normal_lifting;
         if discretisation.pairs.iter().any(|p| p.law.has_friction()) {
-            if D != 2 {
-                return Err(ContactError::Unsupported {
-                    what: format!(
-                        "friction in {D}D: the friction bound is a disk of the tangent plane, \
-                         which the contact solvers do not take yet"
-                    ),
-                });
-            }
             discretisation.tangential_rows = Some(discretisation.tangential_rows_checked()?);
         }
         discretisation.start_bounds = discretisation.bounds(None)?;
@@ -362,8 +354,8 @@ impl<const D: usize> ContactDiscretisation<D> {
                     *b = hold;
                 }
             }
-            let friction =
-                Friction::try_new(rows, bounds).expect("bounds checked when they were made");
+            let friction = Friction::try_with_rows_per_node(rows, bounds, D - 1)
+                .expect("bounds checked when they were made");
             match reference {
                 Some(slip) => friction
                     .with_reference_slip(slip)

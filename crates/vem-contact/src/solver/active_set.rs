@@ -9,6 +9,15 @@
 //! (`lambda_N + c(B_N u - g) > 0`: `B_N u = g`) and inactive (`lambda_N = 0`), and, with
 //! friction, sticking
 //! (`|lambda_T + c (B_T u - s)| <= b`: `B_T u = s`) and slipping (`lambda_T = b sign(...)`, known).
+//! In space the friction bound of a node is a disk of its two tangential rows: a node sticks
+//! when `|zeta| <= b` (`zeta = lambda_T + c (B_T u - s)`, a vector of the tangent plane) and
+//! slips with the known force `b zeta / |zeta|` (the radial return); the slip directions are
+//! continuous, so the split is the same when the states are and the directions moved by less
+//! than the tolerance: a fixed point on the slip directions. It settles at once where every
+//! node sticks or every node slides the same way, but on problems with stick and slip zones it
+//! was measured not to settle within the iteration limit (the answer is then refused, not
+//! returned): in space the condensed solver (the default) and the exact solver are the ones
+//! to use (`docs/contact-3d.md`).
 //! The equality-constrained subproblem of a split is solved exactly by an augmented
 //! Lagrangian (Uzawa) iteration on the SPD matrix `K + rho B_A'B_A + rho B_S'B_S`, factorised
 //! once per split on a symbolic analysis made once for the pattern of `K + B_N'B_N + B_T'B_T`:
@@ -33,6 +42,13 @@ use super::system::ContactSystem;
 use super::{ContactSolution, ContactSolver, PenaltyParameter};
 
 const NAME: &str = "active set (primal-dual)";
+
+/// In space, the split is the same when the slip directions moved by at most this fraction
+/// of the acceptance tolerance (the certificate then decides).
+const DIRECTION_TOLERANCE: f64 = 0.1;
+/// In space, the limit on the splits is this multiple of
+/// [`ActiveSetSettings::max_iterations`]: the slip directions converge linearly.
+const DISK_ITERATIONS: usize = 4;
 
 /// Settings of [`ActiveSetSolver`]; build them with [`ActiveSetSettings::builder`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,7 +101,8 @@ impl ActiveSetSettings {
         (100.0 * self.tolerance).max(1e-9)
     }
 
-    /// Limit on the number of splits (outer iterations).
+    /// Limit on the number of splits (outer iterations); four times as many with friction in
+    /// space, whose slip directions converge linearly.
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -224,7 +241,59 @@ struct Split {
 }
 
 impl Split {
-    fn of(system: &ContactSystem<'_>, c: f64, u: &[f64], ln: &[f64], lt: &[f64]) -> Self {
+    /// The split of `(u, lambda)` and, in space, the unit slip direction `zeta / |zeta|` of
+    /// every slipping node (two entries per node, zeros where it sticks; empty in the plane).
+    fn of(
+        system: &ContactSystem<'_>,
+        c: f64,
+        u: &[f64],
+        ln: &[f64],
+        lt: &[f64],
+    ) -> (Self, Vec<f64>) {
+        if let Some(f) = system.friction().filter(|f| f.rows_per_node() == 2) {
+            let (split, _) = Self::of_plane(system, c, u, ln, &[]);
+            let slip = f.slip(u);
+            let mut directions = vec![0.0; slip.len()];
+            let states = f
+                .bounds()
+                .iter()
+                .enumerate()
+                .map(|(i, &b)| {
+                    let zeta = [
+                        lt[2 * i] + c * slip[2 * i],
+                        lt[2 * i + 1] + c * slip[2 * i + 1],
+                    ];
+                    let norm = zeta[0].hypot(zeta[1]);
+                    if b > 0.0 && norm <= b {
+                        0
+                    } else {
+                        if norm > 0.0 {
+                            directions[2 * i] = zeta[0] / norm;
+                            directions[2 * i + 1] = zeta[1] / norm;
+                        }
+                        1
+                    }
+                })
+                .collect();
+            return (
+                Self {
+                    active: split.active,
+                    slip: states,
+                },
+                directions,
+            );
+        }
+        Self::of_plane(system, c, u, ln, lt)
+    }
+
+    /// The split with one tangential row per node (or none).
+    fn of_plane(
+        system: &ContactSystem<'_>,
+        c: f64,
+        u: &[f64],
+        ln: &[f64],
+        lt: &[f64],
+    ) -> (Self, Vec<f64>) {
         let bn = system.normal_rows().apply(u);
         let active = bn
             .iter()
@@ -232,24 +301,27 @@ impl Split {
             .zip(ln)
             .map(|((b, g), l)| l + c * (b - g) > 0.0)
             .collect();
-        let slip = system.friction().map_or_else(Vec::new, |f| {
-            f.slip(u)
-                .iter()
-                .zip(lt)
-                .zip(f.bounds())
-                .map(|((s, l), &b)| {
-                    let zeta = l + c * s;
-                    if b > 0.0 && zeta.abs() <= b {
-                        0
-                    } else if zeta >= 0.0 {
-                        1
-                    } else {
-                        -1
-                    }
-                })
-                .collect()
-        });
-        Self { active, slip }
+        let slip = system
+            .friction()
+            .filter(|_| !lt.is_empty())
+            .map_or_else(Vec::new, |f| {
+                f.slip(u)
+                    .iter()
+                    .zip(lt)
+                    .zip(f.bounds())
+                    .map(|((s, l), &b)| {
+                        let zeta = l + c * s;
+                        if b > 0.0 && zeta.abs() <= b {
+                            0
+                        } else if zeta >= 0.0 {
+                            1
+                        } else {
+                            -1
+                        }
+                    })
+                    .collect()
+            });
+        (Self { active, slip }, Vec::new())
     }
 }
 
@@ -265,6 +337,7 @@ impl ContactSolver for ActiveSetSolver {
         }
         let s = self.settings;
         let (n, m) = (system.n_dofs(), system.n_constraints());
+        let t = system.friction().map_or(1, |f| f.rows_per_node());
         let rho = s.augmentation.value(system);
         let matrix = NewtonMatrix::reuse_or_analyse(&mut self.matrix, system, s.parallelism)
             .map_err(|detail| ContactSolverError::Backend {
@@ -277,16 +350,33 @@ impl ContactSolver for ActiveSetSolver {
 
         let mut u = vec![0.0; n];
         let mut ln = vec![0.0; m];
-        let mut lt = vec![0.0; m];
-        let mut previous: Option<Split> = None;
+        let mut lt = vec![0.0; system.n_tangential()];
+        let mut previous: Option<(Split, Vec<f64>)> = None;
         let mut inner_converged = false;
         let mut iterations = 0;
         let outcome: Result<(), (SolveStatus, Option<Vec<f64>>)> = 'outer: loop {
-            let split = Split::of(system, rho, &u, &ln, &lt);
-            if inner_converged && previous.as_ref() == Some(&split) {
-                break Ok(());
+            let (split, directions) = Split::of(system, rho, &u, &ln, &lt);
+            if inner_converged {
+                if let Some((last, last_directions)) = &previous {
+                    // In space the slip directions of a split are continuous: the split is
+                    // the same when they moved by less than the tolerance.
+                    let moved = directions
+                        .iter()
+                        .zip(last_directions)
+                        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+                    if *last == split && moved <= DIRECTION_TOLERANCE * s.acceptance() {
+                        break Ok(());
+                    }
+                }
             }
-            if iterations == s.max_iterations {
+            // The fixed point on the slip directions (space) converges linearly: it gets more
+            // splits.
+            let limit = if t > 1 {
+                DISK_ITERATIONS * s.max_iterations
+            } else {
+                s.max_iterations
+            };
+            if iterations == limit {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
@@ -295,10 +385,11 @@ impl ContactSolver for ActiveSetSolver {
                 .iter()
                 .map(|&a| if a { rho } else { 0.0 })
                 .collect();
+            // One weight per tangential row (a node's state for each of its rows).
             let wt: Vec<f64> = split
                 .slip
                 .iter()
-                .map(|&t| if t == 0 { rho } else { 0.0 })
+                .flat_map(|&state| std::iter::repeat_n(if state == 0 { rho } else { 0.0 }, t))
                 .collect();
             let Some(shifted) = guard.factorise(matrix, system, &wn, &wt) else {
                 break Err((SolveStatus::NumericalFailure, None));
@@ -309,9 +400,16 @@ impl ContactSolver for ActiveSetSolver {
                     ln[i] = 0.0;
                 }
             }
-            for (i, &t) in split.slip.iter().enumerate() {
-                if t != 0 {
-                    lt[i] = f64::from(t) * bounds[i];
+            for (i, &state) in split.slip.iter().enumerate() {
+                if state != 0 {
+                    if t == 1 {
+                        lt[i] = f64::from(state) * bounds[i];
+                    } else {
+                        // In space: the bound along the slip direction of the split.
+                        for k in 0..t {
+                            lt[t * i + k] = bounds[i] * directions[t * i + k];
+                        }
+                    }
                 }
             }
             inner_converged = false;
@@ -359,10 +457,10 @@ impl ContactSolver for ActiveSetSolver {
                 }
                 if let Some(f) = system.friction() {
                     let bt = f.slip(&u);
-                    for i in 0..m {
-                        if split.slip[i] == 0 {
-                            lt[i] += rho * bt[i];
-                            residual = residual.max(bt[i].abs());
+                    for (r, bt) in bt.iter().enumerate() {
+                        if split.slip[r / t] == 0 {
+                            lt[r] += rho * bt;
+                            residual = residual.max(bt.abs());
                         }
                     }
                 }
@@ -376,7 +474,7 @@ impl ContactSolver for ActiveSetSolver {
                     break;
                 }
             }
-            previous = Some(split);
+            previous = Some((split, directions));
         };
         let (status, residuals) = match &outcome {
             Ok(()) => match certify(system, &u, &ln, &lt, s.acceptance()) {

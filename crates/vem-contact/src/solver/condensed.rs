@@ -12,15 +12,18 @@
 //! ```text
 //! minimise 1/2 lambda' H lambda - d' lambda,   H = B S^-1 B' = W'W,  W = L_GG^-1 B_G',
 //!                                               d = B u0 - [g; s],
-//! subject to  lambda_N >= 0,  -b <= lambda_T <= b,
+//! subject to  lambda_N >= 0,  -b <= lambda_T <= b   (in space: |lambda_T,i| <= b_i),
 //! ```
 //!
 //! with `s` the reference slip of the friction term (zero from rest; the tangential jump of the
 //! previous load step in a load history).
 //!
-//! Tresca friction is a box constraint in the dual; a Coulomb fixed point changes only the
-//! box, and a load step only `d`. The QP is solved by projected Newton steps with an Armijo
-//! search (globally convergent; it cannot cycle, unlike a plain primal-dual active set), then
+//! Tresca friction is a box constraint in the dual of a planar problem, and a disk of the
+//! node's two tangential rows in space; a Coulomb fixed point changes only the box (the
+//! radii), and a load step only `d`. The QP is solved by projected Newton steps with an Armijo
+//! search (globally convergent; it cannot cycle, unlike a plain primal-dual active set; in
+//! space the Newton step of a node sliding on its disk's rim is taken along the rim, with the
+//! rim's curvature, see `disk_qp`), then
 //! `u` follows from one more solve. Per structure (the [`PatternId`] and the stiffness values)
 //! the solver keeps the factorisations and `H`; per solve it does dense interface work and
 //! one triangular solve pair per body for `u`, and one more for `u0` only when the load
@@ -64,6 +67,7 @@ use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolv
 
 use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
+use super::disk_qp::{Disk, DiskQp};
 use super::error::{ContactSolverError, SettingsError};
 use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
@@ -749,22 +753,29 @@ struct Interface {
 /// `max_i |clamp(d_i / H_ii)|` (the force that would close the largest unconstrained
 /// penetration, or stop the largest slip, alone, within its bounds); zero data give exactly
 /// zero forces.
+#[allow(clippy::too_many_arguments)]
 fn interface_qp(
     hessian: MatRef<'_, f64>,
     d: &[f64],
     lower: &[f64],
     upper: &[f64],
+    disks: &[Disk],
     warm: &[f64],
     settings: &CondensedSettings,
     kept: &mut ReducedFactor,
 ) -> BoxQpOutcome {
     // Rows that cannot carry a force do not set the scale: an open gap (d_i < 0 on a normal
-    // row, whose lower bound is 0) and a tangential row beyond its bound.
+    // row, whose lower bound is 0) and a tangential row beyond its bound (a disk's radius).
+    let mut cap = vec![f64::INFINITY; d.len()];
+    for disk in disks {
+        cap[disk.first] = disk.radius;
+        cap[disk.first + 1] = disk.radius;
+    }
     let force_scale = (0..d.len())
         .filter(|&i| hessian[(i, i)] > 0.0)
         .fold(0.0f64, |a, i| {
             let force = d[i] / hessian[(i, i)];
-            a.max(force.max(lower[i]).min(upper[i]).abs())
+            a.max(force.max(lower[i]).min(upper[i]).abs().min(cap[i]))
         });
     if force_scale == 0.0 {
         return BoxQpOutcome {
@@ -772,6 +783,20 @@ fn interface_qp(
             iterations: 0,
             converged: true,
         };
+    }
+    if !disks.is_empty() {
+        return DiskQp {
+            hessian,
+            linear: d,
+            lower,
+            upper,
+            disks,
+        }
+        .solve(
+            warm,
+            settings.tolerance * force_scale,
+            settings.max_iterations,
+        );
     }
     BoxQp {
         hessian,
@@ -801,6 +826,7 @@ fn proximal_iteration(
     d0: &[f64],
     lower: &[f64],
     upper: &[f64],
+    disks: &[Disk],
     warm: Vec<f64>,
     settings: &CondensedSettings,
 ) -> Interface {
@@ -835,6 +861,7 @@ fn proximal_iteration(
             &d,
             lower,
             upper,
+            disks,
             &result.lambda,
             settings,
             &mut factors.reduced,
@@ -1020,10 +1047,24 @@ impl CondensedSolver {
         }
         let mut lower = vec![0.0; rows.len()];
         let mut upper = vec![f64::INFINITY; rows.len()];
+        let mut disks = Vec::new();
         if let Some(friction) = system.friction() {
+            let t = friction.rows_per_node();
             for (i, &b) in friction.bounds().iter().enumerate() {
-                lower[m + i] = -b;
-                upper[m + i] = b;
+                if t == 1 {
+                    // The plane: an interval, the box QP.
+                    lower[m + i] = -b;
+                    upper[m + i] = b;
+                } else {
+                    // Space: a disk of the node's two tangential rows.
+                    for k in 0..t {
+                        lower[m + t * i + k] = f64::NEG_INFINITY;
+                    }
+                    disks.push(Disk {
+                        first: m + t * i,
+                        radius: b,
+                    });
+                }
             }
         }
         let warm = factors
@@ -1040,6 +1081,7 @@ impl CondensedSolver {
                 &d0,
                 &lower,
                 &upper,
+                &disks,
                 warm,
                 &self.settings,
             )
@@ -1049,6 +1091,7 @@ impl CondensedSolver {
                 &d0,
                 &lower,
                 &upper,
+                &disks,
                 &warm,
                 &self.settings,
                 &mut factors.reduced,

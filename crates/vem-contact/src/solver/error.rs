@@ -159,14 +159,20 @@ impl ContactSolverError {
         };
         if let Some(fr) = system.friction() {
             let slip = fr.tangential_rows().apply(direction);
-            let scale = inf(&slip);
+            // The largest nodal slip (its Euclidean norm in the tangent plane in space).
+            let t = fr.rows_per_node();
+            let scale = slip
+                .chunks(t)
+                .map(|s| s.iter().map(|x| x * x).sum::<f64>().sqrt())
+                .fold(0.0f64, f64::max);
             // A mode with slips below 1e-8 of its size is not resisted by friction.
             if scale > 1e-8 * inf(direction) {
+                // sum_i b_i |s_i| (the Euclidean norm of the node's slip in space).
                 let friction_capacity = fr
                     .bounds()
                     .iter()
-                    .zip(&slip)
-                    .map(|(b, s)| b * s.abs() / scale)
+                    .zip(slip.chunks(fr.rows_per_node()))
+                    .map(|(b, s)| b * s.iter().map(|x| x * x).sum::<f64>().sqrt() / scale)
                     .sum::<f64>();
                 return Self::RigidSliding {
                     load_along_mode: load_along(direction, scale),

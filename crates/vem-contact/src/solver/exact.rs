@@ -13,7 +13,8 @@ use vem_space::{Options, OptionsError};
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SecondOrderConeT,
+    SolverStatus,
 };
 
 use super::error::{ContactSolverError, SettingsError};
@@ -290,16 +291,24 @@ struct QpData {
     q: Vec<f64>,
     a: CscMatrix<f64>,
     b: Vec<f64>,
+    /// The cones of the rows of `a`, in order.
+    cones: Vec<clarabel::solver::SupportedConeT<f64>>,
 }
 
 /// The QP in the [`Units`] `units`: `P = K / k`, `q = -f / (k L)` (and `b / (k L)` for the
 /// friction variables), `b = g / L`; its solution is `u / L` and `lambda / (k L)`.
+///
+/// Friction: one variable `t_i >= |(B_T u)_i - s_i|` per node with the cost `b_i t_i` (the
+/// epigraph of the friction term). In the plane it is two linear rows per node
+/// (`+-(B_T u - s)_i - t_i <= 0`, nonnegative cone), the friction force the difference of their
+/// multipliers; in space one second-order cone `(t_i, (B_T u)_i - s_i)` of dimension 3 per node,
+/// the friction force minus the tangential part of its multiplier (whose first entry is `b_i`).
 fn build_qp(system: &ContactSystem<'_>, units: Units) -> QpData {
     let (k, length, force) = (units.stiffness, units.length, units.force());
     let n = system.n_dofs();
     let m = system.n_constraints();
     let friction = system.friction();
-    let n_t = if friction.is_some() { m } else { 0 };
+    let n_t = friction.map_or(0, |f| f.n_nodes());
     let n_var = n + n_t;
 
     // P: upper triangle of K, columns sorted, duplicates summed; the t block is zero.
@@ -342,7 +351,40 @@ fn build_qp(system: &ContactSystem<'_>, units: Units) -> QpData {
         }
     }
     let mut b: Vec<f64> = system.gap().iter().map(|g| g / length).collect();
-    if let Some(fr) = friction {
+    let mut cones = Vec::new();
+    if m > 0 {
+        cones.push(NonnegativeConeT(m));
+    }
+    if let Some(fr) = friction.filter(|f| f.rows_per_node() > 1) {
+        // The disk: s = (t_i, (B_T u)_i - s_i) = b - A x in the second-order cone, with the
+        // rows (-t_i; -(B_T u)_i) of A and (0; -s_i) of b.
+        q.extend(
+            fr.bounds()
+                .iter()
+                .map(|b| (b / force).min(FRICTION_BOUND_CAP)),
+        );
+        let t = fr.rows_per_node();
+        let tangential = fr.tangential_rows();
+        let reference = fr.reference_or_zero();
+        for i in 0..m {
+            let first = b.len();
+            ai.push(first);
+            aj.push(n + i);
+            av.push(-1.0);
+            b.push(0.0);
+            for k in 0..t {
+                let row = t * i + k;
+                let (cols, vals) = tangential.row(row);
+                for (&c, &v) in cols.iter().zip(vals) {
+                    ai.push(first + 1 + k);
+                    aj.push(c);
+                    av.push(-v);
+                }
+                b.push(-reference[row] / length);
+            }
+            cones.push(SecondOrderConeT(t + 1));
+        }
+    } else if let Some(fr) = friction {
         // A bound beyond FRICTION_BOUND_CAP force units is never reached by a force of the
         // problem (the interface is effectively tied there): capping it keeps the interior
         // point's data of order 1. The acceptance test checks the answer against the true
@@ -373,9 +415,14 @@ fn build_qp(system: &ContactSystem<'_>, units: Units) -> QpData {
             }
             None => b.extend(std::iter::repeat_n(0.0, 2 * m)),
         }
+        cones = if m > 0 {
+            vec![NonnegativeConeT(3 * m)]
+        } else {
+            vec![]
+        };
     }
     let a = CscMatrix::new_from_triplets(b.len(), n_var, ai, aj, av);
-    QpData { p, q, a, b }
+    QpData { p, q, a, b, cones }
 }
 
 impl ContactSolver for ExactSolver {
@@ -433,13 +480,8 @@ impl ContactSolver for ExactSolver {
                 .input_sparse_dropzeros(false)
                 .build()
                 .map_err(|e| backend(e.to_string()))?;
-            let cones = if qp.b.is_empty() {
-                vec![]
-            } else {
-                vec![NonnegativeConeT(qp.b.len())]
-            };
             let symbolic_start = Instant::now();
-            let solver = DefaultSolver::new(&qp.p, &qp.q, &qp.a, &qp.b, &cones, settings)
+            let solver = DefaultSolver::new(&qp.p, &qp.q, &qp.a, &qp.b, &qp.cones, settings)
                 .map_err(|e| backend(e.to_string()))?;
             work.symbolic_analyses = 1;
             work.times.symbolic = symbolic_start.elapsed();
@@ -457,12 +499,21 @@ impl ContactSolver for ExactSolver {
         let (length, force) = (units.length, units.force());
         let displacement: Vec<f64> = sol.x[..n].iter().map(|x| length * x).collect();
         let normal_force: Vec<f64> = sol.z[..m].iter().map(|z| force * z).collect();
-        let tangential_force = if system.friction().is_some() {
-            (0..m)
+        let tangential_force = match system.friction() {
+            // The multiplier of cone i is (b_i, -lambda_T,i) in force units.
+            Some(friction) if friction.rows_per_node() > 1 => {
+                let t = friction.rows_per_node();
+                (0..m)
+                    .flat_map(|i| {
+                        let first = m + (t + 1) * i + 1;
+                        sol.z[first..first + t].iter().map(|z| -force * z)
+                    })
+                    .collect()
+            }
+            Some(_) => (0..m)
                 .map(|i| force * (sol.z[m + i] - sol.z[2 * m + i]))
-                .collect()
-        } else {
-            vec![0.0; m]
+                .collect(),
+            None => vec![0.0; m],
         };
         let status = match sol.status {
             SolverStatus::Solved => SolveStatus::Converged,

@@ -30,6 +30,7 @@
 mod active_set;
 mod box_qp;
 mod condensed;
+mod disk_qp;
 mod error;
 #[cfg(feature = "clarabel")]
 mod exact;

@@ -11,7 +11,13 @@
 //! `lambda_N = eps_N (B_N u - g)_+` and `lambda_T = clamp(eps_T (B_T u - s0), -b, b)`; the
 //! penetration and the elastic stick slip are O(1/eps), which is the penalty error.
 //!
-//! `Pi` is convex, C^1 and piecewise quadratic. Each Newton step solves with
+//! In space `psi_i` is the Huber regularisation of `b_i |s|` for the node's slip vector `s`
+//! of the tangent plane (`lambda_T = eps_T s` returned radially onto the disk of radius
+//! `b_i`); a sliding node's rows then get the weight `b_i / |s|` in the Newton matrix (the
+//! curvature of the quadratic that touches `b_i |s|` from above at the current slip), and the
+//! line search brackets and bisects `phi'`, which is monotone but no longer piecewise linear.
+//!
+//! In the plane `Pi` is convex, C^1 and piecewise quadratic. Each Newton step solves with
 //! `H = K + eps_N B_A'B_A + eps_T B_S'B_S` (`A`: penetrating nodes, `S`: sticking nodes) on a
 //! Cholesky factorisation whose symbolic analysis is done once for the pattern of
 //! `K + B_N'B_N + B_T'B_T` (and kept across solves while the pattern does not change). When
@@ -319,6 +325,28 @@ struct Penalised<'a> {
     system: &'a ContactSystem<'a>,
     eps_n: f64,
     eps_t: f64,
+    /// Tangential rows per node: 1 in the plane, 2 in space (a disk).
+    t: usize,
+}
+
+/// The friction force `eps_T s` returned onto the disk of radius `b` (an interval in the
+/// plane): `eps_T s` where it sticks, `b s / |s|` where it slips.
+fn radial_return(eps_t: f64, s: &[f64], b: f64, out: &mut [f64]) {
+    let norm = eps_t * s.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let scale = if norm <= b { eps_t } else { eps_t * b / norm };
+    for (o, s) in out.iter_mut().zip(s) {
+        *o = scale * s;
+    }
+}
+
+/// The Huber regularisation of `b |s|` (`|s|` the Euclidean norm of a node's slip).
+fn huber(eps_t: f64, s: &[f64], b: f64) -> f64 {
+    let x = s.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if eps_t * x <= b {
+        0.5 * eps_t * x * x
+    } else {
+        b * x - 0.5 * b * b / eps_t
+    }
 }
 
 impl Penalised<'_> {
@@ -342,10 +370,15 @@ impl Penalised<'_> {
         let tangential_force: Vec<f64> = if slip.is_empty() {
             vec![0.0; m]
         } else {
-            slip.iter()
+            let mut force = vec![0.0; slip.len()];
+            for ((s, f), &b) in slip
+                .chunks(self.t)
+                .zip(force.chunks_mut(self.t))
                 .zip(self.bounds())
-                .map(|(s, b)| (self.eps_t * s).clamp(-b, *b))
-                .collect()
+            {
+                radial_return(self.eps_t, s, b, f);
+            }
+            force
         };
         let ku = sys.stiffness_apply(u);
         let mut reaction = vec![0.0; u.len()];
@@ -378,11 +411,10 @@ impl Penalised<'_> {
             })
             .fold(0.0f64, f64::max);
         let mut sets: Vec<bool> = constraint.iter().map(|&c| c > 0.0).collect();
-        sets.extend(
-            slip.iter()
-                .zip(self.bounds())
-                .map(|(s, b)| (self.eps_t * s).abs() < *b),
-        );
+        for (s, b) in slip.chunks(self.t).zip(self.bounds()) {
+            let norm = s.iter().map(|x| x * x).sum::<f64>().sqrt();
+            sets.extend(std::iter::repeat_n(self.eps_t * norm < *b, self.t));
+        }
         State {
             constraint,
             slip,
@@ -459,16 +491,12 @@ fn energy_change(p: &Penalised, state: &State, d: &[f64]) -> f64 {
     }
     if let Some(f) = sys.friction() {
         let w = f.tangential_rows().apply(d);
-        let huber = |x: f64, b: f64| {
-            let y = p.eps_t * x;
-            if y.abs() <= b {
-                0.5 * y * x
-            } else {
-                b * x.abs() - 0.5 * b * b / p.eps_t
+        let mut moved = vec![0.0; p.t];
+        for ((s, wi), &b) in state.slip.chunks(p.t).zip(w.chunks(p.t)).zip(f.bounds()) {
+            for k in 0..p.t {
+                moved[k] = s[k] + wi[k];
             }
-        };
-        for ((s, wi), b) in state.slip.iter().zip(&w).zip(f.bounds()) {
-            change += huber(s + wi, *b) - huber(*s, *b);
+            change += huber(p.eps_t, &moved, b) - huber(p.eps_t, s, b);
         }
     }
     change
@@ -478,6 +506,9 @@ fn energy_change(p: &Penalised, state: &State, d: &[f64]) -> f64 {
 /// `phi'` is piecewise linear and non-decreasing; its zero is located among the breakpoints by
 /// bisection, then interpolated linearly on its piece.
 fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
+    if p.t > 1 {
+        return disk_line_search(p, state, d, d_diag_d);
+    }
     let sys = p.system;
     let kd = sys.stiffness_apply(d);
     let d_k_d: f64 = d.iter().zip(&kd).map(|(a, b)| a * b).sum();
@@ -563,6 +594,87 @@ fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
     }
 }
 
+/// The line search of [`line_search`] with friction disks (in space): `phi'` is monotone but
+/// not piecewise linear (the radial return), so its zero is bracketed by doubling and found by
+/// bisection; beyond the bracket's growth the curvature of the contact and elastic terms
+/// decides whether the energy is unbounded along `d`.
+fn disk_line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
+    let sys = p.system;
+    let kd = sys.stiffness_apply(d);
+    let d_k_d: f64 = d.iter().zip(&kd).map(|(a, b)| a * b).sum();
+    let a0: f64 = state
+        .ku
+        .iter()
+        .zip(sys.load())
+        .zip(d)
+        .map(|((k, f), x)| (k - f) * x)
+        .sum();
+    let e = sys.normal_rows().apply(d);
+    let w = sys
+        .friction()
+        .map_or_else(Vec::new, |f| f.tangential_rows().apply(d));
+    let bounds = p.bounds();
+    let dphi = |t: f64| -> f64 {
+        let mut v = a0 + t * d_k_d;
+        for (c, ei) in state.constraint.iter().zip(&e) {
+            v += p.eps_n * (c + t * ei).max(0.0) * ei;
+        }
+        let (mut moved, mut force) = (vec![0.0; p.t], vec![0.0; p.t]);
+        for ((s, wi), &b) in state.slip.chunks(p.t).zip(w.chunks(p.t)).zip(bounds) {
+            for k in 0..p.t {
+                moved[k] = s[k] + t * wi[k];
+            }
+            radial_return(p.eps_t, &moved, b, &mut force);
+            v += force.iter().zip(wi).map(|(f, w)| f * w).sum::<f64>();
+        }
+        v
+    };
+    let d0 = dphi(0.0);
+    if d0 >= 0.0 {
+        return Step::NoDescent;
+    }
+    let (mut low, mut high) = (0.0, 1.0);
+    let mut bracketed = false;
+    for _ in 0..64 {
+        if dphi(high) >= 0.0 {
+            bracketed = true;
+            break;
+        }
+        low = high;
+        high *= 2.0;
+    }
+    if !bracketed {
+        let curvature = d_k_d
+            + p.eps_n
+                * e.iter()
+                    .filter(|&&ei| ei > 0.0)
+                    .map(|ei| ei * ei)
+                    .sum::<f64>();
+        if curvature <= FREE_MODE_CURVATURE * d_diag_d {
+            return Step::Unbounded;
+        }
+        return Step::Length(high);
+    }
+    for _ in 0..80 {
+        let mid = 0.5 * (low + high);
+        if mid <= low || mid >= high {
+            break;
+        }
+        if dphi(mid) < 0.0 {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    let exact = 0.5 * (low + high);
+    let full_step = energy_change(p, state, d);
+    if full_step <= ARMIJO * d0 {
+        Step::Length(1.0)
+    } else {
+        Step::Length(exact)
+    }
+}
+
 impl ContactSolver for PenaltySolver {
     fn name(&self) -> &'static str {
         NAME
@@ -580,6 +692,7 @@ impl ContactSolver for PenaltySolver {
             system,
             eps_n: s.normal_penalty.value(system),
             eps_t: s.tangential_penalty.value(system),
+            t: system.friction().map_or(1, |f| f.rows_per_node()),
         };
         let matrix = NewtonMatrix::reuse_or_analyse(&mut self.matrix, system, s.parallelism)
             .map_err(|detail| ContactSolverError::Backend {
@@ -617,7 +730,7 @@ impl ContactSolver for PenaltySolver {
                 let all_stick: Vec<f64> = p
                     .bounds()
                     .iter()
-                    .map(|&b| if b > 0.0 { p.eps_t } else { 0.0 })
+                    .flat_map(|&b| std::iter::repeat_n(if b > 0.0 { p.eps_t } else { 0.0 }, p.t))
                     .collect();
                 if let Some(false) = guard.factorise(matrix, system, &all_normal, &all_stick) {
                     // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v - s0|^2.
@@ -653,10 +766,28 @@ impl ContactSolver for PenaltySolver {
                 .iter()
                 .map(|&a| if a { p.eps_n } else { 0.0 })
                 .collect();
-            let tangential_weights: Vec<f64> = state.sets[m..]
+            let mut tangential_weights: Vec<f64> = state.sets[m..]
                 .iter()
                 .map(|&a| if a { p.eps_t } else { 0.0 })
                 .collect();
+            if p.t > 1 {
+                // A node sliding on its disk's rim: the weight b / |s| on both rows, the
+                // curvature of the quadratic `b (|s|^2 + |s0|^2) / (2 |s0|)` that touches
+                // `b |s|` at the current slip `s0` and lies above it (its Hessian bounds the
+                // true one, `b (I - n n') / |s0|`, from above: every step of this model lowers
+                // the energy, and the slip direction converges).
+                for ((s, w), &b) in state
+                    .slip
+                    .chunks(p.t)
+                    .zip(tangential_weights.chunks_mut(p.t))
+                    .zip(p.bounds())
+                {
+                    let norm = s.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if p.eps_t * norm >= b && norm > 0.0 {
+                        w.fill(b / norm);
+                    }
+                }
+            }
             let Some(shifted) =
                 guard.factorise(matrix, system, &normal_weights, &tangential_weights)
             else {

@@ -67,7 +67,8 @@ pub struct KktScales {
 ///
 /// Conventions (spec section 4): `(B_N u - g)_i > 0` is penetration; `lambda_N,i >= 0` is the
 /// compressive nodal contact force; the tangential force satisfies
-/// `lambda_T,i = b_i sign((B_T u - s0)_i)` where node `i` slips (`s0` the reference slip).
+/// `lambda_T,i = b_i sign((B_T u - s0)_i)` where node `i` slips (`s0` the reference slip; in
+/// space `b_i` times the unit slip vector of the tangent plane).
 ///
 /// The force scale of interface node `i`, `F_i`, is the smallest `F_b` of the bodies its rows
 /// touch: a contact force must be accurate relative to the forces of the softer (or less
@@ -95,9 +96,12 @@ pub struct KktResiduals {
     /// and this floor.
     pub stationarity_floor: f64,
     /// `max_i (|lambda_T,i| - b_i)^+ / F_i`: violation of the friction bound (0 when
-    /// frictionless).
+    /// frictionless; in space `|.|` is the Euclidean norm of the nodal friction force in the
+    /// tangent plane, and the bound a disk).
     pub friction_bound_violation: f64,
-    /// `max_i |b_i |s_i| - lambda_T,i s_i| / (F_i U)` over the nodes that slip,
+    /// `max_i |b_i s_i - |s_i| lambda_T,i| / (F_i U)` over the nodes that slip (vectors of
+    /// the tangent plane in space: the force must be `b_i` times the unit slip direction,
+    /// which also asks `|lambda_T,i| = b_i`),
     /// `|s_i| = |(B_T u)_i - s0_i| > t U` (`s0` the reference slip; `t`: the acceptance
     /// tolerance, `1e-10` for [`KktResiduals::evaluate`]): the failure of the tangential
     /// force to be `b_i` times the slip direction (0 when frictionless). Slips below `t U`
@@ -253,8 +257,10 @@ impl ForceScales {
         );
         let m = system.n_constraints();
         let mut rows = vec![f64::INFINITY; m];
-        let mut touch = |rows_b: &super::ConstraintRows| {
-            for (i, row_scale) in rows.iter_mut().enumerate() {
+        // Row `i` of `rows_b` belongs to node `i / per_node`.
+        let mut touch = |rows_b: &super::ConstraintRows, per_node: usize| {
+            for i in 0..rows_b.nrows() {
+                let row_scale = &mut rows[i / per_node];
                 for &c in rows_b.row(i).0 {
                     if let Some(b) = block_of(c) {
                         *row_scale = row_scale.min(blocks[b]);
@@ -262,9 +268,9 @@ impl ForceScales {
                 }
             }
         };
-        touch(system.normal_rows());
+        touch(system.normal_rows(), 1);
         if let Some(friction) = system.friction() {
-            touch(friction.tangential_rows());
+            touch(friction.tangential_rows(), friction.rows_per_node());
         }
         for row_scale in &mut rows {
             if !row_scale.is_finite() {
@@ -329,7 +335,7 @@ impl KktResiduals {
         if system.friction().is_some() {
             assert_eq!(
                 tangential_force.len(),
-                m,
+                system.n_tangential(),
                 "KktResiduals: tangential force length"
             );
         }
@@ -382,16 +388,27 @@ impl KktResiduals {
         }
         if let Some(friction) = system.friction() {
             let slip = friction.slip(displacement);
+            let t = friction.rows_per_node();
+            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
             for i in 0..m {
-                let (b, lt, s) = (friction.bounds()[i], tangential_force[i], slip[i]);
+                let rows = t * i..t * (i + 1);
+                let (b, lt, s) = (
+                    friction.bounds()[i],
+                    &tangential_force[rows.clone()],
+                    &slip[rows],
+                );
                 let f_i = forces.rows[i];
                 r.friction_bound_violation = r
                     .friction_bound_violation
-                    .max(relative((lt.abs() - b).max(0.0), f_i));
-                if s.abs() > slip_floor * u_scale {
+                    .max(relative((norm(lt) - b).max(0.0), f_i));
+                let s_norm = norm(s);
+                if s_norm > slip_floor * u_scale {
+                    // |b s - |s| lambda_T|: zero exactly when lambda_T = b s / |s|.
+                    let direction: Vec<f64> =
+                        s.iter().zip(lt).map(|(s, l)| b * s - s_norm * l).collect();
                     r.slip_direction_violation = r
                         .slip_direction_violation
-                        .max(relative((b * s.abs() - lt * s).abs(), f_i * u_scale));
+                        .max(relative(norm(&direction), f_i * u_scale));
                 }
             }
         }
@@ -511,7 +528,7 @@ pub(crate) fn unloaded_solution(
     let (n, m) = (system.n_dofs(), system.n_constraints());
     let displacement = vec![0.0; n];
     let normal_force = vec![0.0; m];
-    let tangential_force = vec![0.0; m];
+    let tangential_force = vec![0.0; system.n_tangential()];
     let residuals = KktResiduals::evaluate(system, &displacement, &normal_force, &tangential_force);
     super::ContactSolution {
         displacement,

@@ -308,9 +308,12 @@ impl ConstraintRows {
 }
 
 /// Tresca friction data: tangential rows `B_T`, nodal friction bounds
-/// `b_i = l_i g_F(x_i) >= 0` (tributary length times friction bound; nodal quadrature of `j_h`)
-/// and the reference slip `s` from which the slip of the solve is measured: the friction term
-/// is `sum_i b_i |(B_T u)_i - s_i|`. The reference slip is zero for a problem solved from rest
+/// `b_i = l_i g_F(x_i) >= 0` (tributary measure times friction bound; nodal quadrature of
+/// `j_h`) and the reference slip `s` from which the slip of the solve is measured: the
+/// friction term is `sum_i b_i |(B_T u)_i - s_i|`. Node `i` has `t` consecutive tangential
+/// rows ([`Friction::rows_per_node`]: 1 in the plane, 2 in space, the node's two tangent
+/// directions), `(B_T u)_i` is the vector of them and `|.|` its Euclidean norm: in space the
+/// nodal friction force lies in the disk of radius `b_i` of the tangent plane. The reference slip is zero for a problem solved from rest
 /// and the tangential jump at the end of the previous load step for a step of a load history
 /// (the friction functional on the increment of the tangential jump). Owns its data or borrows
 /// it from a [`ContactDiscretisation`](crate::ContactDiscretisation).
@@ -318,13 +321,14 @@ impl ConstraintRows {
 pub struct Friction<'a> {
     tangential_rows: Cow<'a, ConstraintRows>,
     bounds: Cow<'a, [f64]>,
+    rows_per_node: usize,
     /// `None`: zero.
     reference_slip: Option<Cow<'a, [f64]>>,
 }
 
 impl<'a> Friction<'a> {
     /// Tangential rows (one per interface node, the same nodes and order as the normal rows)
-    /// and their bounds.
+    /// and their bounds, one per node: the plane's friction (an interval per node).
     ///
     /// # Errors
     /// [`ContactSystemError::DimensionMismatch`] if `bounds.len() != tangential_rows.nrows()`,
@@ -333,14 +337,55 @@ impl<'a> Friction<'a> {
         tangential_rows: impl Into<Cow<'a, ConstraintRows>>,
         bounds: impl Into<Cow<'a, [f64]>>,
     ) -> Result<Self, ContactSystemError> {
+        Self::try_with_rows_per_node(tangential_rows, bounds, 1)
+    }
+
+    /// Tangential rows, `rows_per_node` consecutive ones per interface node (the nodes in the
+    /// order of the normal rows; 2 in space: the node's two orthonormal tangent directions),
+    /// and one bound per node, the radius of the node's friction disk (an interval for one
+    /// row per node).
+    ///
+    /// # Errors
+    /// [`ContactSystemError::DimensionMismatch`] if `rows_per_node` is not 1 or 2 or
+    /// `rows_per_node * bounds.len() != tangential_rows.nrows()`,
+    /// [`ContactSystemError::NonFinite`] or [`ContactSystemError::NegativeFrictionBound`].
+    pub fn try_with_rows_per_node(
+        tangential_rows: impl Into<Cow<'a, ConstraintRows>>,
+        bounds: impl Into<Cow<'a, [f64]>>,
+        rows_per_node: usize,
+    ) -> Result<Self, ContactSystemError> {
         let tangential_rows = tangential_rows.into();
         let bounds = bounds.into();
-        check_bounds(tangential_rows.nrows(), &bounds)?;
+        if !(1..=2).contains(&rows_per_node) {
+            return Err(ContactSystemError::DimensionMismatch {
+                what: "tangential rows per node (1 or 2)",
+                expected: 2,
+                actual: rows_per_node,
+            });
+        }
+        check_len(
+            "tangential rows vs rows per node x friction bounds",
+            rows_per_node * bounds.len(),
+            tangential_rows.nrows(),
+        )?;
+        check_bounds(bounds.len(), &bounds)?;
         Ok(Self {
             tangential_rows,
             bounds,
+            rows_per_node,
             reference_slip: None,
         })
+    }
+
+    /// The number of tangential rows of each node: 1 in the plane, 2 in space (the nodal
+    /// friction force is then a vector of the tangent plane, bounded by a disk).
+    pub fn rows_per_node(&self) -> usize {
+        self.rows_per_node
+    }
+
+    /// The number of interface nodes (friction bounds).
+    pub fn n_nodes(&self) -> usize {
+        self.bounds.len()
     }
 
     /// The same friction data with the reference slip `s` (one value per tangential row): the
@@ -369,7 +414,7 @@ impl<'a> Friction<'a> {
         &self.tangential_rows
     }
 
-    /// The nodal friction bounds `b_i`.
+    /// The nodal friction bounds `b_i` (one per node: the disk radius in space).
     pub fn bounds(&self) -> &[f64] {
         &self.bounds
     }
@@ -488,7 +533,8 @@ impl StiffnessBlock<'_> {
 /// Tresca:        min 1/2 u'Ku - f'u + sum_i b_i |(B_T u)_i - s_i|   s.t.  B_N u <= g
 /// ```
 ///
-/// with the reference slip `s` of [`Friction`] (zero from rest).
+/// with the reference slip `s` of [`Friction`] (zero from rest); in space `(B_T u)_i` is the
+/// node's tangential jump, a vector of its tangent plane, and `|.|` the Euclidean norm.
 ///
 /// `K` is symmetric positive semi-definite, block diagonal (one block per body, full symmetric
 /// storage); a singular `K` is allowed when the constraints (or friction) hold the rigid modes.
@@ -582,9 +628,9 @@ impl<'a> ContactSystem<'a> {
         if let Some(fr) = &friction {
             check_len("tangential rows: columns", n, fr.tangential_rows.ncols())?;
             check_len(
-                "tangential rows vs normal rows",
+                "friction bounds (one per node) vs normal rows",
                 normal_rows.nrows(),
-                fr.tangential_rows.nrows(),
+                fr.n_nodes(),
             )?;
         }
         Ok(Self {
@@ -633,7 +679,7 @@ impl<'a> ContactSystem<'a> {
                 actual: bounds.len(),
             });
         };
-        check_bounds(friction.tangential_rows.nrows(), &bounds)?;
+        check_bounds(friction.n_nodes(), &bounds)?;
         friction.bounds = Cow::Owned(bounds);
         Ok(self)
     }
@@ -693,6 +739,14 @@ impl<'a> ContactSystem<'a> {
     /// The gaps `g`: the constraint is `B_N u <= g`.
     pub fn gap(&self) -> &[f64] {
         &self.gap
+    }
+
+    /// The length of a tangential force vector of this system: the number of tangential rows
+    /// (`D - 1` per node), or `m` (zeros) for a frictionless system.
+    pub fn n_tangential(&self) -> usize {
+        self.friction
+            .as_ref()
+            .map_or(self.gap.len(), |f| f.tangential_rows.nrows())
     }
 
     /// Tresca friction data, `None` for frictionless contact.

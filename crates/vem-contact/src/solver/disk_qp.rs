@@ -1,0 +1,440 @@
+//! Dense convex quadratic programs with bounds and disks,
+//!
+//! ```text
+//! minimise q(x) = 1/2 x'Hx - d'x   subject to   lower_i <= x_i <= upper_i,
+//!                                               |(x_j, x_j+1)| <= r  for every disk (j, r),
+//! ```
+//!
+//! the interface problem of the condensed solver in space, where the friction force of a node
+//! lies in the disk of radius `b_i` of its tangent plane. Solved by a projected Newton method on
+//! the separable convex set (Bertsekas' projected Newton of [`BoxQp`](super::box_qp::BoxQp),
+//! carried over to disks):
+//!
+//! - a bound, or a disk's rim, is **binding** when `x` is within `eps` of it (the current size
+//!   of the projected gradient) and the gradient pushes outward;
+//! - the Newton step is taken in the subspace the binding constraints leave free: every free
+//!   scalar, both coordinates of a disk that is not binding, and the tangent direction
+//!   `tau = (-n_y, n_x)` of a binding disk (`n = x / |x|`), whose curvature adds `mu / r` to the
+//!   reduced Hessian (`mu = -g . n >= 0`, the multiplier of the rim: the Hessian of the
+//!   Lagrangian, so that the slip direction of a sliding node converges quadratically, not
+//!   linearly as with the rim held fixed);
+//! - a binding bound or rim moves along the scaled gradient (onto the bound);
+//! - an Armijo search along the projection arc `x(a) = P(x + a p)` (`P`: clamping of the
+//!   scalars, radial return of the disks) keeps every step a descent step: for a disk the
+//!   scaling is one number, so that the projected scaled gradient is a descent direction.
+//!
+//! Units and stopping test as for the box QP: `x` is a force, the gradient a length, and the
+//! projected gradient is measured as a force, `|x - P(x - D g)|_inf` with `D = diag(H)^-1`
+//! (on a disk the inverse of the larger of its two diagonal entries).
+
+use faer::linalg::solvers::Solve;
+use faer::{Mat, MatRef, Side};
+
+use super::box_qp::BoxQpOutcome;
+
+/// A disk constraint `|(x_first, x_first+1)| <= radius`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Disk {
+    /// The first of its two variables.
+    pub first: usize,
+    /// Its radius, `>= 0`.
+    pub radius: f64,
+}
+
+/// A QP with bounds and disks (borrowed data). The variables of a disk have the bounds
+/// `-inf, +inf`.
+pub(crate) struct DiskQp<'a> {
+    pub hessian: MatRef<'a, f64>,
+    pub linear: &'a [f64],
+    pub lower: &'a [f64],
+    pub upper: &'a [f64],
+    pub disks: &'a [Disk],
+}
+
+const ARMIJO: f64 = 1e-4;
+/// As in the box QP: a bound within `eps` is binding, `eps` at most this fraction of the box
+/// width or of the disk's radius.
+const EPS_WIDTH: f64 = 0.25;
+const MAX_HALVINGS: usize = 60;
+
+/// One column of the basis `Z` of the Newton subspace: a unit vector or a disk's tangent.
+#[derive(Debug, Clone, Copy)]
+enum Direction {
+    Unit(usize),
+    Tangent { first: usize, tau: [f64; 2] },
+}
+
+impl Direction {
+    /// The (variable, coefficient) entries of the column.
+    fn entries(&self) -> impl Iterator<Item = (usize, f64)> {
+        let (a, b) = match *self {
+            Direction::Unit(i) => ((i, 1.0), None),
+            Direction::Tangent { first, tau } => ((first, tau[0]), Some((first + 1, tau[1]))),
+        };
+        std::iter::once(a).chain(b)
+    }
+}
+
+impl DiskQp<'_> {
+    /// `P(x)`: the scalars clamped, the disks' points returned radially.
+    fn project(&self, x: &mut [f64]) {
+        for (i, xi) in x.iter_mut().enumerate() {
+            *xi = xi.max(self.lower[i]).min(self.upper[i]);
+        }
+        for disk in self.disks {
+            let (a, b) = (x[disk.first], x[disk.first + 1]);
+            let norm = a.hypot(b);
+            if norm > disk.radius {
+                let s = if norm > 0.0 { disk.radius / norm } else { 0.0 };
+                x[disk.first] = a * s;
+                x[disk.first + 1] = b * s;
+            }
+        }
+    }
+
+    /// `H x`.
+    fn apply(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; x.len()];
+        for (j, &xj) in x.iter().enumerate() {
+            if xj != 0.0 {
+                for (yi, h) in y.iter_mut().zip(self.hessian.col(j).iter()) {
+                    *yi += h * xj;
+                }
+            }
+        }
+        y
+    }
+
+    /// `g = H x - d`.
+    fn gradient(&self, x: &[f64]) -> Vec<f64> {
+        let mut g = self.apply(x);
+        for (gi, d) in g.iter_mut().zip(self.linear) {
+            *gi -= d;
+        }
+        g
+    }
+
+    /// `|x - P(x - D g)|_inf`, a force.
+    fn projected_gradient(&self, x: &[f64], g: &[f64], scaling: &[f64]) -> f64 {
+        let mut y: Vec<f64> = (0..x.len()).map(|i| x[i] - g[i] * scaling[i]).collect();
+        self.project(&mut y);
+        x.iter()
+            .zip(&y)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+    }
+
+    /// Minimises from `start` (projected onto the set) until the scaled projected gradient is
+    /// at most `tolerance` (a force) or `max_iterations` steps were taken.
+    pub fn solve(&self, start: &[f64], tolerance: f64, max_iterations: usize) -> BoxQpOutcome {
+        let m = self.linear.len();
+        let diagonal: Vec<f64> = (0..m).map(|i| self.hessian[(i, i)]).collect();
+        let largest = diagonal.iter().fold(0.0f64, |a, &d| a.max(d));
+        let inverse = |d: f64| {
+            1.0 / if d > 0.0 {
+                d
+            } else {
+                largest.max(f64::MIN_POSITIVE)
+            }
+        };
+        let mut scaling: Vec<f64> = diagonal.iter().map(|&d| inverse(d)).collect();
+        let mut in_disk = vec![None; m];
+        for (k, disk) in self.disks.iter().enumerate() {
+            let (a, b) = (disk.first, disk.first + 1);
+            let s = inverse(diagonal[a].max(diagonal[b]));
+            scaling[a] = s;
+            scaling[b] = s;
+            in_disk[a] = Some(k);
+            in_disk[b] = Some(k);
+        }
+        let mut x = start.to_vec();
+        self.project(&mut x);
+        let mut g = self.gradient(&x);
+        let mut outcome = BoxQpOutcome {
+            x: Vec::new(),
+            iterations: 0,
+            converged: false,
+        };
+        loop {
+            let pg = self.projected_gradient(&x, &g, &scaling);
+            if pg <= tolerance {
+                g = self.gradient(&x);
+                if self.projected_gradient(&x, &g, &scaling) <= tolerance {
+                    outcome.converged = true;
+                    break;
+                }
+            }
+            if outcome.iterations == max_iterations {
+                break;
+            }
+            outcome.iterations += 1;
+            // The Newton subspace and the scaled gradient step of the binding constraints.
+            let mut p: Vec<f64> = (0..m).map(|i| -g[i] * scaling[i]).collect();
+            let mut basis = Vec::with_capacity(m);
+            let mut curvature = Vec::with_capacity(m);
+            for i in (0..m).filter(|&i| in_disk[i].is_none()) {
+                let eps = pg.min(EPS_WIDTH * (self.upper[i] - self.lower[i]));
+                let binding = (x[i] <= self.lower[i] + eps && g[i] > 0.0)
+                    || (x[i] >= self.upper[i] - eps && g[i] < 0.0);
+                if !binding {
+                    basis.push(Direction::Unit(i));
+                    curvature.push(0.0);
+                }
+            }
+            for disk in self.disks {
+                let (a, b) = (disk.first, disk.first + 1);
+                if disk.radius <= 0.0 {
+                    // A point: nothing moves (the projection undoes the gradient step).
+                    continue;
+                }
+                let norm = x[a].hypot(x[b]);
+                let eps = pg.min(EPS_WIDTH * disk.radius);
+                let outward = if norm > 0.0 {
+                    -(g[a] * x[a] + g[b] * x[b]) / norm
+                } else {
+                    0.0
+                };
+                if norm >= disk.radius - eps && outward > 0.0 {
+                    let n = [x[a] / norm, x[b] / norm];
+                    let tau = [-n[1], n[0]];
+                    // Radial: onto the rim (a longer outward step would be cut back by the
+                    // projection, and shrink the tangential step with it); tangential: the
+                    // Newton step below.
+                    let radial = disk.radius - norm;
+                    p[a] = radial * n[0];
+                    p[b] = radial * n[1];
+                    basis.push(Direction::Tangent { first: a, tau });
+                    curvature.push(outward / disk.radius);
+                } else {
+                    basis.push(Direction::Unit(a));
+                    basis.push(Direction::Unit(b));
+                    curvature.extend([0.0, 0.0]);
+                }
+            }
+            let newton = self.reduced_newton_step(&basis, &curvature, &g);
+            if let Some(step) = newton {
+                for (direction, y) in basis.iter().zip(step) {
+                    match *direction {
+                        Direction::Unit(i) => p[i] = y,
+                        Direction::Tangent { first, tau } => {
+                            p[first] += y * tau[0];
+                            p[first + 1] += y * tau[1];
+                        }
+                    }
+                }
+            }
+            // The round-off of q's change near the minimiser: the radial return of a point
+            // moved along a rim is exact to `eps r`, which `mu` turns into an error of
+            // `eps r |g|` in q, far above the decrease of a tangential step of size `e`
+            // (`O(e^2)`) once `e` is below about `sqrt(eps)`.
+            let noise = 8.0
+                * f64::EPSILON
+                * (x.iter().zip(&g).map(|(x, g)| (x * g).abs()).sum::<f64>()
+                    + self
+                        .disks
+                        .iter()
+                        .map(|d| d.radius * g[d.first].hypot(g[d.first + 1]))
+                        .sum::<f64>());
+            // Armijo search along the projection arc.
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            for _ in 0..MAX_HALVINGS {
+                let mut trial: Vec<f64> = (0..m).map(|i| x[i] + alpha * p[i]).collect();
+                self.project(&mut trial);
+                let step: Vec<f64> = trial.iter().zip(&x).map(|(t, x)| t - x).collect();
+                let h_step = self.apply(&step);
+                let slope: f64 = (0..m).map(|i| step[i] * g[i]).sum();
+                let change: f64 = slope + 0.5 * (0..m).map(|i| step[i] * h_step[i]).sum::<f64>();
+                // A full step whose change is below the round-off of q is the Newton step of
+                // a converging iteration: taken as it is (the projected gradient decides).
+                let unresolved = alpha == 1.0 && change.abs() <= noise && slope.abs() <= noise;
+                if (slope < 0.0 && -change >= -ARMIJO * slope) || unresolved {
+                    for i in 0..m {
+                        g[i] += h_step[i];
+                    }
+                    x = trial;
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if !accepted {
+                // No decrease representable in floating point: x is as good as it gets.
+                break;
+            }
+        }
+        outcome.x = x;
+        outcome
+    }
+
+    /// `y = -(Z'HZ + C)^-1 Z'g` for the basis `Z` (`basis`) and the curvature `C` of the
+    /// binding rims (a dense Cholesky factorisation, shifted slightly if the reduced matrix is
+    /// only semidefinite); `None` if even the shifted matrix cannot be factorised.
+    fn reduced_newton_step(
+        &self,
+        basis: &[Direction],
+        curvature: &[f64],
+        g: &[f64],
+    ) -> Option<Vec<f64>> {
+        let k = basis.len();
+        if k == 0 {
+            return None;
+        }
+        let h = self.hessian;
+        let mut reduced = Mat::<f64>::from_fn(k, k, |a, b| {
+            let mut value = 0.0;
+            for (i, ci) in basis[a].entries() {
+                for (j, cj) in basis[b].entries() {
+                    value += ci * cj * h[(i, j)];
+                }
+            }
+            value
+        });
+        for (a, c) in curvature.iter().enumerate() {
+            reduced[(a, a)] += c;
+        }
+        let gradient: Vec<f64> = basis
+            .iter()
+            .map(|d| d.entries().map(|(i, c)| c * g[i]).sum())
+            .collect();
+        let trace = (0..k).map(|a| reduced[(a, a)]).sum::<f64>();
+        let mut shift = 0.0;
+        for _ in 0..4 {
+            if let Ok(llt) = reduced.llt(Side::Lower) {
+                let mut rhs = Mat::<f64>::from_fn(k, 1, |a, _| -gradient[a]);
+                llt.solve_in_place(rhs.as_mut());
+                return Some((0..k).map(|a| rhs[(a, 0)]).collect());
+            }
+            let next = if shift == 0.0 {
+                1e-14 * trace / k as f64
+            } else {
+                shift * 1e3
+            };
+            for a in 0..k {
+                reduced[(a, a)] += next - shift;
+            }
+            shift = next;
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn next(seed: &mut u64) -> f64 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+
+    /// One disk with `H = h I`: the minimiser is the radial return of `d / h`.
+    #[test]
+    fn an_isotropic_disk_problem_is_the_radial_return() {
+        for (h, d, r) in [
+            (2.0, [3.0, 4.0], 1.0),
+            (2.0, [0.3, -0.4], 1.0),
+            (1e-6, [-3e-6, 1e-6], 0.5),
+            (5.0, [1.0, 1.0], 0.0),
+        ] {
+            let hessian = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { h } else { 0.0 });
+            let qp = DiskQp {
+                hessian: hessian.as_ref(),
+                linear: &d,
+                lower: &[f64::NEG_INFINITY; 2],
+                upper: &[f64::INFINITY; 2],
+                disks: &[Disk {
+                    first: 0,
+                    radius: r,
+                }],
+            };
+            let out = qp.solve(&[0.0, 0.0], 1e-14, 100);
+            assert!(out.converged);
+            let mut expected = [d[0] / h, d[1] / h];
+            let norm = expected[0].hypot(expected[1]);
+            if norm > r {
+                expected = [expected[0] * r / norm, expected[1] * r / norm];
+            }
+            for k in 0..2 {
+                assert!(
+                    (out.x[k] - expected[k]).abs() < 1e-12,
+                    "{:?} {expected:?}",
+                    out.x
+                );
+            }
+        }
+    }
+
+    /// Random positive definite problems with a sign bound and disks: the answer satisfies
+    /// the KKT conditions (which characterise the unique minimiser): the gradient vanishes
+    /// inside, and on a rim it is `-mu n` with `mu >= 0`.
+    #[test]
+    fn random_problems_satisfy_the_kkt_conditions() {
+        let mut seed = 5u64;
+        for case in 0..50 {
+            let n = 7;
+            let a = Mat::<f64>::from_fn(n, n, |_, _| next(&mut seed));
+            let h = &a * a.transpose() + Mat::<f64>::identity(n, n) * 0.1;
+            let d: Vec<f64> = (0..n).map(|_| 3.0 * next(&mut seed)).collect();
+            let mut lower = vec![f64::NEG_INFINITY; n];
+            let upper = vec![f64::INFINITY; n];
+            lower[0] = 0.0;
+            let disks = [
+                Disk {
+                    first: 1,
+                    radius: 0.2 + 0.5 * next(&mut seed).abs(),
+                },
+                Disk {
+                    first: 3,
+                    radius: 0.3,
+                },
+                Disk {
+                    first: 5,
+                    radius: 0.05 * (case % 3) as f64,
+                },
+            ];
+            let qp = DiskQp {
+                hessian: h.as_ref(),
+                linear: &d,
+                lower: &lower,
+                upper: &upper,
+                disks: &disks,
+            };
+            let out = qp.solve(&vec![0.0; n], 1e-13, 200);
+            assert!(out.converged, "case {case}: {} iterations", out.iterations);
+            assert!(
+                out.iterations < 40,
+                "case {case}: {} iterations",
+                out.iterations
+            );
+            let g = qp.gradient(&out.x);
+            let tol = 1e-10;
+            // The sign bound.
+            assert!(out.x[0] >= 0.0);
+            if out.x[0] > tol {
+                assert!(g[0].abs() < tol, "case {case}: {}", g[0]);
+            } else {
+                assert!(g[0] > -tol);
+            }
+            for disk in &disks {
+                let (i, j) = (disk.first, disk.first + 1);
+                let norm = out.x[i].hypot(out.x[j]);
+                assert!(norm <= disk.radius * (1.0 + 1e-15) + 1e-300);
+                if norm < disk.radius - tol {
+                    assert!(g[i].hypot(g[j]) < tol, "case {case}: inside, {g:?}");
+                } else if disk.radius > 0.0 {
+                    // g = -mu n: the tangential part vanishes, mu >= 0.
+                    let (ni, nj) = (out.x[i] / norm, out.x[j] / norm);
+                    let tangential = -g[i] * nj + g[j] * ni;
+                    let mu = -(g[i] * ni + g[j] * nj);
+                    assert!(
+                        tangential.abs() < tol,
+                        "case {case}: tangential {tangential}"
+                    );
+                    assert!(mu > -tol, "case {case}: mu {mu}");
+                }
+            }
+        }
+    }
+}
