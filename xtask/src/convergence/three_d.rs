@@ -120,7 +120,7 @@ const PAIRINGS: [Pairing; 3] = [
     Pairing {
         upper: PolyhedralFamily::Voronoi,
         lower: PolyhedralFamily::Hexahedra,
-        full: &[(8, 7), (10, 9), (12, 11), (16, 14)],
+        full: &[(8, 7), (12, 11), (16, 14), (20, 18)],
         quick: &[(6, 5), (8, 7), (10, 9)],
     },
     Pairing {
