@@ -20,6 +20,29 @@
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef, Side};
 
+/// `H x` for the dense interface Hessian `H` (the columns where `x` is zero skipped: most
+/// forces of a contact problem are).
+pub(crate) fn hessian_apply(hessian: MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
+    let mut y = vec![0.0; x.len()];
+    for (j, &xj) in x.iter().enumerate() {
+        if xj != 0.0 {
+            for (yi, h) in y.iter_mut().zip(hessian.col(j).iter()) {
+                *yi += h * xj;
+            }
+        }
+    }
+    y
+}
+
+/// The gradient `H x - d` of the interface problem's energy `x'Hx/2 - d'x`.
+pub(crate) fn quadratic_gradient(hessian: MatRef<'_, f64>, linear: &[f64], x: &[f64]) -> Vec<f64> {
+    let mut g = hessian_apply(hessian, x);
+    for (gi, d) in g.iter_mut().zip(linear) {
+        *gi -= d;
+    }
+    g
+}
+
 /// A bound-constrained QP (borrowed data). `lower` may hold `-inf`, `upper` `+inf`.
 pub(crate) struct BoxQp<'a> {
     pub hessian: MatRef<'a, f64>,
@@ -235,24 +258,12 @@ impl BoxQp<'_> {
 
     /// `H x`.
     fn apply(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; x.len()];
-        for (j, &xj) in x.iter().enumerate() {
-            if xj != 0.0 {
-                for (yi, h) in y.iter_mut().zip(self.hessian.col(j).iter()) {
-                    *yi += h * xj;
-                }
-            }
-        }
-        y
+        hessian_apply(self.hessian, x)
     }
 
     /// `g = H x - d`.
     fn gradient(&self, x: &[f64]) -> Vec<f64> {
-        let mut g = self.apply(x);
-        for (gi, d) in g.iter_mut().zip(self.linear) {
-            *gi -= d;
-        }
-        g
+        quadratic_gradient(self.hessian, self.linear, x)
     }
 
     /// `|x - P(x - g / diag(H))|_inf`, a force.

@@ -30,7 +30,7 @@
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef, Side};
 
-use super::box_qp::BoxQpOutcome;
+use super::box_qp::{hessian_apply, quadratic_gradient, BoxQpOutcome};
 
 /// A disk constraint `|(x_first, x_first+1)| <= radius`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,24 +94,12 @@ impl DiskQp<'_> {
 
     /// `H x`.
     fn apply(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; x.len()];
-        for (j, &xj) in x.iter().enumerate() {
-            if xj != 0.0 {
-                for (yi, h) in y.iter_mut().zip(self.hessian.col(j).iter()) {
-                    *yi += h * xj;
-                }
-            }
-        }
-        y
+        hessian_apply(self.hessian, x)
     }
 
     /// `g = H x - d`.
     fn gradient(&self, x: &[f64]) -> Vec<f64> {
-        let mut g = self.apply(x);
-        for (gi, d) in g.iter_mut().zip(self.linear) {
-            *gi -= d;
-        }
-        g
+        quadratic_gradient(self.hessian, self.linear, x)
     }
 
     /// `|x - P(x - D g)|_inf`, a force.

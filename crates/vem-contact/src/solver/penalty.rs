@@ -502,6 +502,36 @@ fn energy_change(p: &Penalised, state: &State, d: &[f64]) -> f64 {
     change
 }
 
+/// What the line searches along a direction `d` need: `d'Kd`, `(Ku - f)'d` (the elastic part
+/// of `phi'(0)`), and the rows `B_N d` and `B_T d`.
+struct Directional {
+    d_k_d: f64,
+    a0: f64,
+    e: Vec<f64>,
+    w: Vec<f64>,
+}
+
+impl Directional {
+    fn along(p: &Penalised, state: &State, d: &[f64]) -> Self {
+        let sys = p.system;
+        let kd = sys.stiffness_apply(d);
+        Self {
+            d_k_d: d.iter().zip(&kd).map(|(a, b)| a * b).sum(),
+            a0: state
+                .ku
+                .iter()
+                .zip(sys.load())
+                .zip(d)
+                .map(|((k, f), x)| (k - f) * x)
+                .sum(),
+            e: sys.normal_rows().apply(d),
+            w: sys
+                .friction()
+                .map_or_else(Vec::new, |f| f.tangential_rows().apply(d)),
+        }
+    }
+}
+
 /// Exact minimisation of the convex piecewise quadratic `phi(t) = Pi(u + t d)` over `t >= 0`:
 /// `phi'` is piecewise linear and non-decreasing; its zero is located among the breakpoints by
 /// bisection, then interpolated linearly on its piece.
@@ -509,20 +539,7 @@ fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
     if p.t > 1 {
         return disk_line_search(p, state, d, d_diag_d);
     }
-    let sys = p.system;
-    let kd = sys.stiffness_apply(d);
-    let d_k_d: f64 = d.iter().zip(&kd).map(|(a, b)| a * b).sum();
-    let a0: f64 = state
-        .ku
-        .iter()
-        .zip(sys.load())
-        .zip(d)
-        .map(|((k, f), x)| (k - f) * x)
-        .sum();
-    let e = sys.normal_rows().apply(d);
-    let w = sys
-        .friction()
-        .map_or_else(Vec::new, |f| f.tangential_rows().apply(d));
+    let Directional { d_k_d, a0, e, w } = Directional::along(p, state, d);
     let bounds = p.bounds();
     let dphi = |t: f64| -> f64 {
         let mut v = a0 + t * d_k_d;
@@ -599,20 +616,7 @@ fn line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
 /// bisection; beyond the bracket's growth the curvature of the contact and elastic terms
 /// decides whether the energy is unbounded along `d`.
 fn disk_line_search(p: &Penalised, state: &State, d: &[f64], d_diag_d: f64) -> Step {
-    let sys = p.system;
-    let kd = sys.stiffness_apply(d);
-    let d_k_d: f64 = d.iter().zip(&kd).map(|(a, b)| a * b).sum();
-    let a0: f64 = state
-        .ku
-        .iter()
-        .zip(sys.load())
-        .zip(d)
-        .map(|((k, f), x)| (k - f) * x)
-        .sum();
-    let e = sys.normal_rows().apply(d);
-    let w = sys
-        .friction()
-        .map_or_else(Vec::new, |f| f.tangential_rows().apply(d));
+    let Directional { d_k_d, a0, e, w } = Directional::along(p, state, d);
     let bounds = p.bounds();
     let dphi = |t: f64| -> f64 {
         let mut v = a0 + t * d_k_d;
