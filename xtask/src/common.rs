@@ -5,6 +5,7 @@ use std::process::Command;
 use std::time::Duration;
 
 use plotters::prelude::*;
+use vem_verify::report::log_ticks;
 
 /// `VmHWM` of this process in bytes (0 where /proc is not available).
 pub fn peak_memory() -> u64 {
@@ -137,12 +138,20 @@ pub fn loglog_svg(
             .margin(15)
             .x_label_area_size(40)
             .y_label_area_size(55)
-            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())
+            .build_cartesian_2d(
+                (x_lo..x_hi)
+                    .log_scale()
+                    .with_key_points(log_ticks(x_lo..x_hi)),
+                (y_lo..y_hi)
+                    .log_scale()
+                    .with_key_points(log_ticks(y_lo..y_hi)),
+            )
             .map_err(|e| draw(&e))?;
         chart
             .configure_mesh()
             .x_desc(plot.x_desc)
             .y_desc(plot.y_desc)
+            .max_light_lines(0)
             .x_label_formatter(&plot.x_format)
             .y_label_formatter(&plot.y_format)
             .draw()
@@ -171,8 +180,8 @@ pub fn loglog_svg(
                     PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3))
                 });
             chart
-                .draw_series(pts.into_iter().map(|(x, y)| {
-                    Rectangle::new([(x / 1.04, y / 1.04), (x * 1.04, y * 1.04)], BLACK.filled())
+                .draw_series(pts.into_iter().map(|p| {
+                    EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], BLACK.filled())
                 }))
                 .map_err(|e| draw(&e))?;
         }

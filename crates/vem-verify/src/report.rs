@@ -283,7 +283,7 @@ pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
                 y_range
                     .clone()
                     .log_scale()
-                    .with_key_points(error_ticks(y_range)),
+                    .with_key_points(log_ticks(y_range)),
             )
             .map_err(|e| draw(&e))?;
         chart
@@ -357,14 +357,20 @@ fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
 }
 
 #[cfg(feature = "plots")]
-/// Ticks of the error axis: the powers of ten in `range`, and 2 and 5 times them when the
-/// range spans fewer than three decades.
-fn error_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
+/// Ticks of a logarithmic axis: the powers of ten in `range`, and 2 and 5 times them when the
+/// range touches fewer than four decades.
+///
+/// ```
+/// assert_eq!(vem_verify::report::log_ticks(0.03..0.7), vec![0.05, 0.1, 0.2, 0.5]);
+/// assert_eq!(vem_verify::report::log_ticks(1e-6..2e-1), vec![1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]);
+/// assert_eq!(vem_verify::report::log_ticks(9e-3..0.3).len(), 5); // 0.01, 0.02, 0.05, 0.1, 0.2
+/// ```
+pub fn log_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
     let (low, high) = (
         range.start.log10().floor() as i32,
         range.end.log10().ceil() as i32,
     );
-    let mantissas: &[f64] = if high - low < 3 {
+    let mantissas: &[f64] = if high - low < 4 {
         &[1.0, 2.0, 5.0]
     } else {
         &[1.0]
