@@ -24,7 +24,8 @@ use vem_contact::{
 use vem_verify::report::{write_json, write_text};
 use vem_verify::study::fitted_rate;
 use vem_verify::tradeoff::{
-    pressure_errors, SolverSetting, TradeoffGroup, E2C_POISSON_RATIO, FULL_SETTINGS, QUICK_SETTINGS,
+    pressure_errors, ContactErrors, SolidGroup, SolverSetting, TradeoffGroup, E2C_POISSON_RATIO,
+    FULL_SETTINGS, QUICK_SETTINGS,
 };
 
 use crate::bench::{self, Case};
@@ -51,6 +52,16 @@ pub enum Problem {
     /// incompressibility (what the locking-free choice costs).
     #[value(name = "E2c")]
     E2c,
+    /// M1-3D: frictionless two-body contact in space (contact inside a disc).
+    #[value(name = "M1-3D")]
+    M1Space,
+    /// E1-3D: elasticity baseline in space (one body).
+    #[value(name = "E1-3D")]
+    E1Space,
+    /// E2-3D at nu = 0.4999: the divergence-free solution in space close to
+    /// incompressibility.
+    #[value(name = "E2-3D")]
+    E2Space,
 }
 
 impl Problem {
@@ -62,11 +73,14 @@ impl Problem {
             Self::Coulomb => "coulomb",
             Self::E1 => "E1",
             Self::E2c => "E2c",
+            Self::M1Space => "M1-3D",
+            Self::E1Space => "E1-3D",
+            Self::E2Space => "E2-3D",
         }
     }
 
     fn manufactured(self) -> bool {
-        matches!(self, Self::M1 | Self::M2 | Self::E1 | Self::E2c)
+        !matches!(self, Self::Hertz | Self::Coulomb)
     }
 
     /// The error plotted against time.
@@ -83,6 +97,10 @@ impl Problem {
 /// element, and the locking-free element with every edge's midpoint inserted (the default
 /// that a scene chooses on triangles close to incompressibility).
 const E2C_ELEMENTS: [&str; 3] = ["vem1", "vem1-bbar", "vem1-bbar+midpoints"];
+
+/// The non-matching pairings of M1-3D (the lower box's size the upper's times the factor), as
+/// in the convergence study.
+const SPACE_PAIRINGS: [&str; 2] = ["hexahedra/tetrahedra*0.75", "voronoi/hexahedra*0.875"];
 
 /// Options of `cargo xtask tradeoff`.
 #[derive(Debug, Args)]
@@ -273,6 +291,14 @@ fn plan(args: &TradeoffArgs) -> Plan {
         for element in E2C_ELEMENTS {
             add(Problem::E2c, "triangles/triangles", element, &[8, 16], &one);
         }
+        add(
+            Problem::M1Space,
+            SPACE_PAIRINGS[0],
+            "vem1",
+            &[4, 6],
+            &settings,
+        );
+        add(Problem::E1Space, "hexahedra", "vem1", &[4, 8], &one);
     } else {
         let sizes = [4, 8, 16, 32, 64, 128];
         for problem in [Problem::M1, Problem::M2] {
@@ -314,6 +340,29 @@ fn plan(args: &TradeoffArgs) -> Plan {
                 &settings,
             );
         }
+        // In space: contact with every setting, elasticity on two families, and what the
+        // locking-free choice costs on tetrahedra.
+        for pairing in SPACE_PAIRINGS {
+            add(
+                Problem::M1Space,
+                pairing,
+                "vem1",
+                &[4, 6, 8, 12, 16, 20],
+                &settings,
+            );
+        }
+        for family in ["hexahedra", "voronoi"] {
+            add(Problem::E1Space, family, "vem1", &[4, 8, 12, 16, 24], &one);
+        }
+        for element in E2C_ELEMENTS {
+            add(
+                Problem::E2Space,
+                "tetrahedra",
+                element,
+                &[4, 6, 8, 12],
+                &one,
+            );
+        }
     }
     // The references first.
     let reference_n = if args.quick { 32 } else { 96 };
@@ -338,8 +387,10 @@ fn plan(args: &TradeoffArgs) -> Plan {
 
 /// The discretisation of a group, with what the errors need.
 struct Built {
-    /// The manufactured problems: the library's measurement group.
+    /// The manufactured problems in the plane: the library's measurement group.
     group: Option<TradeoffGroup>,
+    /// The manufactured problems in space.
+    solid: Option<SolidGroup>,
     /// Hertz and Coulomb: their discretisation.
     discretisation: Option<ContactDiscretisation>,
     h: f64,
@@ -375,6 +426,7 @@ fn build(args: &TradeoffOneArgs) -> Result<Built, Box<dyn std::error::Error>> {
                 .fold(0.0, f64::max);
             Ok(Built {
                 group: None,
+                solid: None,
                 discretisation: Some(discretisation),
                 h,
                 mesh_generation,
@@ -387,6 +439,18 @@ fn build(args: &TradeoffOneArgs) -> Result<Built, Box<dyn std::error::Error>> {
                 h: group.h,
                 mesh_generation: group.mesh_generation,
                 group: Some(group),
+                solid: None,
+                discretisation: None,
+            })
+        }
+        Problem::M1Space | Problem::E1Space | Problem::E2Space => {
+            let solid =
+                SolidGroup::build(args.problem.name(), &args.pairing, &args.element, args.n)?;
+            Ok(Built {
+                h: solid.h,
+                mesh_generation: solid.mesh_generation,
+                group: None,
+                solid: Some(solid),
                 discretisation: None,
             })
         }
@@ -440,20 +504,14 @@ fn contact_errors(
     reference: Option<&[ReferenceNode]>,
 ) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(group) = &built.group {
-        let errors = group.errors(result)?;
-        row.pressure_l2 = errors.pressure_l2;
-        row.pressure_max = errors.pressure_max;
-        row.resultant = errors.resultant;
-        row.misclassified = errors.misclassified;
-        row.e_grad = Some(errors.e_grad);
-        row.e_0 = Some(errors.e_0);
-        row.e_a = Some(errors.e_a);
+        fill_errors(row, &group.errors(result)?);
         return Ok(());
     }
     // Hertz and Coulomb.
     let load = result.normal_resultant();
     if args.problem == Problem::Hertz {
-        let (l2, max) = pressure_errors(&result, hertz_pressure(load));
+        let hertz = hertz_pressure(load);
+        let (l2, max) = pressure_errors(&result, |p| hertz(p.x));
         row.pressure_l2 = Some(l2);
         row.pressure_max = Some(max);
     }
@@ -470,7 +528,7 @@ fn contact_errors(
         write_json(path, &nodes)?;
     }
     if let Some(reference) = reference.filter(|r| !r.is_empty()) {
-        let (l2, max) = pressure_errors(&result, |x| interpolate(reference, x));
+        let (l2, max) = pressure_errors(&result, |p| interpolate(reference, p.x));
         row.reference_pressure_l2 = Some(l2);
         row.reference_pressure_max = Some(max);
         let reference_load: f64 = reference
@@ -531,7 +589,9 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
         mesh_generation: built.mesh_generation,
         ..Row::default()
     };
-    let mut stdout = std::io::stdout().lock();
+    if let Some(solid) = &built.solid {
+        return run_solid(solid, &settings, args, base);
+    }
     let Some(discretisation) = built.discretisation() else {
         // Elasticity: one Cholesky solve per body.
         let group = built
@@ -561,9 +621,71 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
         row.e_a = Some(errors.e_a);
         row.status = "Solved".to_string();
         row.peak_memory = peak_memory();
-        writeln!(stdout, "{}", serde_json::to_string(&row)?)?;
+        println!("{}", serde_json::to_string(&row)?);
         return Ok(true);
     };
+    solve_settings(discretisation, &settings, args, &base, |row, result| {
+        contact_errors(row, args, &built, result, reference.as_deref())
+    })
+}
+
+/// The errors of a manufactured case in a row.
+fn fill_errors(row: &mut Row, errors: &ContactErrors) {
+    row.pressure_l2 = errors.pressure_l2;
+    row.pressure_max = errors.pressure_max;
+    row.resultant = errors.resultant;
+    row.misclassified = errors.misclassified;
+    row.e_grad = Some(errors.e_grad);
+    row.e_0 = Some(errors.e_0);
+    row.e_a = Some(errors.e_a);
+}
+
+/// A group in space: every setting on the contact case's discretisation, or one Cholesky
+/// solve of an elasticity case.
+fn run_solid(
+    solid: &SolidGroup,
+    settings: &[SolverSetting],
+    args: &TradeoffOneArgs,
+    base: Row,
+) -> Result<bool, Box<dyn std::error::Error>> {
+    if let Some(discretisation) = solid.discretisation() {
+        return solve_settings(discretisation, settings, args, &base, |row, result| {
+            fill_errors(row, &solid.errors(result)?);
+            Ok(())
+        });
+    }
+    let cpu = cpu_seconds();
+    let solved = solid.solve_elasticity()?;
+    let mut row = base;
+    row.solve_cpu = cpu_seconds() - cpu;
+    row.setting = "cholesky".to_string();
+    row.solver = "cholesky".to_string();
+    row.discretisation = solved.assembly;
+    row.solve_wall = solved.solve;
+    row.unknowns = solved.unknowns;
+    // One assembly, one sparse Cholesky (analysis and factorisation), one pair of triangular
+    // solves.
+    row.work.assemblies = 1;
+    row.work.symbolic_analyses = 1;
+    row.work.numeric_factorisations = 1;
+    row.work.triangular_solves = 1;
+    fill_errors(&mut row, &solved.errors);
+    row.status = "Solved".to_string();
+    row.peak_memory = peak_memory();
+    println!("{}", serde_json::to_string(&row)?);
+    Ok(true)
+}
+
+/// Solves `discretisation` with every setting (one unmeasured solve first), one JSON line per
+/// setting, with the errors `errors` fills in.
+fn solve_settings<const D: usize>(
+    discretisation: &ContactDiscretisation<D>,
+    settings: &[SolverSetting],
+    args: &TradeoffOneArgs,
+    base: &Row,
+    mut errors: impl FnMut(&mut Row, ContactResult<D>) -> Result<(), Box<dyn std::error::Error>>,
+) -> Result<bool, Box<dyn std::error::Error>> {
+    let mut stdout = std::io::stdout().lock();
     let build_work = discretisation.work();
     let registry = SolverRegistry::builtin();
     // One unmeasured solve first: otherwise the first timed setting alone pays the process's
@@ -574,7 +696,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
         &reference_preset.solver_options(),
     )?;
     discretisation.solve(warm_up.as_mut()).ok();
-    for setting in &settings {
+    for setting in settings {
         let mut row = Row {
             setting: setting.label.clone(),
             solver: setting.solver.clone(),
@@ -603,7 +725,7 @@ pub fn run_one(args: &TradeoffOneArgs) -> Result<bool, Box<dyn std::error::Error
                 row.fixed_point_steps = result.fixed_point.as_ref().map_or(0, |fp| fp.steps);
                 row.status = format!("{:?}", result.report.status);
                 let start = Instant::now();
-                contact_errors(&mut row, args, &built, result, reference.as_deref())?;
+                errors(&mut row, result)?;
                 row.errors_time = seconds(start.elapsed());
             }
             Err(error) => {
@@ -984,7 +1106,8 @@ fn report(
     ));
     out.push_str(INTRO);
     out.push_str(&findings(rows));
-    out.push_str(&locking_free_cost(rows));
+    out.push_str(&locking_free_cost(rows, Problem::E2c));
+    out.push_str(&locking_free_cost(rows, Problem::E2Space));
     // Presets.
     out.push_str("\n## Accuracy presets\n\n");
     out.push_str(
@@ -1282,7 +1405,8 @@ fn findings(rows: &[Row]) -> String {
     // Who is on the fronts.
     let solvers = ["condensed", "exact", "penalty", "active-set"];
     let mut front_counts = vec![(0usize, 0usize); solvers.len()];
-    for key in keys.iter().filter(|k| k.0 != "E1") {
+    let elasticity = [Problem::E1, Problem::E1Space, Problem::E2Space].map(Problem::name);
+    for key in keys.iter().filter(|k| !elasticity.contains(&k.0.as_str())) {
         let group = of_key(rows, key);
         let front = pareto(&group);
         for (k, solver) in solvers.iter().enumerate() {
@@ -1378,25 +1502,40 @@ fn findings(rows: &[Row]) -> String {
     out
 }
 
-/// The near-incompressible group (E2c at nu = 0.4999 on non-matching triangles): error and
-/// cost of each element at each size, and what the locking-free default costs against the
-/// earlier default at the same error.
-fn locking_free_cost(rows: &[Row]) -> String {
+/// A near-incompressible group (E2c at nu = 0.4999 on non-matching triangles, or E2-3D on
+/// tetrahedra): error and cost of each element at each size, and what the locking-free default
+/// costs against the earlier default.
+fn locking_free_cost(rows: &[Row], problem: Problem) -> String {
     let group: Vec<&Row> = rows
         .iter()
-        .filter(|r| r.problem == Problem::E2c.name() && r.role != "reference")
+        .filter(|r| r.problem == problem.name() && r.role != "reference")
         .collect();
     if group.is_empty() {
         return String::new();
     }
-    let mut out = format!(
-        "\n## What the locking-free choice costs\n\nE2c (the divergence-free two-body \
-         contact solution) at nu = {E2C_POISSON_RATIO} on non-matching triangles, the reference \
-         preset: `vem1` (the earlier default), `vem1-bbar` on the plain triangles, and \
-         `vem1-bbar+midpoints` (every edge's midpoint inserted: the default a scene chooses on \
-         triangles for nu > 0.45). Time: mesh generation, discretisation and solve.\n\n\
-         | n | element | unknowns | E_grad / \\|u\\|_1 | E_0 / \\|u\\|_0 | time (s) | peak memory (MiB) |\n\
-         |---|---|---|---|---|---|---|\n"
+    let mut out = if problem == Problem::E2c {
+        format!(
+            "\n## What the locking-free choice costs\n\nE2c (the divergence-free two-body \
+             contact solution) at nu = {E2C_POISSON_RATIO} on non-matching triangles, the \
+             reference preset: `vem1` (the earlier default), `vem1-bbar` on the plain \
+             triangles, and `vem1-bbar+midpoints` (every edge's midpoint inserted: the default a \
+             scene chooses on triangles for nu > 0.45). Time: mesh generation, discretisation \
+             and solve.\n\n"
+        )
+    } else {
+        format!(
+            "\n## What the locking-free choice costs in space\n\nE2-3D (the divergence-free \
+             solution on the unit cube, clamped all round) at nu = {E2C_POISSON_RATIO} on \
+             tetrahedra (Kuhn split of cubes), one Cholesky solve: `vem1`, `vem1-bbar` on the \
+             plain tetrahedra (the stabilisation vanishes on a tetrahedron: both are the P1 \
+             element and lock), and `vem1-bbar+midpoints` (every edge's midpoint inserted into \
+             every face around the edge: the default a scene chooses on tetrahedra for \
+             nu > 0.45). Time: mesh generation, assembly and solve.\n\n"
+        )
+    };
+    out.push_str(
+        "| n | element | unknowns | E_grad / \\|u\\|_1 | E_0 / \\|u\\|_0 | time (s) | peak memory (MiB) |\n\
+         |---|---|---|---|---|---|---|\n",
     );
     let mut sizes: Vec<usize> = group.iter().map(|r| r.n).collect();
     sizes.sort_unstable();
@@ -1429,12 +1568,19 @@ fn locking_free_cost(rows: &[Row]) -> String {
             (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
             _ => "—".to_string(),
         };
+        let remark = if problem == Problem::E2c {
+            "On these triangles `vem1` locks only mildly (docs/extremes.md: E_grad x1.24 from \
+             nu = 0.3 to 0.4999), so the midpoints buy little here; where locking is strong - \
+             Hertz on Gmsh triangles, where `vem1` misses the peak pressure by 60 % at \
+             nu = 0.499 (docs/elements.md) - they are what makes the answer right."
+        } else {
+            "On plain tetrahedra every element locks (an error near 100 % at every size), so \
+             the midpoints are what makes an answer at all; for the same unknowns a hexahedral \
+             or Voronoi mesh with `vem1-bbar` needs no midpoints (docs/elements.md)."
+        };
         out.push_str(&format!(
             "\nAt n = {n}, `vem1-bbar+midpoints` against `vem1`: E_grad x{}, E_0 x{}, unknowns \
-             x{:.1}, time x{:.1}. On these triangles `vem1` locks only mildly (docs/extremes.md: \
-             E_grad x1.24 from nu = 0.3 to 0.4999), so the midpoints buy little here; where \
-             locking is strong - Hertz on Gmsh triangles, where `vem1` misses the peak pressure \
-             by 60 % at nu = 0.499 (docs/elements.md) - they are what makes the answer right.\n",
+             x{:.1}, time x{:.1}. {remark}\n",
             ratio(default.e_grad, earlier.e_grad),
             ratio(default.e_0, earlier.e_0),
             default.unknowns as f64 / earlier.unknowns.max(1) as f64,
@@ -1459,7 +1605,11 @@ F = 0.3, compared with a fine reference; E1: the elasticity baseline (one clampe
 Cholesky solve). The stabilisations (`vem1`: dofi-dofi with trace(C), `vem1-shear`, \
 `vem1-drecipe`, `vem1-bbar`) on M1. E2c: the divergence-free two-body contact solution at \
 nu = 0.4999 on non-matching triangles, with `vem1`, `vem1-bbar` and `vem1-bbar+midpoints` \
-(every edge's midpoint inserted as a vertex).
+(every edge's midpoint inserted as a vertex). In space: M1-3D (frictionless contact of two \
+stacked boxes inside a disc, docs/manufactured.md section 11) on hexahedra over tetrahedra \
+(the lower box 0.75 times as fine) and Voronoi cells over hexahedra (0.875), with every \
+setting; E1-3D, the elasticity baseline on hexahedra and Voronoi cells; E2-3D at nu = 0.4999 \
+on tetrahedra with the same three elements as E2c.
 - **Settings.** The presets `draft`, `balanced`, `reference` (the condensed solver at the \
 tolerances 1e-4, 1e-8, 1e-12), the exact solver (Clarabel, default and `tol=1e-4`), the penalty solver at the factors 1e4, \
 1e6, 1e8 relative to the stiffness, the active-set solver (default and augmentation 1e-2 \

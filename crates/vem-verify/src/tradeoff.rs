@@ -31,13 +31,20 @@ use vem_contact::{
     AccuracyPreset, ContactDiscretisation, ContactResult, ContactSolver, PenaltyParameter,
     SolverRegistry,
 };
-use vem_space::{ElementRegistry, Options};
+use vem_elastic::{CholeskySolver, ElasticBody};
+use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
+use vem_mesh::PointD;
+use vem_space::{Choice, ElementRegistry, Options};
 
 use crate::diagnostics::contact_diagnostics;
-use crate::exact::{case_by_name, ExactSolution, Lame};
+use crate::exact::{case_by_name, BodyId, ExactSolution, Lame};
 use crate::norms::ErrorNorms;
 use crate::problem::{DiscreteProblem, DiscreteSolution, InterfaceOutcome, ProblemSettings};
 use crate::study::{MeshPairing, Study};
+use crate::three_d::{
+    body_errors_3d, disc_contact_problem, solid_body, solid_case_by_name, DiscContact,
+    ExactSolution3d, SOLID_SEED,
+};
 use crate::VerifyError;
 
 /// The settings of the full study.
@@ -275,7 +282,7 @@ impl TradeoffGroup {
             case: exact.name().to_string(),
             reason: "no contact".to_string(),
         })?;
-        let (l2, max) = pressure_errors(&result, |x| -contact.interface_values(x).sigma_nu);
+        let (l2, max) = pressure_errors(&result, |p| -contact.interface_values(p.x).sigma_nu);
         let diagnostics = contact_diagnostics(contact, &result.nodes);
         let scale = diagnostics.normal_resultant_exact.abs();
         let resultant = if scale > 0.0 {
@@ -325,12 +332,15 @@ impl TradeoffGroup {
     }
 }
 
-/// Discrete L2 (tributary lengths) and max errors of the nodal pressure against `exact(x)`,
-/// relative to the exact pressure's norms (absolute when those are zero).
-pub fn pressure_errors(result: &ContactResult, exact: impl Fn(f64) -> f64) -> (f64, f64) {
+/// Discrete L2 (tributary measures) and max errors of the nodal pressure against
+/// `exact(position)`, relative to the exact pressure's norms (absolute when those are zero).
+pub fn pressure_errors<const D: usize>(
+    result: &ContactResult<D>,
+    exact: impl Fn(&PointD<D>) -> f64,
+) -> (f64, f64) {
     let (mut err2, mut norm2, mut err_max, mut norm_max) = (0.0, 0.0, 0.0_f64, 0.0_f64);
     for node in &result.nodes {
-        let p = exact(node.position.x);
+        let p = exact(&node.position);
         err2 += node.tributary_measure * (node.pressure - p).powi(2);
         norm2 += node.tributary_measure * p * p;
         err_max = err_max.max((node.pressure - p).abs());
@@ -341,4 +351,287 @@ pub fn pressure_errors(result: &ContactResult, exact: impl Fn(f64) -> f64) -> (f
         relative(err2.sqrt(), norm2.sqrt()),
         relative(err_max, norm_max),
     )
+}
+
+/// Poisson's ratio of the near-incompressible case `"E2-3D"` of [`SolidGroup::build`] (with
+/// `mu = 1`), as in the plane.
+pub const E2_3D_POISSON_RATIO: f64 = E2C_POISSON_RATIO;
+
+/// One measurement group of a manufactured case in space, built once (meshes, bodies; for the
+/// contact case the surface overlay, assembly and constraint rows), to be solved with every
+/// setting: the counterpart of [`TradeoffGroup`] on polyhedral meshes.
+///
+/// ```
+/// use vem_verify::tradeoff::{SolidGroup, SolverSetting};
+/// let group = SolidGroup::build("M1-3D", "hexahedra/tetrahedra*0.75", "vem1", 4)?;
+/// let discretisation = group.discretisation().expect("M1-3D is a contact case");
+/// let mut e_grad = Vec::new();
+/// for label in ["reference", "exact"] {
+///     let setting: SolverSetting = label.parse()?;
+///     let result = discretisation.solve(setting.make()?.as_mut()).expect("solved");
+///     e_grad.push(group.errors(result)?.e_grad);
+/// }
+/// // One discretisation, two independent solvers: the same error.
+/// assert!((e_grad[1] - e_grad[0]).abs() < 1e-6 * e_grad[0], "{e_grad:?}");
+/// # Ok::<(), vem_verify::VerifyError>(())
+/// ```
+pub struct SolidGroup {
+    case: SolidCase,
+    /// The mesh size (largest cell diameter over the bodies).
+    pub h: f64,
+    /// Seconds spent generating the meshes and building the bodies.
+    pub mesh_generation: f64,
+}
+
+/// What a [`SolidGroup`] solves.
+enum SolidCase {
+    /// M1-3D: two bodies in frictionless contact, discretised once.
+    Contact {
+        exact: DiscContact,
+        discretisation: Box<ContactDiscretisation<3>>,
+    },
+    /// One body of an elasticity case.
+    Elasticity {
+        exact: Arc<dyn ExactSolution3d>,
+        body: Box<ElasticBody<3>>,
+    },
+}
+
+/// The solve of an elasticity group in space ([`SolidGroup::solve_elasticity`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidElasticSolve {
+    /// The errors against the exact solution (the contact fields `None`).
+    pub errors: ContactErrors,
+    /// Unknowns of the reduced system.
+    pub unknowns: usize,
+    /// Seconds of the assembly.
+    pub assembly: f64,
+    /// Seconds of the Cholesky solve.
+    pub solve: f64,
+}
+
+impl std::fmt::Debug for SolidGroup {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let case = match &self.case {
+            SolidCase::Contact { .. } => DiscContact::NAME.to_string(),
+            SolidCase::Elasticity { exact, .. } => exact.name().to_string(),
+        };
+        f.debug_struct("SolidGroup")
+            .field("case", &case)
+            .field("h", &self.h)
+            .finish()
+    }
+}
+
+impl SolidGroup {
+    /// The group of the case `case` in space: `"M1-3D"` (two bodies in contact on `pairing`
+    /// `"upper/lower*r"`: the families of the upper and lower box, the lower at size
+    /// `round(r n)`, `r = 1` when omitted), `"E1-3D"`, or `"E2-3D"` at nu =
+    /// [`E2_3D_POISSON_RATIO`] (one body on the family `pairing`), at size `n` with the element
+    /// `element` (a name of the element registry on polyhedra, with [`MIDPOINTS`] appended for
+    /// the meshes with every edge's midpoint inserted), the meshes of the studies' seed.
+    ///
+    /// # Errors
+    /// An unknown case, family or element; a size below one; a mesh, body or discretisation
+    /// that fails.
+    pub fn build(case: &str, pairing: &str, element: &str, n: usize) -> Result<Self, VerifyError> {
+        let start = Instant::now();
+        let invalid = |reason: String| VerifyError::InvalidSetting { reason };
+        let (element, midpoints) = match element.strip_suffix(MIDPOINTS) {
+            Some(name) => (name, true),
+            None => (element, false),
+        };
+        let element = ElementRegistry::builtin()
+            .make_polyhedral_choice(&Choice::named(element))
+            .map_err(|e| invalid(e.to_string()))?;
+        let generate = |family: &str, box_of: Cuboid, n: usize, body: usize| {
+            let family: PolyhedralFamily = family
+                .parse()
+                .map_err(|e: vem_mesh::MeshError| invalid(format!("pairing '{pairing}': {e}")))?;
+            let mesh =
+                family
+                    .generate(&box_of, n, SOLID_SEED)
+                    .map_err(|source| VerifyError::Mesh {
+                        case: case.to_string(),
+                        body,
+                        family: family.name().to_string(),
+                        n,
+                        source: Box::new(source),
+                    })?;
+            if midpoints {
+                mesh.with_edge_midpoints()
+                    .map_err(|e| invalid(format!("edge midpoints: {e}")))
+            } else {
+                Ok(mesh)
+            }
+        };
+        if n == 0 {
+            return Err(invalid(format!(
+                "case '{case}': the size n must be at least 1"
+            )));
+        }
+        let (case, h) = if case == DiscContact::NAME {
+            let (families, ratio) = match pairing.split_once('*') {
+                Some((families, ratio)) => {
+                    let ratio: f64 = ratio.parse().map_err(|_| {
+                        invalid(format!("pairing '{pairing}': '{ratio}' is not a number"))
+                    })?;
+                    (families, ratio)
+                }
+                None => (pairing, 1.0),
+            };
+            let (upper, lower) = families.split_once('/').ok_or_else(|| {
+                invalid(format!(
+                    "pairing '{pairing}': give the two families as upper/lower[*ratio]"
+                ))
+            })?;
+            let lower_n = (ratio * n as f64).round();
+            if !(1.0..=1e4).contains(&lower_n) {
+                return Err(invalid(format!(
+                    "pairing '{pairing}': the lower size round({ratio} x {n}) must be 1 to 10^4"
+                )));
+            }
+            let upper = generate(upper, DiscContact::domain(BodyId::One), n, 1)?;
+            let lower = generate(lower, DiscContact::domain(BodyId::Two), lower_n as usize, 2)?;
+            let exact = DiscContact::new(Lame::default());
+            let discretisation = disc_contact_problem(&exact, upper, lower, element)?
+                .into_discretisation()
+                .map_err(|e| VerifyError::Contact {
+                    case: DiscContact::NAME.to_string(),
+                    source: Box::new(e),
+                })?;
+            let h = discretisation
+                .bodies()
+                .iter()
+                .map(|b| b.mesh().mesh_size())
+                .fold(0.0, f64::max);
+            let discretisation = Box::new(discretisation);
+            (
+                SolidCase::Contact {
+                    exact,
+                    discretisation,
+                },
+                h,
+            )
+        } else {
+            let lame = if case == "E2-3D" {
+                let nu = E2_3D_POISSON_RATIO;
+                Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?
+            } else {
+                Lame::default()
+            };
+            let exact: Arc<dyn ExactSolution3d> = Arc::from(
+                solid_case_by_name(case, lame)
+                    .filter(|e| e.contact_sides().is_empty())
+                    .ok_or_else(|| {
+                        invalid(format!(
+                            "unknown case in space '{case}': M1-3D, E1-3D, E2-3D, PT0-3D"
+                        ))
+                    })?,
+            );
+            let mesh = generate(pairing, exact.domain(), n, 1)?;
+            let h = mesh.mesh_size();
+            let body = Box::new(solid_body(Arc::clone(&exact), mesh, element)?);
+            (SolidCase::Elasticity { exact, body }, h)
+        };
+        Ok(Self {
+            case,
+            h,
+            mesh_generation: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The contact case's discretisation, to be solved with each setting (`None` for an
+    /// elasticity case: [`SolidGroup::solve_elasticity`] solves it).
+    pub fn discretisation(&self) -> Option<&ContactDiscretisation<3>> {
+        match &self.case {
+            SolidCase::Contact { discretisation, .. } => Some(discretisation),
+            SolidCase::Elasticity { .. } => None,
+        }
+    }
+
+    /// The errors of a contact result of this group's discretisation against M1-3D: the
+    /// energy, gradient and L2 errors over both bodies, the pressure's, the normal
+    /// resultant's, and the nodes whose status contradicts the exact contact disc farther than
+    /// the mesh size `h` from its circle.
+    ///
+    /// # Errors
+    /// An elasticity group, a failed error measure.
+    pub fn errors(&self, result: ContactResult<3>) -> Result<ContactErrors, VerifyError> {
+        let SolidCase::Contact { exact, .. } = &self.case else {
+            return Err(VerifyError::Case {
+                case: format!("{self:?}"),
+                reason: "no contact".to_string(),
+            });
+        };
+        let (l2, max) = pressure_errors(&result, |p| DiscContact::pressure(p.x, p.y));
+        let exact_resultant = DiscContact::normal_resultant();
+        let resultant = (result.normal_resultant() - exact_resultant).abs() / exact_resultant;
+        let misclassified = result
+            .nodes
+            .iter()
+            .filter(|n| {
+                let r = DiscContact::radius(n.position.x, n.position.y);
+                let active = n.status.is_active();
+                (active && r > DiscContact::CONTACT_RADIUS + self.h)
+                    || (!active && r < DiscContact::CONTACT_RADIUS - self.h)
+            })
+            .count();
+        let mut errors = [ErrorNorms::default(); 2];
+        for (k, id) in BodyId::BOTH.into_iter().enumerate() {
+            let solved = &result.bodies[k];
+            errors[k] = body_errors_3d(
+                &exact.body(id),
+                &solved.body,
+                &solved.system,
+                solved.solution.displacement(),
+            )?;
+        }
+        let errors = ErrorNorms::combine(&errors);
+        Ok(ContactErrors {
+            e_grad: errors.relative_grad(),
+            e_0: errors.relative_l2(),
+            e_a: errors.relative_energy(),
+            pressure_l2: Some(l2),
+            pressure_max: Some(max),
+            resultant: Some(resultant),
+            misclassified: Some(misclassified),
+        })
+    }
+
+    /// Assembles and solves an elasticity group (sparse Cholesky) and measures its errors.
+    ///
+    /// # Errors
+    /// A contact group, a failed assembly, solve or error measure.
+    pub fn solve_elasticity(&self) -> Result<SolidElasticSolve, VerifyError> {
+        let SolidCase::Elasticity { exact, body } = &self.case else {
+            return Err(VerifyError::InvalidSetting {
+                reason: "M1-3D is a contact case: solve its discretisation".to_string(),
+            });
+        };
+        let elastic = |source| VerifyError::Elastic {
+            case: exact.name().to_string(),
+            source: Box::new(source),
+        };
+        let start = Instant::now();
+        let system = body.assemble().map_err(elastic)?;
+        let assembly = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let solution = body
+            .solve_system(&system, &mut CholeskySolver::default())
+            .map_err(elastic)?;
+        let solve = start.elapsed().as_secs_f64();
+        let errors = body_errors_3d(&**exact, body, &system, solution.displacement())?;
+        Ok(SolidElasticSolve {
+            errors: ContactErrors {
+                e_grad: errors.relative_grad(),
+                e_0: errors.relative_l2(),
+                e_a: errors.relative_energy(),
+                ..ContactErrors::default()
+            },
+            unknowns: body.dofs().n_unknowns(),
+            assembly,
+            solve,
+        })
+    }
 }
