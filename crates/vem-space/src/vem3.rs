@@ -150,7 +150,9 @@ impl PolyhedralVem {
         b
     }
 
-    /// `D`: the basis of [`PolyhedralVem::projection_coefficients`] at the vertices (3n x 12).
+    /// `D`: the basis of [`PolyhedralVem::projection_coefficients`] at the vertices (3n x 12;
+    /// the stiffness computes with its structure directly, the tests with the matrix).
+    #[cfg(test)]
     fn basis_at_vertices(geometry: &PolyhedronGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
         let mut d = DMatrix::zeros(3 * n, 12);
@@ -166,15 +168,48 @@ impl PolyhedralVem {
     }
 
     /// The local stiffness of a polyhedron whose geometry is known.
+    ///
+    /// Computed entry by entry on the structure of the matrices of the module docs (the tests
+    /// compare with their products): the consistency part from the columns of the Voigt strain
+    /// matrix `B` (`[q_x, 0, 0, 0, q_z, q_y]`, `[0, q_y, 0, q_z, 0, q_x]`,
+    /// `[0, 0, q_z, q_y, q_x, 0]` for the three values of a vertex with gradient weight `q`),
+    /// the stabilisation part from `Pi_dof = D Pi = I_3 (x) Q`, `Q[a][b] = 1/n + r_a . q_b`
+    /// (`r_a` the vertex relative to the vertex mean): every component is projected alike, so
+    /// `K_s` couples only equal components, `K_s[3a + i][3b + i] = sum_c R[c][a] s_(3c + i)
+    /// R[c][b]` with `R = I - Q`. Lower triangles computed and mirrored: both parts are exactly
+    /// symmetric.
     pub fn stiffness_of(
         &self,
         geometry: &PolyhedronGeometry,
         material: &ElasticityTensor<3>,
     ) -> Result<LocalStiffness, SpaceError> {
-        let dofs = 3 * geometry.n_vertices();
-        let b = Self::strain_matrix(geometry);
+        let n = geometry.n_vertices();
+        let dofs = 3 * n;
         let c = material.voigt_matrix();
-        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.volume());
+        let weights = geometry.gradient_weights();
+        let column = |j: usize| {
+            let q = weights[j / 3];
+            match j % 3 {
+                0 => [q.x, 0.0, 0.0, 0.0, q.z, q.y],
+                1 => [0.0, q.y, 0.0, q.z, 0.0, q.x],
+                _ => [0.0, 0.0, q.z, q.y, q.x, 0.0],
+            }
+        };
+        let volume = geometry.volume();
+        let mut consistency = DMatrix::zeros(dofs, dofs);
+        for j in 0..dofs {
+            let b = column(j);
+            let mut cb = [0.0; 6];
+            for (r, value) in cb.iter_mut().enumerate() {
+                *value = (0..6).map(|k| c[(r, k)] * b[k]).sum();
+            }
+            for i in j..dofs {
+                let a = column(i);
+                let value = volume * (0..6).map(|k| a[k] * cb[k]).sum::<f64>();
+                consistency[(i, j)] = value;
+                consistency[(j, i)] = value;
+            }
+        }
         let s = self
             .stabilisation
             .polyhedral_diagonal(geometry, material, &consistency)?;
@@ -188,31 +223,36 @@ impl PolyhedralVem {
                 ),
             });
         }
-        // (I - P)^T S (I - P) with P = D Pi: S - S P - P^T S + Pi^T (D^T S D) Pi.
-        let pi = Self::projection_coefficients(geometry);
-        let d = Self::basis_at_vertices(geometry);
-        let p = &d * &pi;
-        let mut sd = d.clone();
-        for (mut row, s_i) in sd.row_iter_mut().zip(s.iter()) {
-            row *= *s_i;
+        let mean = 1.0 / n as f64;
+        // R = I - Q, row-major n x n.
+        let mut r = vec![0.0; n * n];
+        for (k, x) in geometry.relative_vertices().iter().enumerate() {
+            for (m, q) in weights.iter().enumerate() {
+                let identity = if k == m { 1.0 } else { 0.0 };
+                r[k * n + m] = identity - (mean + x.dot(q));
+            }
         }
-        let inner = d.transpose() * sd;
-        let mut sp = p.clone();
-        for (mut row, s_i) in sp.row_iter_mut().zip(s.iter()) {
-            row *= *s_i;
-        }
-        let mut stabilisation = pi.transpose() * (inner * &pi) - &sp - sp.transpose();
-        for (i, s_i) in s.iter().enumerate() {
-            stabilisation[(i, i)] += s_i;
+        let mut stabilisation = DMatrix::zeros(dofs, dofs);
+        for component in 0..3 {
+            for b in 0..n {
+                for a in b..n {
+                    let value: f64 = (0..n)
+                        .map(|k| r[k * n + a] * s[3 * k + component] * r[k * n + b])
+                        .sum();
+                    stabilisation[(3 * a + component, 3 * b + component)] = value;
+                    stabilisation[(3 * b + component, 3 * a + component)] = value;
+                }
+            }
         }
         Ok(LocalStiffness {
             consistency,
-            stabilisation: symmetrised(stabilisation),
+            stabilisation,
         })
     }
 }
 
 /// `(m + m^T) / 2`: removes the round-off asymmetry of a product.
+#[cfg(test)]
 fn symmetrised(m: DMatrix<f64>) -> DMatrix<f64> {
     (&m + m.transpose()) * 0.5
 }
@@ -267,5 +307,74 @@ impl PolyhedralElement for PolyhedralVem {
             let (a, c) = (i / 3, i % 3);
             integral[c] / n as f64 + (0..3).map(|j| moment[(c, j)] * q[a][j]).sum::<f64>()
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit3d::{standard_materials, standard_polyhedra};
+    use crate::{BBar, DRecipe, DofiDofi};
+
+    /// `K_c = |E| B' C B` and `K_s = (I - D Pi)' S (I - D Pi)` as the matrix products of the
+    /// module docs.
+    fn by_products(
+        element: &PolyhedralVem,
+        geometry: &PolyhedronGeometry,
+        material: &ElasticityTensor<3>,
+    ) -> LocalStiffness {
+        let b = PolyhedralVem::strain_matrix(geometry);
+        let c = material.voigt_matrix();
+        let consistency = symmetrised(b.transpose() * (c * &b) * geometry.volume());
+        let dofs = 3 * geometry.n_vertices();
+        let projector = PolyhedralVem::basis_at_vertices(geometry)
+            * PolyhedralVem::projection_coefficients(geometry);
+        let complement = DMatrix::identity(dofs, dofs) - projector;
+        let s = element
+            .stabilisation()
+            .polyhedral_diagonal(geometry, material, &consistency)
+            .unwrap();
+        let mut scaled = complement.clone();
+        for (mut row, s_i) in scaled.row_iter_mut().zip(s.iter()) {
+            row *= *s_i;
+        }
+        LocalStiffness {
+            consistency,
+            stabilisation: symmetrised(complement.transpose() * scaled),
+        }
+    }
+
+    #[test]
+    fn stiffness_agrees_with_the_matrix_products() {
+        let stabilisations: [Arc<dyn PolyhedralStabilisation>; 3] = [
+            Arc::new(DofiDofi::default()),
+            Arc::new(DRecipe),
+            Arc::new(BBar),
+        ];
+        for stabilisation in stabilisations {
+            let element = PolyhedralVem::try_new(stabilisation).unwrap();
+            for test in standard_polyhedra() {
+                let geometry = PolyhedronGeometry::try_new(&test.polyhedron).unwrap();
+                for material in standard_materials() {
+                    let fast = element.stiffness_of(&geometry, &material).unwrap();
+                    let reference = by_products(&element, &geometry, &material);
+                    let scale = reference.consistency.norm();
+                    for (a, b) in [
+                        (&fast.consistency, &reference.consistency),
+                        (&fast.stabilisation, &reference.stabilisation),
+                    ] {
+                        assert_eq!(a.shape(), b.shape());
+                        assert!(
+                            (a - b).norm() <= 1e-13 * scale,
+                            "{}: {} against {}",
+                            test.name,
+                            (a - b).norm(),
+                            scale
+                        );
+                        assert_eq!(a, &a.transpose(), "{}: exactly symmetric", test.name);
+                    }
+                }
+            }
+        }
     }
 }
