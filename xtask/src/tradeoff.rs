@@ -347,7 +347,7 @@ fn plan(args: &TradeoffArgs) -> Plan {
                 Problem::M1Space,
                 pairing,
                 "vem1",
-                &[4, 6, 8, 12, 16, 20],
+                &[4, 6, 8, 12, 16],
                 &settings,
             );
         }
