@@ -302,15 +302,13 @@ impl DiskQp<'_> {
     /// The factor `kept` of an earlier step's reduced matrix (or of an earlier solve with the
     /// same `H`: the steps of a Coulomb fixed point) preconditions conjugate gradients on this
     /// step's matrix, which differs from the kept one by the turn of the sliding nodes'
-    /// tangents, their curvatures `mu / r` and the columns that joined or left the basis:
-    /// small changes once the binding set settles, so that a few iterations (`O(k^2)` each)
-    /// replace the dense factorisation (`O(k^3 / 3)`). When few columns changed
-    /// ([`UPDATE_CHANGES`]) the factor is first brought to the basis by deletions and appends
-    /// (`O(k^2)` each); otherwise it acts on the columns it shares with the basis and the
-    /// others are scaled by their diagonal. When the iterations do not converge within
-    /// [`CG_ITERATIONS`], the reduced matrix is factorised anew (dense Cholesky, shifted
-    /// slightly if it is only semidefinite; such a factor is not kept) and kept. `None` if
-    /// even the shifted matrix cannot be factorised.
+    /// tangents and their curvatures `mu / r`: small changes once the binding set settles, so
+    /// that a few iterations (`O(k^2)` each) replace the dense factorisation (`O(k^3 / 3)`).
+    /// It is first brought to the basis by deletions and appends (`O(k^2)` each) when few
+    /// columns joined or left it ([`UPDATE_CHANGES`]). When more changed, or the iterations
+    /// do not converge within [`CG_ITERATIONS`], the reduced matrix is factorised anew (dense
+    /// Cholesky, shifted slightly if it is only semidefinite; such a factor is not kept) and
+    /// kept. `None` if even the shifted matrix cannot be factorised.
     fn reduced_newton_step(
         &self,
         basis: &[Direction],
@@ -335,10 +333,7 @@ impl DiskQp<'_> {
             // Made for another problem.
             *kept = ReducedFactor::default();
         }
-        if kept.k() > 0 {
-            // Brought to this basis when few columns changed; otherwise used as it is on the
-            // columns it shares with the basis.
-            self.update(basis, curvature, kept);
+        if kept.k() > 0 && self.update(basis, curvature, kept) {
             if let Some(y) = self.preconditioned_cg(basis, curvature, &gradient, kept) {
                 return Some(y);
             }
@@ -378,8 +373,8 @@ impl DiskQp<'_> {
     }
 
     /// Brings `kept` to the columns of `basis` by deletions and appends (the appended rows
-    /// from this step's reduced matrix); `false` when too much changed (`kept` unchanged) or
-    /// a pivot fell below round-off (`kept` cleared).
+    /// from this step's reduced matrix); `false` (and `kept` cleared) when too much changed
+    /// or a pivot fell below round-off.
     fn update(&self, basis: &[Direction], curvature: &[f64], kept: &mut ReducedFactor) -> bool {
         let m = self.linear.len();
         // The column of every key of the basis.
@@ -404,6 +399,7 @@ impl DiskQp<'_> {
             .collect();
         let changes = removed.len() + added.len();
         if changes as f64 > (UPDATE_CHANGES * basis.len() as f64).max(8.0) {
+            *kept = ReducedFactor::default();
             return false;
         }
         for &p in removed.iter().rev() {
@@ -427,8 +423,7 @@ impl DiskQp<'_> {
     }
 
     /// Conjugate gradients on `(Z'HZ + C) y = -Z'g` (`gradient = Z'g`) preconditioned by the
-    /// factor `kept` on the columns it shares with `Z` and by the diagonal on the others, to a
-    /// residual of [`CG_TOLERANCE`] relative to
+    /// factor `kept` (on the same columns), to a residual of [`CG_TOLERANCE`] relative to
     /// `Z'g`; `None` without convergence in [`CG_ITERATIONS`] steps.
     fn preconditioned_cg(
         &self,
@@ -443,39 +438,15 @@ impl DiskQp<'_> {
         for (a, &key) in keys.iter().enumerate() {
             column[key] = a;
         }
-        // The columns the factor does not hold: preconditioned by their diagonal.
-        let mut in_kept = vec![false; 2 * m];
-        for &key in kept.positions().iter().filter(|&&key| key != DEAD) {
-            in_kept[key] = true;
-        }
-        let diagonal: Vec<f64> = (0..k)
-            .map(|a| {
-                if in_kept[keys[a]] {
-                    0.0
-                } else {
-                    self.reduced_entry(&basis[a], &basis[a], curvature[a])
-                }
-            })
-            .collect();
-        if diagonal.iter().any(|&d| d < 0.0 || d.is_nan()) {
-            return None;
-        }
-        // z = (L L')^-1 r on the kept columns (the kept ones the basis lost take 0: the
-        // principal block of the kept inverse, positive definite), r / diagonal on the others.
+        // z = (L L')^-1 r.
         let precondition = |r: &[f64]| -> Vec<f64> {
             let mut keyed = vec![0.0; 2 * m];
             for (&key, &ri) in keys.iter().zip(r) {
                 keyed[key] = -ri;
             }
-            let mut z: Vec<f64> = r
-                .iter()
-                .zip(&diagonal)
-                .map(|(&ri, &d)| if d > 0.0 { ri / d } else { 0.0 })
-                .collect();
+            let mut z = vec![0.0; k];
             for (key, value) in kept.solve(&keyed) {
-                if column[key] != usize::MAX {
-                    z[column[key]] = value;
-                }
+                z[column[key]] = value;
             }
             z
         };
@@ -533,7 +504,7 @@ impl DiskQp<'_> {
 /// The limit on the conjugate gradient steps of a Newton step preconditioned by a kept factor
 /// (beyond it the reduced matrix is factorised anew: the iterations cost `O(k^2)` each, a
 /// factorisation `O(k^3 / 3)`).
-const CG_ITERATIONS: usize = 12;
+const CG_ITERATIONS: usize = 8;
 /// The kept factor is brought to a new basis when at most this fraction of its columns (or 8)
 /// changed: each change costs `O(k^2)` in scalar loops, against a blocked factorisation's
 /// `O(k^3 / 3)`.
