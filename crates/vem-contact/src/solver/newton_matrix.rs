@@ -331,10 +331,10 @@ impl NewtonMatrix {
         std::mem::take(&mut self.work)
     }
 
-    /// Sets the values to `K + sum_r wn_r bn_r bn_r' + sum_r wt_r bt_r bt_r'
-    /// + sum_i c_i (bt_2i bt_2i+1' + bt_2i+1 bt_2i') + diag(shift)` (`c = tangential_coupling`,
-    /// one per node in space, or empty) and factorises. Returns `false` if the matrix is not
-    /// numerically positive definite.
+    /// Sets the values to
+    /// `K + sum_r wn_r bn_r bn_r' + sum_r wt_r bt_r bt_r' + sum_i c_i (bt_2i bt_2i+1' + bt_2i+1 bt_2i') + diag(shift)`
+    /// (`c = tangential_coupling`, one per node in space, or empty) and factorises. Returns
+    /// `false` if the matrix is not numerically positive definite.
     pub(crate) fn refill_and_factorise(
         &mut self,
         system: &ContactSystem<'_>,
