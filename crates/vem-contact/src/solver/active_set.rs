@@ -11,15 +11,17 @@
 //! (`|lambda_T + c (B_T u - s)| <= b`: `B_T u = s`) and slipping (`lambda_T = b sign(...)`, known).
 //! In space the friction bound of a node is a disk of its two tangential rows: a node sticks
 //! when `|zeta| <= b` (`zeta = lambda_T + c (B_T u - s)`, a vector of the tangent plane) and
-//! slips with the known force `b zeta / |zeta|` (the radial return); the slip directions are
-//! continuous, so the split is the same when the states are and the directions moved by less
-//! than the tolerance: a fixed point on the slip directions. It settles at once where every
-//! node sticks or every node slides the same way, but on problems with stick and slip zones it
-//! was measured not to settle within the iteration limit (the answer is then refused, not
-//! returned): in space the condensed solver (the default) and the exact solver are the ones
-//! to use (`docs/contact-3d.md`).
+//! slips with the force `b zeta / |zeta|` (the radial return). That force is linearised at the
+//! current iterate (the primal-dual active set method of Hueber, Stadler and Wohlmuth for
+//! three-dimensional friction, a semismooth Newton step): with `n = zeta / |zeta|`,
+//! `lambda_T = b n + W (B_T u - s)`, `W = w (I - n n')`, `w = c a / (1 - a)`, `a = b / |zeta|`
+//! (capped at `c`): a slipping node is a spring across its slip direction (the tangent of its
+//! circle) carrying the known force `b n`, a 2x2 block of the Newton matrix. The slip
+//! directions then converge superlinearly with the split; the iteration stops when the split
+//! is the same and the directions moved by less than the tolerance.
 //! The equality-constrained subproblem of a split is solved exactly by an augmented
-//! Lagrangian (Uzawa) iteration on the SPD matrix `K + rho B_A'B_A + rho B_S'B_S`, factorised
+//! Lagrangian (Uzawa) iteration on the SPD matrix `K + rho B_A'B_A + rho B_S'B_S` (`+ B_L'W B_L`
+//! for the slipping nodes `L` in space), factorised
 //! once per split on a symbolic analysis made once for the pattern of `K + B_N'B_N + B_T'B_T`:
 //! each inner step is one solve, and it contracts the constraint residual by about
 //! `k / (k + rho)` with `k` the interface stiffness. The iteration stops when the split does
@@ -46,9 +48,27 @@ const NAME: &str = "active set (primal-dual)";
 /// In space, the split is the same when the slip directions moved by at most this fraction
 /// of the acceptance tolerance (the certificate then decides).
 const DIRECTION_TOLERANCE: f64 = 0.1;
-/// In space, the limit on the splits is this multiple of
-/// [`ActiveSetSettings::max_iterations`]: the slip directions converge linearly.
-const DISK_ITERATIONS: usize = 4;
+/// In space, the constant `c` of the friction split (`zeta = lambda_T + c (B_T u - s)`) is
+/// this multiple of the constrained stiffness ([`PenaltyParameter::RelativeToStiffness`]), not
+/// the augmentation: a node wrongly taken as slipping then moves back by less than the
+/// bound's worth and is taken as sticking at the next split, where with `c = rho` (`1e3` times
+/// the stiffness) its slip direction was measured to flip at every split (a cycle) on the
+/// problems with stick and slip zones; with factors 1e-3, 1e-2 and 1e-1 of `rho` it settled in
+/// 6-7, 7-8 and 8 splits on one of them and cycled on the other at 1e-1.
+const TANGENTIAL_SPLIT: f64 = 1.0;
+
+/// The tangential stiffness `w` of a slipping node in space: the linearisation of its friction
+/// force `b zeta / |zeta|` (`zeta = lambda_T + c (B_T u - s)`, `|zeta| > b`) at the current
+/// iterate, with `lambda_T` eliminated, is `lambda_T = b n + w (I - n n') (B_T u - s)`,
+/// `w = c a / (1 - a)`, `a = b / |zeta|` (at the answer `w = b / |B_T u - s|`, the curvature of
+/// `b |slip|` across the slip). Capped at `c` (a node barely past its rim is held like a
+/// sticking one along the tangent of its circle).
+fn slip_stiffness(c: f64, cap: f64, bound: f64, zeta_norm: f64) -> f64 {
+    if zeta_norm <= bound || zeta_norm <= 0.0 {
+        return 0.0;
+    }
+    (c * bound / (zeta_norm - bound)).min(cap)
+}
 
 /// Settings of [`ActiveSetSolver`]; build them with [`ActiveSetSettings::builder`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,8 +121,7 @@ impl ActiveSetSettings {
         (100.0 * self.tolerance).max(1e-9)
     }
 
-    /// Limit on the number of splits (outer iterations); four times as many with friction in
-    /// space, whose slip directions converge linearly.
+    /// Limit on the number of splits (outer iterations).
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -242,28 +261,32 @@ struct Split {
 
 impl Split {
     /// The split of `(u, lambda)` and, in space, the unit slip direction `zeta / |zeta|` of
-    /// every slipping node (two entries per node, zeros where it sticks; empty in the plane).
+    /// every slipping node (two entries per node, zeros where it sticks) and `|zeta|` of every
+    /// node (both empty in the plane).
     fn of(
         system: &ContactSystem<'_>,
         c: f64,
+        c_t: f64,
         u: &[f64],
         ln: &[f64],
         lt: &[f64],
-    ) -> (Self, Vec<f64>) {
+    ) -> (Self, Vec<f64>, Vec<f64>) {
         if let Some(f) = system.friction().filter(|f| f.rows_per_node() == 2) {
             let (split, _) = Self::of_plane(system, c, u, ln, &[]);
             let slip = f.slip(u);
             let mut directions = vec![0.0; slip.len()];
+            let mut norms = vec![0.0; f.bounds().len()];
             let states = f
                 .bounds()
                 .iter()
                 .enumerate()
                 .map(|(i, &b)| {
                     let zeta = [
-                        lt[2 * i] + c * slip[2 * i],
-                        lt[2 * i + 1] + c * slip[2 * i + 1],
+                        lt[2 * i] + c_t * slip[2 * i],
+                        lt[2 * i + 1] + c_t * slip[2 * i + 1],
                     ];
                     let norm = zeta[0].hypot(zeta[1]);
+                    norms[i] = norm;
                     if b > 0.0 && norm <= b {
                         0
                     } else {
@@ -281,9 +304,11 @@ impl Split {
                     slip: states,
                 },
                 directions,
+                norms,
             );
         }
-        Self::of_plane(system, c, u, ln, lt)
+        let (split, directions) = Self::of_plane(system, c, u, ln, lt);
+        (split, directions, Vec::new())
     }
 
     /// The split with one tangential row per node (or none).
@@ -339,6 +364,8 @@ impl ContactSolver for ActiveSetSolver {
         let (n, m) = (system.n_dofs(), system.n_constraints());
         let t = system.friction().map_or(1, |f| f.rows_per_node());
         let rho = s.augmentation.value(system);
+        // In space, the constant of the friction split: the constrained stiffness itself.
+        let c_t = PenaltyParameter::RelativeToStiffness(TANGENTIAL_SPLIT).value(system);
         let matrix = NewtonMatrix::reuse_or_analyse(&mut self.matrix, system, s.parallelism)
             .map_err(|detail| ContactSolverError::Backend {
                 solver: NAME,
@@ -355,7 +382,7 @@ impl ContactSolver for ActiveSetSolver {
         let mut inner_converged = false;
         let mut iterations = 0;
         let outcome: Result<(), (SolveStatus, Option<Vec<f64>>)> = 'outer: loop {
-            let (split, directions) = Split::of(system, rho, &u, &ln, &lt);
+            let (split, directions, zeta_norms) = Split::of(system, rho, c_t, &u, &ln, &lt);
             if inner_converged {
                 if let Some((last, last_directions)) = &previous {
                     // In space the slip directions of a split are continuous: the split is
@@ -369,14 +396,7 @@ impl ContactSolver for ActiveSetSolver {
                     }
                 }
             }
-            // The fixed point on the slip directions (space) converges linearly: it gets more
-            // splits.
-            let limit = if t > 1 {
-                DISK_ITERATIONS * s.max_iterations
-            } else {
-                s.max_iterations
-            };
-            if iterations == limit {
+            if iterations == s.max_iterations {
                 break Err((SolveStatus::MaxIterations, None));
             }
             iterations += 1;
@@ -386,12 +406,27 @@ impl ContactSolver for ActiveSetSolver {
                 .map(|&a| if a { rho } else { 0.0 })
                 .collect();
             // One weight per tangential row (a node's state for each of its rows).
-            let wt: Vec<f64> = split
+            let mut wt: Vec<f64> = split
                 .slip
                 .iter()
                 .flat_map(|&state| std::iter::repeat_n(if state == 0 { rho } else { 0.0 }, t))
                 .collect();
-            let Some(shifted) = guard.factorise(matrix, system, &wn, &wt) else {
+            // In space, a slipping node's block `W_i = w_i tau tau'` (the linearised radial
+            // return) and the coupling of its two rows (empty in the plane).
+            let mut coupling = Vec::new();
+            if t > 1 {
+                coupling = vec![0.0; m];
+                for (i, &state) in split.slip.iter().enumerate() {
+                    if state != 0 {
+                        let w = slip_stiffness(c_t, rho, bounds[i], zeta_norms[i]);
+                        let tau = [-directions[2 * i + 1], directions[2 * i]];
+                        wt[2 * i] = w * tau[0] * tau[0];
+                        wt[2 * i + 1] = w * tau[1] * tau[1];
+                        coupling[i] = w * tau[0] * tau[1];
+                    }
+                }
+            }
+            let Some(shifted) = guard.factorise(matrix, system, &wn, &wt, &coupling) else {
                 break Err((SolveStatus::NumericalFailure, None));
             };
             // Known multipliers of the split.
@@ -400,22 +435,27 @@ impl ContactSolver for ActiveSetSolver {
                     ln[i] = 0.0;
                 }
             }
+            // The constant part of the friction force of a slipping node: the bound along
+            // the sign (plane) or along the direction of `zeta` (space).
+            let mut known = vec![0.0; lt.len()];
             for (i, &state) in split.slip.iter().enumerate() {
                 if state != 0 {
                     if t == 1 {
-                        lt[i] = f64::from(state) * bounds[i];
+                        known[i] = f64::from(state) * bounds[i];
+                        lt[i] = known[i];
                     } else {
-                        // In space: the bound along the slip direction of the split.
                         for k in 0..t {
-                            lt[t * i + k] = bounds[i] * directions[t * i + k];
+                            known[t * i + k] = bounds[i] * directions[t * i + k];
+                            lt[t * i + k] = known[t * i + k];
                         }
                     }
                 }
             }
             inner_converged = false;
             for inner in 0..s.max_inner_iterations {
-                // (K + rho B_A'B_A + rho B_S'B_S) u = f - B_N'lambda_N - B_T'lambda_T
-                //                                     + rho B_A' g_A
+                // (K + rho B_A'B_A + rho B_S'B_S + B_L'W B_L) u
+                //     = f - B_N'lambda_N - B_T'lambda_T + rho B_A' g_A + rho B_S's + B_L'(W s - b n)
+                // (A active, S sticking, L slipping in space).
                 let mut rhs = system.load().to_vec();
                 let shifted_force: Vec<f64> = ln
                     .iter()
@@ -427,14 +467,26 @@ impl ContactSolver for ActiveSetSolver {
                     .normal_rows()
                     .add_transpose_apply(&shifted_force, &mut rhs);
                 if let Some(f) = system.friction() {
-                    // Stick rows hold B_T u = s (the reference slip): + rho B_S' s.
+                    // Stick rows hold B_T u = s (the reference slip): + rho B_S' s; slipping
+                    // rows carry the known force and, in space, W s.
                     let reference = f.reference_or_zero();
-                    let shifted_friction: Vec<f64> = lt
+                    let mut shifted_friction: Vec<f64> = lt
                         .iter()
                         .zip(&wt)
                         .zip(reference.iter())
                         .map(|((l, w), s)| -l + w * s)
                         .collect();
+                    if t > 1 {
+                        for (i, &state) in split.slip.iter().enumerate() {
+                            if state != 0 {
+                                let (r0, r1) = (reference[2 * i], reference[2 * i + 1]);
+                                shifted_friction[2 * i] =
+                                    -known[2 * i] + wt[2 * i] * r0 + coupling[i] * r1;
+                                shifted_friction[2 * i + 1] =
+                                    -known[2 * i + 1] + coupling[i] * r0 + wt[2 * i + 1] * r1;
+                            }
+                        }
+                    }
                     f.tangential_rows()
                         .add_transpose_apply(&shifted_friction, &mut rhs);
                 }
@@ -461,6 +513,17 @@ impl ContactSolver for ActiveSetSolver {
                         if split.slip[r / t] == 0 {
                             lt[r] += rho * bt;
                             residual = residual.max(bt.abs());
+                        }
+                    }
+                    if t > 1 {
+                        // The linearised radial return: b n + W (B_T u - s).
+                        for (i, &state) in split.slip.iter().enumerate() {
+                            if state != 0 {
+                                let (s0, s1) = (bt[2 * i], bt[2 * i + 1]);
+                                lt[2 * i] = known[2 * i] + wt[2 * i] * s0 + coupling[i] * s1;
+                                lt[2 * i + 1] =
+                                    known[2 * i + 1] + coupling[i] * s0 + wt[2 * i + 1] * s1;
+                            }
                         }
                     }
                 }

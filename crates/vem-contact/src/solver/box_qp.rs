@@ -83,18 +83,25 @@ const UPDATE_FRACTION: f64 = 0.25;
 /// made again (with the shift of a semidefinite `H_FF`).
 const PIVOT_FLOOR: f64 = 1e-10;
 /// Marks a deleted position.
-const DEAD: usize = usize::MAX;
+pub(crate) const DEAD: usize = usize::MAX;
 
 impl ReducedFactor {
     /// The number of variables in the factor.
-    fn k(&self) -> usize {
+    pub(crate) fn k(&self) -> usize {
         self.live
     }
 
+    /// The variable at every position ([`DEAD`] for a deleted one).
+    pub(crate) fn positions(&self) -> &[usize] {
+        &self.order
+    }
+
     /// A factor of the variables `order` from its `L` (`k x k`).
-    fn from_factor(order: &[usize], l: MatRef<'_, f64>) -> Self {
+    pub(crate) fn from_factor(order: &[usize], l: MatRef<'_, f64>) -> Self {
         let k = order.len();
-        let capacity = (2 * k).max(16);
+        // Room for a quarter more variables before the storage grows (twice the order was
+        // 0.5 GB written at every factorisation of a 4e3 x 4e3 reduced matrix).
+        let capacity = k + (k / 4).max(16);
         let mut data = vec![0.0; capacity * capacity];
         for j in 0..k {
             for i in j..k {
@@ -115,7 +122,7 @@ impl ReducedFactor {
 
     /// Deletes the variable at position `p`: the live rows after it get the rank-one update
     /// with the part of column `p` below the diagonal.
-    fn delete(&mut self, p: usize) {
+    pub(crate) fn delete(&mut self, p: usize) {
         let n = self.order.len();
         let rows: Vec<usize> = (p + 1..n).filter(|&i| self.order[i] != DEAD).collect();
         let mut x: Vec<f64> = rows.iter().map(|&i| self.l[self.at(i, p)]).collect();
@@ -171,7 +178,7 @@ impl ReducedFactor {
 
     /// Appends the variable `v` (column `h_v` of `H` given by `column`); `false` when its pivot
     /// is below round-off (the factor is then unchanged).
-    fn append(&mut self, v: usize, column: impl Fn(usize) -> f64) -> bool {
+    pub(crate) fn append(&mut self, v: usize, column: impl Fn(usize) -> f64) -> bool {
         let mut y: Vec<f64> = self
             .order
             .iter()
@@ -206,7 +213,7 @@ impl ReducedFactor {
     }
 
     /// `x = -(L L')^-1 g[order]` on the live positions, as `(variable, value)`.
-    fn solve(&self, g: &[f64]) -> Vec<(usize, f64)> {
+    pub(crate) fn solve(&self, g: &[f64]) -> Vec<(usize, f64)> {
         let n = self.order.len();
         let mut x: Vec<f64> = self
             .order

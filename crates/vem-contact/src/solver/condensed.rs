@@ -792,10 +792,11 @@ fn interface_qp(
             upper,
             disks,
         }
-        .solve(
+        .solve_with(
             warm,
             settings.tolerance * force_scale,
             settings.max_iterations,
+            kept,
         );
     }
     BoxQp {

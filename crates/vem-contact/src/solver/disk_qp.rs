@@ -30,7 +30,7 @@
 use faer::linalg::solvers::Solve;
 use faer::{Mat, MatRef, Side};
 
-use super::box_qp::{hessian_apply, quadratic_gradient, BoxQpOutcome};
+use super::box_qp::{hessian_apply, quadratic_gradient, BoxQpOutcome, ReducedFactor, DEAD};
 
 /// A disk constraint `|(x_first, x_first+1)| <= radius`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,6 +65,15 @@ enum Direction {
 }
 
 impl Direction {
+    /// The name of the column in a kept factor (`m` variables): `i` for a unit vector,
+    /// `m + first` for a disk's tangent (whichever way it points).
+    fn key(&self, m: usize) -> usize {
+        match *self {
+            Direction::Unit(i) => i,
+            Direction::Tangent { first, .. } => m + first,
+        }
+    }
+
     /// The (variable, coefficient) entries of the column.
     fn entries(&self) -> impl Iterator<Item = (usize, f64)> {
         let (a, b) = match *self {
@@ -113,7 +122,25 @@ impl DiskQp<'_> {
 
     /// Minimises from `start` (projected onto the set) until the scaled projected gradient is
     /// at most `tolerance` (a force) or `max_iterations` steps were taken.
+    #[cfg(test)]
     pub fn solve(&self, start: &[f64], tolerance: f64, max_iterations: usize) -> BoxQpOutcome {
+        self.solve_with(
+            start,
+            tolerance,
+            max_iterations,
+            &mut ReducedFactor::default(),
+        )
+    }
+
+    /// [`DiskQp::solve`] with the reduced factor `kept` of an earlier step or solve with the
+    /// same `H` (updated on return; see [`DiskQp::reduced_newton_step`]).
+    pub fn solve_with(
+        &self,
+        start: &[f64],
+        tolerance: f64,
+        max_iterations: usize,
+        kept: &mut ReducedFactor,
+    ) -> BoxQpOutcome {
         let m = self.linear.len();
         let diagonal: Vec<f64> = (0..m).map(|i| self.hessian[(i, i)]).collect();
         let largest = diagonal.iter().fold(0.0f64, |a, &d| a.max(d));
@@ -198,7 +225,7 @@ impl DiskQp<'_> {
                     curvature.extend([0.0, 0.0]);
                 }
             }
-            let newton = self.reduced_newton_step(&basis, &curvature, &g);
+            let newton = self.reduced_newton_step(&basis, &curvature, &g, kept);
             if let Some(step) = newton {
                 for (direction, y) in basis.iter().zip(step) {
                     match *direction {
@@ -254,42 +281,82 @@ impl DiskQp<'_> {
         outcome
     }
 
+    /// The entry `(a, b)` of the reduced matrix `Z'HZ + C`.
+    fn reduced_entry(&self, a: &Direction, b: &Direction, curvature: f64) -> f64 {
+        let h = self.hessian;
+        let mut value = 0.0;
+        for (i, ci) in a.entries() {
+            for (j, cj) in b.entries() {
+                value += ci * cj * h[(i, j)];
+            }
+        }
+        if a.key(self.linear.len()) == b.key(self.linear.len()) {
+            value += curvature;
+        }
+        value
+    }
+
     /// `y = -(Z'HZ + C)^-1 Z'g` for the basis `Z` (`basis`) and the curvature `C` of the
-    /// binding rims (a dense Cholesky factorisation, shifted slightly if the reduced matrix is
-    /// only semidefinite); `None` if even the shifted matrix cannot be factorised.
+    /// binding rims.
+    ///
+    /// The factor `kept` of an earlier step's reduced matrix (or of an earlier solve with the
+    /// same `H`: the steps of a Coulomb fixed point) preconditions conjugate gradients on this
+    /// step's matrix, which differs from the kept one by the turn of the sliding nodes'
+    /// tangents and their curvatures `mu / r`: small changes once the binding set settles, so
+    /// that a few iterations (`O(k^2)` each) replace the dense factorisation (`O(k^3 / 3)`).
+    /// It is first brought to the basis by deletions and appends (`O(k^2)` each) when few
+    /// columns joined or left it ([`UPDATE_CHANGES`]). When more changed, or the iterations
+    /// do not converge within [`CG_ITERATIONS`], the reduced matrix is factorised anew (dense
+    /// Cholesky, shifted slightly if it is only semidefinite; such a factor is not kept) and
+    /// kept. `None` if even the shifted matrix cannot be factorised.
     fn reduced_newton_step(
         &self,
         basis: &[Direction],
         curvature: &[f64],
         g: &[f64],
+        kept: &mut ReducedFactor,
     ) -> Option<Vec<f64>> {
         let k = basis.len();
         if k == 0 {
             return None;
         }
-        let h = self.hessian;
-        let mut reduced = Mat::<f64>::from_fn(k, k, |a, b| {
-            let mut value = 0.0;
-            for (i, ci) in basis[a].entries() {
-                for (j, cj) in basis[b].entries() {
-                    value += ci * cj * h[(i, j)];
-                }
-            }
-            value
-        });
-        for (a, c) in curvature.iter().enumerate() {
-            reduced[(a, a)] += c;
-        }
+        let m = self.linear.len();
         let gradient: Vec<f64> = basis
             .iter()
             .map(|d| d.entries().map(|(i, c)| c * g[i]).sum())
             .collect();
+        if kept
+            .positions()
+            .iter()
+            .any(|&key| key != DEAD && key >= 2 * m)
+        {
+            // Made for another problem.
+            *kept = ReducedFactor::default();
+        }
+        if kept.k() > 0 && self.update(basis, curvature, kept) {
+            if let Some(y) = self.preconditioned_cg(basis, curvature, &gradient, kept) {
+                return Some(y);
+            }
+        }
+        let mut reduced = Mat::<f64>::from_fn(k, k, |a, b| {
+            self.reduced_entry(
+                &basis[a],
+                &basis[b],
+                if a == b { curvature[a] } else { 0.0 },
+            )
+        });
         let trace = (0..k).map(|a| reduced[(a, a)]).sum::<f64>();
         let mut shift = 0.0;
         for _ in 0..4 {
             if let Ok(llt) = reduced.llt(Side::Lower) {
                 let mut rhs = Mat::<f64>::from_fn(k, 1, |a, _| -gradient[a]);
                 llt.solve_in_place(rhs.as_mut());
+                *kept = if shift == 0.0 {
+                    let keys: Vec<usize> = basis.iter().map(|d| d.key(m)).collect();
+                    ReducedFactor::from_factor(&keys, llt.L())
+                } else {
+                    ReducedFactor::default()
+                };
                 return Some((0..k).map(|a| rhs[(a, 0)]).collect());
             }
             let next = if shift == 0.0 {
@@ -304,7 +371,148 @@ impl DiskQp<'_> {
         }
         None
     }
+
+    /// Brings `kept` to the columns of `basis` by deletions and appends (the appended rows
+    /// from this step's reduced matrix); `false` (and `kept` cleared) when too much changed
+    /// or a pivot fell below round-off.
+    fn update(&self, basis: &[Direction], curvature: &[f64], kept: &mut ReducedFactor) -> bool {
+        let m = self.linear.len();
+        // The column of every key of the basis.
+        let mut column = vec![usize::MAX; 2 * m];
+        for (a, d) in basis.iter().enumerate() {
+            column[d.key(m)] = a;
+        }
+        let mut in_kept = vec![false; 2 * m];
+        let mut removed = Vec::new();
+        for (p, &key) in kept.positions().iter().enumerate() {
+            if key == DEAD {
+                continue;
+            }
+            if key >= 2 * m || column[key] == usize::MAX {
+                removed.push(p);
+            } else {
+                in_kept[key] = true;
+            }
+        }
+        let added: Vec<usize> = (0..basis.len())
+            .filter(|&a| !in_kept[basis[a].key(m)])
+            .collect();
+        let changes = removed.len() + added.len();
+        if changes as f64 > (UPDATE_CHANGES * basis.len() as f64).max(8.0) {
+            *kept = ReducedFactor::default();
+            return false;
+        }
+        for &p in removed.iter().rev() {
+            kept.delete(p);
+        }
+        for a in added {
+            let entry = |key: usize| {
+                let b = column[key];
+                self.reduced_entry(
+                    &basis[a],
+                    &basis[b],
+                    if a == b { curvature[a] } else { 0.0 },
+                )
+            };
+            if !kept.append(basis[a].key(m), entry) {
+                *kept = ReducedFactor::default();
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Conjugate gradients on `(Z'HZ + C) y = -Z'g` (`gradient = Z'g`) preconditioned by the
+    /// factor `kept` (on the same columns), to a residual of [`CG_TOLERANCE`] relative to
+    /// `Z'g`; `None` without convergence in [`CG_ITERATIONS`] steps.
+    fn preconditioned_cg(
+        &self,
+        basis: &[Direction],
+        curvature: &[f64],
+        gradient: &[f64],
+        kept: &ReducedFactor,
+    ) -> Option<Vec<f64>> {
+        let (k, m) = (basis.len(), self.linear.len());
+        let keys: Vec<usize> = basis.iter().map(|d| d.key(m)).collect();
+        let mut column = vec![usize::MAX; 2 * m];
+        for (a, &key) in keys.iter().enumerate() {
+            column[key] = a;
+        }
+        // z = (L L')^-1 r.
+        let precondition = |r: &[f64]| -> Vec<f64> {
+            let mut keyed = vec![0.0; 2 * m];
+            for (&key, &ri) in keys.iter().zip(r) {
+                keyed[key] = -ri;
+            }
+            let mut z = vec![0.0; k];
+            for (key, value) in kept.solve(&keyed) {
+                z[column[key]] = value;
+            }
+            z
+        };
+        // (Z'HZ + C) v.
+        let apply = |v: &[f64]| -> Vec<f64> {
+            let mut x = vec![0.0; m];
+            for (d, &va) in basis.iter().zip(v) {
+                for (i, c) in d.entries() {
+                    x[i] += c * va;
+                }
+            }
+            let hx = self.apply(&x);
+            basis
+                .iter()
+                .zip(v.iter().zip(curvature))
+                .map(|(d, (&va, &c))| d.entries().map(|(i, ci)| ci * hx[i]).sum::<f64>() + c * va)
+                .collect()
+        };
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let mut r: Vec<f64> = gradient.iter().map(|x| -x).collect();
+        let target = CG_TOLERANCE * dot(&r, &r).sqrt();
+        let mut y = vec![0.0; k];
+        if target == 0.0 {
+            return Some(y);
+        }
+        let mut z = precondition(&r);
+        let mut p = z.clone();
+        let mut rz = dot(&r, &z);
+        for _ in 0..CG_ITERATIONS {
+            let ap = apply(&p);
+            let curvature_p = dot(&p, &ap);
+            if !(curvature_p > 0.0 && rz > 0.0) {
+                return None;
+            }
+            let alpha = rz / curvature_p;
+            for a in 0..k {
+                y[a] += alpha * p[a];
+                r[a] -= alpha * ap[a];
+            }
+            if dot(&r, &r).sqrt() <= target {
+                return Some(y);
+            }
+            z = precondition(&r);
+            let rz_next = dot(&r, &z);
+            let beta = rz_next / rz;
+            rz = rz_next;
+            for a in 0..k {
+                p[a] = z[a] + beta * p[a];
+            }
+        }
+        None
+    }
 }
+
+/// The limit on the conjugate gradient steps of a Newton step preconditioned by a kept factor
+/// (beyond it the reduced matrix is factorised anew: the iterations cost `O(k^2)` each, a
+/// factorisation `O(k^3 / 3)`).
+const CG_ITERATIONS: usize = 8;
+/// The kept factor is brought to a new basis when at most this fraction of its columns (or 8)
+/// changed: each change costs `O(k^2)` in scalar loops, against a blocked factorisation's
+/// `O(k^3 / 3)`.
+const UPDATE_CHANGES: f64 = 0.02;
+
+/// The residual of the preconditioned conjugate gradients relative to the reduced gradient:
+/// the Newton step to about the accuracy of a direct solve.
+const CG_TOLERANCE: f64 = 1e-11;
 
 #[cfg(test)]
 mod tests {
@@ -422,6 +630,57 @@ mod tests {
                     );
                     assert!(mu > -tol, "case {case}: mu {mu}");
                 }
+            }
+        }
+    }
+
+    /// A sequence of problems with the same `H` and growing radii (the steps of a Coulomb
+    /// fixed point), solved with the factor kept from one to the next (conjugate gradients
+    /// preconditioned by it) and each afresh: the same minimisers.
+    #[test]
+    fn a_kept_factor_gives_the_answers_of_fresh_solves() {
+        let mut seed = 11u64;
+        for case in 0..10 {
+            let n = 40;
+            let a = Mat::<f64>::from_fn(n, n, |_, _| next(&mut seed));
+            let h = &a * a.transpose() + Mat::<f64>::identity(n, n) * 0.5;
+            let d: Vec<f64> = (0..n).map(|_| 3.0 * next(&mut seed)).collect();
+            let mut lower = vec![f64::NEG_INFINITY; n];
+            let upper = vec![f64::INFINITY; n];
+            // Ten normal forces, then fifteen disks.
+            for l in lower.iter_mut().take(10) {
+                *l = 0.0;
+            }
+            let radii: Vec<f64> = (0..15).map(|_| 0.1 + 0.4 * next(&mut seed).abs()).collect();
+            let mut kept = ReducedFactor::default();
+            let mut warm = vec![0.0; n];
+            for scale in [0.5, 0.7, 1.0, 1.3, 1.31] {
+                let disks: Vec<Disk> = radii
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &r)| Disk {
+                        first: 10 + 2 * k,
+                        radius: scale * r,
+                    })
+                    .collect();
+                let qp = DiskQp {
+                    hessian: h.as_ref(),
+                    linear: &d,
+                    lower: &lower,
+                    upper: &upper,
+                    disks: &disks,
+                };
+                let with = qp.solve_with(&warm, 1e-13, 200, &mut kept);
+                let fresh = qp.solve(&vec![0.0; n], 1e-13, 200);
+                assert!(with.converged && fresh.converged, "case {case}");
+                let scale_x = fresh.x.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in with.x.iter().zip(&fresh.x) {
+                    assert!(
+                        (x - y).abs() <= 1e-9 * scale_x,
+                        "case {case}: {x} against {y}"
+                    );
+                }
+                warm = with.x;
             }
         }
     }

@@ -1,5 +1,9 @@
-//! The Newton matrix `K + sum_r w_r b_r b_r' + diag(s)` of the penalty and active-set methods
-//! on a fixed pattern: the lower triangle of `K + B_N'B_N + B_T'B_T + I` is analysed once per
+//! The Newton matrix `K + sum_r w_r b_r b_r' + sum_i c_i (b_2i b_2i+1' + b_2i+1 b_2i') + diag(s)`
+//! of the penalty and active-set methods on a fixed pattern (the coupling `c_i` of a node's two
+//! tangential rows in space: with the rows' weights, the 2x2 block `W_i` of the node, e.g. the
+//! tangent of the radial return onto its friction disk): the lower triangle of
+//! `K + B_N'B_N + B_T'B_T + I` (in space with the products of each node's two tangential rows)
+//! is analysed once per
 //! structure, in the order made of every stiffness block's interior order followed by all
 //! interface unknowns (the blocks' orders are shared with the condensed solver, see
 //! [`super::shared`]); the pattern and its analysis are shared by the penalty and active-set
@@ -22,6 +26,46 @@ use super::system::{ConstraintRows, ContactSystem};
 struct RowProducts {
     ptr: Vec<usize>,
     entries: Vec<(usize, f64)>,
+}
+
+/// Entries `(slot, coefficient)` of `b_2i b_2i+1' + b_2i+1 b_2i'` (lower triangle) for each
+/// node `i` with two tangential rows.
+#[derive(Debug, Clone)]
+struct PairProducts {
+    ptr: Vec<usize>,
+    entries: Vec<(usize, f64)>,
+}
+
+impl PairProducts {
+    fn new(rows: &ConstraintRows, slot: &impl Fn(usize, usize) -> usize) -> Self {
+        let mut ptr = vec![0];
+        let mut entries = Vec::new();
+        for node in 0..rows.nrows() / 2 {
+            let (c1, v1) = rows.row(2 * node);
+            let (c2, v2) = rows.row(2 * node + 1);
+            for (&a, &va) in c1.iter().zip(v1) {
+                for (&b, &vb) in c2.iter().zip(v2) {
+                    // `va vb` lands on (a, b) and (b, a): once in the lower triangle, twice
+                    // on the diagonal.
+                    let coef = if a == b { 2.0 * va * vb } else { va * vb };
+                    entries.push((slot(a.max(b), a.min(b)), coef));
+                }
+            }
+            ptr.push(entries.len());
+        }
+        Self { ptr, entries }
+    }
+
+    fn add_weighted(&self, weights: &[f64], values: &mut [f64]) {
+        for (i, &w) in weights.iter().enumerate() {
+            if w == 0.0 {
+                continue;
+            }
+            for &(slot, coef) in &self.entries[self.ptr[i]..self.ptr[i + 1]] {
+                values[slot] += w * coef;
+            }
+        }
+    }
 }
 
 impl RowProducts {
@@ -67,6 +111,8 @@ pub(crate) struct CoupledPattern {
     k_slots: Option<Vec<usize>>,
     normal: RowProducts,
     tangential: Option<RowProducts>,
+    /// In space: the products of each node's two tangential rows.
+    pairs: Option<PairProducts>,
     diag_slots: Vec<usize>,
     analysis: Arc<vem_elastic::CholeskyAnalysis>,
     /// The blocks' orders the analysis was made on (held, so that other solvers of the
@@ -106,8 +152,19 @@ impl CoupledPattern {
             }
         };
         add_rows(system.normal_rows());
+        let paired = system.friction().filter(|fr| fr.rows_per_node() == 2);
         if let Some(fr) = system.friction() {
             add_rows(fr.tangential_rows());
+        }
+        if let Some(fr) = paired {
+            let rows = fr.tangential_rows();
+            for node in 0..rows.nrows() / 2 {
+                let c1 = rows.row(2 * node).0;
+                let c2 = rows.row(2 * node + 1).0;
+                for &a in c1 {
+                    extra.extend(c2.iter().map(|&b| (a.min(b), a.max(b))));
+                }
+            }
         }
         extra.sort_unstable();
         extra.dedup();
@@ -164,6 +221,7 @@ impl CoupledPattern {
         let tangential = system
             .friction()
             .map(|fr| RowProducts::new(fr.tangential_rows(), &slot));
+        let pairs = paired.map(|fr| PairProducts::new(fr.tangential_rows(), &slot));
         let diag_slots = (0..n).map(|j| slot(j, j)).collect();
         let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
         let mut cholesky = CholeskySolver::new(newton_settings(ordering, Par::Seq)?);
@@ -175,6 +233,7 @@ impl CoupledPattern {
             k_slots: repeats.then_some(k_slots),
             normal,
             tangential,
+            pairs,
             diag_slots,
             analysis,
             _orders: orders,
@@ -272,13 +331,16 @@ impl NewtonMatrix {
         std::mem::take(&mut self.work)
     }
 
-    /// Sets the values to `K + sum_r wn_r bn_r bn_r' + sum_r wt_r bt_r bt_r' + diag(shift)`
-    /// and factorises. Returns `false` if the matrix is not numerically positive definite.
+    /// Sets the values to
+    /// `K + sum_r wn_r bn_r bn_r' + sum_r wt_r bt_r bt_r' + sum_i c_i (bt_2i bt_2i+1' + bt_2i+1 bt_2i') + diag(shift)`
+    /// (`c = tangential_coupling`, one per node in space, or empty) and factorises. Returns
+    /// `false` if the matrix is not numerically positive definite.
     pub(crate) fn refill_and_factorise(
         &mut self,
         system: &ContactSystem<'_>,
         normal_weights: &[f64],
         tangential_weights: &[f64],
+        tangential_coupling: &[f64],
         shift: &[f64],
     ) -> bool {
         let start = Instant::now();
@@ -310,6 +372,9 @@ impl NewtonMatrix {
             .add_weighted(normal_weights, &mut self.values);
         if let Some(t) = &coupled.tangential {
             t.add_weighted(tangential_weights, &mut self.values);
+        }
+        if let Some(p) = &coupled.pairs {
+            p.add_weighted(tangential_coupling, &mut self.values);
         }
         for (&slot, &s) in coupled.diag_slots.iter().zip(shift) {
             self.values[slot] += s;
@@ -386,8 +451,9 @@ impl SingularGuard {
         d.iter().zip(&self.metric).map(|(x, w)| w * x * x).sum()
     }
 
-    /// Factorises `K + sum wn bn bn' + sum wt bt bt'`, or, if that is not definite, the same
-    /// plus `delta D`. Returns whether the shift was needed (the factorisations are counted in
+    /// Factorises `K + sum wn bn bn' + sum wt bt bt'` (plus the couplings of the nodes' two
+    /// tangential rows, see [`NewtonMatrix::refill_and_factorise`]), or, if that is not
+    /// definite, the same plus `delta D`. Returns whether the shift was needed (the factorisations are counted in
     /// the matrix's work), or `None` if even the shifted matrix is not definite (`K`
     /// indefinite).
     pub(crate) fn factorise(
@@ -396,13 +462,21 @@ impl SingularGuard {
         system: &ContactSystem<'_>,
         normal_weights: &[f64],
         tangential_weights: &[f64],
+        tangential_coupling: &[f64],
     ) -> Option<bool> {
-        if matrix.refill_and_factorise(system, normal_weights, tangential_weights, &self.no_shift) {
+        if matrix.refill_and_factorise(
+            system,
+            normal_weights,
+            tangential_weights,
+            tangential_coupling,
+            &self.no_shift,
+        ) {
             Some(false)
         } else if matrix.refill_and_factorise(
             system,
             normal_weights,
             tangential_weights,
+            tangential_coupling,
             &self.shift,
         ) {
             Some(true)

@@ -13,9 +13,10 @@
 //!
 //! In space `psi_i` is the Huber regularisation of `b_i |s|` for the node's slip vector `s`
 //! of the tangent plane (`lambda_T = eps_T s` returned radially onto the disk of radius
-//! `b_i`); a sliding node's rows then get the weight `b_i / |s|` in the Newton matrix (the
-//! curvature of the quadratic that touches `b_i |s|` from above at the current slip), and the
-//! line search brackets and bisects `phi'`, which is monotone but no longer piecewise linear.
+//! `b_i`); a sliding node's two rows then get the block `b_i (I - n n') / |s|` in the Newton
+//! matrix (`n = s / |s|`: the consistent tangent of the radial return, the Hessian of
+//! `b_i |s|`), and the line search brackets and bisects `phi'`, which is monotone but no longer
+//! piecewise linear.
 //!
 //! In the plane `Pi` is convex, C^1 and piecewise quadratic. Each Newton step solves with
 //! `H = K + eps_N B_A'B_A + eps_T B_S'B_S` (`A`: penetrating nodes, `S`: sticking nodes) on a
@@ -736,7 +737,7 @@ impl ContactSolver for PenaltySolver {
                     .iter()
                     .flat_map(|&b| std::iter::repeat_n(if b > 0.0 { p.eps_t } else { 0.0 }, p.t))
                     .collect();
-                if let Some(false) = guard.factorise(matrix, system, &all_normal, &all_stick) {
+                if let Some(false) = guard.factorise(matrix, system, &all_normal, &all_stick, &[]) {
                     // Minimiser of 1/2 v'Kv - f'v + eps_N/2 |B_N v - g|^2 + eps_T/2 |B_T v - s0|^2.
                     let mut v = system.load().to_vec();
                     let weighted_gap: Vec<f64> = system.gap().iter().map(|g| p.eps_n * g).collect();
@@ -774,27 +775,38 @@ impl ContactSolver for PenaltySolver {
                 .iter()
                 .map(|&a| if a { p.eps_t } else { 0.0 })
                 .collect();
+            let mut coupling = Vec::new();
             if p.t > 1 {
-                // A node sliding on its disk's rim: the weight b / |s| on both rows, the
-                // curvature of the quadratic `b (|s|^2 + |s0|^2) / (2 |s0|)` that touches
-                // `b |s|` at the current slip `s0` and lies above it (its Hessian bounds the
-                // true one, `b (I - n n') / |s0|`, from above: every step of this model lowers
-                // the energy, and the slip direction converges).
-                for ((s, w), &b) in state
+                // A node sliding on its disk's rim: the consistent tangent of the radial
+                // return, `b (I - n n') / |s|` (`n = s / |s|`), on its two rows: stiffness
+                // across the slip, none along it. Newton's method on `Pi` then converges
+                // quadratically near the answer, slip directions included; the line search
+                // keeps every step a descent step.
+                coupling = vec![0.0; m];
+                for (((s, w), c), &b) in state
                     .slip
                     .chunks(p.t)
                     .zip(tangential_weights.chunks_mut(p.t))
+                    .zip(coupling.iter_mut())
                     .zip(p.bounds())
                 {
-                    let norm = s.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    let norm = s[0].hypot(s[1]);
                     if p.eps_t * norm >= b && norm > 0.0 {
-                        w.fill(b / norm);
+                        let (n0, n1) = (s[0] / norm, s[1] / norm);
+                        let k = b / norm;
+                        w[0] = k * n1 * n1;
+                        w[1] = k * n0 * n0;
+                        *c = -k * n0 * n1;
                     }
                 }
             }
-            let Some(shifted) =
-                guard.factorise(matrix, system, &normal_weights, &tangential_weights)
-            else {
+            let Some(shifted) = guard.factorise(
+                matrix,
+                system,
+                &normal_weights,
+                &tangential_weights,
+                &coupling,
+            ) else {
                 // Not definite even with the shift: K has a negative eigenvalue.
                 break Err((SolveStatus::NumericalFailure, None));
             };
