@@ -322,9 +322,8 @@ fn m2_3d_converges_on_non_matching_meshes_and_carries_the_exact_resultants() {
     // Theorem 4.2 in space on a pairing whose interfaces do not match (hexahedra 4:3 over
     // tetrahedra). At these sizes the rate is still pre-asymptotic (measured: least-squares
     // E_grad 0.81, successive 0.79 and 0.84; the full run of `cargo xtask convergence` reaches
-    // 0.85 at 20/15, docs/convergence-3d.md): the discrete stick zone is under-resolved, since
-    // the traction approaches the bound like (r_s - r)^4. The test holds what is measured, with
-    // a margin, and that the successive rates grow.
+    // 0.85 at 20/15, docs/convergence-3d.md, which discusses why). The test holds what is
+    // measured, with a margin, and that the successive rates grow.
     let exact = case();
     let exact_normal = exact.exact_normal_resultant();
     let exact_friction = exact.exact_friction_resultant();
