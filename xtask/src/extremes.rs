@@ -45,7 +45,9 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
     }
     let start = Instant::now();
     let mut all = Vec::new();
-    for (title, group) in rows::groups() {
+    let friction: (&str, rows::Group) =
+        ("In space: friction at the extremes", space::solid_friction);
+    for (title, group) in rows::groups().into_iter().chain([friction]) {
         let t = Instant::now();
         let rows = group(&size);
         eprintln!(
@@ -117,7 +119,15 @@ against an expected answer that does not come from a solver:
   upper top moved down by d = 0.01: the uniform uniaxial stress `p = d / (h_1/E_1 + h_2/E_2)`
   and its linear displacement, exactly, at stiffness contrasts 1e+-8, lengths 1e+-6 and moduli
   1e-9, nu = 0.49999 (`vem1`, `vem1-bbar`), a lower block 1e-3 and 1e-6 thin (flat
-  tetrahedra), and warped hexahedra on Voronoi cells.
+  tetrahedra), and warped hexahedra on Voronoi cells. Friction in space: the same blocks
+  pressed (d = 0.01) and sheared (the upper top moved by D = 0.004 along x), the exact
+  displacements prescribed on the upper top and the lower bottom and the exact shear tractions
+  on the sides x = 0, 1, so that the answer is the uniform state `sigma_zz = -p`,
+  `sigma_xz = tau` with `tau` the stick shear `tau_s = D / (h_1/G_1 + h_2/G_2)` or the bound,
+  and a uniform slip: Tresca and Coulomb with the bound 0 (free slip), `tau_s / 2` (slip) and
+  `1e8 p` (stick), at the stiffness contrasts 1e+-8, lengths 1e+-6 and moduli 1e-9 (`nu = 0`:
+  with lateral contraction the two blocks contract alike only for equal `nu / E`), and at
+  nu = 0.49999 with `vem1-bbar` and equal moduli; nodal error and resultant errors exact.
 
 Verdicts: **PASS** (the expected answer within the tolerance); **FAIL (refused: error)** (the
 solver or the model building returned an error: no answer, but no wrong one);

@@ -2,10 +2,12 @@
 //! contact mesh sizes with each contact normal choice, against Hertz's plane-strain solution;
 //! Coulomb friction at full slip (Q/P against F) and under a partial tangential shift against
 //! Cattaneo-Mindlin's stick half-width; friction under force control and along load histories
-//! (the `fretting` section: loading, unloading, reloading, path dependence). See
+//! (the `fretting` section: loading, unloading, reloading, path dependence); Cattaneo-Mindlin
+//! in space (the `mindlin_3d` section: the stick disc of two blocks with a spherical gap). See
 //! `docs/hertz.md`.
 
 mod fretting;
+mod mindlin_3d;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -42,6 +44,12 @@ pub struct HertzArgs {
     /// Only the friction section (force control, load histories): `fretting.md`.
     #[arg(long)]
     friction_only: bool,
+    /// Only the section in space (Cattaneo-Mindlin in 3D): `mindlin-3d.md`.
+    #[arg(long)]
+    space_only: bool,
+    /// The section in space at the coarser node spacing a/4 instead of a/6.
+    #[arg(long)]
+    quick: bool,
 }
 
 /// Young's modulus and Poisson's ratio of both bodies (plane strain).
@@ -120,6 +128,9 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         );
         return Ok(true);
     }
+    if args.space_only {
+        return space(args);
+    }
     let mut frictionless = Vec::new();
     let mut friction = Vec::new();
     for h in &args.sizes {
@@ -181,7 +192,40 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
         "wrote {0}/results.md, results.json, fretting.md, fretting.json and the SVG plots",
         args.out.display()
     );
-    Ok(true)
+    space(args)
+}
+
+/// The section in space: Cattaneo-Mindlin in 3D at the node spacing a/6 (`--quick`: a/4),
+/// written to `mindlin-3d.md` and `mindlin-3d.json`; false when it falls short.
+fn space(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    let start = Instant::now();
+    let a = mindlin_3d::hertz()?.contact_radius();
+    let study = mindlin_3d::study(a / if args.quick { 4.0 } else { 6.0 })?;
+    let shortfalls = study.shortfalls();
+    let mut md = format!(
+        "# Cattaneo-Mindlin in space\n\nRun: `cargo xtask hertz --space-only{}` in {:.0} s.\n\n",
+        if args.quick { " --quick" } else { "" },
+        start.elapsed().as_secs_f64()
+    );
+    md.push_str(&study.markdown());
+    md.push_str(&if shortfalls.is_empty() {
+        "\nVerdict: pass (every stick radius within one node spacing of Mindlin's, the load \
+         carried to 1e-8, the refusal beyond the capacity).\n"
+            .to_string()
+    } else {
+        format!("\nVerdict: FAIL\n\n- {}\n", shortfalls.join("\n- "))
+    });
+    print!("{}", study.markdown());
+    write_text(args.out.join("mindlin-3d.md"), &md)?;
+    write_text(
+        args.out.join("mindlin-3d.json"),
+        &serde_json::to_string_pretty(&study)?,
+    )?;
+    println!(
+        "wrote {}/mindlin-3d.md and mindlin-3d.json",
+        args.out.display()
+    );
+    Ok(shortfalls.is_empty())
 }
 
 /// The problem: the half-disc (top moved by `(shift, -INDENTATION)`) on the block.

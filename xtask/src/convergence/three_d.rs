@@ -1,7 +1,8 @@
 //! The study in space of `cargo xtask convergence` (`docs/convergence-3d.md`): the exact
 //! solutions E1-3D and E2-3D and the patch test PT0-3D of `vem_verify::three_d` on every
-//! polyhedral family, each family at its own sizes, and the two-body frictionless contact case
-//! M1-3D (Theorem 4.1) on non-matching pairings of the families; the rates are fitted by
+//! polyhedral family, each family at its own sizes, and the two-body contact cases M1-3D
+//! (frictionless, Theorem 4.1) and M2-3D (Tresca, Theorem 4.2) on non-matching pairings of the
+//! families; the rates are fitted by
 //! [`solid_rates`], judged, printed and written (Markdown, JSON, SVG) beside the 2D report.
 
 use std::path::Path;
@@ -18,16 +19,31 @@ use vem_verify::report::{write_json, write_text};
 use vem_verify::study::{successive_rates, Verdict};
 use vem_verify::three_d::{
     run_disc_contact, run_solid, solid_case_by_name, solid_markdown, solid_rates, DiscContact,
-    ExactSolution3d, SolidRates, SolidRun, SOLID_CASE_NAMES,
+    ExactSolution3d, SolidRates, SolidRun, StackedContact, StickSlipContact, SOLID_CASE_NAMES,
 };
 
 use crate::common::{loglog_svg, LogLogPlot};
 
 /// The cases in space of the default run, in the order they run.
-pub const DEFAULT_CASES: [&str; 4] = ["E1-3D", "E2-3D", "PT0-3D", CONTACT_CASE];
+pub const DEFAULT_CASES: [&str; 5] = ["E1-3D", "E2-3D", "PT0-3D", CONTACT_CASE, FRICTION_CASE];
 
-/// The two-body contact case: solved on the [`PAIRINGS`] instead of the families.
+/// The two-body frictionless contact case: solved on the [`PAIRINGS`] instead of the families.
 const CONTACT_CASE: &str = DiscContact::NAME;
+
+/// The two-body Tresca case: solved on the [`PAIRINGS`] too.
+const FRICTION_CASE: &str = StickSlipContact::NAME;
+
+/// The two-body cases.
+const CONTACT_CASES: [&str; 2] = [CONTACT_CASE, FRICTION_CASE];
+
+/// The two-body case `name` of [`CONTACT_CASES`] with the reference material, or `None`.
+fn contact_case(name: &str) -> Option<Box<dyn StackedContact>> {
+    match name {
+        CONTACT_CASE => Some(Box::new(DiscContact::new(Lame::REFERENCE))),
+        FRICTION_CASE => Some(Box::new(StickSlipContact::new(Lame::REFERENCE))),
+        _ => None,
+    }
+}
 
 /// The patch test: exact at every size instead of rates.
 const PATCH_CASE: &str = "PT0-3D";
@@ -69,32 +85,44 @@ pub fn quick_note() -> String {
          E_0 >= {}) on every family (the non-convex prisms and the tetrahedra reach second \
          order in E_0 latest), so it judges against what they honestly show, about 0.03 below \
          the smallest rates they gave when they were chosen (E_grad 0.96 on octree, E_0 1.88 \
-         on the non-convex prisms): E_grad >= {}, E_0 >= {}. The contact case {CONTACT_CASE} \
-         at its quick sizes: E_grad >= {}, E_0 >= {} (the full run: {}, {}).",
+         on the non-convex prisms): E_grad >= {}, E_0 >= {}. The contact case {CONTACT_CASE} at \
+         its quick sizes: E_grad >= {}, E_0 >= {}, {FRICTION_CASE}: E_grad >= {}, E_0 >= {} \
+         (the full run: {}, {} for both).",
         THRESHOLDS.grad,
         THRESHOLDS.l2,
         QUICK_THRESHOLDS.grad,
         QUICK_THRESHOLDS.l2,
         QUICK_CONTACT_THRESHOLDS.grad,
         QUICK_CONTACT_THRESHOLDS.l2,
+        QUICK_FRICTION_THRESHOLDS.grad,
+        QUICK_FRICTION_THRESHOLDS.l2,
         CONTACT_THRESHOLDS.grad,
         CONTACT_THRESHOLDS.l2
     )
 }
 
-/// The thresholds of the contact case M1-3D in the full run: first order in `E_grad`
-/// (Theorem 4.1); `E_0` is expected near second order but not proved, judged at 1.8.
+/// The thresholds of the contact cases M1-3D and M2-3D in the full run: first order in
+/// `E_grad` (Theorems 4.1 and 4.2); `E_0` is expected near second order but not proved, judged
+/// at 1.8.
 pub const CONTACT_THRESHOLDS: Thresholds = Thresholds {
     grad: 0.95,
     l2: 1.8,
 };
 
-/// The thresholds of M1-3D in `--quick`: what its small sizes honestly show, about 0.03 below
-/// the smallest rates they gave when they were chosen (E_grad 0.78 on Voronoi over hexahedra,
-/// E_0 1.6); a smoke test of the whole chain, the rate itself is judged by the full run and the
-/// workspace test.
+/// The thresholds of M1-3D and M2-3D in `--quick`: what their small sizes honestly show,
+/// about 0.03 below the smallest rates they gave when they were chosen (E_grad 0.78 on Voronoi
+/// over hexahedra, E_0 1.6); a smoke test of the whole chain, the rate itself is judged by the
+/// full run and the workspace tests.
 pub const QUICK_CONTACT_THRESHOLDS: Thresholds = Thresholds {
     grad: 0.75,
+    l2: 1.5,
+};
+
+/// The thresholds of M2-3D in `--quick`: what its small sizes honestly show, 0.03 below the
+/// smallest rates they gave (E_grad 0.72 on hexahedra over tetrahedra, E_0 1.73 on Voronoi
+/// over hexahedra); the full run judges it at [`CONTACT_THRESHOLDS`].
+pub const QUICK_FRICTION_THRESHOLDS: Thresholds = Thresholds {
+    grad: 0.69,
     l2: 1.5,
 };
 
@@ -108,7 +136,7 @@ struct Pairing {
     quick: &'static [(usize, usize)],
 }
 
-/// The pairings of M1-3D, sizes chosen from measured series (`docs/convergence-3d.md`): the
+/// The pairings of M1-3D and M2-3D, sizes chosen from measured series (`docs/convergence-3d.md`): the
 /// [`FITTED`] finest of the full run past the early slopes, the quick ones within seconds.
 const PAIRINGS: [Pairing; 3] = [
     Pairing {
@@ -211,13 +239,17 @@ pub fn case_name(name: &str) -> Option<&'static str> {
     SOLID_CASE_NAMES
         .iter()
         .copied()
-        .chain([CONTACT_CASE])
+        .chain(CONTACT_CASES)
         .find(|known| known.eq_ignore_ascii_case(name.trim()))
 }
 
 /// The names of the cases in space, for messages.
 pub fn case_names() -> String {
-    format!("{}, {CONTACT_CASE}", SOLID_CASE_NAMES.join(", "))
+    format!(
+        "{}, {}",
+        SOLID_CASE_NAMES.join(", "),
+        CONTACT_CASES.join(", ")
+    )
 }
 
 /// The element on polyhedra of the element registry's name `name`: the lowest-order VEM with
@@ -264,7 +296,9 @@ impl Expectation {
             Expectation::Exact {
                 tolerance: PATCH_TOLERANCE,
             }
-        } else if case == CONTACT_CASE {
+        } else if case == FRICTION_CASE && quick {
+            Expectation::Rates(QUICK_FRICTION_THRESHOLDS)
+        } else if CONTACT_CASES.contains(&case) {
             Expectation::Rates(if quick {
                 QUICK_CONTACT_THRESHOLDS
             } else {
@@ -388,7 +422,7 @@ pub fn run(
     let total: usize = cases
         .iter()
         .map(|&c| {
-            if c == CONTACT_CASE {
+            if CONTACT_CASES.contains(&c) {
                 PAIRINGS.len()
             } else {
                 LADDERS.len()
@@ -396,11 +430,12 @@ pub fn run(
         })
         .sum();
     for &case in cases {
-        if case == CONTACT_CASE {
+        if let Some(exact) = contact_case(case) {
             for pairing in &PAIRINGS {
                 let label = format!("[{}/{total}] {case} on {}", all.len() + 1, pairing.name());
-                let series =
-                    run_contact_series(pairing, quick, &element, bars, style, &label, &mut runs)?;
+                let series = run_contact_series(
+                    &*exact, pairing, quick, &element, bars, style, &label, &mut runs,
+                )?;
                 all.push(series);
             }
             continue;
@@ -459,9 +494,11 @@ pub fn run(
     })
 }
 
-/// Solves M1-3D on `pairing` at its sizes with the default (condensed) contact solver, one
-/// progress bar, and judges the series; its solves are appended to `runs`.
+/// Solves the two-body case `exact` on `pairing` at its sizes with the default (condensed)
+/// contact solver, one progress bar, and judges the series; its solves are appended to `runs`.
+#[allow(clippy::too_many_arguments)]
 fn run_contact_series(
+    exact: &dyn StackedContact,
     pairing: &Pairing,
     quick: bool,
     element: &Arc<dyn PolyhedralElement>,
@@ -470,19 +507,19 @@ fn run_contact_series(
     label: &str,
     runs: &mut Vec<SolidRun>,
 ) -> Result<Series, Box<dyn std::error::Error>> {
-    let exact = DiscContact::new(Lame::REFERENCE);
-    let expectation = Expectation::of(CONTACT_CASE, quick);
+    let case = exact.name();
+    let expectation = Expectation::of(case, quick);
     let sizes = pairing.sizes(quick);
     let weight = |(a, b): (usize, usize)| (a as u64).pow(3) + (b as u64).pow(3);
     let bar = bars.add(ProgressBar::new(sizes.iter().map(|&s| weight(s)).sum()));
     bar.set_style(style.clone());
-    bar.set_prefix(format!("{CONTACT_CASE} on {}", pairing.name()));
+    bar.set_prefix(format!("{case} on {}", pairing.name()));
     bar.enable_steady_tick(Duration::from_secs(1));
     let mut series_runs = Vec::with_capacity(sizes.len());
     for &(upper, lower) in sizes {
         bar.set_message(format!("n = {upper}/{lower}"));
         let run = run_disc_contact(
-            &exact,
+            exact,
             (pairing.upper, upper),
             (pairing.lower, lower),
             Arc::clone(element),
@@ -648,13 +685,16 @@ pub fn summary_markdown(outcome: &Outcome) -> String {
 }
 
 /// The interface of every contact solve (empty without any): nodes, the discrete contact zone
-/// against the exact disc, the resultant, the solver's report.
+/// against the exact disc, the resultant, the solver's report; for the Tresca case the stick
+/// and slip zones against the exact stick disc and the friction resultant.
 fn contact_markdown(outcome: &Outcome) -> String {
     let mut rows = String::new();
+    let mut friction_rows = String::new();
     for run in &outcome.runs {
         let Some(c) = &run.contact else { continue };
         rows.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {:.3} | {:.3} | {:.5} ({:+.2} %) | {} ({} it.) | {:.1} |\n",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.3} | {:.3} | {:.5} ({:+.2} %) | {} ({} it.) | {:.1} |\n",
+            run.case,
             run.family,
             size_label(run),
             run.unknowns,
@@ -669,20 +709,53 @@ fn contact_markdown(outcome: &Outcome) -> String {
             c.iterations,
             run.seconds
         ));
+        if let Some(f) = &c.friction {
+            let (found, exact) = (f.friction_resultant, f.exact_friction_resultant);
+            let error = (found[0] - exact[0]).hypot(found[1] - exact[1]) / exact[0].hypot(exact[1]);
+            friction_rows.push_str(&format!(
+                "| {} | {} | {} | {} | {} | {:.3} | {:.3} | ({:.5}, {:.5}) ({:.2} %) |\n",
+                run.case,
+                run.family,
+                size_label(run),
+                f.stick_nodes,
+                f.slip_nodes,
+                f.outermost_stick,
+                f.innermost_slip,
+                found[0],
+                found[1],
+                100.0 * error
+            ));
+        }
     }
     if rows.is_empty() {
         return rows;
     }
-    format!(
+    let mut out = format!(
         "\nThe interface of every contact solve ({CONTACT_CASE}: contact inside the disc of radius \
-         r_c = {:.4} about (1/2, 1/2); r is a node's distance to its centre; the exact resultant \
-         is {:.5}):\n\n\
-         | pairing | n | unknowns | interface nodes | inserted | in contact | largest r in contact | \
+         r_c = {:.4} about (1/2, 1/2), exact resultant {:.5}; {FRICTION_CASE}: contact \
+         everywhere, exact resultant {:.5}; r is a node's distance to the centre (1/2, 1/2)):\n\n\
+         | case | pairing | n | unknowns | interface nodes | inserted | in contact | largest r in contact | \
          smallest r open | sum of nodal forces | solver | seconds |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n{rows}",
+         |---|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n{rows}",
         DiscContact::CONTACT_RADIUS,
-        DiscContact::normal_resultant()
-    )
+        DiscContact::normal_resultant(),
+        StickSlipContact::normal_resultant()
+    );
+    if !friction_rows.is_empty() {
+        let exact = StickSlipContact::friction_resultant();
+        out.push_str(&format!(
+            "\nThe stick and slip zones of every Tresca solve ({FRICTION_CASE}: stick inside the \
+             disc of radius r_s = {:.4}, slip outside; the exact friction resultant on body one \
+             int sigma_1tau dA = ({:.5}, {:.5})):\n\n\
+             | case | pairing | n | stick nodes | slip nodes | largest r sticking | smallest r \
+             slipping | sum of nodal friction forces (error) |\n\
+             |---|---|---|---:|---:|---:|---:|---|\n{friction_rows}",
+            StickSlipContact::STICK_RADIUS,
+            exact.x,
+            exact.y
+        ));
+    }
+    out
 }
 
 /// "Fitted rates of the 12 series: E_grad from 0.96 (E2-3D on octree) to 1.01, E_0 from ...":
@@ -738,6 +811,10 @@ the exact solutions of [manufactured.md](manufactured.md), section 11:
   `E_0 >= 1.8` (second order is expected, not proved), and every solve certified
   ("Converged", the solver's KKT check); the quick run `E_grad >= 0.75`, `E_0 >= 1.5` at its
   small sizes.
+- **M2-3D**: Tresca friction between the same boxes, in contact everywhere, sticking inside a
+  disc of the interface and slipping outside it, with a friction bound `g_F(x, y)` that varies
+  and a slip that turns with it (Theorem 4.2 in space), on the same pairings with the same
+  solver, measures and verdict (the quick run: `E_grad >= 0.69`, `E_0 >= 1.5`).
 
 `lambda = 2`, `mu = 1`; element `vem1` (dofi-dofi, `trace(C)`) unless the run names another; the
 default sparse Cholesky solver. Families: hexahedra, tetrahedra (six Kuhn tetrahedra per box),
@@ -771,7 +848,7 @@ builds, it took 39 to 56 s (22 to 25 s of CPU, 0.5 GB peak memory) with the stud
 builds, 8 minutes of CPU, 6.9 GB peak memory; the time of this study is in the summary), writes
 `convergence-3d.md`, `convergence-3d.json` and `convergence-3d/*.svg` to `--out DIR` (default
 `target/convergence`; this file: `--out docs`) and exits with status 1 when a series falls short.
-`--case E1-3D` (repeatable; `E1-3D`, `E2-3D`, `PT0-3D`, `M1-3D`) runs only the cases named (naming cases in
+`--case E1-3D` (repeatable; `E1-3D`, `E2-3D`, `PT0-3D`, `M1-3D`, `M2-3D`) runs only the cases named (naming cases in
 the plane only runs no study in space, and the other way round); `--element NAME` (`vem1`,
 `vem1-shear`, `vem1-drecipe`, `vem1-bbar`); `--quick` the reduced sizes. Sizes and families of
 your own: `cargo run --release -p vem-verify --example three_d_convergence -- 6,12,24 vem1
@@ -822,7 +899,8 @@ pub fn markdown(outcome: &Outcome, command: &str, default_run: bool) -> String {
             quick_note()
         } else {
             format!(
-                "Thresholds: E_grad >= {}, E_0 >= {} ({CONTACT_CASE}: E_grad >= {}, E_0 >= {}).",
+                "Thresholds: E_grad >= {}, E_0 >= {} ({CONTACT_CASE}, {FRICTION_CASE}: \
+                 E_grad >= {}, E_0 >= {}).",
                 THRESHOLDS.grad, THRESHOLDS.l2, CONTACT_THRESHOLDS.grad, CONTACT_THRESHOLDS.l2
             )
         }
@@ -988,7 +1066,11 @@ mod tests {
             }
         }
         assert_eq!(case_name("m1-3d"), Some(CONTACT_CASE));
-        assert!(case_names().ends_with(CONTACT_CASE));
+        assert_eq!(case_name("m2-3d"), Some(FRICTION_CASE));
+        assert!(case_names().ends_with(FRICTION_CASE));
+        for case in CONTACT_CASES {
+            assert_eq!(contact_case(case).map(|c| c.name()), Some(case));
+        }
     }
 
     #[test]

@@ -11,7 +11,7 @@
 
 use std::sync::Arc;
 
-use vem_contact::{ContactProblem, ContactResult, Frictionless};
+use vem_contact::{ContactProblem, ContactResult, Coulomb, Frictionless, Tresca};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material};
 use vem_mesh::generators::polyhedral::{
     hexahedra, perturbed_hexahedra, tetrahedra, voronoi_polyhedra, Cuboid, PolyhedralFamily,
@@ -327,4 +327,296 @@ pub fn solid_contact(size: &Size) -> Vec<Row> {
         size,
     ));
     rows
+}
+
+// ---------------------------------------------------------------------------------------------
+// Friction in space
+
+/// The friction law of a row of [`solid_friction`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum FrictionLaw {
+    /// Tresca with the bound `g_F = factor * tau_stick` (a stress).
+    Tresca(f64),
+    /// Coulomb with the coefficient `F = factor * tau_stick / p`.
+    Coulomb(f64),
+}
+
+/// A bound huge against every traction of the problem (`1e8 P`).
+const HUGE: f64 = 1e8;
+
+/// Two blocks pressed and sheared with friction, the exact answer a uniform state: the upper
+/// block `[0, s]^2 x [0, s h_1]` on the lower `[0, s]^2 x [-s h_2, 0]` (hexahedra on
+/// tetrahedra, non-matching), `sigma_zz = -p` and `sigma_xz = tau` in both,
+/// `p = d / (h_1/E_1 + h_2/E_2)`; the shear stress `tau` is the stick one
+/// `tau_s = D / (h_1/G_1 + h_2/G_2)` when the bound allows it, else the bound (Tresca's `g_F`,
+/// Coulomb's `F p`), and the upper block slips by `D - tau (h_1/G_1 + h_2/G_2)` (lengths times
+/// `s`). The exact displacements are prescribed on the upper's top and the lower's bottom
+/// (every component), the tractions `(0, 0, -+tau)` on the sides x = 0 and x = s. With lateral
+/// contraction the two blocks contract alike only when `nu / E` is the same in both: the rows
+/// with a stiffness contrast have `nu = 0`, the row at `nu = 0.49999` equal moduli.
+#[derive(Debug, Clone)]
+struct ShearedStack {
+    stack: Stack,
+    law: FrictionLaw,
+}
+
+/// The shift `D` of the upper block's top (before the length scale).
+const SHIFT: f64 = 0.004;
+
+impl ShearedStack {
+    fn moduli(&self) -> [(f64, f64); 2] {
+        let nu = self.stack.poisson;
+        self.stack
+            .young
+            .map(|e| e * self.stack.modulus)
+            .map(|e| (e, e / (2.0 * (1.0 + nu))))
+    }
+
+    /// `p`, `tau_s`, the bound's shear stress and the realised `tau`, the slip.
+    fn state(&self) -> (f64, f64, f64, f64) {
+        let s = self.stack.length;
+        let [h1, h2] = self.stack.heights.map(|h| h * s);
+        let [(_, g1), (_, g2)] = self.moduli();
+        let p = self.stack.pressure();
+        let compliance = h1 / g1 + h2 / g2;
+        let stick = SHIFT * s / compliance;
+        let bound = match self.law {
+            FrictionLaw::Tresca(f) | FrictionLaw::Coulomb(f) => f * stick,
+        };
+        let tau = stick.min(bound);
+        (p, stick, tau, SHIFT * s - tau * compliance)
+    }
+
+    /// The exact displacement of body `k` (0 upper, 1 lower) at `x`.
+    fn exact(&self, k: usize, x: Point3) -> Vector3 {
+        let s = self.stack.length;
+        let h2 = self.stack.heights[1] * s;
+        let nu = self.stack.poisson;
+        let (p, _, tau, slip) = self.state();
+        let [(e1, g1), (e2, g2)] = self.moduli();
+        let lower_top = Vector3::new(tau / g2 * h2, 0.0, -p * h2 / e2);
+        if k == 1 {
+            let z = x.z + h2;
+            Vector3::new(
+                nu * p / e2 * x.x + tau / g2 * z,
+                nu * p / e2 * x.y,
+                -p / e2 * z,
+            )
+        } else {
+            Vector3::new(
+                nu * p / e1 * x.x + tau / g1 * x.z + lower_top.x + slip,
+                nu * p / e1 * x.y,
+                -p / e1 * x.z + lower_top.z,
+            )
+        }
+    }
+
+    fn problem(&self, n: usize) -> Result<ContactProblem<3>, String> {
+        let element = ElementRegistry::builtin()
+            .make_polyhedral_choice(&Choice::named(self.stack.element))
+            .map_err(|e| chain(&e))?;
+        let [upper_mesh, lower_mesh] = self.stack.meshes(n)?;
+        let nu = self.stack.poisson;
+        let material =
+            |e: f64| Material::isotropic(e * self.stack.modulus, nu).map_err(|e| chain(&e));
+        let (p, _, tau, _) = self.state();
+        let body = |k: usize, name: &str, mesh, young: f64, held: &str| {
+            let exact = self.clone();
+            ElasticBody::builder_polyhedral(name, mesh, material(young)?, Arc::clone(&element))
+                .dirichlet(Dirichlet::with_values(held, Component::All, move |x| {
+                    exact.exact(k, x)
+                }))
+                .traction("left", move |_| Vector3::new(0.0, 0.0, -tau))
+                .traction("right", move |_| Vector3::new(0.0, 0.0, tau))
+                .build()
+                .map_err(|e| chain(&e))
+        };
+        let upper = body(0, "upper", upper_mesh, self.stack.young[0], "top")?;
+        let lower = body(1, "lower", lower_mesh, self.stack.young[1], "bottom")?;
+        let (_, stick, ..) = self.state();
+        Ok(match self.law {
+            FrictionLaw::Tresca(f) => ContactProblem::two_bodies(
+                upper,
+                "bottom",
+                lower,
+                "top",
+                Tresca::<3>::try_new(f * stick).map_err(|e| chain(&e))?,
+            ),
+            FrictionLaw::Coulomb(f) => ContactProblem::two_bodies(
+                upper,
+                "bottom",
+                lower,
+                "top",
+                Coulomb::try_new(f * stick / p).map_err(|e| chain(&e))?,
+            ),
+        })
+    }
+
+    /// The largest nodal displacement error relative to the press and the shift, and the
+    /// errors of the normal and the friction resultants relative to `p s^2`.
+    fn errors(&self, result: &ContactResult<3>) -> (f64, f64, f64) {
+        let s = self.stack.length;
+        let (p, _, tau, _) = self.state();
+        let mut largest: f64 = 0.0;
+        for (k, body) in result.bodies.iter().enumerate() {
+            for (v, x) in body.body.mesh().vertices().iter().enumerate() {
+                let u = body.solution.vertex_displacement(v);
+                largest = largest.max((u - self.exact(k, *x)).norm());
+            }
+        }
+        let force = p * s * s;
+        let friction = result.friction_resultant();
+        (
+            largest / (INDENTATION.max(SHIFT) * s),
+            (result.normal_resultant() - force).abs() / force,
+            (friction - Vector3::new(-tau * s * s, 0.0, 0.0)).norm() / force,
+        )
+    }
+
+    fn judge(&self, n: usize, solver: &str) -> Outcome {
+        let tolerance = patch_tolerance(solver);
+        let outcome = self
+            .problem(n)
+            .and_then(|problem| solve(&problem, solver, &Options::new()));
+        judge(solver, outcome, |r| {
+            let (u, normal, friction) = self.errors(r);
+            (
+                format!(
+                    "max nodal error {u:.1e}, resultant errors {normal:.1e} (normal), \
+                     {friction:.1e} (friction)"
+                ),
+                u <= tolerance && normal <= tolerance && friction <= tolerance,
+            )
+        })
+    }
+}
+
+/// The laws of the friction rows: Tresca and Coulomb with the bound 0 (free slip), half the
+/// stick shear (slip) and huge (`1e8` times the pressure: stick).
+const FRICTION_LAWS: [(&str, FrictionLaw); 6] = [
+    ("Tresca g_F = 0", FrictionLaw::Tresca(0.0)),
+    ("Tresca g_F = tau_s / 2 (slip)", FrictionLaw::Tresca(0.5)),
+    ("Tresca g_F huge (stick)", FrictionLaw::Tresca(f64::NAN)),
+    ("Coulomb F = 0", FrictionLaw::Coulomb(0.0)),
+    ("Coulomb F p = tau_s / 2 (slip)", FrictionLaw::Coulomb(0.5)),
+    ("Coulomb F huge (stick)", FrictionLaw::Coulomb(f64::NAN)),
+];
+
+/// Friction in space at the extremes, by every solver: the stacked non-matching blocks pressed
+/// and sheared ([`ShearedStack`]), Tresca and Coulomb with the bounds of [`FRICTION_LAWS`], at
+/// stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with the
+/// locking-free element `vem1-bbar`.
+pub fn solid_friction(size: &Size) -> Vec<Row> {
+    let base = Stack {
+        poisson: 0.0,
+        ..Stack::new(StackCells::HexahedraOnTetrahedra)
+    };
+    let mut stacks = vec![("E_1/E_2 = 1/3, nu = 0".to_string(), base.clone())];
+    for c in [1e8, 1e-8] {
+        stacks.push((
+            format!("E_1/E_2 = {c:.0e}, nu = 0"),
+            Stack {
+                young: [100.0 * c, 100.0],
+                ..base.clone()
+            },
+        ));
+    }
+    for (length, modulus) in [(1e6, 1.0), (1e-6, 1.0), (1.0, 1e-9), (1e-6, 1e-9)] {
+        stacks.push((
+            format!("lengths x {length:.0e}, moduli x {modulus:.0e}, nu = 0"),
+            Stack {
+                length,
+                modulus,
+                ..base.clone()
+            },
+        ));
+    }
+    stacks.push((
+        "vem1-bbar, nu = 0.49999, E_1 = E_2".to_string(),
+        Stack {
+            poisson: 0.49999,
+            element: "vem1-bbar",
+            young: [100.0, 100.0],
+            ..base.clone()
+        },
+    ));
+    let mut rows = Vec::new();
+    for (name, stack) in &stacks {
+        for (law_name, law) in FRICTION_LAWS {
+            // The huge bound: 1e8 P over the stick shear.
+            let law = match law {
+                FrictionLaw::Tresca(f) if f.is_nan() => {
+                    let sheared = ShearedStack {
+                        stack: stack.clone(),
+                        law: FrictionLaw::Tresca(1.0),
+                    };
+                    let (p, stick, ..) = sheared.state();
+                    FrictionLaw::Tresca(HUGE * p / stick)
+                }
+                FrictionLaw::Coulomb(f) if f.is_nan() => {
+                    let sheared = ShearedStack {
+                        stack: stack.clone(),
+                        law: FrictionLaw::Coulomb(1.0),
+                    };
+                    let (p, stick, ..) = sheared.state();
+                    FrictionLaw::Coulomb(HUGE * p / stick)
+                }
+                other => other,
+            };
+            let sheared = ShearedStack {
+                stack: stack.clone(),
+                law,
+            };
+            rows.push(Row {
+                name: format!("{name}, {law_name}"),
+                expected: format!(
+                    "exact uniform press and shear (stick or slip): nodal error / max(d, D) and \
+                     resultant errors / P <= {:.0e} (penalty: <= {:.0e} = 1/factor)",
+                    patch_tolerance(""),
+                    patch_tolerance("penalty")
+                ),
+                outcomes: size
+                    .solvers
+                    .iter()
+                    .map(|s| sheared.judge(size.solid_patch, s))
+                    .collect(),
+            });
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vem_contact::SolverRegistry;
+
+    /// Every friction row in space at the test size: no wrong answer reported as converged,
+    /// and the default solver gives the exact uniform state.
+    #[test]
+    fn friction_in_space_at_the_extremes_is_exact_or_refused() {
+        let rows = solid_friction(&Size::test());
+        assert_eq!(rows.len(), 8 * FRICTION_LAWS.len());
+        let mut problems = Vec::new();
+        for row in &rows {
+            for outcome in &row.outcomes {
+                let here = format!(
+                    "{} / {}: {} ({})",
+                    row.name,
+                    outcome.solver,
+                    outcome.verdict.word(),
+                    outcome.measured
+                );
+                if !outcome.verdict.is_honest() {
+                    problems.push(format!("wrong answer without error or warning: {here}"));
+                }
+                if outcome.solver == SolverRegistry::DEFAULT
+                    && outcome.verdict != super::super::rows::Verdict::Pass
+                {
+                    problems.push(format!("default solver: {here}"));
+                }
+            }
+        }
+        assert!(problems.is_empty(), "{}", problems.join("\n"));
+    }
 }

@@ -332,4 +332,79 @@ impl HertzSphere {
     pub fn approach(&self) -> f64 {
         self.contact_radius().powi(2) / self.radius
     }
+
+    /// Cattaneo-Mindlin in space (Johnson, Contact Mechanics, 7.2): the ball pressed by `P`,
+    /// then sheared by `Q < F P` with Coulomb's coefficient `F`, sticks on the disc of radius
+    /// `c = a (1 - Q/(F P))^(1/3)` and slips on the annulus `c < r < a`; `q_ratio = Q/(F P)` is
+    /// clamped to `[0, 1]` (full stick at 0, full slip at 1). Mindlin's solution neglects the
+    /// coupling of the normal and tangential problems (exact for elastically similar bodies of
+    /// incompressible material, a close approximation otherwise).
+    pub fn stick_radius(&self, q_ratio: f64) -> f64 {
+        self.contact_radius() * (1.0 - q_ratio.clamp(0.0, 1.0)).cbrt()
+    }
+
+    /// Cattaneo-Mindlin in space: the magnitude of the tangential traction at distance `r` from
+    /// the axis for the coefficient `coefficient` and `q_ratio = Q/(F P)`, along the shear,
+    ///
+    /// ```text
+    /// q(r) = F p0 sqrt(1 - r^2/a^2) - F p0 (c/a) sqrt(1 - r^2/c^2)   (r < c, stick)
+    /// q(r) = F p(r)                                                 (c <= r, slip)
+    /// ```
+    ///
+    /// which integrates to `Q` over the contact disc.
+    pub fn tangential_traction(&self, r: f64, coefficient: f64, q_ratio: f64) -> f64 {
+        let (a, c) = (self.contact_radius(), self.stick_radius(q_ratio));
+        let slip = coefficient * self.pressure(r);
+        if r.abs() < c {
+            let s = r / c;
+            slip - coefficient * self.peak_pressure() * (c / a) * (1.0 - s * s).max(0.0).sqrt()
+        } else {
+            slip
+        }
+    }
+}
+
+#[cfg(test)]
+mod sphere_tests {
+    use super::*;
+
+    /// Hand values of Cattaneo-Mindlin in space: with `R = 1`, `E* = 3/4`, `P = 1` the
+    /// contact radius is `a = 1` and `p0 = 3/(2 pi)`; at `Q/(F P) = 7/8` the stick radius is
+    /// `c = a (1/8)^(1/3) = 1/2`; the traction integrates to `Q`.
+    #[test]
+    fn mindlin_stick_radius_and_traction_have_their_hand_values() {
+        let hertz = HertzSphere::try_new(1.0, 0.75, 1.0).unwrap();
+        let (f, q) = (0.4, 0.875);
+        let p0 = 1.5 / std::f64::consts::PI;
+        assert!((hertz.contact_radius() - 1.0).abs() < 1e-15);
+        assert!((hertz.stick_radius(q) - 0.5).abs() < 1e-15);
+        assert_eq!(hertz.stick_radius(0.0), hertz.contact_radius());
+        assert_eq!(hertz.stick_radius(1.5), 0.0);
+        // At the axis: F p0 (1 - c/a) = F p0 / 2.
+        assert!((hertz.tangential_traction(0.0, f, q) - 0.5 * f * p0).abs() < 1e-15);
+        // At r = 1/4: F p0 (sqrt(15/16) - sqrt(3/4)/2).
+        let quarter = f * p0 * ((15.0f64 / 16.0).sqrt() - 0.5 * 0.75f64.sqrt());
+        assert!((hertz.tangential_traction(0.25, f, q) - quarter).abs() < 1e-15);
+        // In the slip annulus the traction is at its bound F p.
+        assert_eq!(
+            hertz.tangential_traction(0.75, f, q),
+            f * hertz.pressure(0.75)
+        );
+        assert_eq!(hertz.tangential_traction(1.2, f, q), 0.0);
+        // int q 2 pi r dr = Q = (Q/(F P)) F P, for every ratio (midpoint rule).
+        for ratio in [0.2, 0.5, 0.8, 0.875] {
+            let n = 200_000;
+            let h = hertz.contact_radius() / n as f64;
+            let resultant: f64 = (0..n)
+                .map(|k| {
+                    let r = (k as f64 + 0.5) * h;
+                    hertz.tangential_traction(r, f, ratio) * 2.0 * std::f64::consts::PI * r * h
+                })
+                .sum();
+            assert!(
+                (resultant - ratio * f * hertz.load()).abs() < 1e-6,
+                "{ratio}: {resultant}"
+            );
+        }
+    }
 }

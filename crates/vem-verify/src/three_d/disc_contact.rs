@@ -18,8 +18,11 @@
 //! the stress and the body force are exact.
 
 use std::ops::{Add, Mul, Neg};
+use std::sync::Arc;
 
 use nalgebra::{Matrix2, Matrix3, Vector2};
+use vem_contact::{ContactProblem, Frictionless};
+use vem_elastic::ElasticBody;
 use vem_mesh::generators::polyhedral::Cuboid;
 use vem_mesh::{Point3, Vector3};
 
@@ -28,17 +31,17 @@ use crate::exact::{BodyId, Jet, Lame, SwitchPower, SwitchSide};
 
 /// Value and derivatives up to the third of a function of `(x, y)`.
 #[derive(Debug, Clone, Copy)]
-struct PlaneJet {
-    value: f64,
-    gradient: Vector2<f64>,
-    hessian: Matrix2<f64>,
+pub(super) struct PlaneJet {
+    pub(super) value: f64,
+    pub(super) gradient: Vector2<f64>,
+    pub(super) hessian: Matrix2<f64>,
     /// `third[k]` is `d_k` of the Hessian.
-    third: [Matrix2<f64>; 2],
+    pub(super) third: [Matrix2<f64>; 2],
 }
 
 impl PlaneJet {
     /// `c0 + cx x + cy y + cxx x^2 + cxy x y + cyy y^2` with `c = [c0, cx, cy, cxx, cxy, cyy]`.
-    fn quadratic(c: [f64; 6], x: f64, y: f64) -> Self {
+    pub(super) fn quadratic(c: [f64; 6], x: f64, y: f64) -> Self {
         Self {
             value: c[0] + c[1] * x + c[2] * y + c[3] * x * x + c[4] * x * y + c[5] * y * y,
             gradient: Vector2::new(
@@ -52,7 +55,7 @@ impl PlaneJet {
 
     /// `g(|(x, y) - centre|^2)` for the switch function `g` (chain rule with
     /// `v = grad |x - c|^2 = 2 (x - c)`, whose own gradient is `2 I`).
-    fn radial(g: &SwitchPower, centre: [f64; 2], x: f64, y: f64) -> Self {
+    pub(super) fn radial(g: &SwitchPower, centre: [f64; 2], x: f64, y: f64) -> Self {
         let v = Vector2::new(2.0 * (x - centre[0]), 2.0 * (y - centre[1]));
         let s = 0.25 * v.norm_squared();
         let j: Jet<4> = g.jet(s);
@@ -74,12 +77,39 @@ impl PlaneJet {
 
     /// The partial derivative `d_k`; its third derivatives are not known and are NaN (only
     /// value, gradient and Hessian of a derivative enter the field).
-    fn partial(&self, k: usize) -> Self {
+    pub(super) fn partial(&self, k: usize) -> Self {
         Self {
             value: self.gradient[k],
             gradient: self.hessian.column(k).into_owned(),
             hessian: self.third[k],
             third: [Matrix2::from_element(f64::NAN); 2],
+        }
+    }
+
+    /// The product `f g` by Leibniz's rule, to the third derivatives.
+    pub(super) fn product(&self, g: &Self) -> Self {
+        let f = self;
+        Self {
+            value: f.value * g.value,
+            gradient: f.gradient * g.value + g.gradient * f.value,
+            hessian: Matrix2::from_fn(|a, b| {
+                f.hessian[(a, b)] * g.value
+                    + f.gradient[a] * g.gradient[b]
+                    + f.gradient[b] * g.gradient[a]
+                    + f.value * g.hessian[(a, b)]
+            }),
+            third: std::array::from_fn(|k| {
+                Matrix2::from_fn(|a, b| {
+                    f.third[k][(a, b)] * g.value
+                        + f.hessian[(a, b)] * g.gradient[k]
+                        + f.hessian[(a, k)] * g.gradient[b]
+                        + f.hessian[(b, k)] * g.gradient[a]
+                        + f.gradient[a] * g.hessian[(b, k)]
+                        + f.gradient[b] * g.hessian[(a, k)]
+                        + f.gradient[k] * g.hessian[(a, b)]
+                        + f.value * g.third[k][(a, b)]
+                })
+            }),
         }
     }
 }
@@ -154,6 +184,38 @@ impl InterfaceValues3d {
     pub fn gap(&self) -> f64 {
         self.initial_gap - self.normal_jump
     }
+}
+
+/// A manufactured two-body contact case on the stacked boxes `Omega_1 = (0, 1)^3` (upper) and
+/// `Omega_2 = (0, 1)^2 x (-1, 0)` (lower) across the interface `z = 0` ([`DiscContact`],
+/// "M1-3D"; [`StickSlipContact`](super::StickSlipContact), "M2-3D"): each body an
+/// [`ExactSolution3d`], the contact law and the imposed gap of the pair, the exact interface
+/// values and resultants the discrete solves are compared with, and the circle of radius
+/// [`StackedContact::zone_radius`] around `(1/2, 1/2)` where the two zones of the interface
+/// meet (contact and separation, or stick and slip).
+pub trait StackedContact: Send + Sync {
+    /// The case's name ("M1-3D", ...).
+    fn name(&self) -> &'static str;
+
+    /// Body `body` as a solution of elasticity on its box (its contact side free).
+    fn exact_body(&self, body: BodyId) -> Arc<dyn ExactSolution3d>;
+
+    /// The contact problem of the bodies `one` (on body one's box) and `two` (on body two's):
+    /// body one's bottom against body two's top with the case's law and imposed gap.
+    fn contact_problem(&self, one: ElasticBody<3>, two: ElasticBody<3>) -> ContactProblem<3>;
+
+    /// The exact values on the interface at `(x, y)`.
+    fn interface_values(&self, x: f64, y: f64) -> InterfaceValues3d;
+
+    /// The radius of the circle around `(1/2, 1/2)` where the two zones of the interface meet.
+    fn zone_radius(&self) -> f64;
+
+    /// The exact resultant of the pressure, `int -sigma_nu dA`.
+    fn exact_normal_resultant(&self) -> f64;
+
+    /// The exact resultant of the friction traction on body one, `int sigma_1tau dA` (zero
+    /// without friction).
+    fn exact_friction_resultant(&self) -> Vector2<f64>;
 }
 
 /// "M1-3D": frictionless contact of the upper box `Omega_1 = (0, 1)^2 x (0, 1)` on the lower
@@ -314,36 +376,91 @@ impl DiscContact {
 
     /// Value, gradient and Hessian of the three components of `u_body` at `x`.
     fn evaluate(&self, body: BodyId, x: Point3) -> [Evaluated; 3] {
-        let (lambda, mu) = (self.lame.lambda(), self.lame.mu());
-        let kappa = 1.0 / (lambda + 2.0 * mu);
         let (alpha, phi) = self.traces(body, x.x, x.y);
         let p = PlaneJet::radial(&PRESSURE, Self::CENTRE, x.x, x.y);
-        // Frictionless: t = 0, theta = -grad phi.
-        let theta = [-phi.partial(0), -phi.partial(1)];
-        let pi = p + (alpha[0].partial(0) + alpha[1].partial(1)) * lambda;
-        let s = match body {
-            BodyId::One => 1.0,
-            BodyId::Two => -1.0,
+        let zero = PlaneJet::quadratic([0.0; 6], x.x, x.y);
+        // Frictionless: t = 0.
+        family_a_in_space(self.lame, body, alpha, phi, [zero, zero], p, x.z)
+    }
+}
+
+/// Family A in space (`docs/manufactured.md`, section 11): value, gradient and Hessian of the
+/// three components of `u` of body `body` at height `z` from its interface data at `(x, y)`, the
+/// tangential trace `alpha`, the normal trace `phi`, the shear traction `t = sigma_Tz` and the
+/// pressure `p = -sigma_zz`:
+///
+/// ```text
+/// u_T = Z2 alpha + Zs theta,   theta = t / mu - grad phi
+/// u_z = Z2 phi - kappa Zs pi,  pi = p + lambda div alpha
+/// ```
+pub(super) fn family_a_in_space(
+    lame: Lame,
+    body: BodyId,
+    alpha: [PlaneJet; 2],
+    phi: PlaneJet,
+    t: [PlaneJet; 2],
+    p: PlaneJet,
+    z: f64,
+) -> [Evaluated; 3] {
+    let (lambda, mu) = (lame.lambda(), lame.mu());
+    let kappa = 1.0 / (lambda + 2.0 * mu);
+    let theta = [
+        t[0] * (1.0 / mu) + -phi.partial(0),
+        t[1] * (1.0 / mu) + -phi.partial(1),
+    ];
+    let pi = p + (alpha[0].partial(0) + alpha[1].partial(1)) * lambda;
+    let s = match body {
+        BodyId::One => 1.0,
+        BodyId::Two => -1.0,
+    };
+    let z2 = [1.0 - z * z, -2.0 * z, -2.0];
+    let zs = [z - s * z * z, 1.0 - 2.0 * s * z, -2.0 * s];
+    let terms: [[(&[f64; 3], PlaneJet); 2]; 3] = [
+        [(&z2, alpha[0]), (&zs, theta[0])],
+        [(&z2, alpha[1]), (&zs, theta[1])],
+        [(&z2, phi), (&zs, pi * -kappa)],
+    ];
+    terms.map(|component| {
+        let mut out = Evaluated {
+            value: 0.0,
+            gradient: Vector3::zeros(),
+            hessian: Matrix3::zeros(),
         };
-        let z = x.z;
-        let z2 = [1.0 - z * z, -2.0 * z, -2.0];
-        let zs = [z - s * z * z, 1.0 - 2.0 * s * z, -2.0 * s];
-        let terms: [[(&[f64; 3], PlaneJet); 2]; 3] = [
-            [(&z2, alpha[0]), (&zs, theta[0])],
-            [(&z2, alpha[1]), (&zs, theta[1])],
-            [(&z2, phi), (&zs, pi * -kappa)],
-        ];
-        terms.map(|component| {
-            let mut out = Evaluated {
-                value: 0.0,
-                gradient: Vector3::zeros(),
-                hessian: Matrix3::zeros(),
-            };
-            for (z_jet, c) in &component {
-                add_term(&mut out, **z_jet, c);
-            }
-            out
-        })
+        for (z_jet, c) in &component {
+            add_term(&mut out, **z_jet, c);
+        }
+        out
+    })
+}
+
+impl StackedContact for DiscContact {
+    fn name(&self) -> &'static str {
+        Self::NAME
+    }
+
+    fn exact_body(&self, body: BodyId) -> Arc<dyn ExactSolution3d> {
+        Arc::new(self.body(body))
+    }
+
+    fn contact_problem(&self, one: ElasticBody<3>, two: ElasticBody<3>) -> ContactProblem<3> {
+        ContactProblem::two_bodies(one, "bottom", two, "top", Frictionless)
+            .with_imposed_gap(|x| DiscContact::initial_gap(x.x, x.y))
+    }
+
+    fn interface_values(&self, x: f64, y: f64) -> InterfaceValues3d {
+        self.interface(x, y)
+    }
+
+    fn zone_radius(&self) -> f64 {
+        Self::CONTACT_RADIUS
+    }
+
+    fn exact_normal_resultant(&self) -> f64 {
+        Self::normal_resultant()
+    }
+
+    fn exact_friction_resultant(&self) -> Vector2<f64> {
+        Vector2::zeros()
     }
 }
 

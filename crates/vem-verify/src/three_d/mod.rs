@@ -7,11 +7,14 @@
 //!   the locking study);
 //! - [`DiscContact`] ("M1-3D"): frictionless contact of two stacked boxes on a disc, the case
 //!   of Theorem 4.1 in space, each body an [`ExactSolution3d`] ([`DiscContact::body`]);
+//! - [`StickSlipContact`] ("M2-3D"): Tresca friction between the same boxes, sticking inside a
+//!   disc and slipping outside, the case of Theorem 4.2 in space; both are [`StackedContact`]
+//!   cases;
 //! - [`projection_errors_3d`], [`energy_error_3d`], [`body_errors_3d`]: `E_grad`, `E_0`, `E_a`;
 //! - [`solid_body`], [`solve_solid`], [`run_solid`], [`three_d_convergence`]: the discrete
 //!   problems on the families of `vem_mesh::generators::polyhedral` and the study over sizes;
 //!   [`disc_contact_problem`], [`solve_disc_contact`], [`run_disc_contact`]: the contact
-//!   problem of [`DiscContact`] on two non-matching meshes; [`solid_rates`] and
+//!   problem of a [`StackedContact`] case on two non-matching meshes; [`solid_rates`] and
 //!   [`solid_markdown`] fit and print the rates of both.
 //!
 //! ```
@@ -34,14 +37,16 @@
 mod disc_contact;
 mod exact;
 mod norms;
+mod stick_slip;
 mod study;
 
-pub use disc_contact::{DiscContact, DiscContactBody, InterfaceValues3d};
+pub use disc_contact::{DiscContact, DiscContactBody, InterfaceValues3d, StackedContact};
 pub use exact::{
     solid_case_by_name, DivergenceFreeSolid, ExactSolution3d, LinearSolid, SmoothSolid, CUBE_PARTS,
     SOLID_CASE_NAMES,
 };
 pub use norms::{body_errors_3d, energy_error_3d, nodal_interpolant_3d, projection_errors_3d};
+pub use stick_slip::{StickSlipBody, StickSlipContact};
 pub use study::{
     disc_contact_problem, run_disc_contact, run_solid, solid_body, solid_markdown, solid_rates,
     solve_disc_contact, solve_solid, three_d_convergence, SolidContact, SolidRates, SolidRun,

@@ -4,14 +4,14 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactProblem, ContactResult, ContactSolver, Frictionless};
+use vem_contact::{ContactProblem, ContactResult, ContactSolver, NodeStatus};
 use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::polyhedral::PolyhedralFamily;
 use vem_mesh::{PolyhedralMesh, Vector3};
 use vem_space::PolyhedralElement;
 
 use super::norms::{body_errors_3d, nodal_interpolant_3d};
-use super::{DiscContact, ExactSolution3d, CUBE_PARTS};
+use super::{ExactSolution3d, StackedContact, CUBE_PARTS};
 use crate::exact::BodyId;
 use crate::norms::ErrorNorms;
 use crate::study::fitted_rate;
@@ -56,8 +56,8 @@ pub struct SolidRun {
     pub contact: Option<SolidContact>,
 }
 
-/// What a contact solve of [`DiscContact`] found on the interface, against the exact contact
-/// disc `r < r_c`.
+/// What a contact solve of a [`StackedContact`] case found on the interface, against the exact
+/// zones (M1-3D: the contact disc `r < r_c`; M2-3D: the stick disc `r < r_s`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SolidContact {
     /// The family of the lower body (the upper body's is the run's family's first word).
@@ -82,8 +82,28 @@ pub struct SolidContact {
     pub innermost_open: f64,
     /// The sum of the nodal contact forces.
     pub normal_resultant: f64,
-    /// The exact resultant `int p dA` ([`DiscContact::normal_resultant`]).
+    /// The exact resultant `int p dA` ([`StackedContact::exact_normal_resultant`]).
     pub exact_resultant: f64,
+    /// With friction: the stick and slip zones and the friction resultant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<SolidFriction>,
+}
+
+/// What a contact solve with friction found on the interface, against the exact stick disc.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SolidFriction {
+    /// Interface nodes that stick.
+    pub stick_nodes: usize,
+    /// Interface nodes that slip.
+    pub slip_nodes: usize,
+    /// The largest distance `r` to the disc's centre of a node that sticks (0 without any).
+    pub outermost_stick: f64,
+    /// The smallest distance `r` of a node that slips (infinite without any).
+    pub innermost_slip: f64,
+    /// The sum of the nodal friction forces on body one, `(x, y)` components.
+    pub friction_resultant: [f64; 2],
+    /// The exact `int sigma_1tau dA` ([`StackedContact::exact_friction_resultant`]).
+    pub exact_friction_resultant: [f64; 2],
 }
 
 /// The body of `exact` on `mesh` with `element`: the material of the case, the Dirichlet data
@@ -203,29 +223,22 @@ fn relative_nodal_error(interpolant: &[f64], displacement: &[f64]) -> f64 {
     }
 }
 
-/// The frictionless contact problem of `exact` on the meshes `upper` (of body one's box) and
-/// `lower` (of body two's box) with `element`: body one's bottom against body two's top, the
-/// initial gap `h0` imposed (the two sides coincide, the geometric gap is zero), each body's data
-/// by [`solid_body`].
+/// The contact problem of `exact` on the meshes `upper` (of body one's box) and `lower` (of
+/// body two's box) with `element`: body one's bottom against body two's top, the case's law and
+/// imposed gap ([`StackedContact::contact_problem`]; the two sides coincide, the geometric gap
+/// is zero), each body's data by [`solid_body`].
 ///
 /// # Errors
 /// As [`solid_body`].
 pub fn disc_contact_problem(
-    exact: &DiscContact,
+    exact: &dyn StackedContact,
     upper: PolyhedralMesh,
     lower: PolyhedralMesh,
     element: Arc<dyn PolyhedralElement>,
 ) -> Result<ContactProblem<3>, VerifyError> {
-    let one = solid_body(
-        Arc::new(exact.body(BodyId::One)),
-        upper,
-        Arc::clone(&element),
-    )?;
-    let two = solid_body(Arc::new(exact.body(BodyId::Two)), lower, element)?;
-    Ok(
-        ContactProblem::two_bodies(one, "bottom", two, "top", Frictionless)
-            .with_imposed_gap(|x| DiscContact::initial_gap(x.x, x.y)),
-    )
+    let one = solid_body(exact.exact_body(BodyId::One), upper, Arc::clone(&element))?;
+    let two = solid_body(exact.exact_body(BodyId::Two), lower, element)?;
+    Ok(exact.contact_problem(one, two))
 }
 
 /// Solves the contact problem of `exact` on `upper` and `lower` ([`disc_contact_problem`]) with
@@ -235,7 +248,7 @@ pub fn disc_contact_problem(
 /// # Errors
 /// As [`disc_contact_problem`], a failed contact solve, the error measures.
 pub fn solve_disc_contact(
-    exact: &DiscContact,
+    exact: &dyn StackedContact,
     upper: PolyhedralMesh,
     lower: PolyhedralMesh,
     element: Arc<dyn PolyhedralElement>,
@@ -245,14 +258,14 @@ pub fn solve_disc_contact(
     let result = problem
         .solve(solver)
         .map_err(|source| VerifyError::Contact {
-            case: DiscContact::NAME.to_string(),
+            case: exact.name().to_string(),
             source: Box::new(source),
         })?;
     let mut errors = [ErrorNorms::default(); 2];
     for (k, id) in BodyId::BOTH.into_iter().enumerate() {
         let solved = &result.bodies[k];
         errors[k] = body_errors_3d(
-            &exact.body(id),
+            &*exact.exact_body(id),
             &solved.body,
             &solved.system,
             solved.solution.displacement(),
@@ -262,7 +275,7 @@ pub fn solve_disc_contact(
 }
 
 /// Generates the upper body's mesh of family `upper.0` with size `upper.1` and the lower body's
-/// of `lower.0`, `lower.1` (with [`SOLID_SEED`]), solves [`DiscContact`] on them with `solver`
+/// of `lower.0`, `lower.1` (with [`SOLID_SEED`]), solves the case `exact` on them with `solver`
 /// and measures: the run's family is "`upper` over `lower`", its size the upper body's, its
 /// cells, vertices and unknowns the sums over both bodies (after the overlay), `h` the larger
 /// largest cell diameter, the spacing the larger mean cell size `(|Omega_i| / cells_i)^(1/3)`
@@ -272,7 +285,7 @@ pub fn solve_disc_contact(
 /// # Errors
 /// A mesh that cannot be generated, as [`solve_disc_contact`].
 pub fn run_disc_contact(
-    exact: &DiscContact,
+    exact: &dyn StackedContact,
     upper: (PolyhedralFamily, usize),
     lower: (PolyhedralFamily, usize),
     element: Arc<dyn PolyhedralElement>,
@@ -281,9 +294,9 @@ pub fn run_disc_contact(
     let start = Instant::now();
     let mesh = |id: BodyId, (family, n): (PolyhedralFamily, usize)| {
         family
-            .generate(&DiscContact::domain(id), n, SOLID_SEED)
+            .generate(&exact.exact_body(id).domain(), n, SOLID_SEED)
             .map_err(|source| VerifyError::Mesh {
-                case: DiscContact::NAME.to_string(),
+                case: exact.name().to_string(),
                 body: id.index() + 1,
                 family: family.name().to_string(),
                 n,
@@ -298,7 +311,7 @@ pub fn run_disc_contact(
     for (k, id) in BodyId::BOTH.into_iter().enumerate() {
         let solved = &result.bodies[k];
         let mesh = solved.body.mesh();
-        interpolant.extend(nodal_interpolant_3d(&exact.body(id), mesh));
+        interpolant.extend(nodal_interpolant_3d(&*exact.exact_body(id), mesh));
         displacement.extend_from_slice(solved.solution.displacement());
         cells += mesh.n_cells();
         vertices += mesh.n_vertices();
@@ -306,10 +319,24 @@ pub fn run_disc_contact(
         h = h.max(mesh.mesh_size());
         spacing = spacing.max((1.0 / mesh.n_cells() as f64).cbrt());
     }
-    let radius =
-        |n: &vem_contact::InterfaceNode<3>| DiscContact::radius(n.position.x, n.position.y);
+    let radius = |n: &vem_contact::InterfaceNode<3>| (n.position.x - 0.5).hypot(n.position.y - 0.5);
     let active = result.nodes.iter().filter(|n| n.status.is_active());
     let open = result.nodes.iter().filter(|n| !n.status.is_active());
+    let with_status = |status: NodeStatus| result.nodes.iter().filter(move |n| n.status == status);
+    let exact_friction = exact.exact_friction_resultant();
+    let friction = result.friction_resultant();
+    let friction = (exact_friction != nalgebra::Vector2::zeros()).then(|| SolidFriction {
+        stick_nodes: with_status(NodeStatus::Stick).count(),
+        slip_nodes: with_status(NodeStatus::Slip).count(),
+        outermost_stick: with_status(NodeStatus::Stick)
+            .map(radius)
+            .fold(0.0, f64::max),
+        innermost_slip: with_status(NodeStatus::Slip)
+            .map(radius)
+            .fold(f64::INFINITY, f64::min),
+        friction_resultant: [friction.x, friction.y],
+        exact_friction_resultant: [exact_friction.x, exact_friction.y],
+    });
     let contact = SolidContact {
         lower_family: lower.0.name().to_string(),
         lower_n: lower.1,
@@ -322,10 +349,11 @@ pub fn run_disc_contact(
         outermost_contact: active.map(radius).fold(0.0, f64::max),
         innermost_open: open.map(radius).fold(f64::INFINITY, f64::min),
         normal_resultant: result.normal_resultant(),
-        exact_resultant: DiscContact::normal_resultant(),
+        exact_resultant: exact.exact_normal_resultant(),
+        friction,
     };
     Ok(SolidRun {
-        case: DiscContact::NAME.to_string(),
+        case: exact.name().to_string(),
         family: format!("{} over {}", upper.0.name(), lower.0.name()),
         element: element_name,
         n: upper.1,
