@@ -365,7 +365,7 @@ mod tests {
         .unwrap();
         let err = body.estimate(&[0.0; 3], &[]).unwrap_err();
         assert!(err.to_string().contains("'b'"), "{err}");
-        let err = body.estimate(&vec![0.0; 18], &["contact"]).unwrap_err();
+        let err = body.estimate(&[0.0; 18], &["contact"]).unwrap_err();
         assert!(matches!(err, ElasticError::Mesh { .. }), "{err}");
     }
 }

@@ -476,6 +476,11 @@ mod tests {
                 }
                 mesh = r.mesh;
             }
+            eprintln!(
+                "{name}: {} cells after ten cycles, children's star ratio >= {worst_child_star:.3} \
+                 (initial mesh >= {first_star:.3})",
+                mesh.n_polygons()
+            );
             assert!(
                 worst_child_star > 0.1 * first_star.min(0.2),
                 "{name}: children's star ratio {worst_child_star}, initial {first_star}"
