@@ -271,7 +271,7 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     std::fs::create_dir_all(&folder)?;
     let element = LowestOrderVem::default();
     let (cycles, uniform_cycles, reference_cycles) =
-        if args.quick { (6, 3, 8) } else { (16, 5, 22) };
+        if args.quick { (6, 3, 14) } else { (16, 5, 22) };
     let settings = |uniform: bool, cycles: usize| AdaptiveSettings {
         theta: THETA,
         max_cycles: cycles,

@@ -45,7 +45,7 @@ use crate::problem::{DiscreteProblem, ProblemSettings};
 use crate::VerifyError;
 
 /// The band of the effectivity index `eta / E_en` on the smooth cases E1 and M1 on
-/// quadrilaterals, triangles and Voronoi meshes of 8 and 16 cells a side: measured 6.1 to 8.3
+/// quadrilaterals, triangles and Voronoi meshes of 6 and 12 cells a side: measured 6.1 to 8.3
 /// (docs/adaptivity.md); the band leaves room around that, not a factor of ten.
 pub const EFFECTIVITY_BAND: (f64, f64) = (4.0, 12.0);
 
