@@ -11,9 +11,12 @@
 //!   `target/extremes/extremes.md`; `--out docs/extremes.md` regenerates the tracked report).
 //! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
 //!   interface insertion (see `docs/fuzzing.md`).
+//! - `adaptivity`: adaptive against uniform refinement for 2D contact, the estimator's
+//!   effectivity and the adapted meshes (see `docs/adaptivity.md`).
 //! - `tradeoff`: work-precision diagrams of every solver setting, the accuracy presets and the
 //!   error model (see `docs/tradeoff.md`).
 
+mod adaptivity;
 mod bench;
 mod common;
 mod convergence;
@@ -74,6 +77,12 @@ enum Task {
     /// errors, stage times, counters, peak memory, work-precision diagrams with the Pareto
     /// front, the presets and the fitted error model. Writes tradeoff.md and tradeoff/.
     Tradeoff(tradeoff::TradeoffArgs),
+    /// Adaptive against uniform refinement in the plane: M1 (exact solution) and the flat
+    /// punch (corner singularities), frictionless; the estimator's effectivity, fitted slopes
+    /// in the unknowns and pictures of the adapted meshes. Writes docs/adaptivity.md (or
+    /// `--out`; `--quick` writes target/adaptivity/); exits with status 1 when an adaptive
+    /// slope is above -0.4 or worse than the uniform one.
+    Adaptivity(adaptivity::AdaptivityArgs),
     /// One group of `tradeoff`, one JSON line per setting (run by `tradeoff` in a child
     /// process).
     #[command(hide = true)]
@@ -91,6 +100,7 @@ fn main() -> ExitCode {
         Task::Hertz(args) => hertz::run(&args),
         Task::Fuzz(args) => fuzz::run(&args),
         Task::Tradeoff(args) => tradeoff::run(&args),
+        Task::Adaptivity(args) => adaptivity::run(&args),
         Task::TradeoffOne(args) => tradeoff::run_one(&args),
     };
     match outcome {

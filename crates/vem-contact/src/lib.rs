@@ -51,6 +51,7 @@
 pub mod accuracy;
 mod discretisation;
 mod error;
+pub mod estimate;
 mod history;
 pub mod law;
 mod load;
@@ -67,6 +68,7 @@ mod warning;
 pub use accuracy::{AccuracyPreset, ErrorModel, UnknownPreset};
 pub use discretisation::ContactDiscretisation;
 pub use error::ContactError;
+pub use estimate::ContactEstimate;
 pub use history::{
     HistoryStep, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, LoadPath, LoadStep,
 };

@@ -360,6 +360,11 @@ impl<const D: usize> ElasticBody<D> {
         Ok(load)
     }
 
+    /// The body force `f(x)`, if the body carries one.
+    pub fn body_force(&self) -> Option<&VectorField<D>> {
+        self.body_force.as_ref()
+    }
+
     /// True when the body carries a body force.
     pub fn has_body_force(&self) -> bool {
         self.body_force.is_some()

@@ -52,6 +52,7 @@ pub mod io;
 mod mesh;
 pub mod polyhedral;
 pub mod quality;
+pub mod refine;
 pub mod validate;
 
 pub use body_mesh::{BodyMesh, PointD, VectorD};

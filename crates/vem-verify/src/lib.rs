@@ -40,6 +40,7 @@
 //! feature.
 #![deny(missing_docs)]
 
+pub mod adaptive;
 pub mod cases;
 pub mod diagnostics;
 mod error;
