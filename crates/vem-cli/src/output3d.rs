@@ -79,6 +79,9 @@ impl Outcome {
             .map_err(mesh_error(&path))?;
             written.push(path);
         }
+        let path = dir.join("results.pvd");
+        collection.write(&path).map_err(mesh_error(&path))?;
+        written.push(path);
         let path = dir.join("reactions.csv");
         write_atomically(&path, |w| write_reactions_csv(w, self.summary()))
             .map_err(mesh_error(&path))?;
