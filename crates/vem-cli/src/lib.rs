@@ -71,7 +71,7 @@ pub use mesh_command::{convert_mesh, generate_mesh, generate_mesh_within, MeshRe
 pub use model::{CheckReport, CheckedBody, CheckedContact, Model};
 pub use outcome::Outcome;
 pub use output::{status_label, CONTACT_COLUMNS, DEFAULT_WIDTH};
-pub use output3d::{NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
+pub use output3d::{CONTACT_COLUMNS_3D, NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
 pub use scene::Scene;
 pub use vem_scene::resources;
 pub use vem_scene::{Registries, RunSummary, SolvedBody};

@@ -16,6 +16,44 @@ pub struct Model {
 }
 
 impl Model {
+    /// The interface nodes of the pair `c` in space: the node pairs of the surface overlay of
+    /// two bodies, or the vertices of the contact part facing an obstacle.
+    fn interface_nodes_3d(
+        &self,
+        c: &vem_scene::ModelContact,
+        spec: &vem_scene::description::ContactDescription,
+        path: &KeyPath,
+    ) -> Result<usize, CliError> {
+        let a = &self.model.bodies_3d()[c.body].body;
+        let mesh_error = |context: String| move |source| CliError::Mesh { context, source };
+        match c.other {
+            Some(other) => {
+                let b = &self.model.bodies_3d()[other].body;
+                let mut options = vem_mesh::interface::InterfaceOptions::builder();
+                if let Some(d) = spec.max_distance {
+                    options = options.max_distance(d);
+                }
+                let options = options.build().map_err(|e| {
+                    self.scene
+                        .error_at(&self.model.written(&path.at("max_distance")), e.to_string())
+                })?;
+                let other_part = spec.other_part.as_deref().unwrap_or_default();
+                vem_mesh::polyhedral::overlay::insert_surface_overlay(
+                    a.mesh(),
+                    &spec.part,
+                    b.mesh(),
+                    other_part,
+                    &options,
+                )
+                .map(|overlay| overlay.pairs.len())
+                .map_err(mesh_error(format!("interface of {}", c.description)))
+            }
+            None => vem_mesh::polyhedral::overlay::boundary_surface(a.mesh(), &spec.part)
+                .map(|nodes| nodes.len())
+                .map_err(mesh_error(format!("contact part of '{}'", a.name()))),
+        }
+    }
+
     /// Generates or reads every mesh, checks every part name against its mesh and builds the
     /// bodies, the contact problem and the solver's choice, with the built-in solvers, elements
     /// and laws.
@@ -126,45 +164,58 @@ impl Model {
             .zip(&scene.contacts)
             .enumerate()
         {
-            let a = &self.model.bodies()[c.body].body;
             let path = KeyPath::key("contact").index(k);
-            let interface_nodes = match c.other {
-                Some(other) => {
-                    let b = &self.model.bodies()[other].body;
-                    let mut options = vem_mesh::interface::InterfaceOptions::builder();
-                    if let Some(d) = spec.max_distance {
-                        options = options.max_distance(d);
+            let interface_nodes = if self.model.dimension() == 3 {
+                self.interface_nodes_3d(c, spec, &path)?
+            } else {
+                let a = &self.model.bodies()[c.body].body;
+                match c.other {
+                    Some(other) => {
+                        let b = &self.model.bodies()[other].body;
+                        let mut options = vem_mesh::interface::InterfaceOptions::builder();
+                        if let Some(d) = spec.max_distance {
+                            options = options.max_distance(d);
+                        }
+                        let options = options.build().map_err(|e| {
+                            self.scene.error_at(
+                                &self.model.written(&path.at("max_distance")),
+                                e.to_string(),
+                            )
+                        })?;
+                        let other_part = spec.other_part.as_deref().unwrap_or_default();
+                        insert_interface_nodes(a.mesh(), &spec.part, b.mesh(), other_part, &options)
+                            .map_err(|source| CliError::Mesh {
+                                context: format!("interface of {}", c.description),
+                                source,
+                            })?
+                            .pairs
+                            .len()
                     }
-                    let options = options.build().map_err(|e| {
-                        self.scene
-                            .error_at(&self.model.written(&path.at("max_distance")), e.to_string())
-                    })?;
-                    let other_part = spec.other_part.as_deref().unwrap_or_default();
-                    insert_interface_nodes(a.mesh(), &spec.part, b.mesh(), other_part, &options)
+                    None => boundary_chain(a.mesh(), &spec.part)
                         .map_err(|source| CliError::Mesh {
-                            context: format!("interface of {}", c.description),
+                            context: format!("contact part of '{}'", a.name()),
                             source,
                         })?
-                        .pairs
-                        .len()
+                        .len(),
                 }
-                None => boundary_chain(a.mesh(), &spec.part)
-                    .map_err(|source| CliError::Mesh {
-                        context: format!("contact part of '{}'", a.name()),
-                        source,
-                    })?
-                    .len(),
             };
             // The law as built (the scene's pairs are the problem's, in order).
+            let k = contacts.len();
             let built = self
                 .model
                 .contact_problem()
-                .and_then(|(problem, _)| problem.pairs().get(contacts.len()))
-                .map(|pair| pair.law());
+                .and_then(|(problem, _)| problem.pairs().get(k))
+                .map(|pair| (pair.law().has_friction(), pair.law().describe()))
+                .or_else(|| {
+                    self.model
+                        .contact_problem_3d()
+                        .and_then(|(problem, _)| problem.pairs().get(k))
+                        .map(|pair| (pair.law().has_friction(), pair.law().describe()))
+                });
             contacts.push(CheckedContact {
                 description: c.description.clone(),
-                friction: built.is_some_and(|law| law.has_friction()),
-                law: built.map_or_else(|| "frictionless".to_string(), |law| law.describe()),
+                friction: built.as_ref().is_some_and(|(friction, _)| *friction),
+                law: built.map_or_else(|| "frictionless".to_string(), |(_, law)| law),
                 interface_nodes,
             });
         }

@@ -28,6 +28,9 @@ pub struct Outcome {
     pub(crate) length_unit: Option<String>,
     /// The scene's `[output] stress_unit`.
     pub(crate) stress_unit: Option<String>,
+    /// Body A's contact part of every pair, in the order of the scene (the contact surface of
+    /// a scene in space is drawn on its faces).
+    pub(crate) contact_parts: Vec<String>,
 }
 
 impl Outcome {
@@ -72,6 +75,12 @@ impl Outcome {
             output_width: output.width,
             length_unit: output.length_unit.clone(),
             stress_unit: output.stress_unit.clone(),
+            contact_parts: model
+                .scene()
+                .contacts
+                .iter()
+                .map(|c| c.part.clone())
+                .collect(),
         }
     }
 

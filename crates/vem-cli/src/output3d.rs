@@ -1,17 +1,31 @@
 //! The files of `vem run` for a scene in space: one `.vtu` of polyhedra per body (VTK type 42,
-//! as ParaView, VTK and meshio read it), `results.pvd` opening them all, `reactions.csv` and
-//! `summary.json`. Pictures are drawn in the plane only: a scene in space writes none, and its
-//! summary says so.
+//! as ParaView, VTK and meshio read it; with contact, the raw and consistent contact pressure
+//! at the interface vertices), with contact the contact surface `interface.vtu` (the faces of
+//! each pair's body A on its contact part after the surface overlay, as polygons, with the
+//! columns of `contact.csv` at their vertices) and `contact.csv` (with z columns),
+//! `results.pvd` opening them all, `reactions.csv` and `summary.json`. Pictures are drawn in
+//! the plane only: a scene in space writes none, and its summary says so.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use vem_mesh::io::{write_atomically, write_polyhedral_vtu, DataArray, PvdCollection, VtuData};
+use vem_contact::{InterfaceNode, NodeStatus, PairSummary};
+use vem_mesh::io::{
+    write_atomically, write_polyhedral_vtu, CellType, Cells, DataArray, PvdCollection,
+    UnstructuredGrid, VtkArray, VtuData, VtuEncoding,
+};
 use vem_mesh::polyhedral::quality::CellQuality;
+use vem_mesh::Vector3;
 use vem_scene::SolvedBody;
 
+use crate::output::status_label;
 use crate::{CliError, Outcome};
+
+/// The columns of `contact.csv` in space, in order.
+pub const CONTACT_COLUMNS_3D: &str =
+    "pair,x,y,z,nx,ny,nz,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,\
+     friction_x,friction_y,friction_z,slip_x,slip_y,slip_z,status";
 
 /// The columns of `reactions.csv`, in order.
 pub const REACTION_COLUMNS: &str = "body,part,components,rigid_plate,force_x,force_y,force_z";
@@ -31,13 +45,38 @@ impl Outcome {
         };
         let mut written = Vec::new();
         let mut collection = PvdCollection::new();
-        for (part, solved) in self.bodies_3d.iter().enumerate() {
+        let nodes = self.contact_3d.as_ref().map_or(&[][..], |c| &c.nodes[..]);
+        let raw = self.pressure_at_vertices_3d(nodes, |n| n.pressure);
+        let consistent = self.pressure_at_vertices_3d(nodes, |n| n.consistent_pressure);
+        for (part, ((solved, raw), consistent)) in
+            self.bodies_3d.iter().zip(raw).zip(consistent).enumerate()
+        {
             let name = solved.body.name();
             let file = format!("{name}.vtu");
             let path = dir.join(&file);
-            write_polyhedral_vtu(&path, solved.body.mesh(), &vtu_data_3d(solved))
-                .map_err(mesh_error(&path))?;
+            let mut data = vtu_data_3d(solved);
+            if let (Some(raw), Some(consistent)) = (raw, consistent) {
+                data = data
+                    .with_point_scalars("contact_pressure", raw)
+                    .with_point_scalars("consistent_contact_pressure", consistent);
+            }
+            write_polyhedral_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
             collection.add(0.0, part, name, file);
+            written.push(path);
+        }
+        if let Some(contact) = &self.contact_3d {
+            let path = dir.join("interface.vtu");
+            self.contact_surface(&contact.nodes, &contact.model.pairs)
+                .write(&path, VtuEncoding::Compressed)
+                .map_err(mesh_error(&path))?;
+            collection.add(0.0, self.bodies_3d.len(), "interface", "interface.vtu");
+            written.push(path);
+            let path = dir.join("contact.csv");
+            let frictionless = contact.model.tangential_rows == 0;
+            write_atomically(&path, |w| {
+                write_contact_csv_3d(w, &contact.nodes, &contact.model.pairs, frictionless)
+            })
+            .map_err(mesh_error(&path))?;
             written.push(path);
         }
         let path = dir.join("results.pvd");
@@ -61,6 +100,178 @@ impl Outcome {
         written.push(path);
         Ok(written)
     }
+}
+
+impl Outcome {
+    /// For each body in space, a nodal value (`value` of each interface node) at its interface
+    /// vertices (zero elsewhere); `None` for a body out of contact.
+    fn pressure_at_vertices_3d(
+        &self,
+        nodes: &[InterfaceNode<3>],
+        value: impl Fn(&InterfaceNode<3>) -> f64,
+    ) -> Vec<Option<Vec<f64>>> {
+        let mut values: Vec<Option<Vec<f64>>> = vec![None; self.bodies_3d.len()];
+        for node in nodes {
+            let sides = [
+                (node.body_a, Some(node.vertex_a)),
+                (node.body_b.unwrap_or(usize::MAX), node.vertex_b),
+            ];
+            for (body, vertex) in sides {
+                let (Some(&index), Some(v)) = (self.contact_bodies.get(body), vertex) else {
+                    continue;
+                };
+                let n = self.bodies_3d[index].body.mesh().n_vertices();
+                values[index].get_or_insert_with(|| vec![0.0; n])[v] = value(node) + 0.0;
+            }
+        }
+        values
+    }
+
+    /// The contact surface as a dataset of its own: per contact pair the faces of body A's
+    /// contact part on the mesh solved (after the surface overlay, the overlay cells: every
+    /// vertex an interface node), as polygons with cell data `pair`; at every node the columns
+    /// of `contact.csv` as point data (`normal`, `friction_force`, `friction_traction` (the
+    /// consistent one) and `slip` as vectors), the status as an integer `status` (0 open, 1
+    /// contact, 2 stick, 3 slip). A face with a vertex that is not a node of its pair (left
+    /// out by `max_distance`) is not drawn; a pair none of whose faces is drawn has its nodes as
+    /// vertex cells.
+    fn contact_surface(
+        &self,
+        nodes: &[InterfaceNode<3>],
+        pairs: &[PairSummary],
+    ) -> UnstructuredGrid {
+        let points: Vec<[f64; 3]> = nodes
+            .iter()
+            .map(|n| [n.position.x, n.position.y, n.position.z])
+            .collect();
+        let mut cells = Cells::new();
+        let mut pair_of_cell = Vec::new();
+        for (k, pair) in pairs.iter().enumerate() {
+            let range = pair.nodes.clone();
+            let mut drawn = 0;
+            if let (Some(first), Some(part)) = (nodes.get(range.start), self.contact_parts.get(k)) {
+                let body = self
+                    .contact_bodies
+                    .get(first.body_a)
+                    .and_then(|&i| self.bodies_3d.get(i));
+                if let Some(body) = body {
+                    let mesh = body.body.mesh();
+                    let node_of: std::collections::HashMap<usize, usize> =
+                        range.clone().map(|i| (nodes[i].vertex_a, i)).collect();
+                    for &f in mesh.part_faces(part).unwrap_or_default() {
+                        let face: Option<Vec<usize>> = mesh
+                            .face(f)
+                            .iter()
+                            .map(|v| node_of.get(v).copied())
+                            .collect();
+                        if let Some(face) = face {
+                            cells.push(CellType::Polygon, &face);
+                            pair_of_cell.push(k as i32);
+                            drawn += 1;
+                        }
+                    }
+                }
+            }
+            if drawn == 0 {
+                for i in range {
+                    cells.push(CellType::Vertex, &[i]);
+                    pair_of_cell.push(k as i32);
+                }
+            }
+        }
+        let vector = |v: &dyn Fn(&InterfaceNode<3>) -> Vector3| -> Vec<[f64; 3]> {
+            nodes
+                .iter()
+                .map(|n| {
+                    let v = v(n);
+                    [v.x + 0.0, v.y + 0.0, v.z + 0.0]
+                })
+                .collect()
+        };
+        let scalar = |f: &dyn Fn(&InterfaceNode<3>) -> f64| -> Vec<f64> {
+            nodes.iter().map(|n| f(n) + 0.0).collect()
+        };
+        UnstructuredGrid::new(points, cells)
+            .with_point_data(VtkArray::vectors("normal", &vector(&|n| n.normal)))
+            .with_point_data(VtkArray::scalars("initial_gap", scalar(&|n| n.initial_gap)))
+            .with_point_data(VtkArray::scalars("normal_jump", scalar(&|n| n.normal_jump)))
+            .with_point_data(VtkArray::scalars(
+                "normal_force",
+                scalar(&|n| n.normal_force),
+            ))
+            .with_point_data(VtkArray::scalars("pressure", scalar(&|n| n.pressure)))
+            .with_point_data(VtkArray::scalars(
+                "consistent_pressure",
+                scalar(&|n| n.consistent_pressure),
+            ))
+            .with_point_data(VtkArray::scalars(
+                "tributary_area",
+                scalar(&|n| n.tributary_measure),
+            ))
+            .with_point_data(VtkArray::vectors(
+                "friction_force",
+                &vector(&|n| n.friction_force),
+            ))
+            .with_point_data(VtkArray::vectors(
+                "friction_traction",
+                &vector(&|n| n.consistent_friction_traction),
+            ))
+            .with_point_data(VtkArray::vectors("slip", &vector(&|n| n.slip)))
+            .with_point_data(VtkArray::int32(
+                "status",
+                nodes.iter().map(|n| status_code(n.status)).collect(),
+            ))
+            .with_cell_data(VtkArray::int32("pair", pair_of_cell))
+    }
+}
+
+/// The status as the interface datasets store it: 0 open, 1 contact, 2 stick, 3 slip.
+fn status_code(status: NodeStatus) -> i32 {
+    match status {
+        NodeStatus::Open => 0,
+        NodeStatus::Contact => 1,
+        NodeStatus::Stick => 2,
+        NodeStatus::Slip => 3,
+    }
+}
+
+/// `contact.csv` in space: one row per interface node, columns [`CONTACT_COLUMNS_3D`] (`pair`:
+/// the index of the node's pair, counted from 0 in the order of the `[[contact]]` tables),
+/// numbers in shortest round-trip scientific notation.
+fn write_contact_csv_3d(
+    w: &mut dyn Write,
+    nodes: &[InterfaceNode<3>],
+    pairs: &[PairSummary],
+    frictionless: bool,
+) -> std::io::Result<()> {
+    writeln!(w, "{CONTACT_COLUMNS_3D}")?;
+    for (i, n) in nodes.iter().enumerate() {
+        let pair = pairs.iter().position(|p| p.nodes.contains(&i)).unwrap_or(0);
+        let mut row = vec![pair.to_string()];
+        let numbers = [
+            n.position.x,
+            n.position.y,
+            n.position.z,
+            n.normal.x,
+            n.normal.y,
+            n.normal.z,
+            n.initial_gap,
+            n.normal_jump,
+            n.normal_force,
+            n.pressure,
+            n.consistent_pressure,
+            n.friction_force.x,
+            n.friction_force.y,
+            n.friction_force.z,
+            n.slip.x,
+            n.slip.y,
+            n.slip.z,
+        ];
+        row.extend(numbers.iter().map(|v| format!("{:e}", v + 0.0)));
+        row.push(status_label(n.status, frictionless).to_string());
+        writeln!(w, "{}", row.join(","))?;
+    }
+    Ok(())
 }
 
 /// Point data `displacement` (3 components); cell data `stress_xx_yy_zz` and

@@ -228,7 +228,7 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
 fn hertz_half_width_and_peak_pressure() {
     let (outcome, dir) = run("hertz");
     let contact = outcome.contact.as_ref().unwrap();
-    let hertz = outcome.summary.contact.as_ref().unwrap().hertz[0];
+    let hertz = &outcome.summary.contact.as_ref().unwrap().hertz[0];
     let (e, nu, radius) = (100.0_f64, 0.3_f64, 1.0);
     let e_star = e / (2.0 * (1.0 - nu * nu));
     assert!((hertz.effective_modulus - e_star).abs() < 1e-9 * e_star);
@@ -532,7 +532,7 @@ fn hertz_under_force_control_carries_the_prescribed_load() {
     for &v in &top {
         assert_eq!(disc.solution.vertex_displacement(v).y, w);
     }
-    let hertz = summary.hertz[0];
+    let hertz = &summary.hertz[0];
     assert!((hertz.load - load).abs() < 1e-6 * load);
     assert!((hertz.computed_half_width / hertz.half_width - 1.0).abs() < 0.06);
     let json = summary_json(&dir);

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use vem_cli::{CliError, Model, Scene, NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
+use vem_cli::{CliError, Model, Scene, CONTACT_COLUMNS_3D, NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
 use vem_mesh::Vector3;
 
 fn scene(name: &str) -> PathBuf {
@@ -92,6 +92,114 @@ fn block3d_gives_the_exact_uniform_state_and_its_files() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Two stacked blocks in space on non-matching meshes (Voronoi cells on tetrahedra), moduli 100
+/// and 300, the upper top moved down by 0.01: the uniform pressure `0.75` transmitted.
+const STACKED: &str = r#"
+title = "two stacked blocks"
+[[body]]
+name = "upper"
+mesh = { family = "voronoi", box = [[0, 0, 0], [1, 1, 1]], n = 3, seed = 2 }
+material = { E = 100.0, nu = 0.3 }
+dirichlet = [{ part = "left", x = 0.0 }, { part = "front", y = 0.0 }, { part = "top", z = -0.01 }]
+
+[[body]]
+name = "lower"
+mesh = { family = "tetrahedra", box = [[0, 0, -1], [1, 1, 0]], n = 4 }
+material = { E = 300.0, nu = 0.3 }
+dirichlet = [{ part = "left", x = 0.0 }, { part = "front", y = 0.0 }, { part = "bottom", z = 0.0 }]
+
+[[contact]]
+body = "upper"
+part = "bottom"
+other_body = "lower"
+other_part = "top"
+"#;
+
+#[test]
+fn contact_in_space_writes_the_contact_surface_and_table() {
+    let dir = std::env::temp_dir().join(format!("vem-cli-space-contact-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let path = dir.with_extension("toml");
+    std::fs::write(&path, STACKED).unwrap();
+    let (outcome, files) = vem_cli::run(&path, Some(&dir)).unwrap();
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "upper.vtu",
+            "lower.vtu",
+            "interface.vtu",
+            "contact.csv",
+            "results.pvd",
+            "reactions.csv",
+            "summary.json"
+        ]
+    );
+    let sigma = 0.01 / (1.0 / 100.0 + 1.0 / 300.0);
+    // contact.csv: one row per node, the pressure sigma at each, the normal -z.
+    let table = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    let mut lines = table.lines();
+    assert_eq!(lines.next(), Some(CONTACT_COLUMNS_3D));
+    let columns: Vec<&str> = CONTACT_COLUMNS_3D.split(',').collect();
+    let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let contact = outcome.contact_3d.as_ref().unwrap();
+    assert_eq!(rows.len(), contact.nodes.len());
+    let mut force = 0.0;
+    for row in &rows {
+        let value = |name: &str| row[at(name)].parse::<f64>().unwrap();
+        assert!((value("pressure") / sigma - 1.0).abs() < 1e-10, "{row:?}");
+        assert!((value("nz") + 1.0).abs() < 1e-12, "{row:?}");
+        assert_eq!(row[at("status")], "contact");
+        force += value("normal_force");
+    }
+    assert!((force / sigma - 1.0).abs() < 1e-10, "{force}");
+    // The contact surface: the overlay cells as polygons whose vertices are the nodes, with
+    // the columns of contact.csv as point data; the bodies carry the contact pressure.
+    let vtu = std::fs::read(dir.join("interface.vtu")).unwrap();
+    let head = String::from_utf8_lossy(&vtu[..vtu.len().min(6000)]);
+    assert!(
+        head.contains(&format!("NumberOfPoints=\"{}\"", rows.len())),
+        "{head}"
+    );
+    for name in [
+        "normal",
+        "pressure",
+        "consistent_pressure",
+        "status",
+        "pair",
+    ] {
+        assert!(
+            head.contains(&format!("Name=\"{name}\"")),
+            "{name} in {head}"
+        );
+    }
+    let body = std::fs::read(dir.join("upper.vtu")).unwrap();
+    let head = String::from_utf8_lossy(&body[..body.len().min(6000)]);
+    assert!(head.contains("Name=\"contact_pressure\""), "{head}");
+    let pvd = std::fs::read_to_string(dir.join("results.pvd")).unwrap();
+    assert!(pvd.contains("file=\"interface.vtu\""), "{pvd}");
+    // summary.json: the contact summary with 3-vectors.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let resultant = &summary["contact"]["resultants"]["force_on_body_a"];
+    assert_eq!(resultant.as_array().unwrap().len(), 3);
+    assert!((resultant[2].as_f64().unwrap() / sigma - 1.0).abs() < 1e-10);
+    assert_eq!(summary["contact"]["nodes"]["open"], 0);
+    let text = outcome.summary().to_string();
+    assert!(
+        text.contains("contact: body 'upper' part 'bottom' against body 'lower' part 'top'"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_file(&path).unwrap();
+}
+
 #[test]
 fn check_lists_the_polyhedra_their_parts_and_quality() {
     let scene = Scene::load(scene("block3d")).unwrap();
@@ -161,15 +269,15 @@ fn bad_input_in_space_is_located_in_the_file() {
         "[0.5, 0.0]",
         "an array of 2 entries where exactly 3 are expected",
     );
-    // Contact between two bodies in space: not available yet, at the pair.
+    // Contact between two bodies in space: a part the other body does not have, at its line.
     let text = format!(
-        "{block}\n[[body]]\nname = \"base\"\nmesh = {{ family = \"hexahedra\", box = [[0, 0, -1], [2, 1, 0]], n = 2 }}\nmaterial = {{ E = 100.0, nu = 0.3 }}\ndirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0, z = 0.0 }}]\n\n[[contact]]\nbody = \"block\"\npart = \"bottom\"\nother_body = \"base\"\nother_part = \"top\"\n"
+        "{block}\n[[body]]\nname = \"base\"\nmesh = {{ family = \"hexahedra\", box = [[0, 0, -1], [2, 1, 0]], n = 2 }}\nmaterial = {{ E = 100.0, nu = 0.3 }}\ndirichlet = [{{ part = \"bottom\", x = 0.0, y = 0.0, z = 0.0 }}]\n\n[[contact]]\nbody = \"block\"\npart = \"bottom\"\nother_body = \"base\"\nother_part = \"tpo\"\n"
     );
     assert_located(
         &error_of(&text),
         &text,
-        "[[contact]]",
-        "contact of bodies in space (between two bodies, body 'block' part 'bottom') is not available yet",
+        "\"tpo\"",
+        "body 'base' has no boundary part named 'tpo'; its mesh has ['left', 'right', 'front', 'back', 'bottom', 'top']",
     );
     // `z` in the plane.
     let text = r#"
@@ -185,4 +293,27 @@ dirichlet = [{ part = "left", x = "0.1 * z" }]
         "\"0.1 * z\"",
         "an expression of a coordinate beyond the scene's dimension 2 (x, y)",
     );
+}
+
+/// The Hertz scene in space (two Gmsh meshes of tetrahedra, 21.9k unknowns): the nodal forces
+/// carry the clamp's load, and the contact radius and peak pressure are within 3 % of Hertz's
+/// sphere (`vem_verify::exact::HertzSphere`) for that load. About 36 s on a loaded 2-core
+/// machine: run with `cargo test -p vem-cli --test space -- --ignored hertz3d`.
+#[test]
+#[ignore = "36 s: the measured figures of docs/contact-3d.md, section 9"]
+fn hertz3d_is_within_three_percent_of_hertz() {
+    let scene = Scene::load(scene("hertz3d")).unwrap();
+    let outcome = Model::build(&scene).unwrap().solve().unwrap();
+    let summary = outcome.summary();
+    let contact = summary.contact.as_ref().unwrap();
+    let ball = &summary.bodies[0];
+    let load = -ball.reactions[0].force[2];
+    assert!((contact.resultants.normal / load - 1.0).abs() < 1e-9);
+    let (e, nu) = (100.0, 0.3);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let hertz = vem_verify::exact::HertzSphere::try_new(1.0, e_star, load).unwrap();
+    let computed = &contact.hertz[0];
+    assert!((computed.half_width / hertz.contact_radius() - 1.0).abs() < 1e-9);
+    assert!((computed.computed_half_width / hertz.contact_radius() - 1.0).abs() < 0.03);
+    assert!((computed.computed_peak_pressure / hertz.peak_pressure() - 1.0).abs() < 0.03);
 }

@@ -728,30 +728,81 @@ impl PyBody {
     }
 }
 
-/// The interface nodes of one contact pair, in their order along body A's contact part.
+/// The interface nodes of one contact pair, in their order along body A's contact part (in
+/// space, in the order of body A's part's vertices).
 ///
-/// Arrays (k nodes): `positions` (k, 2) on body A, `normals` (k, 2), `tributary` (k,) the
-/// node's length, `initial_gap`, `normal_jump` (`[u].nu`), `gap` (`initial_gap -
-/// normal_jump`, >= 0 up to the solver's tolerance), `normal_force` (compression
-/// positive), `pressure` (`normal_force / tributary`), `consistent_pressure`,
-/// `friction_force` (k, 2) on body A, `friction` (k,) its tangential component,
-/// `friction_traction` (k, 2), `slip` (k, 2), `tangential_slip` (k,), `status` (a list of
-/// "open", "contact", "stick", "slip", as contact.csv writes it) and `status_code` (k,) (0
-/// open, 1 contact, 2 stick, 3 slip, as interface.vtu writes it).
+/// Arrays (k nodes, d = 2 in the plane, 3 in space): `positions` (k, d) on body A, `normals`
+/// (k, d), `tributary` (k,) the node's length (area in space), `initial_gap`, `normal_jump`
+/// (`[u].nu`), `gap` (`initial_gap - normal_jump`, >= 0 up to the solver's tolerance),
+/// `normal_force` (compression positive), `pressure` (`normal_force / tributary`),
+/// `consistent_pressure`, `friction_force` (k, d) on body A, `friction` (k,) its tangential
+/// component (in the plane), `friction_traction` (k, d), `slip` (k, d), `tangential_slip` (k,)
+/// (in the plane), `status` (a list of "open", "contact", "stick", "slip", as contact.csv
+/// writes it) and `status_code` (k,) (0 open, 1 contact, 2 stick, 3 slip, as interface.vtu
+/// writes it).
 #[pyclass(module = "vemcontact", name = "ContactPair", frozen)]
 struct PyPair {
     index: usize,
     description: String,
     law: String,
-    nodes: Vec<InterfaceNode>,
+    dimension: usize,
+    nodes: Vec<PairNode>,
     frictionless: bool,
+}
+
+/// One interface node in either dimension: its vectors with `dimension` components, and in
+/// the plane the tangential components of the friction force and the slip.
+#[derive(Debug, Clone)]
+struct PairNode {
+    position: Vec<f64>,
+    normal: Vec<f64>,
+    friction_force: Vec<f64>,
+    friction_traction: Vec<f64>,
+    slip: Vec<f64>,
+    tributary: f64,
+    initial_gap: f64,
+    normal_jump: f64,
+    normal_force: f64,
+    pressure: f64,
+    consistent_pressure: f64,
+    /// In the plane: the friction force and the slip along the tangent `(-n_y, n_x)`.
+    tangential: Option<(f64, f64)>,
+    status: NodeStatus,
+    vertex_a: usize,
+}
+
+impl PairNode {
+    fn of<const D: usize>(n: &InterfaceNode<D>) -> Self {
+        let vector = |v: &vem_mesh::VectorD<D>| v.iter().map(|c| c + 0.0).collect::<Vec<f64>>();
+        let tangential = (D == 2).then(|| {
+            let t = [-n.normal[1], n.normal[0]];
+            let along = |v: &vem_mesh::VectorD<D>| v[0] * t[0] + v[1] * t[1];
+            (along(&n.friction_force), along(&n.slip))
+        });
+        Self {
+            position: vector(&n.position.coords),
+            normal: vector(&n.normal),
+            friction_force: vector(&n.friction_force),
+            friction_traction: vector(&n.consistent_friction_traction),
+            slip: vector(&n.slip),
+            tributary: n.tributary_measure,
+            initial_gap: n.initial_gap,
+            normal_jump: n.normal_jump,
+            normal_force: n.normal_force,
+            pressure: n.pressure,
+            consistent_pressure: n.consistent_pressure,
+            tangential,
+            status: n.status,
+            vertex_a: n.vertex_a,
+        }
+    }
 }
 
 impl PyPair {
     fn scalars<'py>(
         &self,
         py: Python<'py>,
-        of: impl Fn(&InterfaceNode) -> f64,
+        of: impl Fn(&PairNode) -> f64,
     ) -> Bound<'py, PyArray1<f64>> {
         Array1::from_iter(self.nodes.iter().map(|n| of(n) + 0.0)).into_pyarray(py)
     }
@@ -759,22 +810,33 @@ impl PyPair {
     fn vectors<'py>(
         &self,
         py: Python<'py>,
-        of: impl Fn(&InterfaceNode) -> vem_mesh::Vector,
+        of: impl Fn(&PairNode) -> &[f64],
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let flat = self
-            .nodes
-            .iter()
-            .flat_map(|n| {
-                let v = of(n);
-                [v.x + 0.0, v.y + 0.0]
-            })
-            .collect();
-        matrix(py, self.nodes.len(), 2, flat)
+        let flat = self.nodes.iter().flat_map(|n| of(n).to_vec()).collect();
+        matrix(py, self.nodes.len(), self.dimension, flat)
+    }
+
+    /// A tangential component of the plane (`friction`, `tangential_slip`); in space an error
+    /// naming the vector to use.
+    fn tangential<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        vector: &str,
+        of: impl Fn((f64, f64)) -> f64,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        if self.dimension != 2 {
+            return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+                "`{name}` is the component along the tangent of a pair in the plane; in space \
+                 the tangent plane has two directions: use `{vector}` (k, 3)"
+            )));
+        }
+        Ok(self.scalars(py, |n| n.tangential.map_or(0.0, &of)))
     }
 }
 
-/// The pairs of a contact result, each with its nodes.
-fn pairs_of(result: &vem_contact::ContactResult) -> Vec<PyPair> {
+/// The pairs of a contact result (in the plane or in space), each with its nodes.
+fn pairs_of<const D: usize>(result: &vem_contact::ContactResult<D>) -> Vec<PyPair> {
     let frictionless = result.model.tangential_rows == 0;
     result
         .model
@@ -785,7 +847,11 @@ fn pairs_of(result: &vem_contact::ContactResult) -> Vec<PyPair> {
             index: k,
             description: pair.description.clone(),
             law: pair.law.clone(),
-            nodes: result.nodes[pair.nodes.clone()].to_vec(),
+            dimension: D,
+            nodes: result.nodes[pair.nodes.clone()]
+                .iter()
+                .map(PairNode::of)
+                .collect(),
             frictionless,
         })
         .collect()
@@ -816,22 +882,28 @@ impl PyPair {
         self.nodes.len()
     }
 
-    /// Node positions on body A (reference configuration), (k, 2).
+    /// 2 (a pair in the plane) or 3 (in space): the number of columns of the vector arrays.
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.dimension
+    }
+
+    /// Node positions on body A (reference configuration), (k, d).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.vectors(py, |n| n.position.coords)
+        self.vectors(py, |n| &n.position)
     }
 
-    /// The contact normals, (k, 2).
+    /// The contact normals, (k, d).
     #[getter]
     fn normals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.vectors(py, |n| n.normal)
+        self.vectors(py, |n| &n.normal)
     }
 
-    /// The nodes' tributary lengths, (k,).
+    /// The nodes' tributary lengths (areas in space), (k,).
     #[getter]
     fn tributary<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.scalars(py, |n| n.tributary_measure)
+        self.scalars(py, |n| n.tributary)
     }
 
     /// The initial gaps `h0`, (k,).
@@ -870,34 +942,34 @@ impl PyPair {
         self.scalars(py, |n| n.consistent_pressure)
     }
 
-    /// The nodal friction forces on body A, (k, 2).
+    /// The nodal friction forces on body A, (k, d).
     #[getter]
     fn friction_force<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.vectors(py, |n| n.friction_force)
+        self.vectors(py, |n| &n.friction_force)
     }
 
-    /// The friction forces' components along the tangent `(-n_y, n_x)`, (k,).
+    /// The friction forces' components along the tangent `(-n_y, n_x)`, (k,) (in the plane).
     #[getter]
-    fn friction<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.scalars(py, InterfaceNode::friction_t)
+    fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.tangential(py, "friction", "friction_force", |(f, _)| f)
     }
 
-    /// The consistent friction tractions, (k, 2).
+    /// The consistent friction tractions, (k, d).
     #[getter]
     fn friction_traction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.vectors(py, |n| n.consistent_friction_traction)
+        self.vectors(py, |n| &n.friction_traction)
     }
 
-    /// The slips (tangential part of `u_A - u_B`; zero without friction), (k, 2).
+    /// The slips (tangential part of `u_A - u_B`; zero without friction), (k, d).
     #[getter]
     fn slip<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.vectors(py, |n| n.slip)
+        self.vectors(py, |n| &n.slip)
     }
 
-    /// The slips along the tangent, (k,).
+    /// The slips along the tangent, (k,) (in the plane).
     #[getter]
-    fn tangential_slip<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.scalars(py, InterfaceNode::slip_t)
+    fn tangential_slip<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.tangential(py, "tangential_slip", "slip", |(_, s)| s)
     }
 
     /// The nodes' statuses as the outputs name them.
@@ -912,7 +984,7 @@ impl PyPair {
     /// The statuses as integers (0 open, 1 contact, 2 stick, 3 slip), (k,).
     #[getter]
     fn status_code<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i32>> {
-        let code = |n: &InterfaceNode| match n.status {
+        let code = |n: &PairNode| match n.status {
             NodeStatus::Open => 0,
             NodeStatus::Slip if self.frictionless => 1,
             NodeStatus::Contact => 1,
@@ -1028,13 +1100,15 @@ impl PyResultSet {
             let body = PyBody::new_3d(py, &b.body, &b.solution, b.fields.clone())?;
             bodies.push(Py::new(py, body)?);
         }
-        let pairs = match &outcome.contact {
-            Some(result) => pairs_of(result)
-                .into_iter()
-                .map(|p| Py::new(py, p))
-                .collect::<PyResult<Vec<_>>>()?,
-            None => Vec::new(),
+        let pairs = match (&outcome.contact, &outcome.contact_3d) {
+            (Some(result), _) => pairs_of(result),
+            (None, Some(result)) => pairs_of(result),
+            (None, None) => Vec::new(),
         };
+        let pairs = pairs
+            .into_iter()
+            .map(|p| Py::new(py, p))
+            .collect::<PyResult<Vec<_>>>()?;
         let mut steps = Vec::new();
         for step in &outcome.steps {
             let mut step_bodies = Vec::new();
@@ -1060,9 +1134,41 @@ impl PyResultSet {
                 },
             )?);
         }
+        for step in &outcome.steps_3d {
+            let mut step_bodies = Vec::new();
+            for b in &step.result.bodies {
+                let fields = b
+                    .body
+                    .element_fields(b.solution.displacement())
+                    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+                step_bodies.push(Py::new(
+                    py,
+                    PyBody::new_3d(py, &b.body, &b.solution, fields)?,
+                )?);
+            }
+            let step_pairs = pairs_of(&step.result)
+                .into_iter()
+                .map(|p| Py::new(py, p))
+                .collect::<PyResult<Vec<_>>>()?;
+            steps.push(Py::new(
+                py,
+                PyStep {
+                    index: step.index,
+                    time: step.time,
+                    bodies: step_bodies,
+                    pairs: step_pairs,
+                    report: to_python(py, &step.result.report)?.unbind(),
+                },
+            )?);
+        }
         // The last step is the outcome itself.
-        if let (Some(contact), Some(last)) = (
-            &outcome.contact,
+        let report = match (&outcome.contact, &outcome.contact_3d) {
+            (Some(contact), _) => Some(&contact.report),
+            (None, Some(contact)) => Some(&contact.report),
+            (None, None) => None,
+        };
+        if let (Some(report), Some(last)) = (
+            report,
             outcome
                 .summary
                 .contact
@@ -1077,11 +1183,11 @@ impl PyResultSet {
             steps.push(Py::new(
                 py,
                 PyStep {
-                    index: outcome.steps.len(),
+                    index: outcome.steps.len() + outcome.steps_3d.len(),
                     time: last.time,
                     bodies: step_bodies,
                     pairs: pairs.iter().map(|p| p.clone_ref(py)).collect(),
-                    report: to_python(py, &contact.report)?.unbind(),
+                    report: to_python(py, report)?.unbind(),
                 },
             )?);
         }

@@ -8,12 +8,12 @@ use std::time::{Duration, Instant};
 
 use vem_contact::{
     AccuracyPreset, ContactError, ContactLaw, ContactNormal, ContactPair, ContactProblem,
-    ErrorModel, LawRegistry, Obstacle, RigidObstacle, SolverRegistry,
+    ErrorModel, LawRegistry, Obstacle, Obstacle3, RigidObstacle, SolverRegistry,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::interface::InterfaceOptions;
-use vem_mesh::{Mesh, Point, Vector};
+use vem_mesh::{Mesh, Point, Point3, Vector, Vector3};
 use vem_space::{Choice, ElementRegistry, RegistryError, SpaceError};
 
 use crate::check::{body_index, list, Checked};
@@ -34,8 +34,11 @@ pub struct Registries {
     pub solvers: SolverRegistry,
     /// Elements (scene key `element` of a body).
     pub elements: ElementRegistry,
-    /// Contact laws (scene key `law` of a contact pair).
+    /// Contact laws in the plane (scene key `law` of a contact pair).
     pub laws: LawRegistry<2>,
+    /// Contact laws in space (the same key): the built-in laws by default, under the same
+    /// names.
+    pub laws_3d: LawRegistry<3>,
 }
 
 /// How a scene is built: the folder its relative file names start from, the registries and
@@ -87,8 +90,10 @@ pub struct ModelContact {
     pub body: usize,
     /// Index of body B, `None` against an obstacle.
     pub other: Option<usize>,
-    /// The rigid obstacle, if any (for pictures).
+    /// The rigid obstacle in the plane, if any (for pictures).
     pub obstacle: Option<Obstacle>,
+    /// The rigid obstacle in space, if any.
+    pub obstacle_3d: Option<Obstacle3>,
     /// Which parts face what, in words.
     pub description: String,
     /// Radius of the Hertz comparison, if asked for.
@@ -105,6 +110,8 @@ pub struct Model {
     /// The contact problem of the bodies in contact (`None` without a contact pair) and, for
     /// each of its bodies, the index in [`Model::bodies`].
     pub(crate) problem: Option<(ContactProblem, Vec<usize>)>,
+    /// The same in space.
+    pub(crate) problem_3d: Option<(ContactProblem<3>, Vec<usize>)>,
     pub(crate) solver: Choice,
     pub(crate) registries: Registries,
     pub(crate) mesh_time: Duration,
@@ -199,12 +206,31 @@ impl Model {
                 )?);
             }
             let solver = solver_choice(scene);
+            options
+                .registries
+                .solvers
+                .make_choice(&solver)
+                .map_err(|e| registry_error(e, &KeyPath::key("solver")))?;
+            let (contacts, problem_3d) = contact_pairs(
+                scene,
+                &bodies_3d,
+                &options.registries.laws_3d,
+                build_obstacle_3d,
+            )?;
+            let contacts = contacts
+                .into_iter()
+                .map(|(contact, obstacle_3d)| ModelContact {
+                    obstacle_3d,
+                    ..contact
+                })
+                .collect();
             return Ok(Self {
                 checked,
                 bodies: Vec::new(),
                 bodies_3d,
-                contacts: Vec::new(),
+                contacts,
                 problem: None,
+                problem_3d,
                 solver,
                 registries: options.registries.clone(),
                 mesh_time,
@@ -236,39 +262,21 @@ impl Model {
             .solvers
             .make_choice(&solver)
             .map_err(|e| registry_error(e, &KeyPath::key("solver")))?;
-        let mut contacts = Vec::with_capacity(scene.contacts.len());
-        let mut pairs = Vec::with_capacity(scene.contacts.len());
-        let mut in_problem: Vec<usize> = Vec::new();
-        let slot =
-            |i: usize, in_problem: &mut Vec<usize>| match in_problem.iter().position(|&j| j == i) {
-                Some(k) => k,
-                None => {
-                    in_problem.push(i);
-                    in_problem.len() - 1
-                }
-            };
-        for (k, spec) in scene.contacts.iter().enumerate() {
-            let path = KeyPath::key("contact").index(k);
-            let (contact, pair) = build_contact(scene, spec, &bodies, registries, &path)?;
-            let a = slot(contact.body, &mut in_problem);
-            let b = contact.other.map(|o| slot(o, &mut in_problem));
-            pairs.push(pair.renumbered(a, b));
-            contacts.push(contact);
-        }
-        let problem = (!pairs.is_empty()).then(|| {
-            let mut problem =
-                ContactProblem::new(in_problem.iter().map(|&i| bodies[i].body.clone()).collect());
-            for pair in pairs {
-                problem = problem.with_pair(pair.pair);
-            }
-            (problem, in_problem)
-        });
+        let (contacts, problem) = contact_pairs(scene, &bodies, &registries.laws, build_obstacle)?;
+        let contacts = contacts
+            .into_iter()
+            .map(|(contact, obstacle)| ModelContact {
+                obstacle,
+                ..contact
+            })
+            .collect();
         Ok(Self {
             checked,
             bodies,
             bodies_3d: Vec::new(),
             contacts,
             problem,
+            problem_3d: None,
             solver,
             registries: registries.clone(),
             mesh_time,
@@ -320,6 +328,12 @@ impl Model {
         self.problem.as_ref().map(|(p, idx)| (p, idx.as_slice()))
     }
 
+    /// The contact problem of the bodies in space in contact, and for each of its bodies the
+    /// index into [`Model::bodies_3d`].
+    pub fn contact_problem_3d(&self) -> Option<(&ContactProblem<3>, &[usize])> {
+        self.problem_3d.as_ref().map(|(p, idx)| (p, idx.as_slice()))
+    }
+
     /// The contact solver's registry name and settings.
     pub fn solver(&self) -> &Choice {
         &self.solver
@@ -338,11 +352,11 @@ impl Model {
 
 /// A pair about to join the problem, numbered by scene body until the problem's own numbering
 /// is known.
-struct PendingPair {
-    pair: ContactPair,
+struct PendingPair<const D: usize = 2> {
+    pair: ContactPair<D>,
 }
 
-impl PendingPair {
+impl<const D: usize> PendingPair<D> {
     /// The pair with its bodies numbered `a` and `b` in the problem.
     fn renumbered(self, a: usize, b: Option<usize>) -> Self {
         let pair = self.pair;
@@ -1183,22 +1197,100 @@ fn load_time(_scene: &Scene) -> f64 {
     1.0
 }
 
-fn build_contact(
+/// Checks that `part` names a boundary part of `body` (in the plane or in space); the error
+/// lists the parts.
+fn check_body_part<const D: usize>(
+    body: &ElasticBody<D>,
+    part: &str,
+    path: &KeyPath,
+) -> Result<(), SceneError> {
+    let mesh = body.mesh_arc();
+    let names = mesh.part_names();
+    if names.iter().any(|n| n == part) {
+        return Ok(());
+    }
+    Err(SceneError::at(
+        path.clone(),
+        format!(
+            "body '{}' has no boundary part named '{part}'; its mesh has {}",
+            body.name(),
+            list(&names)
+        ),
+    ))
+}
+
+/// The contact pairs of a scene in the plane (`D = 2`) or in space (`D = 3`) and the contact
+/// problem of the bodies they join (`None` without a pair), with each problem body's index
+/// into `bodies`. `obstacle` builds a rigid obstacle of the dimension from its keys (checked by
+/// `check`); each pair comes with its obstacle, if any.
+#[allow(clippy::type_complexity)]
+fn contact_pairs<const D: usize, O>(
+    scene: &Scene,
+    bodies: &[ModelBody<D>],
+    laws: &LawRegistry<D>,
+    obstacle: impl Fn(&ObstacleDescription) -> O,
+) -> Result<
+    (
+        Vec<(ModelContact, Option<O>)>,
+        Option<(ContactProblem<D>, Vec<usize>)>,
+    ),
+    SceneError,
+>
+where
+    O: RigidObstacle<D> + Clone + 'static,
+{
+    let mut contacts = Vec::with_capacity(scene.contacts.len());
+    let mut pairs = Vec::with_capacity(scene.contacts.len());
+    let mut in_problem: Vec<usize> = Vec::new();
+    let slot = |i: usize, in_problem: &mut Vec<usize>| match in_problem.iter().position(|&j| j == i)
+    {
+        Some(k) => k,
+        None => {
+            in_problem.push(i);
+            in_problem.len() - 1
+        }
+    };
+    for (k, spec) in scene.contacts.iter().enumerate() {
+        let path = KeyPath::key("contact").index(k);
+        let (contact, pair, built) = build_contact(scene, spec, bodies, laws, &obstacle, &path)?;
+        let a = slot(contact.body, &mut in_problem);
+        let b = contact.other.map(|o| slot(o, &mut in_problem));
+        pairs.push(pair.renumbered(a, b));
+        contacts.push((contact, built));
+    }
+    let problem = (!pairs.is_empty()).then(|| {
+        let mut problem =
+            ContactProblem::new(in_problem.iter().map(|&i| bodies[i].body.clone()).collect());
+        for pair in pairs {
+            problem = problem.with_pair(pair.pair);
+        }
+        (problem, in_problem)
+    });
+    Ok((contacts, problem))
+}
+
+/// One contact pair of the scene in `R^D`, its pair for the problem (numbered by scene body)
+/// and its rigid obstacle, if any. The same keys in the plane and in space: only the
+/// obstacle (`obstacle`) and the points of an imposed gap depend on the dimension.
+fn build_contact<const D: usize, O>(
     scene: &Scene,
     spec: &ContactDescription,
-    bodies: &[ModelBody],
-    registries: &Registries,
+    bodies: &[ModelBody<D>],
+    laws: &LawRegistry<D>,
+    obstacle: &impl Fn(&ObstacleDescription) -> O,
     path: &KeyPath,
-) -> Result<(ModelContact, PendingPair), SceneError> {
+) -> Result<(ModelContact, PendingPair<D>, Option<O>), SceneError>
+where
+    O: RigidObstacle<D> + Clone + 'static,
+{
     let a = body_index(scene, &spec.body, &path.at("body"))?;
     let body_a = &bodies[a].body;
-    check_part(body_a.mesh(), body_a.name(), &spec.part, &path.at("part"))?;
+    check_body_part(body_a, &spec.part, &path.at("part"))?;
     let law_choice = spec
         .law
         .clone()
-        .unwrap_or_else(|| Choice::named(LawRegistry::<2>::DEFAULT));
-    let law: Arc<dyn ContactLaw> = registries
-        .laws
+        .unwrap_or_else(|| Choice::named(LawRegistry::<D>::DEFAULT));
+    let law: Arc<dyn ContactLaw<D>> = laws
         .make_choice(&law_choice)
         .map_err(|e| registry_error(e, &path.at("law")))?;
     let mut options = InterfaceOptions::builder();
@@ -1208,17 +1300,12 @@ fn build_contact(
     let options = options
         .build()
         .map_err(|e| SceneError::at(path.at("max_distance"), e.to_string()))?;
-    let (other, obstacle, pair, description) =
+    let (other, built, pair, description) =
         match (&spec.other_body, &spec.other_part, &spec.obstacle) {
             (Some(other), Some(other_part), _) => {
                 let b = body_index(scene, other, &path.at("other_body"))?;
                 let body_b = &bodies[b].body;
-                check_part(
-                    body_b.mesh(),
-                    body_b.name(),
-                    other_part,
-                    &path.at("other_part"),
-                )?;
+                check_body_part(body_b, other_part, &path.at("other_part"))?;
                 let description = format!(
                     "body '{}' part '{}' against body '{}' part '{other_part}'",
                     body_a.name(),
@@ -1236,8 +1323,8 @@ fn build_contact(
                 );
                 (Some(b), None, pair, description)
             }
-            (_, _, Some(obstacle)) => {
-                let built = build_obstacle(obstacle);
+            (_, _, Some(description)) => {
+                let built = obstacle(description);
                 RigidObstacle::validate(&built)
                     .map_err(|e| SceneError::at(path.at("obstacle"), e.to_string()))?;
                 let description = format!(
@@ -1266,20 +1353,23 @@ fn build_contact(
     }
     if let Some(gap) = spec.imposed_gap.clone() {
         let t = load_time(scene);
-        pair = pair.with_imposed_gap(move |x| gap.at(&[x.x, x.y], t));
+        pair = pair.with_imposed_gap(move |x| gap.at(x.coords.as_slice(), t));
     }
     Ok((
         ModelContact {
             body: a,
             other,
-            obstacle,
+            obstacle: None,
+            obstacle_3d: None,
             description,
             hertz_radius: spec.hertz.map(|h| h.radius),
         },
         PendingPair { pair },
+        built,
     ))
 }
 
+/// A rigid obstacle in the plane from its keys (checked by `check`).
 fn build_obstacle(spec: &ObstacleDescription) -> Obstacle {
     let point = |p: &[f64]| Point::new(p[0], p[1]);
     if let Some(line) = &spec.line {
@@ -1294,6 +1384,26 @@ fn build_obstacle(spec: &ObstacleDescription) -> Obstacle {
         }
     } else {
         Obstacle::Polyline(spec.polyline.iter().flatten().map(|p| point(p)).collect())
+    }
+}
+
+/// A rigid obstacle in space from its keys (checked by `check`: `plane` or `sphere`).
+fn build_obstacle_3d(spec: &ObstacleDescription) -> Obstacle3 {
+    let point = |p: &[f64]| Point3::new(p[0], p[1], p[2]);
+    match (&spec.plane, &spec.sphere) {
+        (Some(plane), _) => Obstacle3::Plane {
+            point: point(&plane.point),
+            normal: Vector3::new(plane.normal[0], plane.normal[1], plane.normal[2]),
+        },
+        (None, Some(sphere)) => Obstacle3::Sphere {
+            centre: point(&sphere.centre),
+            radius: sphere.radius,
+        },
+        // Unreachable after `check`; a plane through the origin keeps this total.
+        (None, None) => Obstacle3::Plane {
+            point: Point3::origin(),
+            normal: Vector3::z(),
+        },
     }
 }
 

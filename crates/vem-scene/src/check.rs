@@ -214,8 +214,8 @@ fn what_decides(body: &BodyDescription) -> &'static str {
 
 /// The checks that depend on the dimension of the bodies (`dimensions[i]`: body i's, 2 or 3):
 /// the length of every point, box and vector; `plane` (required in the plane, refused in
-/// space); `z` components (in space only); the coordinates of expressions; contact pairs (in
-/// the plane only, for now).
+/// space); `z` components (in space only); the coordinates of expressions; the obstacles of
+/// contact pairs (`line`, `circle`, `polyline` in the plane, `plane`, `sphere` in space).
 ///
 /// # Errors
 /// The first problem found, at its key.
@@ -234,24 +234,6 @@ pub fn check_dimensions(scene: &Scene, dimensions: &[usize]) -> Result<(), Scene
             .position(|b| b.name == contact.body)
             .and_then(|i| dimensions.get(i).copied())
             .unwrap_or(DIMENSION);
-        if dimension == 3 {
-            let what = if contact.obstacle.is_some() {
-                "against a rigid obstacle"
-            } else {
-                "between two bodies"
-            };
-            return Err(SceneError::at(
-                path,
-                format!(
-                    "contact of bodies in space ({what}, body '{}' part '{}') is not available \
-                     yet in scene files: a scene in three dimensions solves its bodies without \
-                     contact; remove the [[contact]] tables, model the contact in the plane, or \
-                     solve it through the library (vem_contact::ContactProblem<3>, frictionless, \
-                     docs/contact-3d.md)",
-                    contact.body, contact.part
-                ),
-            ));
-        }
         check_contact_in(contact, &path, dimension)?;
         if let Some(gap) = &contact.imposed_gap {
             check_scalar(gap, &path.at("imposed_gap"), dimension)?;
@@ -926,13 +908,16 @@ fn check_contact(
                 obstacle.line.is_some(),
                 obstacle.circle.is_some(),
                 obstacle.polyline.is_some(),
+                obstacle.plane.is_some(),
+                obstacle.sphere.is_some(),
             ];
             let at = path.at("obstacle");
             if given.iter().filter(|&&g| g).count() != 1 {
                 return Err(SceneError::at(
                     at,
                     "an obstacle is exactly one of `line = { point, normal }`, `circle = { \
-                     centre, radius }` or `polyline = [[x, y], ...]`",
+                     centre, radius }` or `polyline = [[x, y], ...]` in the plane, `plane = { \
+                     point, normal }` or `sphere = { centre, radius }` in space",
                 ));
             }
             if contact.normal.is_some() {
@@ -970,16 +955,61 @@ fn check_contact_in(
         return Ok(());
     };
     let at = path.at("obstacle");
-    if let Some(line) = &obstacle.line {
-        exact_len(line.point.len(), dimension, &at.at("line").at("point"))?;
-        exact_len(line.normal.len(), dimension, &at.at("line").at("normal"))?;
+    // The obstacles of the other dimension, each with its counterpart in this one.
+    let foreign = if dimension == 3 {
+        [
+            (
+                "line",
+                obstacle.line.is_some(),
+                "plane = { point = [x, y, z], normal = [nx, ny, nz] }",
+            ),
+            (
+                "circle",
+                obstacle.circle.is_some(),
+                "sphere = { centre = [x, y, z], radius = r }",
+            ),
+            (
+                "polyline",
+                obstacle.polyline.is_some(),
+                "plane = { .. } or sphere = { .. }",
+            ),
+        ]
+    } else {
+        [
+            (
+                "plane",
+                obstacle.plane.is_some(),
+                "line = { point = [x, y], normal = [nx, ny] }",
+            ),
+            (
+                "sphere",
+                obstacle.sphere.is_some(),
+                "circle = { centre = [x, y], radius = r }",
+            ),
+            ("", false, ""),
+        ]
+    };
+    if let Some((key, _, instead)) = foreign.iter().find(|(_, given, _)| *given) {
+        return Err(SceneError::at(
+            at.at(key),
+            format!(
+                "body '{}' is {}: `{key}` is an obstacle {}; write `{instead}`",
+                contact.body,
+                in_words(dimension),
+                in_words(if dimension == 3 { 2 } else { 3 })
+            ),
+        ));
     }
-    if let Some(circle) = &obstacle.circle {
-        exact_len(
-            circle.centre.len(),
-            dimension,
-            &at.at("circle").at("centre"),
-        )?;
+    for (key, line) in [("line", &obstacle.line), ("plane", &obstacle.plane)] {
+        if let Some(line) = line {
+            exact_len(line.point.len(), dimension, &at.at(key).at("point"))?;
+            exact_len(line.normal.len(), dimension, &at.at(key).at("normal"))?;
+        }
+    }
+    for (key, circle) in [("circle", &obstacle.circle), ("sphere", &obstacle.sphere)] {
+        if let Some(circle) = circle {
+            exact_len(circle.centre.len(), dimension, &at.at(key).at("centre"))?;
+        }
     }
     if let Some(points) = &obstacle.polyline {
         for (k, p) in points.iter().enumerate() {

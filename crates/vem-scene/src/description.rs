@@ -378,8 +378,8 @@ pub struct ContactDescription {
     /// Only points of the two sides closer than this (along the normal) are paired.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_distance: Option<f64>,
-    /// Compare with Hertz's cylinder on a half-space: body A near the contact is a cylinder of
-    /// this radius.
+    /// Compare with Hertz's solution: body A near the contact is a cylinder (in the plane) or a
+    /// sphere (in space) of this radius, its counterpart a half-space.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hertz: Option<HertzDescription>,
     /// Earlier form of `law = { name = "tresca", friction_bound = .. }`.
@@ -415,11 +415,12 @@ pub struct ContactDescription {
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HertzDescription {
-    /// Radius of the cylinder (body A).
+    /// Radius of the cylinder (in space: the sphere) of body A.
     pub radius: f64,
 }
 
-/// A rigid obstacle: exactly one of `line`, `circle`, `polyline`.
+/// A rigid obstacle: exactly one of `line`, `circle`, `polyline` (in the plane) or `plane`,
+/// `sphere` (in space).
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleDescription {
@@ -432,9 +433,18 @@ pub struct ObstacleDescription {
     /// A polyline with the obstacle on its right.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polyline: Option<Vec<Vec<f64>>>,
+    /// In space: a plane bounding a half-space, `plane = { point = [x, y, z], normal = [nx,
+    /// ny, nz] }`, the normal pointing out of the obstacle (the keys of `line`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plane: Option<LineDescription>,
+    /// In space: a rigid ball, `sphere = { centre = [x, y, z], radius = r }` (the keys of
+    /// `circle`); the body lies outside it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere: Option<CircleDescription>,
 }
 
-/// `line = { point = [x, y], normal = [nx, ny] }`, the normal pointing out of the obstacle.
+/// `line = { point = [x, y], normal = [nx, ny] }` (in space `plane = { point = [x, y, z],
+/// normal = [nx, ny, nz] }`), the normal pointing out of the obstacle.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LineDescription {
@@ -444,7 +454,8 @@ pub struct LineDescription {
     pub normal: Vec<f64>,
 }
 
-/// `circle = { centre = [x, y], radius = r }`.
+/// `circle = { centre = [x, y], radius = r }` (in space `sphere = { centre = [x, y, z], radius
+/// = r }`).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CircleDescription {

@@ -8,16 +8,16 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 use vem_contact::{
-    ContactError, ContactResult, ContactSolverError, FixedPointReport, HistoryStep, InterfaceNode,
-    ModelSummary, NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
+    ContactError, ContactProblem, ContactResult, ContactSolverError, FixedPointReport, HistoryStep,
+    InterfaceNode, ModelSummary, NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
 };
 use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
 use vem_mesh::polyhedral::quality::CellQuality;
 use vem_mesh::quality::ElementQuality;
-use vem_mesh::Vector;
+use vem_mesh::VectorD;
 use vem_space::Choice;
 
-use crate::build::{locate_contact, locate_elastic, Model};
+use crate::build::{locate_contact, locate_elastic, Model, ModelBody};
 use crate::error::one_line;
 use crate::{Deprecation, KeyPath, SceneError};
 
@@ -46,12 +46,18 @@ pub struct Outcome {
     /// The contact result of the bodies in contact (its `bodies` have been moved into
     /// [`Outcome::bodies`]; nodes, report, fixed point and model summary are here).
     pub contact: Option<ContactResult>,
-    /// For each body of the contact result, its index in [`Outcome::bodies`].
+    /// The contact result of the bodies in space in contact (its `bodies` moved into
+    /// [`Outcome::bodies_3d`]).
+    pub contact_3d: Option<ContactResult<3>>,
+    /// For each body of the contact result, its index in [`Outcome::bodies`] (in
+    /// [`Outcome::bodies_3d`] in space).
     pub contact_bodies: Vec<usize>,
     /// With a load history of several steps: every step before the last, each with its
     /// contact result and body solutions (the last step is [`Outcome::contact`] and
     /// [`Outcome::bodies`]).
     pub steps: Vec<HistoryStep>,
+    /// The same in space.
+    pub steps_3d: Vec<HistoryStep<3>>,
     /// What was computed.
     pub summary: RunSummary,
     pub(crate) started: Instant,
@@ -227,12 +233,18 @@ pub struct RunTimes {
     pub total_s: f64,
 }
 
-/// The computed contact zone against Hertz's solution for a cylinder of radius R (body A) on
-/// a half-space (body B or a rigid flat), plane problem, for the computed load P per unit
-/// thickness: `a = sqrt(4 P R / (pi E*))`, `p0 = 2 P / (pi a)`, with
-/// `1/E* = (1 - nu_A^2)/E_A + (1 - nu_B^2)/E_B` in plane strain (`1/E_A + 1/E_B` in plane
-/// stress; a rigid counterpart contributes nothing).
-#[derive(Debug, Clone, Copy, Serialize)]
+/// The computed contact zone against Hertz's solution for the computed load P, body A near
+/// the contact a cylinder (in the plane) or a sphere (in space) of radius R on a half-space
+/// (body B or a rigid flat):
+///
+/// - in the plane, per unit thickness: half-width `a = sqrt(4 P R / (pi E*))`, peak pressure
+///   `p0 = 2 P / (pi a)`, with `1/E* = (1 - nu_A^2)/E_A + (1 - nu_B^2)/E_B` in plane strain
+///   (`1/E_A + 1/E_B` in plane stress);
+/// - in space: contact radius `a = (3 P R / (4 E*))^(1/3)`, peak pressure
+///   `p0 = 3 P / (2 pi a^2)`, with `1/E*` as in plane strain.
+///
+/// A rigid counterpart contributes nothing to `1/E*`.
+#[derive(Debug, Clone, Serialize)]
 pub struct HertzComparison {
     /// The contact pair (index in the scene).
     pub pair: usize,
@@ -240,31 +252,45 @@ pub struct HertzComparison {
     pub radius: f64,
     /// E*.
     pub effective_modulus: f64,
-    /// P: the magnitude of the total contact force on body A.
+    /// P: the magnitude of the total contact force on body A along the mean contact normal.
     pub load: f64,
-    /// Hertz's half-width a for P.
+    /// Hertz's half-width a for P (in space: the contact radius).
     pub half_width: f64,
     /// Hertz's peak pressure p0 for P.
     pub peak_pressure: f64,
     /// Computed half-width: half the length of the contact zone, whose ends are taken halfway
-    /// between the outermost node in contact and the next (open) node.
+    /// between the outermost node in contact and the next (open) node. In space the computed
+    /// contact radius: `sqrt(A / pi)` of the area `A` of the nodes in contact (the sum of their
+    /// tributary areas; the whole zone modelled, no symmetry plane through it).
     pub computed_half_width: f64,
-    /// Computed peak pressure: the largest nodal pressure.
+    /// Computed peak pressure: the largest nodal pressure. In space, where the nodal pressure
+    /// of the overlay cells of two unrelated surface meshes scatters by about 10 % from node
+    /// to node, the mean pressure over the central disc `r < a/2` (`a` the computed radius:
+    /// the sum of the normal forces over the sum of the tributary areas of the nodes in it),
+    /// divided by Hertz's ratio of that mean to the peak, `(2 / (3 s^2)) (1 - (1 - s^2)^(3/2))
+    /// = 0.935` at `s = 1/2`.
     pub computed_peak_pressure: f64,
-    /// Centre of the computed contact zone (for plots).
-    pub centre: [f64; 2],
+    /// Centre of the computed contact zone (for plots; in space the force-weighted mean of the
+    /// nodes in contact).
+    pub centre: Vec<f64>,
 }
 
+/// The radius of the central disc of the peak pressure in space, as a fraction of the contact
+/// radius.
+const CENTRAL_DISC: f64 = 0.5;
+
 impl HertzComparison {
-    fn new(
+    fn new<const D: usize>(
         pair: usize,
         radius: f64,
-        a: &ElasticBody,
-        b: Option<&ElasticBody>,
-        nodes: &[InterfaceNode],
+        a: &ElasticBody<D>,
+        b: Option<&ElasticBody<D>>,
+        nodes: &[InterfaceNode<D>],
     ) -> Self {
-        let compliance = |body: &ElasticBody| match young_poisson(body) {
-            Some((e, nu)) if body.material().plane() == Some(Plane::Strain) => (1.0 - nu * nu) / e,
+        let compliance = |body: &ElasticBody<D>| match young_poisson(body) {
+            Some((e, nu)) if D == 3 || body.material().plane() == Some(Plane::Strain) => {
+                (1.0 - nu * nu) / e
+            }
             Some((e, _)) => 1.0 / e,
             None => 0.0,
         };
@@ -274,15 +300,60 @@ impl HertzComparison {
         let force = nodes
             .iter()
             .map(|n| n.friction_force - n.normal * n.normal_force)
-            .sum::<vem_mesh::Vector>();
-        let normal = nodes.iter().map(|n| n.normal).sum::<vem_mesh::Vector>();
+            .fold(VectorD::<D>::zeros(), |s, f| s + f);
+        let normal = nodes
+            .iter()
+            .map(|n| n.normal)
+            .fold(VectorD::<D>::zeros(), |s, f| s + f);
         let load = if normal.norm() > 0.0 {
             force.dot(&normal).abs() / normal.norm()
         } else {
             force.norm()
         };
-        let half_width = (4.0 * load * radius / (std::f64::consts::PI * effective_modulus)).sqrt();
-        let peak_pressure = 2.0 * load / (std::f64::consts::PI * half_width);
+        let pi = std::f64::consts::PI;
+        if D == 3 {
+            let contact_radius = (3.0 * load * radius / (4.0 * effective_modulus)).cbrt();
+            let area: f64 = nodes
+                .iter()
+                .filter(|n| n.status != NodeStatus::Open)
+                .map(|n| n.tributary_measure)
+                .sum();
+            let weight: f64 = nodes.iter().map(|n| n.normal_force.max(0.0)).sum();
+            let centre = nodes
+                .iter()
+                .map(|n| n.position.coords * n.normal_force.max(0.0))
+                .fold(VectorD::<D>::zeros(), |s, f| s + f)
+                / weight.max(f64::MIN_POSITIVE);
+            let computed_radius = (area / pi).sqrt();
+            // The mean pressure over the central disc r < a/2 (forces over tributary areas of
+            // the nodes in it), divided by Hertz's ratio of that mean to the peak.
+            let s = CENTRAL_DISC;
+            let ratio = 2.0 / (3.0 * s * s) * (1.0 - (1.0 - s * s).powf(1.5));
+            let (force, area) = nodes
+                .iter()
+                .filter(|n| (n.position.coords - centre).norm() < s * computed_radius)
+                .fold((0.0, 0.0), |(f, a), n| {
+                    (f + n.normal_force, a + n.tributary_measure)
+                });
+            let computed_peak_pressure = if area > 0.0 {
+                force / area / ratio
+            } else {
+                nodes.iter().map(|n| n.pressure).fold(0.0, f64::max)
+            };
+            return Self {
+                pair,
+                radius,
+                effective_modulus,
+                load,
+                half_width: contact_radius,
+                peak_pressure: 3.0 * load / (2.0 * pi * contact_radius * contact_radius),
+                computed_half_width: computed_radius,
+                computed_peak_pressure,
+                centre: centre.iter().copied().collect(),
+            };
+        }
+        let half_width = (4.0 * load * radius / (pi * effective_modulus)).sqrt();
+        let peak_pressure = 2.0 * load / (pi * half_width);
         let (computed_half_width, centre) = contact_zone(nodes);
         Self {
             pair,
@@ -297,7 +368,7 @@ impl HertzComparison {
         }
     }
 
-    /// Relative error of the computed half-width.
+    /// Relative error of the computed half-width (in space: contact radius).
     pub fn half_width_error(&self) -> f64 {
         self.computed_half_width / self.half_width - 1.0
     }
@@ -309,15 +380,16 @@ impl HertzComparison {
 }
 
 /// Half-length and centre of the contact zone around the node of largest pressure: the run
-/// of consecutive nodes in contact, extended on each side halfway to the next open node.
-fn contact_zone(nodes: &[InterfaceNode]) -> (f64, [f64; 2]) {
+/// of consecutive nodes in contact (along a chain in the plane), extended on each side halfway
+/// to the next open node.
+fn contact_zone<const D: usize>(nodes: &[InterfaceNode<D>]) -> (f64, Vec<f64>) {
     let Some(peak) =
         (0..nodes.len()).max_by(|&i, &j| nodes[i].pressure.total_cmp(&nodes[j].pressure))
     else {
-        return (0.0, [0.0, 0.0]);
+        return (0.0, vec![0.0; D]);
     };
     if nodes[peak].status == NodeStatus::Open {
-        return (0.0, [nodes[peak].position.x, nodes[peak].position.y]);
+        return (0.0, nodes[peak].position.iter().copied().collect());
     }
     let active = |i: usize| nodes[i].status != NodeStatus::Open;
     let mut first = peak;
@@ -335,7 +407,10 @@ fn contact_zone(nodes: &[InterfaceNode]) -> (f64, [f64; 2]) {
     let start = end(first, first.checked_sub(1));
     let stop = end(last, (last + 1 < nodes.len()).then_some(last + 1));
     let centre = start + 0.5 * (stop - start);
-    (0.5 * (stop - start).norm(), [centre.x, centre.y])
+    (
+        0.5 * (stop - start).norm(),
+        centre.iter().copied().collect(),
+    )
 }
 
 /// Young's modulus and Poisson's ratio of an isotropic body.
@@ -393,7 +468,7 @@ pub(crate) fn tidy(value: f64) -> f64 {
 
 /// The mean displacement of the part of the first Dirichlet condition or rigid plate of body
 /// A of the first pair (the load point of a load-displacement curve); empty without one.
-pub fn load_point_displacement(result: &ContactResult) -> Vec<f64> {
+pub fn load_point_displacement<const D: usize>(result: &ContactResult<D>) -> Vec<f64> {
     let Some(pair) = result.model.pairs.first() else {
         return Vec::new();
     };
@@ -404,21 +479,23 @@ pub fn load_point_displacement(result: &ContactResult) -> Vec<f64> {
     let Some(condition) = body.body.dirichlet().first() else {
         return Vec::new();
     };
-    let Ok(vertices) = body.body.mesh().part_vertices(condition.part()) else {
+    let Ok(vertices) = body.body.mesh_arc().part_vertices(condition.part()) else {
         return Vec::new();
     };
     if vertices.is_empty() {
         return Vec::new();
     }
-    let sum = vertices.iter().fold(Vector::zeros(), |s, &v| {
-        s + body.solution.vertex_displacement(v)
-    });
+    let sum = vertices
+        .iter()
+        .fold(vem_mesh::VectorD::<D>::zeros(), |s, &v| {
+            s + body.solution.vertex_displacement(v)
+        });
     let mean = sum / vertices.len() as f64;
-    vec![tidy(mean.x), tidy(mean.y)]
+    mean.iter().map(|&u| tidy(u)).collect()
 }
 
 /// "initial gaps from g0 to g1 at its N nodes" for an interface without overlap.
-fn gap_range(nodes: &[vem_contact::ContactNode]) -> String {
+fn gap_range<const D: usize>(nodes: &[vem_contact::ContactNode<D>]) -> String {
     let (lo, hi) = nodes
         .iter()
         .map(|n| n.initial_gap)
@@ -464,73 +541,14 @@ impl Model {
             ..e
         };
         if let Some((problem, indices)) = &self.problem {
-            let mut solver = self
-                .registries
-                .solvers
-                .make_choice(&self.solver)
-                .map_err(|e| located(crate::build::registry_error(e, &KeyPath::key("solver"))))?;
-            let start = Instant::now();
-            let discretisation = problem
-                .discretise()
-                .map_err(|e| located(locate_contact(scene, e)))?;
-            let load_history = crate::history::load_history(scene, indices).map_err(located)?;
-            let overlap = Warning::initial_overlap(
-                discretisation
-                    .nodes()
-                    .iter()
-                    .map(|n| (n.position, n.normal, n.initial_gap)),
-            );
-            let mut work = discretisation.work();
-            let steps = discretisation
-                .solve_history(solver.as_mut(), &load_history)
-                .map_err(|e| match e {
-                    ContactError::Solver(source @ ContactSolverError::Unbounded { .. }) => {
-                        let pairs: Vec<&str> = self
-                            .contacts
-                            .iter()
-                            .map(|c| c.description.as_str())
-                            .collect();
-                        SceneError::at(
-                            KeyPath::key("contact"),
-                            format!(
-                                "the contact of {} gives the body no support under its load \
-                                     ({}): hold the body by a Dirichlet condition, or check that \
-                                     the contact part faces its counterpart: {}",
-                                pairs.join("; "),
-                                overlap.as_ref().map_or_else(
-                                    || gap_range(discretisation.nodes()),
-                                    |o| o.to_string()
-                                ),
-                                one_line(&source)
-                            ),
-                        )
-                    }
-                    e => located(locate_contact(scene, e)),
-                })?;
-            for step in &steps {
-                let result = &step.result;
-                work += result.work;
-                history.push(StepSummary {
-                    time: step.time,
-                    normal_resultant: tidy(result.normal_resultant()),
-                    force_on_body_a: result.force_on_body_a().iter().map(|&f| tidy(f)).collect(),
-                    displacement: load_point_displacement(result),
-                    nodes: result.status_counts(),
-                });
+            let run = self.solve_contact(problem, indices, &mut times)?;
+            for (b, &index) in run.bodies.into_iter().zip(indices) {
+                slots[index] = Some(b);
             }
-            let mut steps = steps;
-            let mut result = steps.pop().expect("a history has at least one step").result;
-            earlier_steps = steps;
-            result.work = work;
-            result.model.total_time = start.elapsed();
-            let stages = result.work.times;
-            times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
-            times.solve_s += stages.contact_solve.as_secs_f64();
-            for (b, &index) in std::mem::take(&mut result.bodies).into_iter().zip(indices) {
-                slots[index] = Some((b.body, b.solution));
-            }
+            history = run.history;
+            earlier_steps = run.earlier;
             contact_bodies = indices.clone();
-            contact = Some(result);
+            contact = Some(run.result);
         }
         for (index, slot) in slots.iter_mut().enumerate() {
             if slot.is_none() {
@@ -595,10 +613,101 @@ impl Model {
             bodies,
             bodies_3d: Vec::new(),
             contact,
+            contact_3d: None,
             contact_bodies,
             steps: earlier_steps,
+            steps_3d: Vec::new(),
             summary,
             started,
+        })
+    }
+
+    /// Solves the contact problem `problem` of the bodies `indices` (in the plane or in space)
+    /// along the scene's load history: the last step's result (its bodies taken out), the
+    /// earlier steps, a summary of every step; the times of insertion, assembly and the
+    /// contact solves added to `times`.
+    pub(crate) fn solve_contact<const D: usize>(
+        &self,
+        problem: &ContactProblem<D>,
+        indices: &[usize],
+        times: &mut RunTimes,
+    ) -> Result<ContactRun<D>, SceneError> {
+        let scene = self.scene();
+        let located = |e: SceneError| SceneError {
+            path: self.written(&e.path),
+            ..e
+        };
+        let mut history = Vec::new();
+        let mut solver = self
+            .registries
+            .solvers
+            .make_choice(&self.solver)
+            .map_err(|e| located(crate::build::registry_error(e, &KeyPath::key("solver"))))?;
+        let start = Instant::now();
+        let discretisation = problem
+            .discretise()
+            .map_err(|e| located(locate_contact(scene, e)))?;
+        let load_history = crate::history::load_history(scene, indices).map_err(located)?;
+        let overlap = Warning::initial_overlap(
+            discretisation
+                .nodes()
+                .iter()
+                .map(|n| (n.position, n.normal, n.initial_gap)),
+        );
+        let mut work = discretisation.work();
+        let steps = discretisation
+            .solve_history(solver.as_mut(), &load_history)
+            .map_err(|e| match e {
+                ContactError::Solver(source @ ContactSolverError::Unbounded { .. }) => {
+                    let pairs: Vec<&str> = self
+                        .contacts
+                        .iter()
+                        .map(|c| c.description.as_str())
+                        .collect();
+                    SceneError::at(
+                        KeyPath::key("contact"),
+                        format!(
+                            "the contact of {} gives the body no support under its load ({}): \
+                             hold the body by a Dirichlet condition, or check that the contact \
+                             part faces its counterpart: {}",
+                            pairs.join("; "),
+                            overlap.as_ref().map_or_else(
+                                || gap_range(discretisation.nodes()),
+                                |o| o.to_string()
+                            ),
+                            one_line(&source)
+                        ),
+                    )
+                }
+                e => located(locate_contact(scene, e)),
+            })?;
+        for step in &steps {
+            let result = &step.result;
+            work += result.work;
+            history.push(StepSummary {
+                time: step.time,
+                normal_resultant: tidy(result.normal_resultant()),
+                force_on_body_a: result.force_on_body_a().iter().map(|&f| tidy(f)).collect(),
+                displacement: load_point_displacement(result),
+                nodes: result.status_counts(),
+            });
+        }
+        let mut steps = steps;
+        let mut result = steps.pop().expect("a history has at least one step").result;
+        result.work = work;
+        result.model.total_time = start.elapsed();
+        let stages = result.work.times;
+        times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
+        times.solve_s += stages.contact_solve.as_secs_f64();
+        let bodies = std::mem::take(&mut result.bodies)
+            .into_iter()
+            .map(|b| (b.body, b.solution))
+            .collect();
+        Ok(ContactRun {
+            result,
+            bodies,
+            earlier: steps,
+            history,
         })
     }
 
@@ -649,44 +758,8 @@ impl Model {
                 }
             })
             .collect();
-        let contact_summary = contact.map(|result| {
-            let force = result.force_on_body_a();
-            let hertz = self
-                .contacts
-                .iter()
-                .enumerate()
-                .filter_map(|(k, c)| {
-                    let radius = c.hertz_radius?;
-                    let a = &self.bodies[c.body].body;
-                    let b = c.other.map(|o| &self.bodies[o].body);
-                    Some(HertzComparison::new(k, radius, a, b, result.pair_nodes(k)))
-                })
-                .collect();
-            ContactSummary {
-                model: result.model.clone(),
-                solver: self.solver.clone(),
-                report: result.report.clone(),
-                work: result.work,
-                fixed_point: result.fixed_point.clone(),
-                resultants: Resultants {
-                    normal: tidy(result.normal_resultant()),
-                    friction: result
-                        .friction_resultant()
-                        .iter()
-                        .map(|&f| tidy(f))
-                        .collect(),
-                    force_on_body_a: force.iter().map(|&f| tidy(f)).collect(),
-                },
-                nodes: result.status_counts(),
-                warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
-                hertz,
-                history: if history.len() > 1 {
-                    history
-                } else {
-                    Vec::new()
-                },
-            }
-        });
+        let contact_summary =
+            contact.map(|result| self.contact_summary(result, &self.bodies, history));
         RunSummary {
             title: self
                 .scene()
@@ -701,6 +774,67 @@ impl Model {
             times,
         }
     }
+}
+
+impl Model {
+    /// The summary of a contact result in the plane or in space (`bodies`: the scene's
+    /// bodies of that dimension, as built).
+    pub(crate) fn contact_summary<const D: usize>(
+        &self,
+        result: &ContactResult<D>,
+        bodies: &[ModelBody<D>],
+        history: Vec<StepSummary>,
+    ) -> ContactSummary {
+        let force = result.force_on_body_a();
+        let hertz = self
+            .contacts
+            .iter()
+            .enumerate()
+            .filter_map(|(k, c)| {
+                let radius = c.hertz_radius?;
+                let a = &bodies[c.body].body;
+                let b = c.other.map(|o| &bodies[o].body);
+                Some(HertzComparison::new(k, radius, a, b, result.pair_nodes(k)))
+            })
+            .collect();
+        ContactSummary {
+            model: result.model.clone(),
+            solver: self.solver.clone(),
+            report: result.report.clone(),
+            work: result.work,
+            fixed_point: result.fixed_point.clone(),
+            resultants: Resultants {
+                normal: tidy(result.normal_resultant()),
+                friction: result
+                    .friction_resultant()
+                    .iter()
+                    .map(|&f| tidy(f))
+                    .collect(),
+                force_on_body_a: force.iter().map(|&f| tidy(f)).collect(),
+            },
+            nodes: result.status_counts(),
+            warnings: result.warnings.iter().map(|w| w.to_string()).collect(),
+            hertz,
+            history: if history.len() > 1 {
+                history
+            } else {
+                Vec::new()
+            },
+        }
+    }
+}
+
+/// What [`Model::solve_contact`] gives.
+pub(crate) struct ContactRun<const D: usize> {
+    /// The last step's result, its bodies taken out.
+    pub(crate) result: ContactResult<D>,
+    /// The bodies of the problem on the meshes solved, with their solutions, in the order of
+    /// the problem.
+    pub(crate) bodies: Vec<(ElasticBody<D>, Solution<D>)>,
+    /// Every step before the last.
+    pub(crate) earlier: Vec<HistoryStep<D>>,
+    /// Every step's summary.
+    pub(crate) history: Vec<StepSummary>,
 }
 
 /// "1 iteration", "3 iterations".
@@ -886,9 +1020,14 @@ impl fmt::Display for RunSummary {
                 "    Hertz (R = {}, E* = {:.6e}) for the load magnitude P = {:.6e}:",
                 h.radius, h.effective_modulus, h.load
             )?;
+            let what = if self.dimension == 3 {
+                "contact radius a:"
+            } else {
+                "half-width a:    "
+            };
             writeln!(
                 f,
-                "      half-width a:     computed {:.5e}, Hertz {:.5e} ({:+.1}%)",
+                "      {what} computed {:.5e}, Hertz {:.5e} ({:+.1}%)",
                 h.computed_half_width,
                 h.half_width,
                 100.0 * h.half_width_error()

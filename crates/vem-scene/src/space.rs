@@ -11,7 +11,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane, Solution};
 use vem_mesh::generators::polyhedral::{Cuboid, PolyhedralFamily};
 use vem_mesh::polyhedral::quality::{cell_qualities, CellQuality};
 use vem_mesh::{Mesh, MeshError, Point3, PolyhedralMesh, Vector3};
@@ -441,8 +441,9 @@ fn planar_normal(
     Ok(normal)
 }
 
-/// Solves every body in space (assembly and sparse Cholesky; contact is refused in space by
-/// `check`) and summarises.
+/// Solves the scene in space: the bodies in contact by the contact library (every pair
+/// together, along the load history, as in the plane), every other body as plain elasticity
+/// (assembly and sparse Cholesky), and summarises.
 pub(crate) fn solve(model: &Model, started: Instant) -> Result<Outcome, SceneError> {
     let scene = model.scene();
     let located = |e: SceneError| SceneError {
@@ -453,35 +454,56 @@ pub(crate) fn solve(model: &Model, started: Instant) -> Result<Outcome, SceneErr
         mesh_s: model.mesh_time().as_secs_f64(),
         ..RunTimes::default()
     };
+    let mut slots: Vec<Option<(ElasticBody<3>, Solution<3>)>> = vec![None; model.bodies_3d().len()];
+    let mut contact = None;
+    let mut contact_bodies = Vec::new();
+    let mut history = Vec::new();
+    let mut earlier_steps = Vec::new();
+    if let Some((problem, indices)) = model.contact_problem_3d() {
+        let run = model.solve_contact(problem, indices, &mut times)?;
+        for (b, &index) in run.bodies.into_iter().zip(indices) {
+            slots[index] = Some(b);
+        }
+        history = run.history;
+        earlier_steps = run.earlier;
+        contact_bodies = indices.to_vec();
+        contact = Some(run.result);
+    }
     let mut bodies = Vec::with_capacity(model.bodies_3d().len());
-    for (index, built) in model.bodies_3d().iter().enumerate() {
-        let body = &built.body;
-        let load_factor = crate::history::final_factor(scene, index).map_err(located)?;
+    for (index, (built, slot)) in model.bodies_3d().iter().zip(slots).enumerate() {
         let elastic = |e| {
             located(
                 locate_elastic(scene, e)
                     .unwrap_or_else(|text| SceneError::at(KeyPath::key("body").index(index), text)),
             )
         };
-        let start = Instant::now();
-        let system = body.assemble().map_err(elastic)?;
-        times.assembly_s += start.elapsed().as_secs_f64();
-        let start = Instant::now();
-        let solution = body
-            .solve_system(&system, &mut CholeskySolver::default())
-            .map_err(elastic)?;
-        let solution = if load_factor == 1.0 {
-            solution
-        } else {
-            let scaled: Vec<f64> = solution
-                .displacement()
-                .iter()
-                .map(|u| load_factor * u)
-                .collect();
-            body.solution_scaled(&system, scaled, load_factor)
-                .map_err(elastic)?
+        let (body, solution) = match slot {
+            Some(solved) => solved,
+            None => {
+                let body = &built.body;
+                let load_factor = crate::history::final_factor(scene, index).map_err(located)?;
+                let start = Instant::now();
+                let system = body.assemble().map_err(elastic)?;
+                times.assembly_s += start.elapsed().as_secs_f64();
+                let start = Instant::now();
+                let solution = body
+                    .solve_system(&system, &mut CholeskySolver::default())
+                    .map_err(elastic)?;
+                let solution = if load_factor == 1.0 {
+                    solution
+                } else {
+                    let scaled: Vec<f64> = solution
+                        .displacement()
+                        .iter()
+                        .map(|u| load_factor * u)
+                        .collect();
+                    body.solution_scaled(&system, scaled, load_factor)
+                        .map_err(elastic)?
+                };
+                times.solve_s += start.elapsed().as_secs_f64();
+                (body.clone(), solution)
+            }
         };
-        times.solve_s += start.elapsed().as_secs_f64();
         let start = Instant::now();
         let fields = body
             .element_fields(solution.displacement())
@@ -489,20 +511,25 @@ pub(crate) fn solve(model: &Model, started: Instant) -> Result<Outcome, SceneErr
         let qualities = cell_qualities(body.mesh());
         times.post_s += start.elapsed().as_secs_f64();
         bodies.push(SolvedBody {
-            body: body.clone(),
+            body,
             solution,
             fields,
             qualities,
         });
     }
     times.total_s = times.mesh_s + times.assembly_s + times.solve_s + times.post_s;
-    let summary = summarise(model, &bodies, times);
+    let mut summary = summarise(model, &bodies, times);
+    summary.contact = contact
+        .as_ref()
+        .map(|result| model.contact_summary(result, model.bodies_3d(), history));
     Ok(Outcome {
         bodies: Vec::new(),
         bodies_3d: bodies,
         contact: None,
-        contact_bodies: Vec::new(),
+        contact_3d: contact,
+        contact_bodies,
         steps: Vec::new(),
+        steps_3d: earlier_steps,
         summary,
         started,
     })
@@ -522,7 +549,7 @@ fn summarise(model: &Model, bodies: &[SolvedBody<3, CellQuality>], times: RunTim
                 element: built.element.clone(),
                 predicted_error: None,
                 vertices: mesh.n_vertices(),
-                inserted_vertices: 0,
+                inserted_vertices: mesh.n_vertices() - built.body.mesh().n_vertices(),
                 polygons: mesh.n_cells(),
                 free_dofs: dofs.n_free(),
                 prescribed_dofs: dofs.n_prescribed(),

@@ -426,8 +426,8 @@ fn bad_input_in_space_is_refused_at_its_key() {
             format!(
                 "{good}\n[[contact]]\nbody = \"block\"\npart = \"bottom\"\nobstacle = {{ line = {{ point = [0, 0, 0], normal = [0, 0, 1] }} }}\n"
             ),
-            "contact[0]",
-            "contact of bodies in space (against a rigid obstacle, body 'block' part 'bottom') is not available yet",
+            "contact[0].obstacle.line",
+            "body 'block' is in space: `line` is an obstacle in the plane; write `plane = { point = [x, y, z], normal = [nx, ny, nz] }`",
         ),
         (
             format!(

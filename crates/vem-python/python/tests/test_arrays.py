@@ -288,6 +288,42 @@ def test_a_block_in_space_gives_its_uniform_state_as_arrays(scenes):
     assert result.pairs == []
 
 
+def test_the_contact_patch_test_in_space_from_a_dict():
+    """Two stacked blocks in space on non-matching meshes (hexahedra 3^3 on tetrahedra 4^3),
+    moduli 100 and 300, on rollers, the upper top moved down by d = 0.01: the uniform pressure
+    sigma = d / (1/E1 + 1/E2) at every interface node to 1e-10, the nodal forces adding up to
+    sigma times the interface's area 1, the arrays (k, 3)."""
+    d = 0.01
+    rollers = [{"part": "left", "x": 0.0}, {"part": "front", "y": 0.0}]
+    scene = vc.from_dict({
+        "body": [
+            {"name": "upper", "mesh": {"family": "hexahedra", "box": [[0, 0, 0], [1, 1, 1]], "n": 3},
+             "material": {"E": 100.0, "nu": 0.3},
+             "dirichlet": rollers + [{"part": "top", "z": -d}]},
+            {"name": "lower", "mesh": {"family": "tetrahedra", "box": [[0, 0, -1], [1, 1, 0]], "n": 4},
+             "material": {"E": 300.0, "nu": 0.3},
+             "dirichlet": rollers + [{"part": "bottom", "z": 0.0}]},
+        ],
+        "contact": [{"body": "upper", "part": "bottom", "other_body": "lower", "other_part": "top"}],
+    })
+    result = scene.solve()
+    sigma = d / (1.0 / 100.0 + 1.0 / 300.0)
+    [pair] = result.pairs
+    assert pair.dimension == 3
+    assert pair.positions.shape == (len(pair), 3) and pair.normals.shape == (len(pair), 3)
+    np.testing.assert_allclose(pair.pressure, sigma, rtol=1e-10)
+    np.testing.assert_allclose(pair.consistent_pressure, sigma, rtol=1e-10)
+    np.testing.assert_allclose(pair.normals, np.tile([0.0, 0.0, -1.0], (len(pair), 1)), atol=1e-12)
+    assert pair.tributary.sum() == pytest.approx(1.0, rel=1e-12)
+    assert pair.normal_force.sum() == pytest.approx(sigma, rel=1e-10)
+    assert set(pair.status) == {"contact"}
+    with pytest.raises(AttributeError, match="friction_force"):
+        pair.friction
+    # The summary's resultant, and the bodies solved with the interface nodes inserted.
+    assert result.summary["contact"]["resultants"]["normal"] == pytest.approx(sigma, rel=1e-10)
+    assert result.body("upper").dimension == 3
+
+
 def test_the_worked_hertz_example_from_arrays_matches_hertz():
     """docs/python.md's example (examples/hertz_arrays.py): an indenter meshed from arrays
     with a circular bottom of radius 1 pressed into a generated block. Hertz for the load the

@@ -43,7 +43,9 @@ from .builder import (
     line,
     mesh_file,
     part_box,
+    plane,
     polyline,
+    sphere,
     solver,
 )
 from .studies import convergence_study, convergence_plan, tradeoff_study
@@ -82,7 +84,9 @@ __all__ = [
     "mesh_file",
     "names",
     "part_box",
+    "plane",
     "polyline",
+    "sphere",
     "solve",
     "solver",
     "solvers",

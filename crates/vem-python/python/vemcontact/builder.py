@@ -160,6 +160,17 @@ def polyline(points: Sequence[Sequence[Number]]) -> Dict[str, Any]:
     return {"polyline": [list(p) for p in points]}
 
 
+def plane(point: Sequence[Number], normal: Sequence[Number]) -> Dict[str, Any]:
+    """In space: a rigid half-space bounded by the plane through ``point``; ``normal`` points
+    out of it, towards the body."""
+    return {"plane": {"point": list(point), "normal": list(normal)}}
+
+
+def sphere(centre: Sequence[Number], radius: Number) -> Dict[str, Any]:
+    """In space: a rigid ball; the body lies outside it."""
+    return {"sphere": {"centre": list(centre), "radius": radius}}
+
+
 def law(name: str, **settings: Any) -> Union[str, Dict[str, Any]]:
     """A contact law by registry name with its settings: ``law("frictionless")``,
     ``law("tresca", friction_bound=0.05)``, ``law("coulomb", coefficient=0.3)``."""
