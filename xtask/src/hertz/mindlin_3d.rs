@@ -76,7 +76,7 @@ fn graded(h: f64, fine: f64, length: f64) -> Vec<f64> {
 }
 
 /// The lattice of hexahedra with its vertex `(i, j, k)` moved to `(xs[i], ys[j], zs[k])`; the
-/// sides keep their names (left x = xs[0], front y = ys[0], bottom z = zs[0], ...).
+/// sides keep their names (left `x = xs[0]`, front `y = ys[0]`, bottom `z = zs[0]`, ...).
 fn lattice(xs: &[f64], ys: &[f64], zs: &[f64]) -> Result<PolyhedralMesh, Failure> {
     let (nx, ny, nz) = (xs.len() - 1, ys.len() - 1, zs.len() - 1);
     let unit = hexahedra(&Cuboid::unit_cube(), nx, ny, nz)?;
