@@ -300,7 +300,7 @@ dirichlet = [{ part = "left", x = "0.1 * z" }]
 /// sphere (`vem_verify::exact::HertzSphere`) for that load. About 36 s on a loaded 2-core
 /// machine: run with `cargo test -p vem-cli --test space -- --ignored hertz3d`.
 #[test]
-#[ignore = "36 s: the measured figures of docs/contact-3d.md, section 9"]
+#[ignore = "36 s: the measured figures of docs/contact-3d.md, section 10"]
 fn hertz3d_is_within_three_percent_of_hertz() {
     let scene = Scene::load(scene("hertz3d")).unwrap();
     let outcome = Model::build(&scene).unwrap().solve().unwrap();
