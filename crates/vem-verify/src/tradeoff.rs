@@ -64,9 +64,16 @@ pub const FULL_SETTINGS: [&str; 10] = [
 /// The settings of the quick study.
 pub const QUICK_SETTINGS: [&str; 4] = ["draft", "reference", "exact", "penalty@factor=1e6"];
 
-/// Poisson's ratio of the near-incompressible case `"E2c"` of [`TradeoffGroup::build`] (with
-/// `mu = 1`).
+/// Poisson's ratio of the near-incompressible cases, `"E2c"` of [`TradeoffGroup::build`] and
+/// `"E2-3D"` of [`SolidGroup::build`] (with `mu = 1`).
 pub const E2C_POISSON_RATIO: f64 = 0.4999;
+
+/// The material of the near-incompressible cases: `mu = 1`, `lambda = 2 mu nu / (1 - 2 nu)` at
+/// `nu =` [`E2C_POISSON_RATIO`], as in the extremes suite.
+fn near_incompressible() -> Result<Lame, VerifyError> {
+    let nu = E2C_POISSON_RATIO;
+    Ok(Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?)
+}
 /// The suffix of an element name that inserts every edge's midpoint into the meshes
 /// (`"vem1-bbar+midpoints"`: what a scene chooses on triangles close to incompressibility).
 pub const MIDPOINTS: &str = "+midpoints";
@@ -206,10 +213,9 @@ impl TradeoffGroup {
     pub fn build(case: &str, pairing: &str, element: &str, n: usize) -> Result<Self, VerifyError> {
         let start = Instant::now();
         let exact: Arc<dyn ExactSolution> = if case == "E2c" {
-            // mu = 1, lambda = 2 mu nu / (1 - 2 nu), as in the extremes suite.
-            let nu = E2C_POISSON_RATIO;
-            let lame = Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?;
-            Arc::new(crate::exact::DivergenceFreeContact::new(lame))
+            Arc::new(crate::exact::DivergenceFreeContact::new(
+                near_incompressible()?,
+            ))
         } else {
             Arc::from(case_by_name(case, Lame::default())?)
         };
@@ -353,10 +359,6 @@ pub fn pressure_errors<const D: usize>(
     )
 }
 
-/// Poisson's ratio of the near-incompressible case `"E2-3D"` of [`SolidGroup::build`] (with
-/// `mu = 1`), as in the plane.
-pub const E2_3D_POISSON_RATIO: f64 = E2C_POISSON_RATIO;
-
 /// One measurement group of a manufactured case in space, built once (meshes, bodies; for the
 /// contact case the surface overlay, assembly and constraint rows), to be solved with every
 /// setting: the counterpart of [`TradeoffGroup`] on polyhedral meshes.
@@ -427,7 +429,7 @@ impl SolidGroup {
     /// The group of the case `case` in space: `"M1-3D"` (two bodies in contact on `pairing`
     /// `"upper/lower*r"`: the families of the upper and lower box, the lower at size
     /// `round(r n)`, `r = 1` when omitted), `"E1-3D"`, or `"E2-3D"` at nu =
-    /// [`E2_3D_POISSON_RATIO`] (one body on the family `pairing`), at size `n` with the element
+    /// [`E2C_POISSON_RATIO`] (one body on the family `pairing`), at size `n` with the element
     /// `element` (a name of the element registry on polyhedra, with [`MIDPOINTS`] appended for
     /// the meshes with every edge's midpoint inserted), the meshes of the studies' seed.
     ///
@@ -515,8 +517,7 @@ impl SolidGroup {
             )
         } else {
             let lame = if case == "E2-3D" {
-                let nu = E2_3D_POISSON_RATIO;
-                Lame::try_new(2.0 * nu / (1.0 - 2.0 * nu), 1.0)?
+                near_incompressible()?
             } else {
                 Lame::default()
             };
