@@ -564,6 +564,11 @@ fn summarise(model: &Model, bodies: &[SolvedBody<3, CellQuality>], times: RunTim
                     .iter()
                     .map(CellQuality::gamma)
                     .fold(f64::INFINITY, f64::min),
+                star_ratio: solved
+                    .qualities
+                    .iter()
+                    .map(|q| q.star_ratio)
+                    .fold(f64::INFINITY, f64::min),
                 strain_energy: solved.solution.strain_energy(),
                 max_displacement: solved
                     .solution

@@ -104,6 +104,17 @@ fn the_contact_patch_test_through_a_scene_file_transmits_the_uniform_pressure() 
                 .expect("the top's reaction");
             assert!((top.force[2] / sigma + 1.0).abs() < 1e-9, "{:?}", top.force);
             assert!(upper_body.inserted_vertices > 0 || upper == HEXAHEDRA_3);
+            if upper == HEXAHEDRA_3 {
+                // Cubes: the star ratio is the inradius over the diagonal, 1/(2 sqrt 3), even
+                // with the other side's nodes inserted in their faces (the shape is the same),
+                // while gamma falls with the short edges they make.
+                let cube = 1.0 / (2.0 * 3f64.sqrt());
+                assert!(
+                    (upper_body.star_ratio - cube).abs() < 1e-9,
+                    "{upper_body:?}"
+                );
+                assert!(upper_body.gamma <= upper_body.star_ratio);
+            }
             // Both bodies' displacements: u_z linear in z, the upper top at -D.
             let lower_body = outcome.body_3d("lower").expect("the lower body");
             let strain = sigma / 300.0;
