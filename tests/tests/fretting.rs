@@ -13,172 +13,57 @@
 //! everywhere with `q = (Q/P) p`, not Cattaneo-Mindlin's tractions, while frictionless contact
 //! reaches the same answer by every path.
 
-use std::sync::Arc;
-
 use vem_contact::{
-    CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless,
-    InterfaceNode, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, NodeStatus,
+    CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless, LoadCurve,
+    LoadCurves, LoadFactors, LoadHistory, NodeStatus,
 };
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
-use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::io::read_gmsh;
-use vem_mesh::{Mesh, Point, Vector};
-use vem_space::LowestOrderVem;
+use vem_mesh::Mesh;
 use vem_verify::exact::HertzContact;
+use vem_verify::fretting::{
+    friction_traction as traction, largest_spacing_within as spacing_in, plate_translation,
+    zone_half_width as zone, Drive, FlatBlocks,
+};
 
 const F: f64 = 0.3;
 const P: f64 = 0.5;
-const E: f64 = 100.0;
-const NU: f64 = 0.3;
 /// The peak tangential load of the cycle, `Q* = 0.8 F P`.
 const PEAK: f64 = 0.8;
+const SETUP: FlatBlocks = FlatBlocks {
+    young: 100.0,
+    poisson: 0.3,
+    radius: 1.0,
+    coefficient: F,
+    push: P,
+};
+const FIRST: vem_contact::LoadCondition = FlatBlocks::PRESS;
+const SECOND: vem_contact::LoadCondition = FlatBlocks::SHEAR;
 
 fn mesh(path: &str) -> Mesh {
     read_gmsh(format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))).unwrap()
 }
 
-/// The mirror image `(x, y) -> (x, -y)` of a mesh (its parts keep their names).
-fn mirrored(mesh: &Mesh) -> Mesh {
-    let vertices: Vec<Point> = mesh
-        .vertices()
-        .iter()
-        .map(|p| Point::new(p.x, -p.y))
-        .collect();
-    let polygons: Vec<Vec<usize>> = mesh
-        .polygons()
-        .map(|p| p.iter().rev().copied().collect())
-        .collect();
-    Mesh::from_polygons(vertices, &polygons, mesh.part_specs()).unwrap()
-}
-
-/// How the upper block's top is driven.
-#[derive(Clone, Copy)]
-enum Drive {
-    /// A rigid plate with the resultant `(Q, -P)` (conditions: 0 the push, 1 the shear).
-    Force,
-    /// Prescribed displacements `(d_x, -d_y)` (conditions: 0 the press, 1 the shift).
-    Displacement(f64, f64),
-}
-
 /// The upper block `[-2, 2] x [0, 2]` (the mirror image of the h_c = 0.01 block) on the lower
 /// block `[-2, 2] x [-2, 0]` (h_c = 0.005) clamped at its bottom, with the gap of a cylinder.
 fn blocks(drive: Drive, law: impl ContactLaw + 'static) -> ContactProblem {
-    let material = Material::from_young_poisson(E, NU, Plane::Strain).unwrap();
-    let element = Arc::new(LowestOrderVem::default());
-    let upper = mirrored(&mesh("crates/vem-cli/scenes/hertz_block.msh"));
+    let upper = mesh("crates/vem-cli/scenes/hertz_block.msh");
     let lower = mesh("xtask/data/hertz/block_hc0.005.msh");
-    // The mirrored block's "bottom" is its top side, y = 2.
-    let upper = ElasticBody::builder("upper", upper, material, element.clone());
-    let upper = match drive {
-        Drive::Force => upper
-            .dirichlet(Dirichlet::rigid_plate(
-                "bottom",
-                Component::Y,
-                Vector::new(0.0, -P),
-            ))
-            .dirichlet(Dirichlet::rigid_plate(
-                "bottom",
-                Component::X,
-                Vector::new(F * P, 0.0),
-            )),
-        Drive::Displacement(dx, dy) => upper
-            .dirichlet(Dirichlet::prescribed("bottom", Component::Y, move |_| {
-                Vector::new(0.0, -dy)
-            }))
-            .dirichlet(Dirichlet::prescribed("bottom", Component::X, move |_| {
-                Vector::new(dx, 0.0)
-            })),
-    }
-    .build()
-    .unwrap();
-    let lower = ElasticBody::builder("lower", lower, material, element)
-        .clamp("bottom")
-        .build()
-        .unwrap();
-    ContactProblem::two_bodies(upper, "top", lower, "top", law)
-        .with_imposed_gap(|x| x.x * x.x / 2.0)
-        .with_interface_options(
-            InterfaceOptions::builder()
-                .max_distance(0.05)
-                .build()
-                .unwrap(),
-        )
+    SETUP.problem(&upper, lower, drive, law).unwrap()
 }
-
-const FIRST: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 0 };
-const SECOND: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 1 };
 
 fn hertz() -> HertzContact {
-    let e_star = HertzContact::plane_strain_modulus(E, NU, E, NU);
-    HertzContact::try_new(1.0, e_star, P).unwrap()
-}
-
-/// Half-width of the run of nodes with `inside` around x = 0 (its ends halfway to the next
-/// node outside) and the larger node spacing at its ends.
-fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
-    let centre = (0..nodes.len())
-        .filter(|&i| inside(&nodes[i]))
-        .min_by(|&i, &j| {
-            nodes[i]
-                .position
-                .x
-                .abs()
-                .total_cmp(&nodes[j].position.x.abs())
-        })
-        .expect("a node inside");
-    let (mut first, mut last) = (centre, centre);
-    while first > 0 && inside(&nodes[first - 1]) {
-        first -= 1;
-    }
-    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
-        last += 1;
-    }
-    let x = |i: usize| nodes[i].position.x;
-    let (start, stop) = (
-        0.5 * (x(first) + x(first - 1)),
-        0.5 * (x(last) + x(last + 1)),
-    );
-    let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
-    (0.5 * (stop - start), spacing)
-}
-
-/// The friction traction the upper block exerts on the lower one, signed along the shear Q
-/// (the consistent traction; the friction on the upper block opposes Q).
-fn traction(n: &InterfaceNode) -> f64 {
-    -n.consistent_friction_t()
-}
-
-/// The largest node spacing in the contact zone.
-fn spacing_in(nodes: &[InterfaceNode], a: f64) -> f64 {
-    nodes
-        .windows(2)
-        .filter(|w| w[0].position.x.abs() < a)
-        .map(|w| (w[1].position.x - w[0].position.x).abs())
-        .fold(0.0, f64::max)
+    SETUP.hertz().unwrap()
 }
 
 /// The largest `|q - exact| / (F p0)` over the nodes inside the zones: two spacings away from
 /// the contact edge and from every zone end in `ends`.
 fn traction_error(result: &ContactResult, exact: impl Fn(f64) -> f64, ends: &[f64]) -> f64 {
-    let hertz = hertz();
-    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
-    let h = spacing_in(&result.nodes, a);
-    result
-        .nodes
-        .iter()
-        .filter(|n| {
-            let x = n.position.x.abs();
-            x < a - 2.0 * h && ends.iter().all(|e| (x - e).abs() > 2.0 * h)
-        })
-        .map(|n| (traction(n) - exact(n.position.x)).abs() / (F * p0))
-        .fold(0.0, f64::max)
+    vem_verify::fretting::traction_error(result, &hertz(), F, exact, ends)
 }
 
 /// The plate's translation in x.
 fn plate_x(result: &ContactResult) -> f64 {
-    let upper = &result.bodies[0];
-    let top = upper.body.mesh().part_vertices("bottom").unwrap();
-    upper.solution.vertex_displacement(top[0]).x
+    plate_translation(result).unwrap()
 }
 
 #[test]
@@ -350,17 +235,9 @@ fn pressed_and_sheared_together_the_interface_sticks_with_q_proportional_to_p() 
             n.position
         );
     }
-    let inside: Vec<&InterfaceNode> = proportional
-        .nodes
-        .iter()
-        .filter(|n| n.position.x.abs() < 0.9 * a)
-        .collect();
-    let rms = (inside
-        .iter()
-        .map(|n| ((traction(n) - F * ratio * hertz.pressure(n.position.x)) / (F * p0)).powi(2))
-        .sum::<f64>()
-        / inside.len() as f64)
-        .sqrt();
+    let rms = vem_verify::fretting::traction_rms(&proportional, &hertz, F, |x| {
+        F * ratio * hertz.pressure(x)
+    });
     assert!(rms < 0.02, "q against (Q/P) p: rms {rms} F p0");
     let error = traction_error(&proportional, |x| F * ratio * hertz.pressure(x), &[]);
     assert!(error < 0.06, "q against (Q/P) p: {error} F p0");

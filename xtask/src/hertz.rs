@@ -27,6 +27,7 @@ use vem_mesh::io::read_gmsh;
 use vem_mesh::Vector;
 use vem_space::LowestOrderVem;
 use vem_verify::exact::HertzContact;
+use vem_verify::fretting::zone_half_width;
 use vem_verify::report::write_text;
 
 /// Options of `cargo xtask hertz`.
@@ -353,47 +354,6 @@ fn friction_run(
             .collect(),
         hertz: Some(hertz),
     })
-}
-
-/// Half-length of the run of nodes with `inside` around the node nearest to x = 0, its ends
-/// halfway to the next node outside; and the larger spacing of the nodes at its two ends.
-fn zone_half_width(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
-    let Some(centre) = (0..nodes.len())
-        .filter(|&i| inside(&nodes[i]))
-        .min_by(|&i, &j| {
-            nodes[i]
-                .position
-                .x
-                .abs()
-                .total_cmp(&nodes[j].position.x.abs())
-        })
-    else {
-        return (0.0, 0.0);
-    };
-    let (mut first, mut last) = (centre, centre);
-    while first > 0 && inside(&nodes[first - 1]) {
-        first -= 1;
-    }
-    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
-        last += 1;
-    }
-    let x = |i: usize| nodes[i].position.x;
-    let start = if first > 0 {
-        0.5 * (x(first) + x(first - 1))
-    } else {
-        x(first)
-    };
-    let stop = if last + 1 < nodes.len() {
-        0.5 * (x(last) + x(last + 1))
-    } else {
-        x(last)
-    };
-    let spacing_at = |i: usize, j: Option<usize>| j.map_or(0.0, |j| (x(i) - x(j)).abs());
-    let spacing = spacing_at(first, first.checked_sub(1)).max(spacing_at(
-        last,
-        (last + 1 < nodes.len()).then_some(last + 1),
-    ));
-    ((stop - start).abs() / 2.0, spacing)
 }
 
 fn markdown(f: &[Frictionless], c: &[Friction], args: &HertzArgs, seconds: f64) -> String {

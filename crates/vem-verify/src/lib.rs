@@ -45,6 +45,7 @@ pub mod cases;
 pub mod diagnostics;
 mod error;
 pub mod exact;
+pub mod fretting;
 pub mod norms;
 pub mod plan;
 pub mod problem;

@@ -24,20 +24,34 @@ use plotters::prelude::*;
 use serde::Serialize;
 use vem_contact::{
     CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless,
-    InterfaceNode, LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, NodeStatus,
+    LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, NodeStatus,
 };
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_elastic::{Component, Dirichlet, ElasticBody};
 use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::io::read_gmsh;
-use vem_mesh::{Mesh, Point, Vector};
+use vem_mesh::Vector;
 use vem_space::LowestOrderVem;
 use vem_verify::exact::HertzContact;
+use vem_verify::fretting::{
+    self, friction_traction as traction, largest_spacing_within as spacing_in, plate_translation,
+    zone_half_width as zone, Drive, FlatBlocks,
+};
 use vem_verify::report::write_text;
 
 use super::{HertzArgs, COEFFICIENT as F, POISSON, RADIUS, YOUNG};
 
 /// The push P of the force-controlled problems.
 const PUSH: f64 = 0.5;
+/// The flat blocks of the cycles and the paths.
+const SETUP: FlatBlocks = FlatBlocks {
+    young: YOUNG,
+    poisson: POISSON,
+    radius: RADIUS,
+    coefficient: F,
+    push: PUSH,
+};
+const FIRST: LoadCondition = FlatBlocks::PRESS;
+const SECOND: LoadCondition = FlatBlocks::SHEAR;
 /// The peak of the tangential cycle, `Q* / (F P)`.
 const PEAK: f64 = 0.8;
 /// The scene meshes (h_c = 0.01).
@@ -116,7 +130,7 @@ struct Paths {
 /// Runs the section and writes its files into `args.out`; returns the markdown.
 pub(super) fn run(args: &HertzArgs) -> Result<String, Failure> {
     let start = Instant::now();
-    let hertz = hertz(PUSH)?;
+    let hertz = SETUP.hertz()?;
     let disc = disc_rows(args, &hertz)?;
     let mut cycles = Vec::new();
     for (upper, lower) in [
@@ -181,15 +195,6 @@ pub(super) fn run(args: &HertzArgs) -> Result<String, Failure> {
     Ok(md)
 }
 
-fn hertz(push: f64) -> Result<HertzContact, Failure> {
-    let e_star = HertzContact::plane_strain_modulus(YOUNG, POISSON, YOUNG, POISSON);
-    Ok(HertzContact::try_new(RADIUS, e_star, push)?)
-}
-
-fn material() -> Result<Material, Failure> {
-    Ok(Material::from_young_poisson(YOUNG, POISSON, Plane::Strain)?)
-}
-
 fn interface() -> Result<InterfaceOptions, Failure> {
     Ok(InterfaceOptions::builder().max_distance(0.05).build()?)
 }
@@ -203,7 +208,7 @@ fn disc_problem(
     shear: f64,
 ) -> Result<ContactProblem, Failure> {
     let element = Arc::new(LowestOrderVem::default());
-    let disc = ElasticBody::builder("disc", read_gmsh(disc)?, material()?, element.clone())
+    let disc = ElasticBody::builder("disc", read_gmsh(disc)?, SETUP.material()?, element.clone())
         .dirichlet(Dirichlet::rigid_plate(
             "top",
             Component::Y,
@@ -215,7 +220,7 @@ fn disc_problem(
             Vector::new(shear, 0.0),
         ))
         .build()?;
-    let block = ElasticBody::builder("block", read_gmsh(block)?, material()?, element)
+    let block = ElasticBody::builder("block", read_gmsh(block)?, SETUP.material()?, element)
         .clamp("bottom")
         .build()?;
     Ok(
@@ -260,159 +265,27 @@ fn disc_rows(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<DiscRow>, Fai
     Ok(rows)
 }
 
-/// The mirror image `(x, y) -> (x, -y)` of a mesh.
-fn mirrored(mesh: &Mesh) -> Result<Mesh, Failure> {
-    let vertices: Vec<Point> = mesh
-        .vertices()
-        .iter()
-        .map(|p| Point::new(p.x, -p.y))
-        .collect();
-    let polygons: Vec<Vec<usize>> = mesh
-        .polygons()
-        .map(|p| p.iter().rev().copied().collect())
-        .collect();
-    Ok(Mesh::from_polygons(vertices, &polygons, mesh.part_specs())?)
-}
-
-/// How the upper block's top is driven.
-#[derive(Clone, Copy)]
-enum Drive {
-    /// A rigid plate with the resultant `(F P, -P)` (conditions: 0 the push, 1 the shear).
-    Force,
-    /// Prescribed displacements `(dx, -dy)` (conditions: 0 the press, 1 the shift).
-    Displacement(f64, f64),
-}
-
-/// The two flat blocks: the mirror image of `upper` on `lower`, the gap of a cylinder.
+/// The two flat blocks: the mirror image of the mesh file `upper` on `lower`.
 fn blocks(
     upper: &str,
     lower: &str,
     drive: Drive,
     law: impl ContactLaw + 'static,
 ) -> Result<ContactProblem, Failure> {
-    let element = Arc::new(LowestOrderVem::default());
-    let upper = mirrored(&read_gmsh(upper)?)?;
-    let upper = ElasticBody::builder("upper", upper, material()?, element.clone());
-    // The mirrored block's "bottom" is its top side, y = 2.
-    let upper = match drive {
-        Drive::Force => upper
-            .dirichlet(Dirichlet::rigid_plate(
-                "bottom",
-                Component::Y,
-                Vector::new(0.0, -PUSH),
-            ))
-            .dirichlet(Dirichlet::rigid_plate(
-                "bottom",
-                Component::X,
-                Vector::new(F * PUSH, 0.0),
-            )),
-        Drive::Displacement(dx, dy) => upper
-            .dirichlet(Dirichlet::prescribed("bottom", Component::Y, move |_| {
-                Vector::new(0.0, -dy)
-            }))
-            .dirichlet(Dirichlet::prescribed("bottom", Component::X, move |_| {
-                Vector::new(dx, 0.0)
-            })),
-    }
-    .build()?;
-    let lower = ElasticBody::builder("lower", read_gmsh(lower)?, material()?, element)
-        .clamp("bottom")
-        .build()?;
-    Ok(ContactProblem::two_bodies(upper, "top", lower, "top", law)
-        .with_imposed_gap(|x| x.x * x.x / (2.0 * RADIUS))
-        .with_interface_options(interface()?))
+    Ok(SETUP.problem(&read_gmsh(upper)?, read_gmsh(lower)?, drive, law)?)
 }
 
-const FIRST: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 0 };
-const SECOND: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 1 };
-
-/// The friction traction on the lower body along +x (signed along the shear).
-fn traction(n: &InterfaceNode) -> f64 {
-    -n.consistent_friction_t()
-}
-
-fn spacing_in(nodes: &[InterfaceNode], a: f64) -> f64 {
-    nodes
-        .windows(2)
-        .filter(|w| w[0].position.x.abs() < a)
-        .map(|w| (w[1].position.x - w[0].position.x).abs())
-        .fold(0.0, f64::max)
-}
-
-/// Half-width of the run of nodes with `inside` around x = 0 (ends halfway to the next node)
-/// and the larger node spacing at its ends.
-fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
-    let Some(centre) = (0..nodes.len())
-        .filter(|&i| inside(&nodes[i]))
-        .min_by(|&i, &j| {
-            nodes[i]
-                .position
-                .x
-                .abs()
-                .total_cmp(&nodes[j].position.x.abs())
-        })
-    else {
-        return (0.0, 0.0);
-    };
-    let (mut first, mut last) = (centre, centre);
-    while first > 0 && inside(&nodes[first - 1]) {
-        first -= 1;
-    }
-    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
-        last += 1;
-    }
-    let x = |i: usize| nodes[i].position.x;
-    if first == 0 || last + 1 == nodes.len() {
-        return ((x(last) - x(first)) / 2.0, 0.0);
-    }
-    let (start, stop) = (
-        0.5 * (x(first) + x(first - 1)),
-        0.5 * (x(last) + x(last + 1)),
-    );
-    let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
-    (0.5 * (stop - start), spacing)
-}
-
-/// Largest `|q - exact| / (F p0)` two spacings away from the contact edge and from `ends`.
 fn traction_error(
     result: &ContactResult,
     hertz: &HertzContact,
     exact: impl Fn(f64) -> f64,
     ends: &[f64],
 ) -> f64 {
-    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
-    let h = spacing_in(&result.nodes, a);
-    result
-        .nodes
-        .iter()
-        .filter(|n| {
-            let x = n.position.x.abs();
-            x < a - 2.0 * h && ends.iter().all(|e| (x - e).abs() > 2.0 * h)
-        })
-        .map(|n| (traction(n) - exact(n.position.x)).abs() / (F * p0))
-        .fold(0.0, f64::max)
+    fretting::traction_error(result, hertz, F, exact, ends)
 }
 
-/// rms of `(q - exact) / (F p0)` over the nodes inside 0.9 a.
 fn traction_rms(result: &ContactResult, hertz: &HertzContact, exact: impl Fn(f64) -> f64) -> f64 {
-    let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
-    let inside: Vec<&InterfaceNode> = result
-        .nodes
-        .iter()
-        .filter(|n| n.position.x.abs() < 0.9 * a)
-        .collect();
-    (inside
-        .iter()
-        .map(|n| ((traction(n) - exact(n.position.x)) / (F * p0)).powi(2))
-        .sum::<f64>()
-        / inside.len().max(1) as f64)
-        .sqrt()
-}
-
-fn plate_x(result: &ContactResult) -> Result<f64, Failure> {
-    let upper = &result.bodies[0];
-    let top = upper.body.mesh().part_vertices("bottom")?;
-    Ok(upper.solution.vertex_displacement(top[0]).x)
+    fretting::traction_rms(result, hertz, F, exact)
 }
 
 /// `(x / a, q / (F p0))` computed, and the analytic curve `exact`.
@@ -490,7 +363,7 @@ fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failur
             };
         let c = zone(&result.nodes, |n| n.status == NodeStatus::Stick).0;
         let spacing = spacing_in(&result.nodes, hertz.half_width());
-        let x = plate_x(&result)?;
+        let x = plate_translation(&result)?;
         loop_curve.push((x, r));
         if [2.0, 3.0, 4.0, 5.0].iter().any(|s| (t - s).abs() < 1e-9) {
             let (computed, analytic) = profile(&result, hertz, &exact);
@@ -513,7 +386,7 @@ fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failur
         last = Some(result);
     }
     let (first, last) = (at_peak.ok_or("no peak")?, last.ok_or("no step")?);
-    let (x1, x2) = (plate_x(&first)?, plate_x(&last)?);
+    let (x1, x2) = (plate_translation(&first)?, plate_translation(&last)?);
     let p0 = hertz.peak_pressure();
     let closure_traction = (first
         .nodes
