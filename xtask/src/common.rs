@@ -100,19 +100,44 @@ pub struct LogLogPlot<'a> {
     pub y_format: fn(&f64) -> String,
 }
 
+/// A line drawn over the series of a [`loglog_svg`] plot: a label and its points.
+#[derive(Debug, Clone, Copy)]
+pub enum Overlay<'a> {
+    /// A thick black line with squares: a Pareto front.
+    Front(&'a str, &'a [(f64, f64)]),
+    /// A thin dashed grey line without markers: a reference slope `C h^p`.
+    Reference(&'a str, &'a [(f64, f64)]),
+}
+
+/// The colours of the series, in order (Tableau's ten, readable on white; no yellow): the
+/// same as the convergence plots of `vem_verify::report`.
+const SERIES_COLOURS: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+];
+
 /// A log-log plot (900 x 600 SVG) of `series` (label, points; non-positive values are left
-/// out), each a line with dots, and an optional highlighted series drawn as a thick black
-/// line with squares (a Pareto front).
+/// out), each a line with dots, and an optional [`Overlay`].
 pub fn loglog_svg(
     plot: &LogLogPlot<'_>,
     series: &[(String, Vec<(f64, f64)>)],
-    highlight: Option<(&str, &[(f64, f64)])>,
+    highlight: Option<Overlay<'_>>,
 ) -> Result<String, Box<dyn std::error::Error>> {
     let positive = |p: &&(f64, f64)| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite();
     let all = series
         .iter()
         .flat_map(|(_, p)| p.iter())
-        .chain(highlight.into_iter().flat_map(|(_, p)| p.iter()))
+        .chain(highlight.into_iter().flat_map(|o| match o {
+            Overlay::Front(_, p) | Overlay::Reference(_, p) => p.iter(),
+        }))
         .filter(positive);
     let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::INFINITY, 0.0_f64, f64::INFINITY, 0.0_f64);
     for &(x, y) in all {
@@ -159,7 +184,7 @@ pub fn loglog_svg(
         for (k, (label, pts)) in series.iter().enumerate() {
             let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let colour = Palette99::pick(k).to_rgba();
+            let colour = SERIES_COLOURS[k % SERIES_COLOURS.len()].to_rgba();
             chart
                 .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
                 .map_err(|e| draw(&e))?
@@ -169,21 +194,34 @@ pub fn loglog_svg(
                 .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
                 .map_err(|e| draw(&e))?;
         }
-        if let Some((label, pts)) = highlight {
-            let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            chart
-                .draw_series(LineSeries::new(pts.clone(), BLACK.stroke_width(3)))
-                .map_err(|e| draw(&e))?
-                .label(label)
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3))
-                });
-            chart
-                .draw_series(pts.into_iter().map(|p| {
-                    EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], BLACK.filled())
-                }))
-                .map_err(|e| draw(&e))?;
+        match highlight {
+            Some(Overlay::Front(label, pts)) => {
+                let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), BLACK.stroke_width(3)))
+                    .map_err(|e| draw(&e))?
+                    .label(label)
+                    .legend(|(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3))
+                    });
+                chart
+                    .draw_series(pts.into_iter().map(|p| {
+                        EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], BLACK.filled())
+                    }))
+                    .map_err(|e| draw(&e))?;
+            }
+            Some(Overlay::Reference(label, pts)) => {
+                let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let grey = RGBColor(90, 90, 90);
+                chart
+                    .draw_series(DashedLineSeries::new(pts, 10, 6, grey.stroke_width(1)))
+                    .map_err(|e| draw(&e))?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+            }
+            None => {}
         }
         chart
             .configure_series_labels()

@@ -29,7 +29,9 @@ use vem_verify::tradeoff::{
 };
 
 use crate::bench::{self, Case};
-use crate::common::{chain, cpu_seconds, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
+use crate::common::{
+    chain, cpu_seconds, loglog_svg, machine, peak_memory, seconds, LogLogPlot, Overlay,
+};
 
 /// The problems of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
@@ -1220,7 +1222,7 @@ fn report(
                 y_format: |y| format!("{y:.0e}"),
             },
             &series,
-            Some(("Pareto front", &front_points)),
+            Some(Overlay::Front("Pareto front", &front_points)),
         )?;
         plots.push((name.clone(), svg));
         let reach = |target: f64| {

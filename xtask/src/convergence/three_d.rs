@@ -22,7 +22,7 @@ use vem_verify::three_d::{
     ExactSolution3d, SolidRates, SolidRun, StackedContact, StickSlipContact, SOLID_CASE_NAMES,
 };
 
-use crate::common::{loglog_svg, LogLogPlot};
+use crate::common::{loglog_svg, LogLogPlot, Overlay};
 
 /// The cases in space of the default run, in the order they run.
 pub const DEFAULT_CASES: [&str; 5] = ["E1-3D", "E2-3D", "PT0-3D", CONTACT_CASE, FRICTION_CASE];
@@ -999,7 +999,8 @@ fn plot(outcome: &Outcome, case: &str, error: &str) -> Result<String, Box<dyn st
             y_format: |y| format!("{y:.0e}"),
         },
         &series,
-        c.is_finite().then_some((label.as_str(), &reference[..])),
+        c.is_finite()
+            .then_some(Overlay::Reference(label.as_str(), &reference[..])),
     )
 }
 
