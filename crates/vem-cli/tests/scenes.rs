@@ -214,6 +214,51 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
     );
 }
 
+/// The error indicators of the patch scene: the discrete solution is the exact linear field,
+/// so every indicator (residual, jumps, boundary, stabilisation, contact terms) vanishes to
+/// round-off against the energy; the `error_indicator` cell field read back from each body's
+/// VTU file is the library's, and the summary's estimate is their root sum of squares.
+#[test]
+fn patch_error_indicators_vanish_and_are_written() {
+    let (outcome, dir) = run("patch");
+    let estimate = outcome.summary.error_estimate.unwrap();
+    let energy: f64 = outcome
+        .bodies
+        .iter()
+        .map(|b| b.solution.strain_energy())
+        .sum();
+    assert!(energy > 0.0);
+    // Squared quantities against the energy: round-off.
+    assert!(
+        estimate.estimate.powi(2) < 1e-12 * energy,
+        "eta = {:e}, energy {energy:e}",
+        estimate.estimate
+    );
+    assert!((estimate.energy_norm - (2.0 * energy).sqrt()).abs() < 1e-12 * energy.sqrt());
+    let mut sum = 0.0;
+    for b in &outcome.bodies {
+        let name = b.body.name();
+        assert_eq!(b.error_indicator.len(), b.body.mesh().n_polygons());
+        let grid = vem_mesh::io::read_vtu(dir.join(format!("{name}.vtu"))).unwrap();
+        let field = grid
+            .cell_data
+            .iter()
+            .find(|a| a.name == "error_indicator")
+            .unwrap();
+        for (c, &eta) in b.error_indicator.iter().enumerate() {
+            let read = field.values.get_f64(c).unwrap();
+            assert!(
+                read == eta || (read - eta).abs() <= 1e-15 * eta.abs(),
+                "{name} cell {c}: {read:e} written, {eta:e} computed"
+            );
+            sum += eta * eta;
+        }
+    }
+    assert!((sum.sqrt() - estimate.estimate).abs() <= 1e-12 * estimate.estimate.max(1e-300));
+    let summary = summary_json(&dir);
+    assert!(summary["error_estimate"]["estimate"].as_f64().is_some());
+}
+
 /// Scene 2: the half-disc (R = 1, Gmsh) pressed on a block by a prescribed displacement of
 /// its flat top. Hertz's plane-strain cylinder on a half-space for the computed load P:
 /// a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (2 (1 - nu^2)) for equal materials.
