@@ -1,6 +1,7 @@
-//! `cargo xtask adaptivity`: adaptive against uniform refinement in the plane - the flat
-//! punch (frictionless, singular stresses at the punch's corners) and M1 (frictionless,
-//! smooth, exact solution) - with the estimator's effectivity and pictures of the adapted
+//! `cargo xtask adaptivity`: adaptive against uniform refinement in the plane - M1
+//! (frictionless, smooth, exact solution), M2 (Tresca friction with stick and slip zones,
+//! exact solution), the flat punch (frictionless, singular stresses at the punch's corners),
+//! the L-shape and Hertz - with the estimator's effectivity and pictures of the adapted
 //! meshes. Writes docs/adaptivity.md (or `--out`) and its figures.
 
 use std::fmt::Write as _;
@@ -280,39 +281,48 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     };
     let mut studies = Vec::new();
 
-    // M1: exact solution.
-    let t = Instant::now();
-    let exact: Arc<dyn vem_verify::ExactSolution> = case_by_name("M1", Lame::default())?.into();
-    let build = case_model(Arc::clone(&exact), ProblemSettings::default());
-    let reference = Reference::Exact(Arc::clone(&exact));
-    let adaptive = adapt(
-        "M1",
-        &build,
-        m1_meshes()?,
-        &element,
-        &reference,
-        &settings(false, cycles.min(12)),
-        &mut CondensedSolver::new(CondensedSettings::default()),
-    )?;
-    let uniform = adapt(
-        "M1",
-        &build,
-        m1_meshes()?,
-        &element,
-        &reference,
-        &settings(true, uniform_cycles),
-        &mut CondensedSolver::new(CondensedSettings::default()),
-    )?;
-    studies.push(Study {
-        title: "M1 (frictionless, smooth; exact solution)",
-        slug: "m1",
-        error_name: "E_en (exact)",
-        reference: None,
-        adaptive,
-        uniform,
-        picture: picture_run("M1", &build, m1_meshes()?)?,
-        seconds: t.elapsed().as_secs_f64(),
-    });
+    // M1 (frictionless) and M2 (Tresca): exact solutions.
+    for (name, title, slug) in [
+        ("M1", "M1 (frictionless, smooth; exact solution)", "m1"),
+        (
+            "M2",
+            "M2 (Tresca friction, stick and slip; exact solution)",
+            "m2",
+        ),
+    ] {
+        let t = Instant::now();
+        let exact: Arc<dyn vem_verify::ExactSolution> = case_by_name(name, Lame::default())?.into();
+        let build = case_model(Arc::clone(&exact), ProblemSettings::default());
+        let reference = Reference::Exact(Arc::clone(&exact));
+        let adaptive = adapt(
+            name,
+            &build,
+            m1_meshes()?,
+            &element,
+            &reference,
+            &settings(false, cycles.min(12)),
+            &mut CondensedSolver::new(CondensedSettings::default()),
+        )?;
+        let uniform = adapt(
+            name,
+            &build,
+            m1_meshes()?,
+            &element,
+            &reference,
+            &settings(true, uniform_cycles),
+            &mut CondensedSolver::new(CondensedSettings::default()),
+        )?;
+        studies.push(Study {
+            title,
+            slug,
+            error_name: "E_en (exact)",
+            reference: None,
+            adaptive,
+            uniform,
+            picture: picture_run(name, &build, m1_meshes()?)?,
+            seconds: t.elapsed().as_secs_f64(),
+        });
+    }
 
     studies.push(energy_study(
         "flat punch",
@@ -365,9 +375,9 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     writeln!(
         doc,
         "## Limits\n\n\
-         - Friction: the estimator takes the consistent friction traction into its contact \
-         term (the Tresca patch tests PTC2 and PTC3 check that it vanishes on linear fields), \
-         but no adaptive study with friction is run here.\n\
+         - Friction: M2 (Tresca) is the one study with friction; Coulomb friction runs \
+         through the same estimator (its bound `F p` in the friction term) and through the \
+         scene option (`crates/vem-scene/tests/adapt.rs`), without a study of its rates here.\n\
          - No closure rule bounds the hanging nodes per side: an unrefined cell next to a \
          refined region gains a vertex per refined neighbour side (column `max vertices`).\n\
          - Curved boundaries are not recovered: a refined cell on the Hertz disc's arc is cut \
@@ -376,9 +386,7 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
          - Without an exact solution the error is the energy proxy `(2 |W_h - W_ref|)^(1/2)` \
          against the same adaptive series continued; it bounds the energy error only for \
          nested conforming spaces, which the VEM spaces with their stabilisation are not \
-         exactly.\n\
-         - The scene option `adapt = {{ ... }}` and the VTU wiring of the indicators in the \
-         command are not part of this; the library function above is.\n"
+         exactly.\n"
     )?;
     write_text(&out, &doc)?;
     println!("wrote {}", out.display());
@@ -461,9 +469,23 @@ fn write_method(doc: &mut String) -> std::fmt::Result {
          eta_E^2 = w h_E^2 ||f||_E^2 + w sum_e 1/2 h_e ||[[sigma n]]||_e^2 + w sum_e h_e ||g - sigma_E n||_e^2\n\
                  + S_E(u_h - Pi u_h, u_h - Pi u_h)\n\
                  + w sum_(e contact) h_e ||t_h - sigma_E n||_e^2 + int_e p_h (h0 - [u_h]_nu)_+\n\
+                 + |int_e b_h |s_h| + t_h,tau s_h|\n\
          ```\n\n\
          `t_h` is the consistent contact traction of the solve (the consistent pressure and \
-         friction traction, linear between interface nodes). The error `E_en` is the energy \
+         friction traction, linear between interface nodes): its mismatch against the projected \
+         stress's traction `sigma_E n` is measured whole, normal and tangential parts, on both \
+         sides of the interface. The last two terms are the complementarity conditions between \
+         nodes. Normal (after Wohlmuth 2007): the discrete solution has `p_h (h0 - [u_h]_nu) = \
+         0` at every node, the linear interpolants do not between nodes where a contact zone \
+         ends. Tangential, the same for the friction law: with `b_h` the friction bound per \
+         unit length (Tresca `g_F`, Coulomb `F p`), `t_h,tau` the consistent friction traction \
+         on body A along the tangent and `s_h = [u_h]_tau` the slip, the discrete law gives \
+         `t_h,tau s_h = -b_h |s_h|` at every node (stick: `s_h = 0`; slip: the traction at its \
+         bound, opposing the slip), so `b_h |s_h| + t_h,tau s_h` (non-negative where `|t_h,tau| \
+         <= b_h`, which the linear interpolants keep between nodes) vanishes at the nodes and \
+         measures where a stick zone ends or the slip turns inside an edge; both halves go to \
+         the cells on the two sides. Every term vanishes on uniform stick and uniform slip (the \
+         patch tests PTC2 and PTC3, `vem_verify::adaptive` tests). The error `E_en` is the energy \
          norm of `u - Pi u_h` (cell by cell, exact strains by quadrature) where an exact \
          solution exists; otherwise `(2 |W_h - W_ref|)^(1/2)` with `W` the strain energy and \
          `W_ref` that of an overkill adaptive solve (a bound of the energy error for a \
@@ -489,9 +511,13 @@ fn write_method(doc: &mut String) -> std::fmt::Result {
          Per-cell indicators for output: `vem_verify::adaptive::Solved::cell_indicators()` \
          (or `vem_contact::estimate::ContactEstimate::indicators()`, \
          `vem_elastic::ElasticEstimate::indicators()`) give `eta_E` per cell of each body, in \
-         the order of the body's (enlarged) mesh; \
-         `vem_mesh::io::VtuData::new().with_cell_scalars(\"eta\", values)` writes them to a \
-         `.vtu` file.\n"
+         the order of the body's (enlarged) mesh. Every scene in the plane writes them as the \
+         cell field `error_indicator` of its bodies' `.vtu` files, with `eta` and its parts in \
+         the summary (`error_estimate`); the scene option `adapt = {{ target_error, \
+         max_unknowns, theta, max_cycles }}` runs this loop from a scene (`target_error` is \
+         relative to the energy norm of the solution, `(sum 2 W_h)^(1/2)`), writes `adapt.csv` \
+         and says what stopped it ([scenes.md](scenes.md#13-adaptive-refinement-adapt); \
+         example `crates/vem-cli/scenes/punch_adapt.toml`).\n"
     )
 }
 

@@ -40,8 +40,8 @@ const AUTO_DISPLACEMENT_FRACTION: f64 = 0.08;
 impl Outcome {
     /// Writes every output file into `dir` (created if needed) and returns their paths:
     /// `<body>.vtu` for each body, `deformed.svg`, and with a contact pair `contact.csv`,
-    /// `pressure.svg` (and `slip.svg` with friction); `summary.json` last, with the output
-    /// and total times.
+    /// `pressure.svg` (and `slip.svg` with friction), with `adapt` `adapt.csv`;
+    /// `summary.json` last, with the output and total times.
     ///
     /// The set is written into a fresh folder beside `dir` and renamed into place: `dir`
     /// holds either its earlier contents or the whole new set. `dir` must be new, empty, or
@@ -165,6 +165,12 @@ impl Outcome {
                 plot::slip(&path, &self.summary.title, &contact.nodes, width)?;
                 written.push(path);
             }
+        }
+        if let Some(adapt) = &self.summary.adaptivity {
+            let path = dir.join("adapt.csv");
+            write_atomically(&path, |w| write_adapt_csv(w, &adapt.cycles))
+                .map_err(mesh_error(&path))?;
+            written.push(path);
         }
         let path = dir.join("summary.json");
         self.set_output_time(start.elapsed());
@@ -643,8 +649,8 @@ fn round_down_to_nice(value: f64) -> f64 {
     nice * power
 }
 
-/// Point data (displacement, raw and consistent contact pressure) and cell data (stress, von Mises, A1 figures)
-/// of one body.
+/// Point data (displacement, raw and consistent contact pressure) and cell data (stress, von Mises, A1 figures,
+/// the error indicator) of one body.
 fn vtu_data(
     displacements: Vec<Vector>,
     fields: &[ElementField],
@@ -684,6 +690,9 @@ fn vtu_data(
             "star_ratio",
             solved.qualities.iter().map(|q| q.star_ratio).collect(),
         );
+    if !solved.error_indicator.is_empty() {
+        data = data.with_cell_scalars("error_indicator", solved.error_indicator.clone());
+    }
     if let Some((raw, consistent)) = contact_pressure {
         data = data
             .with_point_scalars("contact_pressure", raw)
@@ -803,6 +812,22 @@ fn interface_grid(nodes: &[InterfaceNode], pairs: &[vem_contact::PairSummary]) -
             nodes.iter().map(|n| status(n.status)).collect(),
         ))
         .with_cell_data(VtkArray::int32("pair", pair_of_cell))
+}
+
+/// The columns of `adapt.csv`, in order.
+pub const ADAPT_COLUMNS: &str = "cycle,unknowns,cells,estimate,relative_estimate,marked,time_s";
+
+/// `adapt.csv`: one row per cycle of an adaptive run, columns [`ADAPT_COLUMNS`].
+fn write_adapt_csv(w: &mut dyn Write, cycles: &[vem_scene::AdaptCycle]) -> std::io::Result<()> {
+    writeln!(w, "{ADAPT_COLUMNS}")?;
+    for c in cycles {
+        writeln!(
+            w,
+            "{},{},{},{:e},{:e},{},{:.6}",
+            c.cycle, c.unknowns, c.cells, c.estimate, c.relative_estimate, c.marked, c.time_s
+        )?;
+    }
+    Ok(())
 }
 
 /// `history.csv`: one row per step: its pseudo-time, the load point's displacement, the

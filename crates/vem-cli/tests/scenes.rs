@@ -214,6 +214,106 @@ fn patch_test_pressure_is_exact_on_non_matching_meshes() {
     );
 }
 
+/// The error indicators of the patch scene: the discrete solution is the exact linear field,
+/// so every indicator (residual, jumps, boundary, stabilisation, contact terms) vanishes to
+/// round-off against the energy; the `error_indicator` cell field read back from each body's
+/// VTU file is the library's, and the summary's estimate is their root sum of squares.
+#[test]
+fn patch_error_indicators_vanish_and_are_written() {
+    let (outcome, dir) = run("patch");
+    let estimate = outcome.summary.error_estimate.unwrap();
+    let energy: f64 = outcome
+        .bodies
+        .iter()
+        .map(|b| b.solution.strain_energy())
+        .sum();
+    assert!(energy > 0.0);
+    // Squared quantities against the energy: round-off.
+    assert!(
+        estimate.estimate.powi(2) < 1e-12 * energy,
+        "eta = {:e}, energy {energy:e}",
+        estimate.estimate
+    );
+    assert!((estimate.energy_norm - (2.0 * energy).sqrt()).abs() < 1e-12 * energy.sqrt());
+    let mut sum = 0.0;
+    for b in &outcome.bodies {
+        let name = b.body.name();
+        assert_eq!(b.error_indicator.len(), b.body.mesh().n_polygons());
+        let grid = vem_mesh::io::read_vtu(dir.join(format!("{name}.vtu"))).unwrap();
+        let field = grid
+            .cell_data
+            .iter()
+            .find(|a| a.name == "error_indicator")
+            .unwrap();
+        for (c, &eta) in b.error_indicator.iter().enumerate() {
+            let read = field.values.get_f64(c).unwrap();
+            assert!(
+                read == eta || (read - eta).abs() <= 1e-15 * eta.abs(),
+                "{name} cell {c}: {read:e} written, {eta:e} computed"
+            );
+            sum += eta * eta;
+        }
+    }
+    assert!((sum.sqrt() - estimate.estimate).abs() <= 1e-12 * estimate.estimate.max(1e-300));
+    let summary = summary_json(&dir);
+    assert!(summary["error_estimate"]["estimate"].as_f64().is_some());
+}
+
+/// The adaptive flat punch: converged to its target of 10 % in nine cycles, and every cycle
+/// of `adapt.csv` is the cycle of the library's adaptive loop on the same problem
+/// (`cargo xtask adaptivity`, docs/adaptivity.md, flat punch: the same initial meshes, theta
+/// and refinement give eta = 4.355e-2 at 102 unknowns down to 6.350e-3 at 3378).
+#[test]
+fn adaptive_punch_meets_its_target_as_the_library_loop() {
+    let (outcome, dir) = run("punch_adapt");
+    let adapt = outcome.summary.adaptivity.as_ref().unwrap();
+    assert!(adapt.converged() && adapt.warning.is_none(), "{adapt:?}");
+    let text = std::fs::read_to_string(dir.join("adapt.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "cycle,unknowns,cells,estimate,relative_estimate,marked,time_s"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    // docs/adaptivity.md, flat punch, adaptive series: (N, cells, eta).
+    let library = [
+        (102, 41, 4.355e-2),
+        (132, 50, 3.345e-2),
+        (196, 71, 2.678e-2),
+        (318, 113, 2.175e-2),
+        (504, 185, 1.723e-2),
+        (806, 311, 1.346e-2),
+        (1300, 521, 1.048e-2),
+        (2136, 887, 8.194e-3),
+        (3378, 1457, 6.350e-3),
+    ];
+    assert_eq!(rows.len(), library.len(), "{text}");
+    for (row, (n, cells, eta)) in rows.iter().zip(library) {
+        assert_eq!((row[1] as usize, row[2] as usize), (n, cells), "{text}");
+        assert!((row[3] / eta - 1.0).abs() < 1e-3, "{text}");
+    }
+    let last = rows.last().unwrap();
+    assert!(last[4] <= 0.1 && rows[rows.len() - 2][4] > 0.1);
+    // The files are the last cycle's: the cells of the VTU files and their indicators.
+    let cells: usize = outcome
+        .bodies
+        .iter()
+        .map(|b| {
+            let grid = vem_mesh::io::read_vtu(dir.join(format!("{}.vtu", b.body.name()))).unwrap();
+            let field = grid
+                .cell_data
+                .iter()
+                .find(|a| a.name == "error_indicator")
+                .unwrap();
+            assert_eq!(field.values.get_f64(0).unwrap(), b.error_indicator[0]);
+            b.error_indicator.len()
+        })
+        .sum();
+    assert_eq!(cells, 1457);
+}
+
 /// Scene 2: the half-disc (R = 1, Gmsh) pressed on a block by a prescribed displacement of
 /// its flat top. Hertz's plane-strain cylinder on a half-space for the computed load P:
 /// a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (2 (1 - nu^2)) for equal materials.

@@ -9,7 +9,20 @@
 //! ```text
 //!   traction:         w h_e || t_h - sigma_E n_e ||_e^2
 //!   complementarity:  int_e  p_h (h0 - [u_h]_nu)_+  ds      (half to each side's cell)
+//!   friction:         | int_e  b_h |s_h| + t_h,tau s_h  ds |  (half to each side's cell)
 //! ```
+//!
+//! The traction term measures the whole traction, normal and tangential: with friction `t_h`
+//! holds the consistent friction traction, so the mismatch of the projected stress's
+//! tangential part `tau . sigma_E n_e` against it is in the same term, on both sides. The
+//! friction term is the tangential counterpart of the complementarity term: `b_h` is the
+//! friction bound per unit length (Tresca `g_F`, Coulomb `F p`; the nodal bound over the
+//! tributary length), `t_h,tau` the consistent friction traction on body A along the tangent,
+//! `s_h = [u_h]_tau` the slip, all linear between the interface nodes. The discrete friction
+//! law makes `t_h,tau s_h = -b_h |s_h|` at every node (the traction opposes the slip and is at
+//! its bound where the body slips; the slip is zero where it sticks), so the integrand vanishes
+//! at the nodes; it measures where a stick zone ends inside an edge or where the slip changes
+//! its direction. It vanishes on uniform stick and uniform slip (the patch tests PTC2, PTC3).
 //!
 //! `t_h` is the consistent contact traction of the solve, piecewise linear between the
 //! interface nodes: on body A `t_h = -p_h nu + t_f` (`p_h` the consistent pressure
@@ -25,7 +38,7 @@
 
 use std::collections::HashMap;
 
-use vem_elastic::{ElasticBody, ElasticEstimate};
+use vem_elastic::{CellIndicator, ElasticBody, ElasticEstimate};
 use vem_mesh::{geometry, Mesh, Vector};
 use vem_space::quadrature::GaussLegendre;
 
@@ -41,6 +54,8 @@ pub struct ContactEstimate {
     pub traction: f64,
     /// The sum of the complementarity terms.
     pub complementarity: f64,
+    /// The sum of the friction complementarity terms (zero without friction).
+    pub friction: f64,
 }
 
 impl ContactEstimate {
@@ -51,6 +66,20 @@ impl ContactEstimate {
             .map(|b| b.sum().squared())
             .sum::<f64>()
             .sqrt()
+    }
+
+    /// The squared parts summed over the cells of all bodies (`eta^2` is their sum).
+    pub fn sum(&self) -> CellIndicator {
+        self.bodies
+            .iter()
+            .map(ElasticEstimate::sum)
+            .fold(CellIndicator::default(), |a, c| CellIndicator {
+                residual: a.residual + c.residual,
+                jump: a.jump + c.jump,
+                boundary: a.boundary + c.boundary,
+                stabilisation: a.stabilisation + c.stabilisation,
+                contact: a.contact + c.contact,
+            })
     }
 
     /// `eta_E` of every cell of every body (order of the problem's bodies): the cell field to
@@ -72,39 +101,58 @@ pub fn estimate(
     problem: &ContactProblem,
     result: &ContactResult,
 ) -> Result<ContactEstimate, ContactError> {
-    if result.bodies.len() != problem.bodies().len() {
+    let solved: Vec<(&ElasticBody, &[f64])> = result
+        .bodies
+        .iter()
+        .map(|r| (&r.body, r.solution.displacement()))
+        .collect();
+    estimate_of(problem, &solved, &result.nodes)
+}
+
+/// [`estimate`] of a solution given by its parts: per body of `problem` (in its order) the
+/// body on the mesh it was solved on with its displacement (full, in the numbering of
+/// [`ElasticBody::dofs`]), and the interface nodes of the solve (a front end that keeps the
+/// bodies of a [`ContactResult`] elsewhere passes them so).
+///
+/// # Errors
+/// As [`estimate`].
+pub fn estimate_of(
+    problem: &ContactProblem,
+    solved: &[(&ElasticBody, &[f64])],
+    interface: &[InterfaceNode],
+) -> Result<ContactEstimate, ContactError> {
+    if solved.len() != problem.bodies().len() {
         return Err(ContactError::InvalidSetting {
             reason: format!(
                 "the result has {} bodies, the problem {}",
-                result.bodies.len(),
+                solved.len(),
                 problem.bodies().len()
             ),
         });
     }
     // The contact parts of each body.
-    let mut contact_parts: Vec<Vec<&str>> = vec![Vec::new(); result.bodies.len()];
+    let mut contact_parts: Vec<Vec<&str>> = vec![Vec::new(); solved.len()];
     for pair in problem.pairs() {
         contact_parts[pair.body()].push(pair.part());
         if let Counterpart::Body { body, part } = pair.counterpart() {
             contact_parts[*body].push(part);
         }
     }
-    let mut bodies = result
-        .bodies
+    let mut bodies = solved
         .iter()
         .zip(&contact_parts)
-        .map(|(r, parts)| r.body.estimate(r.solution.displacement(), parts))
+        .map(|((body, displacement), parts)| body.estimate(displacement, parts))
         .collect::<Result<Vec<_>, _>>()?;
     let gauss = GaussLegendre::try_new(3).expect("3 Gauss points exist");
-    let (mut traction_total, mut complementarity_total) = (0.0, 0.0);
+    let (mut traction_total, mut complementarity_total, mut friction_total) = (0.0, 0.0, 0.0);
     for (p, pair) in problem.pairs().iter().enumerate() {
-        let nodes: Vec<&InterfaceNode> = result.nodes.iter().filter(|n| n.pair == p).collect();
+        let nodes: Vec<&InterfaceNode> = interface.iter().filter(|n| n.pair == p).collect();
         let mut sides: Vec<(usize, &str, f64)> = vec![(pair.body(), pair.part(), 1.0)];
         if let Counterpart::Body { body, part } = pair.counterpart() {
             sides.push((*body, part, -1.0));
         }
         for &(b, part, sign) in &sides {
-            let body: &ElasticBody = &result.bodies[b].body;
+            let body: &ElasticBody = solved[b].0;
             let mesh = body.mesh();
             // The traction t_h on this side at each of its interface vertices.
             let mut traction: HashMap<usize, Vector> = HashMap::new();
@@ -165,31 +213,48 @@ pub fn estimate(
                 n1.initial_gap - n1.normal_jump,
             );
             let (p0, p1) = (n0.consistent_pressure, n1.consistent_pressure);
-            let term: f64 = gauss
-                .nodes()
-                .iter()
-                .zip(gauss.weights())
-                .map(|(&s, &wt)| {
+            // The friction bound per unit length, the consistent friction traction and the
+            // slip along each node's tangent (all zero without friction).
+            let bound = |n: &InterfaceNode| {
+                if n.tributary_measure > 0.0 {
+                    n.friction_bound / n.tributary_measure
+                } else {
+                    0.0
+                }
+            };
+            let (b0, b1) = (bound(n0), bound(n1));
+            let (t0, t1) = (n0.consistent_friction_t(), n1.consistent_friction_t());
+            let (s0, s1) = (n0.slip_t(), n1.slip_t());
+            let (normal, friction) = gauss.nodes().iter().zip(gauss.weights()).fold(
+                (0.0, 0.0),
+                |(normal, friction), (&s, &wt)| {
                     let t = 0.5 * (s + 1.0);
-                    let g = (1.0 - t) * g0 + t * g1;
-                    let p = (1.0 - t) * p0 + t * p1;
-                    0.5 * length * wt * p * g.max(0.0)
-                })
-                .sum::<f64>()
-                .abs();
+                    let lerp = |a: f64, b: f64| (1.0 - t) * a + t * b;
+                    let g = lerp(g0, g1);
+                    let slip = lerp(s0, s1);
+                    (
+                        normal + 0.5 * length * wt * lerp(p0, p1) * g.max(0.0),
+                        friction
+                            + 0.5 * length * wt * (lerp(b0, b1) * slip.abs() + lerp(t0, t1) * slip),
+                    )
+                },
+            );
+            let (normal, friction) = (normal.abs(), friction.abs());
+            let term = normal + friction;
             if term == 0.0 {
                 continue;
             }
-            complementarity_total += term;
+            complementarity_total += normal;
+            friction_total += friction;
             let cell_a = edge_cell(
-                result.bodies[n0.body_a].body.mesh(),
+                solved[n0.body_a].0.mesh(),
                 pair.part(),
                 n0.vertex_a,
                 n1.vertex_a,
             );
             let cell_b = match (pair.counterpart(), n0.body_b, n0.vertex_b, n1.vertex_b) {
                 (Counterpart::Body { part, .. }, Some(b), Some(v0), Some(v1)) => {
-                    edge_cell(result.bodies[b].body.mesh(), part, v0, v1).map(|c| (b, c))
+                    edge_cell(solved[b].0.mesh(), part, v0, v1).map(|c| (b, c))
                 }
                 _ => None,
             };
@@ -208,5 +273,6 @@ pub fn estimate(
         bodies,
         traction: traction_total,
         complementarity: complementarity_total,
+        friction: friction_total,
     })
 }

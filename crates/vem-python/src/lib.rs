@@ -1265,7 +1265,8 @@ impl PyResultSet {
     }
 
     /// Every warning of the run, one sentence each: the bodies' (a locking element near
-    /// incompressibility), the contact's (solver and model), earlier keys of the scene.
+    /// incompressibility), the contact's (solver and model), an adaptive refinement stopped
+    /// by a limit before its target, earlier keys of the scene.
     #[getter]
     fn warnings(&self) -> Vec<String> {
         let summary = self.outcome.summary();
@@ -1276,6 +1277,9 @@ impl PyResultSet {
             .collect();
         if let Some(c) = &summary.contact {
             all.extend(c.warnings.iter().cloned());
+        }
+        if let Some(w) = summary.adaptivity.as_ref().and_then(|a| a.warning.as_ref()) {
+            all.push(w.clone());
         }
         all.extend(summary.deprecations.iter().map(|d| d.to_string()));
         all

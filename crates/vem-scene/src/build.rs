@@ -115,6 +115,11 @@ pub struct Model {
     pub(crate) solver: Choice,
     pub(crate) registries: Registries,
     pub(crate) mesh_time: Duration,
+    /// The memory limit the meshes were checked against (the refined meshes of `adapt` are
+    /// checked against it too).
+    pub(crate) limit: MemoryLimit,
+    /// Per body, whether the locking-free default inserted its edge midpoints.
+    pub(crate) midpoints: Vec<bool>,
 }
 
 impl Model {
@@ -171,6 +176,12 @@ impl Model {
         let known: Vec<Option<usize>> = dimensions.iter().map(|&d| Some(d)).collect();
         crate::check::check_one_dimension(scene, &known)?;
         crate::check::check_dimensions(scene, &dimensions)?;
+        if scene.adapt.is_some() && dimensions.first() == Some(&3) {
+            return Err(SceneError::at(
+                KeyPath::key("adapt"),
+                "adaptive refinement is in the plane only: remove `adapt` for bodies in space",
+            ));
+        }
         // The locking-free default inserts the edge midpoints on a mesh with simplices before
         // the memory check: they multiply the unknowns by about 4 on triangles and about 8 on
         // tetrahedra.
@@ -234,6 +245,8 @@ impl Model {
                 solver,
                 registries: options.registries.clone(),
                 mesh_time,
+                limit,
+                midpoints,
             });
         }
         let meshes: Vec<(Mesh, String, Option<f64>)> = meshes
@@ -243,8 +256,29 @@ impl Model {
                 BuiltMesh::Space(_) => None,
             })
             .collect();
+        Self::build_plane(
+            checked,
+            meshes,
+            midpoints,
+            &options.registries,
+            limit,
+            mesh_time,
+        )
+    }
+
+    /// The model of the checked scene `checked` in the plane on the meshes `meshes` (each with
+    /// where it came from and its predicted error): the memory check, the bodies, the contact
+    /// pairs and the solver's choice.
+    fn build_plane(
+        checked: Checked,
+        meshes: Vec<(Mesh, String, Option<f64>)>,
+        midpoints: Vec<bool>,
+        registries: &Registries,
+        limit: MemoryLimit,
+        mesh_time: Duration,
+    ) -> Result<Self, SceneError> {
+        let scene = &checked.scene;
         check_memory_of_meshes(&meshes, &limit)?;
-        let registries = &options.registries;
         let mut bodies = Vec::with_capacity(meshes.len());
         for (i, (spec, (mesh, source, predicted))) in scene.bodies.iter().zip(meshes).enumerate() {
             let path = KeyPath::key("body").index(i);
@@ -280,6 +314,38 @@ impl Model {
             solver,
             registries: registries.clone(),
             mesh_time,
+            limit,
+            midpoints,
+        })
+    }
+
+    /// The same scene in the plane on the meshes `meshes` (one per body, in the order of the
+    /// scene, each with where it came from): the refined meshes of an adaptive cycle. The
+    /// bodies, contact pairs (interface insertion included) and solver are built again;
+    /// `mesh_time` is the time the meshes took.
+    ///
+    /// # Errors
+    /// A [`SceneError`] at the key at fault (a mesh over the memory limit, a part lost).
+    pub(crate) fn rebuilt(
+        &self,
+        meshes: Vec<(Mesh, String)>,
+        mesh_time: Duration,
+    ) -> Result<Self, SceneError> {
+        let meshes = meshes
+            .into_iter()
+            .map(|(mesh, source)| (mesh, source, None))
+            .collect();
+        Self::build_plane(
+            self.checked.clone(),
+            meshes,
+            self.midpoints.clone(),
+            &self.registries,
+            self.limit,
+            mesh_time,
+        )
+        .map_err(|e| SceneError {
+            path: self.written(&e.path),
+            ..e
         })
     }
 

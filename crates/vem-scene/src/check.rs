@@ -92,6 +92,9 @@ pub fn check(scene: &Scene) -> Result<Checked, SceneError> {
     if scene.bodies.is_empty() {
         return Err(SceneError::at(KeyPath::root(), "the scene has no [[body]]"));
     }
+    if let Some(adapt) = &scene.adapt {
+        check_adapt(adapt)?;
+    }
     let mut names = HashSet::new();
     for (i, body) in scene.bodies.iter().enumerate() {
         let path = KeyPath::key("body").index(i);
@@ -1211,6 +1214,46 @@ fn check_body_expressions(
     }
     if let Some(force) = &body.body_force {
         check_vector(force, &path.at("body_force"), dimension)?;
+    }
+    Ok(())
+}
+
+/// `adapt`: a target in (0, 1), a fraction in (0, 1], limits of at least one.
+fn check_adapt(adapt: &crate::description::AdaptDescription) -> Result<(), SceneError> {
+    let path = KeyPath::key("adapt");
+    if let Some(target) = adapt.target_error {
+        if !(target > 0.0 && target < 1.0) {
+            return Err(SceneError::at(
+                path.at("target_error"),
+                format!(
+                    "target_error = {target}: give the estimate relative to the energy norm of \
+                     the solution to reach, between 0 and 1 (0.05 for 5 %)"
+                ),
+            ));
+        }
+    }
+    if let Some(theta) = adapt.theta {
+        if !(theta > 0.0 && theta <= 1.0) {
+            return Err(SceneError::at(
+                path.at("theta"),
+                format!(
+                    "theta = {theta}: Dorfler's fraction of the squared estimate the refined \
+                     cells carry is in (0, 1]"
+                ),
+            ));
+        }
+    }
+    if adapt.max_unknowns == Some(0) {
+        return Err(SceneError::at(
+            path.at("max_unknowns"),
+            "max_unknowns = 0: give the largest number of unknowns a refined mesh may have",
+        ));
+    }
+    if adapt.max_cycles == Some(0) {
+        return Err(SceneError::at(
+            path.at("max_cycles"),
+            "max_cycles = 0: give the largest number of solves (1: no refinement)",
+        ));
     }
     Ok(())
 }

@@ -38,6 +38,11 @@ pub struct Scene {
     /// step by step (the static problem is one step of factor 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub history: Option<LoadHistory>,
+    /// Adaptive refinement in the plane (`adapt = { target_error = 0.05 }`): solve, estimate,
+    /// mark, refine until the estimate relative to the solution's energy norm is below the
+    /// target, or a limit is reached; the outputs are those of the last mesh.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub adapt: Option<AdaptDescription>,
     /// Outputs (`[output]`).
     #[serde(default)]
     pub output: OutputDescription,
@@ -487,6 +492,36 @@ pub struct LoadHistory {
     /// The number of evenly spaced steps up to `end`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub increments: Option<usize>,
+}
+
+/// `adapt = { target_error = .., max_unknowns = .., theta = .., max_cycles = .. }`: adaptive
+/// refinement of the bodies in the plane (docs/adaptivity.md).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptDescription {
+    /// The target of the estimate relative to the energy norm of the solution,
+    /// `eta / (sum 2 W_h)^(1/2)`, in (0, 1) (absent: refine until a limit).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_error: Option<f64>,
+    /// No refinement whose mesh would have more unknowns than this (default 200 000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_unknowns: Option<usize>,
+    /// Dorfler's bulk fraction: the cells refined carry at least this fraction of `eta^2`, in
+    /// (0, 1] (default 0.5; 1 refines every cell with a nonzero indicator).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub theta: Option<f64>,
+    /// The largest number of solves, the first included (default 12).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_cycles: Option<usize>,
+}
+
+impl AdaptDescription {
+    /// The default of `max_unknowns`.
+    pub const MAX_UNKNOWNS: usize = 200_000;
+    /// The default of `theta`.
+    pub const THETA: f64 = 0.5;
+    /// The default of `max_cycles`.
+    pub const MAX_CYCLES: usize = 12;
 }
 
 /// `[output]`.

@@ -58,6 +58,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod adapt;
 mod build;
 pub mod check;
 pub mod description;
@@ -70,6 +71,7 @@ mod space;
 pub mod toml_file;
 mod value;
 
+pub use adapt::{AdaptCycle, AdaptStop, AdaptSummary};
 pub use build::{
     body_mesh, inline_mesh, BuildOptions, Model, ModelBody, ModelContact, Registries, LOCKING_FREE,
     NEARLY_INCOMPRESSIBLE,
@@ -78,8 +80,9 @@ pub use description::{MeshDescription, Scene};
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
 pub use history::MAX_STEPS;
 pub use solve::{
-    describe_material, short, young_poisson, BodySummary, ContactSummary, HertzComparison, Outcome,
-    ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody, StepSummary,
+    describe_material, short, young_poisson, BodySummary, ContactSummary, ErrorEstimate,
+    HertzComparison, Outcome, ReactionSummary, Resultants, RunSummary, RunTimes, SolvedBody,
+    StepSummary,
 };
 pub use space::BuiltMesh;
 pub use value::{ScalarFunction, ScalarValue, VectorFunction, VectorValue};

@@ -11,12 +11,16 @@ use vem_contact::{
     ContactError, ContactProblem, ContactResult, ContactSolverError, FixedPointReport, HistoryStep,
     InterfaceNode, ModelSummary, NodeStatus, SolveReport, StatusCounts, Warning, WorkCounters,
 };
-use vem_elastic::{CholeskySolver, Component, ElasticBody, ElementField, Plane, Solution};
+use vem_elastic::{
+    CellIndicator, CholeskySolver, Component, ElasticBody, ElasticEstimate, ElementField, Plane,
+    Solution,
+};
 use vem_mesh::polyhedral::quality::CellQuality;
 use vem_mesh::quality::ElementQuality;
 use vem_mesh::VectorD;
 use vem_space::Choice;
 
+use crate::adapt::AdaptSummary;
 use crate::build::{locate_contact, locate_elastic, Model, ModelBody};
 use crate::error::one_line;
 use crate::{Deprecation, KeyPath, SceneError};
@@ -34,6 +38,10 @@ pub struct SolvedBody<const D: usize = 2, Q = ElementQuality> {
     pub fields: Vec<ElementField>,
     /// The shape-regularity figures of every element (A1 in the plane).
     pub qualities: Vec<Q>,
+    /// In the plane, the error indicator `eta_E` of every element (the square root of its
+    /// share of the estimate's square, in energy units; see [`ErrorEstimate`]); empty in
+    /// space.
+    pub error_indicator: Vec<f64>,
 }
 
 /// The result of solving a scene, with its summary.
@@ -100,6 +108,10 @@ pub struct RunSummary {
     pub bodies: Vec<BodySummary>,
     /// The contact pairs, if any.
     pub contact: Option<ContactSummary>,
+    /// In the plane, the a posteriori error estimate of the solution (all bodies together).
+    pub error_estimate: Option<ErrorEstimate>,
+    /// With `adapt`, the cycles of the adaptive refinement and what stopped it.
+    pub adaptivity: Option<AdaptSummary>,
     /// Earlier keys of the scene and their new places.
     pub deprecations: Vec<Deprecation>,
     /// Notes about the run, one sentence each (outputs left out and why).
@@ -221,6 +233,56 @@ pub struct Resultants {
     pub force_on_body_a: Vec<f64>,
 }
 
+/// The residual error estimate of a solution in the plane (docs/adaptivity.md): `eta =
+/// (sum_E eta_E^2)^(1/2)` over the elements of all bodies, each part the square root of its
+/// sum over the elements (`eta^2` is the sum of the parts' squares). An estimate of the
+/// energy norm of the error, `a(u - u_h, u - u_h)^(1/2)`, up to a constant of the meshes'
+/// shape (the effectivity `eta / error`, measured in docs/adaptivity.md at 2.6 to 8.2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ErrorEstimate {
+    /// `eta`.
+    pub estimate: f64,
+    /// `eta / ||u_h||`: the estimate relative to the energy norm of the solution,
+    /// `||u_h|| = (sum over bodies of 2 W_h)^(1/2)` with `W_h` the strain energy.
+    pub relative: f64,
+    /// `||u_h||`, the energy norm of the solution.
+    pub energy_norm: f64,
+    /// The element residual part (body forces).
+    pub residual: f64,
+    /// The traction jumps across interior edges.
+    pub jump: f64,
+    /// The traction mismatch on the Neumann and free edges.
+    pub boundary: f64,
+    /// The stabilisation part `S_E((I - Pi) u_h, (I - Pi) u_h)`.
+    pub stabilisation: f64,
+    /// The contact part (traction mismatch against the consistent contact traction, and the
+    /// complementarity term).
+    pub contact: f64,
+}
+
+impl ErrorEstimate {
+    /// The estimate of the squared parts `parts` (summed over all elements) of a solution
+    /// whose strain energies sum to `strain_energy`.
+    pub fn new(parts: &vem_elastic::CellIndicator, strain_energy: f64) -> Self {
+        let estimate = parts.squared().sqrt();
+        let energy_norm = (2.0 * strain_energy).max(0.0).sqrt();
+        Self {
+            estimate,
+            relative: if energy_norm > 0.0 {
+                estimate / energy_norm
+            } else {
+                estimate
+            },
+            energy_norm,
+            residual: parts.residual.sqrt(),
+            jump: parts.jump.sqrt(),
+            boundary: parts.boundary.sqrt(),
+            stabilisation: parts.stabilisation.sqrt(),
+            contact: parts.contact.sqrt(),
+        }
+    }
+}
+
 /// Wall-clock times in seconds.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct RunTimes {
@@ -232,6 +294,8 @@ pub struct RunTimes {
     pub solve_s: f64,
     /// Element fields and quality figures.
     pub post_s: f64,
+    /// The error estimate (in the plane; with `adapt`, every cycle's).
+    pub estimate_s: f64,
     /// Writing the output files.
     pub output_s: f64,
     /// From meshing to the last file written.
@@ -531,6 +595,14 @@ impl Model {
         if self.dimension() == 3 {
             return crate::space::solve(self, started);
         }
+        match self.scene().adapt {
+            Some(adapt) => crate::adapt::solve(self, &adapt, started),
+            None => self.solve_plane(started),
+        }
+    }
+
+    /// Solves the scene in the plane on the model's meshes, with the error estimate.
+    pub(crate) fn solve_plane(&self, started: Instant) -> Result<Outcome, SceneError> {
         let scene = self.scene();
         let mut slots: Vec<Option<(ElasticBody, Solution)>> = vec![None; self.bodies.len()];
         let mut times = RunTimes {
@@ -588,12 +660,32 @@ impl Model {
                 *slot = Some((body.clone(), solution));
             }
         }
-        let start = Instant::now();
-        let bodies = slots
+        let solved: Vec<(ElasticBody, Solution)> = slots
             .into_iter()
+            .map(|slot| slot.expect("every body is solved"))
+            .collect();
+        let start = Instant::now();
+        let estimates = self.estimate_plane(&solved, contact.as_ref())?;
+        times.estimate_s = start.elapsed().as_secs_f64();
+        let strain_energy: f64 = solved.iter().map(|(_, s)| s.strain_energy()).sum();
+        let parts =
+            estimates
+                .iter()
+                .map(ElasticEstimate::sum)
+                .fold(CellIndicator::default(), |a, c| CellIndicator {
+                    residual: a.residual + c.residual,
+                    jump: a.jump + c.jump,
+                    boundary: a.boundary + c.boundary,
+                    stabilisation: a.stabilisation + c.stabilisation,
+                    contact: a.contact + c.contact,
+                });
+        let error_estimate = ErrorEstimate::new(&parts, strain_energy);
+        let start = Instant::now();
+        let bodies = solved
+            .into_iter()
+            .zip(estimates)
             .enumerate()
-            .map(|(index, slot)| {
-                let (body, solution) = slot.expect("every body is solved");
+            .map(|(index, ((body, solution), estimate))| {
                 let elastic = |e| {
                     located(locate_elastic(scene, e).unwrap_or_else(|text| {
                         SceneError::at(KeyPath::key("body").index(index), text)
@@ -608,12 +700,15 @@ impl Model {
                     solution,
                     fields,
                     qualities,
+                    error_indicator: estimate.indicators(),
                 })
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
         times.post_s = start.elapsed().as_secs_f64();
-        times.total_s = times.mesh_s + times.assembly_s + times.solve_s + times.post_s;
-        let summary = self.summarise(&bodies, contact.as_ref(), times, history);
+        times.total_s =
+            times.mesh_s + times.assembly_s + times.solve_s + times.post_s + times.estimate_s;
+        let mut summary = self.summarise(&bodies, contact.as_ref(), times, history);
+        summary.error_estimate = Some(error_estimate);
         Ok(Outcome {
             bodies,
             bodies_3d: Vec::new(),
@@ -625,6 +720,47 @@ impl Model {
             summary,
             started,
         })
+    }
+
+    /// The residual error estimate of every body of the scene in the plane (in its order)
+    /// solved as `solved`: the bodies in contact with the contact terms of their pairs
+    /// ([`vem_contact::estimate`]), the others alone ([`ElasticBody::estimate`]). The loads
+    /// are measured at their full value (the last step of a history that ends at factor 1).
+    fn estimate_plane(
+        &self,
+        solved: &[(ElasticBody, Solution)],
+        contact: Option<&ContactResult>,
+    ) -> Result<Vec<ElasticEstimate>, SceneError> {
+        let scene = self.scene();
+        let located = |e: SceneError| SceneError {
+            path: self.written(&e.path),
+            ..e
+        };
+        let mut estimates: Vec<Option<ElasticEstimate>> = vec![None; solved.len()];
+        if let (Some((problem, indices)), Some(result)) = (&self.problem, contact) {
+            let parts: Vec<(&ElasticBody, &[f64])> = indices
+                .iter()
+                .map(|&i| (&solved[i].0, solved[i].1.displacement()))
+                .collect();
+            let estimate = vem_contact::estimate::estimate_of(problem, &parts, &result.nodes)
+                .map_err(|e| located(locate_contact(scene, e)))?;
+            for (body, &index) in estimate.bodies.into_iter().zip(indices) {
+                estimates[index] = Some(body);
+            }
+        }
+        estimates
+            .into_iter()
+            .zip(solved)
+            .enumerate()
+            .map(|(index, (estimate, (body, solution)))| match estimate {
+                Some(estimate) => Ok(estimate),
+                None => body.estimate(solution.displacement(), &[]).map_err(|e| {
+                    located(locate_elastic(scene, e).unwrap_or_else(|text| {
+                        SceneError::at(KeyPath::key("body").index(index), text)
+                    }))
+                }),
+            })
+            .collect()
     }
 
     /// Solves the contact problem `problem` of the bodies `indices` (in the plane or in space)
@@ -779,6 +915,8 @@ impl Model {
             dimension: 2,
             bodies: body_summaries,
             contact: contact_summary,
+            error_estimate: None,
+            adaptivity: None,
             deprecations: self.deprecations().to_vec(),
             notes: Vec::new(),
             times,
@@ -1060,12 +1198,51 @@ impl fmt::Display for RunSummary {
 
 impl RunSummary {
     fn write_times(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(e) = &self.error_estimate {
+            writeln!(
+                f,
+                "  error estimate eta = {:.4e} ({:.3} % of the energy norm {:.4e}): element \
+                 residual {:.3e}, jumps {:.3e}, boundary {:.3e}, stabilisation {:.3e}, contact \
+                 {:.3e}",
+                e.estimate,
+                100.0 * e.relative,
+                e.energy_norm,
+                e.residual,
+                e.jump,
+                e.boundary,
+                e.stabilisation,
+                e.contact
+            )?;
+        }
+        if let Some(a) = &self.adaptivity {
+            let last = a.cycles.last();
+            let stop = match a.stop {
+                crate::AdaptStop::Converged => "converged",
+                crate::AdaptStop::MaxUnknowns => "stopped by max_unknowns",
+                crate::AdaptStop::MaxCycles => "stopped by max_cycles",
+                crate::AdaptStop::NothingToRefine => "stopped: nothing to refine",
+            };
+            writeln!(
+                f,
+                "  adaptive refinement (theta = {}): {stop} after {} ({} unknowns, relative \
+                 estimate {:.3} %{})",
+                a.theta,
+                count(a.cycles.len(), "cycle", "cycles"),
+                last.map_or(0, |c| c.unknowns),
+                100.0 * last.map_or(0.0, |c| c.relative_estimate),
+                a.target_error
+                    .map_or_else(String::new, |t| format!(", target {:.3} %", 100.0 * t))
+            )?;
+            if let Some(warning) = &a.warning {
+                writeln!(f, "    warning: {warning}")?;
+            }
+        }
         let t = &self.times;
         writeln!(
             f,
-            "  times: mesh {:.3} s, assembly {:.3} s, solve {:.3} s, post {:.3} s, output {:.3} s, \
-             total {:.3} s",
-            t.mesh_s, t.assembly_s, t.solve_s, t.post_s, t.output_s, t.total_s
+            "  times: mesh {:.3} s, assembly {:.3} s, solve {:.3} s, estimate {:.3} s, post {:.3} \
+             s, output {:.3} s, total {:.3} s",
+            t.mesh_s, t.assembly_s, t.solve_s, t.estimate_s, t.post_s, t.output_s, t.total_s
         )
     }
 }

@@ -515,6 +515,7 @@ pub(crate) fn solve(model: &Model, started: Instant) -> Result<Outcome, SceneErr
             solution,
             fields,
             qualities,
+            error_indicator: Vec::new(),
         });
     }
     times.total_s = times.mesh_s + times.assembly_s + times.solve_s + times.post_s;
@@ -595,6 +596,8 @@ fn summarise(model: &Model, bodies: &[SolvedBody<3, CellQuality>], times: RunTim
         dimension: 3,
         bodies: body_summaries,
         contact: None,
+        error_estimate: None,
+        adaptivity: None,
         deprecations: model.deprecations().to_vec(),
         notes: Vec::new(),
         times,

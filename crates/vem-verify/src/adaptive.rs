@@ -49,6 +49,11 @@ use crate::VerifyError;
 /// (docs/adaptivity.md); the band leaves room around that, not a factor of ten.
 pub const EFFECTIVITY_BAND: (f64, f64) = (4.0, 12.0);
 
+/// The band of the effectivity index on M2 (Tresca friction with stick and slip zones) on
+/// quadrilaterals, triangles and Voronoi meshes of 6 and 12 cells a side: measured 5.9 to 6.8
+/// (docs/adaptivity.md); the band of the frictionless cases.
+pub const FRICTION_EFFECTIVITY_BAND: (f64, f64) = (4.0, 12.0);
+
 /// What one cycle solves.
 pub enum Model {
     /// Bodies in contact.
@@ -208,6 +213,7 @@ pub fn solve_and_estimate(
                     bodies: estimates,
                     traction: 0.0,
                     complementarity: 0.0,
+                    friction: 0.0,
                 },
             })
         }
@@ -538,6 +544,47 @@ mod tests {
                         "{name} {family} {n}: {effectivity}"
                     );
                 }
+            }
+        }
+    }
+
+    /// The effectivity index on M2 (Tresca friction, stick and slip zones; exact solution),
+    /// where the friction terms of the estimate are active: in [`FRICTION_EFFECTIVITY_BAND`]
+    /// on three mesh families and two sizes, and the friction complementarity is part of the
+    /// estimate.
+    #[test]
+    fn effectivity_with_friction_stays_in_its_band() {
+        let element = LowestOrderVem::default();
+        let exact = case("M2");
+        let build = case_model(Arc::clone(&exact), ProblemSettings::default());
+        for family in ["quads", "triangles", "voronoi"] {
+            for n in [6, 12] {
+                let model = build(meshes_of(&*exact, family, n)).unwrap();
+                let solved = solve_and_estimate("M2", &model, &mut solver()).unwrap();
+                let settings = AdaptiveSettings {
+                    max_cycles: 1,
+                    ..AdaptiveSettings::default()
+                };
+                let run = run(
+                    "M2",
+                    &build,
+                    meshes_of(&*exact, family, n),
+                    &element,
+                    &Reference::Exact(Arc::clone(&exact)),
+                    &settings,
+                    &mut solver(),
+                )
+                .unwrap();
+                let effectivity = run.records[0].effectivity.unwrap();
+                eprintln!(
+                    "M2 {family} {n}: effectivity {effectivity:.3}, friction term {:.3e}",
+                    solved.estimate.friction
+                );
+                assert!(
+                    (FRICTION_EFFECTIVITY_BAND.0..FRICTION_EFFECTIVITY_BAND.1)
+                        .contains(&effectivity),
+                    "M2 {family} {n}: {effectivity}"
+                );
             }
         }
     }
