@@ -74,8 +74,8 @@ use crate::warning::Warning;
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
     ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings,
-    Friction, HistoryStep, LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, PatternId,
-    WorkCounters,
+    Friction, HistoryStep, KktResiduals, LoadCondition, LoadFactors, LoadHistory, LoadPath,
+    Location, PatternId, SolveReport, SolveStatus, WorkCounters,
 };
 
 /// One contact pair as discretised: its law, its nodes in the discretisation's list, and what
@@ -794,6 +794,82 @@ impl<const D: usize> ContactDiscretisation<D> {
         Ok(rows)
     }
 
+    /// The rigid sliding of a body along the interface against the friction capacity of the
+    /// bounds of `system`: for every body whose boundary conditions leave some translations
+    /// free (each degree of freedom of the component free or tied to a rigid plate) that the
+    /// stiffness does not resist (`K d = 0`) and that open or close no gap (`B_N d = 0`), the
+    /// translation `d` along the load's component in their span, scaled to a largest nodal slip
+    /// of 1. `Some((f . d, sum_i b_i |(B_T d)_i|))` when the load along `d` exceeds that capacity
+    /// (by more than a relative `1e-9`): then no equilibrium exists, since `K d = 0` and
+    /// `B_N d = 0` leave `f . d = lambda_T . B_T d <= sum_i b_i |(B_T d)_i|`.
+    fn sliding_beyond_capacity(&self, system: &ContactSystem<'_>) -> Option<(f64, f64)> {
+        let friction = system.friction()?;
+        let t = friction.rows_per_node();
+        let n = system.n_dofs();
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (k, body) in self.bodies.iter().enumerate() {
+            let dofs = body.dofs();
+            let stiffness_scale = inf(&self.diagonals[k]);
+            // The free translations along the axes, as vectors of the system's unknowns.
+            let mut axes: Vec<(Vec<f64>, f64)> = Vec::new();
+            for c in 0..D {
+                let mut d = vec![0.0; n];
+                let mut admissible = true;
+                for dof in 0..dofs.n_dofs() {
+                    if dofs.vertex_of(dof).1 != c {
+                        continue;
+                    }
+                    match dofs.unknown_index(dof) {
+                        Some(u) => d[self.offsets[k] + u] = 1.0,
+                        None => {
+                            admissible = false;
+                            break;
+                        }
+                    }
+                }
+                if !admissible {
+                    continue;
+                }
+                let rigid = inf(&system.stiffness_apply(&d)) <= 1e-9 * stiffness_scale;
+                let sliding = inf(&system.normal_rows().apply(&d)) <= 1e-9;
+                if rigid && sliding {
+                    let load: f64 = system.load().iter().zip(&d).map(|(f, x)| f * x).sum();
+                    axes.push((d, load));
+                }
+            }
+            let norm = axes.iter().map(|(_, f)| f * f).sum::<f64>().sqrt();
+            if norm == 0.0 {
+                continue;
+            }
+            let mut d = vec![0.0; n];
+            for (axis, f) in &axes {
+                for (di, a) in d.iter_mut().zip(axis) {
+                    *di += a * f / norm;
+                }
+            }
+            let slip = friction.tangential_rows().apply(&d);
+            let nodal: Vec<f64> = slip
+                .chunks(t)
+                .map(|s| s.iter().map(|x| x * x).sum::<f64>().sqrt())
+                .collect();
+            let scale = nodal.iter().fold(0.0f64, |m, &x| m.max(x));
+            if scale <= 1e-12 {
+                continue;
+            }
+            let load_along_mode = norm / scale;
+            let friction_capacity = friction
+                .bounds()
+                .iter()
+                .zip(&nodal)
+                .map(|(b, s)| b * s / scale)
+                .sum::<f64>();
+            if load_along_mode > friction_capacity * (1.0 + 1e-9) {
+                return Some((load_along_mode, friction_capacity));
+            }
+        }
+        None
+    }
+
     /// The fixed point of Tresca problems of the laws whose bounds depend on the state
     /// (Coulomb: `b_i = F lambda_N,i` from the previous solve) at the level `level`, with the
     /// friction on the slip since `reference`.
@@ -837,6 +913,35 @@ impl<const D: usize> ContactDiscretisation<D> {
         let mut history = Vec::with_capacity(settings.max_iterations());
         loop {
             let system = self.system_at(level, bounds.as_deref().map(Cow::Borrowed), reference);
+            if source.is_some() {
+                // Bounds from normal forces: the load along a rigid sliding mode must not exceed
+                // their capacity, or no equilibrium exists (whatever the solver would answer).
+                if let Some((load_along_mode, friction_capacity)) =
+                    self.sliding_beyond_capacity(&system)
+                {
+                    let (n, m) = (system.n_dofs(), system.n_constraints());
+                    let residuals = KktResiduals::evaluate(
+                        &system,
+                        &vec![0.0; n],
+                        &vec![0.0; m],
+                        &vec![0.0; system.n_tangential()],
+                    );
+                    return Err(ContactError::FrictionCapacityExceeded {
+                        load_along_mode,
+                        friction_capacity,
+                        step: steps + 1,
+                        report: Box::new(SolveReport {
+                            solver: solver.name(),
+                            status: SolveStatus::Unbounded,
+                            iterations,
+                            work,
+                            wall_time: Duration::ZERO,
+                            residuals,
+                            warnings: Vec::new(),
+                        }),
+                    });
+                }
+            }
             let forces = match solver.solve_forces(&system) {
                 Ok(forces) => forces,
                 Err(_) if !held => {

@@ -2,7 +2,8 @@
 //! Tresca's bound a disk `|lambda_T| <= g_F l_x`. Every solver of the registry against the
 //! interior point's second-order cones (the oracle) on problems with stick and slip zones, the
 //! independence of the tangent basis, a rigid block held sideways by Coulomb friction below
-//! its capacity and refused beyond it, and uniform sliding (`Q / P = F`).
+//! its capacity and refused beyond it (two elastic blocks too, Cattaneo-Mindlin's among them),
+//! and uniform sliding (`Q / P = F`).
 
 use std::sync::Arc;
 
@@ -569,5 +570,208 @@ fn cost_of_friction_in_space() {
                 total / elastic
             );
         }
+    }
+}
+
+/// Two deformable blocks `[-1, 1] x [0, 1] x (0, 1)` (upper) and its mirror image (lower,
+/// clamped at its bottom) with the gap `r^2 / 2` between them, the plane y = 0 held (a plane
+/// of symmetry); the upper block's top a rigid plate pushed down with `P` and sheared along x
+/// with `Q`, Coulomb friction: Cattaneo-Mindlin's setting, the upper block held sideways by
+/// friction alone.
+fn sheared_blocks(shear: f64) -> ContactProblem<3> {
+    let upper = ElasticBody::builder_polyhedral(
+        "upper",
+        cube([-1.0, 0.0, 0.0], [1.0, 1.0, 1.0], [8, 4, 4]),
+        material(),
+        element(),
+    )
+    .dirichlet(Dirichlet::fixed("front", Component::Y))
+    .dirichlet(Dirichlet::rigid_plate(
+        "top",
+        Component::Z,
+        Vector3::new(0.0, 0.0, -WEIGHT),
+    ))
+    .dirichlet(Dirichlet::rigid_plate(
+        "top",
+        Component::X,
+        Vector3::new(shear, 0.0, 0.0),
+    ))
+    .build()
+    .unwrap();
+    let lower = ElasticBody::builder_polyhedral(
+        "lower",
+        cube([-1.0, 0.0, -1.0], [1.0, 1.0, 0.0], [8, 4, 4]),
+        material(),
+        element(),
+    )
+    .dirichlet(Dirichlet::fixed("front", Component::Y))
+    .clamp("bottom")
+    .build()
+    .unwrap();
+    ContactProblem::two_bodies(
+        upper,
+        "bottom",
+        lower,
+        "top",
+        Coulomb::try_new(COEFFICIENT).unwrap(),
+    )
+    .with_imposed_gap(|x| 0.5 * (x.x * x.x + x.y * x.y))
+}
+
+/// Two elastic blocks, the upper held sideways by friction alone: refused beyond the capacity
+/// by the check of the rigid slide, whatever the solver would answer.
+#[test]
+fn two_blocks_sheared_beyond_their_capacity_are_refused_with_the_capacity() {
+    let capacity = COEFFICIENT * WEIGHT;
+    let held = sheared_blocks(0.5 * capacity)
+        .solve(&mut CondensedSolver::default())
+        .unwrap();
+    // Below the capacity the friction carries the shear.
+    let friction = held.friction_resultant();
+    assert!((friction.x + 0.5 * capacity).abs() < 1e-8, "{friction}");
+    let shear = 1.01 * capacity;
+    match sheared_blocks(shear).solve(&mut CondensedSolver::default()) {
+        Err(ContactError::FrictionCapacityExceeded {
+            load_along_mode,
+            friction_capacity,
+            ..
+        }) => {
+            println!("load along the mode {load_along_mode}, capacity {friction_capacity}");
+            // The mode is the upper block's translation along x: the load along it is Q.
+            assert!(
+                (load_along_mode - shear).abs() < 1e-6 * shear,
+                "{load_along_mode}"
+            );
+            // F times the normal forces of the held start: F P (measured to 7e-12).
+            assert!(
+                (friction_capacity - capacity).abs() < 1e-6 * capacity,
+                "{friction_capacity}"
+            );
+        }
+        other => panic!("expected a refusal for the capacity, got {other:?}"),
+    }
+}
+
+/// Coordinates from 0 to `length`: cells of size `h` up to `fine`, then growing by 1.3.
+fn graded(h: f64, fine: f64, length: f64) -> Vec<f64> {
+    let mut x = vec![0.0];
+    let mut step = h;
+    while *x.last().unwrap() < length - 1e-12 {
+        let last = *x.last().unwrap();
+        if last >= fine - 1e-12 {
+            step *= 1.3;
+        }
+        x.push((last + step).min(length));
+    }
+    let n = x.len();
+    if n > 2 && x[n - 1] - x[n - 2] < 0.5 * step {
+        x.remove(n - 2);
+    }
+    x
+}
+
+/// The lattice of hexahedra with its vertex `(i, j, k)` at `(xs[i], ys[j], zs[k])`.
+fn lattice(xs: &[f64], ys: &[f64], zs: &[f64]) -> PolyhedralMesh {
+    let (nx, ny, nz) = (xs.len() - 1, ys.len() - 1, zs.len() - 1);
+    let unit = hexahedra(&Cuboid::unit_cube(), nx, ny, nz).unwrap();
+    let index = |s: f64, m: usize| (s * m as f64).round() as usize;
+    let vertices = unit
+        .vertices()
+        .iter()
+        .map(|p| Point3::new(xs[index(p.x, nx)], ys[index(p.y, ny)], zs[index(p.z, nz)]))
+        .collect();
+    PolyhedralMesh::from_compact(
+        vertices,
+        unit.face_offsets().to_vec(),
+        unit.face_vertex_indices().to_vec(),
+        unit.cell_offsets().to_vec(),
+        unit.cell_face_indices().to_vec(),
+        unit.parts().to_vec(),
+    )
+    .unwrap()
+}
+
+/// Cattaneo-Mindlin's blocks of `cargo xtask hertz` (section in space) at the node spacing
+/// `h`: E = 100, nu = 0.3, the gap `r^2 / 2`, Hertz's contact radius 0.1 under `P`.
+fn mindlin_blocks(h: f64, ratio: f64) -> (ContactProblem<3>, f64) {
+    let e_star = 100.0 / (2.0 * (1.0 - 0.09));
+    let push = 4.0 * e_star * 0.1f64.powi(3) / 3.0;
+    let half = graded(h, 0.13, 1.0);
+    let xs: Vec<f64> = half
+        .iter()
+        .rev()
+        .map(|x| -x)
+        .chain(half.iter().skip(1).copied())
+        .collect();
+    let down: Vec<f64> = half.iter().rev().map(|z| -z).collect();
+    let material = Material::isotropic(100.0, 0.3).unwrap();
+    let shear = ratio * COEFFICIENT * push;
+    let upper =
+        ElasticBody::builder_polyhedral("upper", lattice(&xs, &half, &half), material, element())
+            .dirichlet(Dirichlet::fixed("front", Component::Y))
+            .dirichlet(Dirichlet::rigid_plate(
+                "top",
+                Component::Z,
+                Vector3::new(0.0, 0.0, -0.5 * push),
+            ))
+            .dirichlet(Dirichlet::rigid_plate(
+                "top",
+                Component::X,
+                Vector3::new(0.5 * shear, 0.0, 0.0),
+            ))
+            .build()
+            .unwrap();
+    let lower =
+        ElasticBody::builder_polyhedral("lower", lattice(&xs, &half, &down), material, element())
+            .dirichlet(Dirichlet::fixed("front", Component::Y))
+            .clamp("bottom")
+            .build()
+            .unwrap();
+    let problem = ContactProblem::two_bodies(
+        upper,
+        "bottom",
+        lower,
+        "top",
+        Coulomb::try_new(COEFFICIENT).unwrap(),
+    )
+    .with_imposed_gap(|x| 0.5 * (x.x * x.x + x.y * x.y));
+    (problem, 0.5 * shear)
+}
+
+/// Cattaneo-Mindlin's blocks (the quick size of `cargo xtask hertz`, coarser): held at
+/// `Q = 0.8 F P`, refused at `Q = 1.01 F P` with the figures of the slide.
+#[test]
+fn mindlin_blocks_beyond_their_capacity_are_refused_at_the_first_coulomb_step() {
+    // Below the capacity the shear is carried.
+    let (problem, half_shear) = mindlin_blocks(0.05, 0.8);
+    let result = problem.solve(&mut CondensedSolver::default()).unwrap();
+    let friction = result.friction_resultant();
+    assert!(
+        (friction.x + half_shear).abs() <= 1e-8 * half_shear,
+        "{friction}"
+    );
+    // Beyond it (Q = 1.01 F P) the refusal names the load along the upper block's slide and
+    // the capacity F P of the normal forces (half of each: the half model).
+    let (problem, half_shear) = mindlin_blocks(0.05, 1.01);
+    let half_capacity = half_shear / 1.01;
+    match problem.solve(&mut CondensedSolver::default()) {
+        Err(ContactError::FrictionCapacityExceeded {
+            load_along_mode,
+            friction_capacity,
+            step,
+            ..
+        }) => {
+            println!("load along the mode {load_along_mode}, capacity {friction_capacity}");
+            assert_eq!(step, 1);
+            assert!(
+                (load_along_mode - half_shear).abs() < 1e-9 * half_shear,
+                "{load_along_mode}"
+            );
+            assert!(
+                (friction_capacity - half_capacity).abs() < 1e-6 * half_capacity,
+                "{friction_capacity}"
+            );
+        }
+        other => panic!("expected a refusal for the capacity, got {other:?}"),
     }
 }

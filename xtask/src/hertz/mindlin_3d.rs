@@ -339,9 +339,9 @@ mod tests {
     use super::*;
 
     /// The quick variant: at h = a/4 the stick radius is within one node spacing of Mindlin's
-    /// at the three ratios and the load is carried to 1e-8; Q = 1.01 F P gets no answer. (It
-    /// should be refused with `FrictionCapacityExceeded`; today the condensed solver's hand-over
-    /// to the active set fails its KKT check instead: the only shortfall, reported.)
+    /// at the three ratios and the load is carried to 1e-8; Q = 1.01 F P gets no answer (refused
+    /// with `FrictionCapacityExceeded` by the capacity check of Coulomb's fixed point, as the
+    /// same blocks are in `crates/vem-contact/tests/friction_3d.rs`).
     #[test]
     fn the_quick_cattaneo_mindlin_in_space_finds_the_stick_disc() {
         let hertz = hertz().unwrap();
