@@ -3,8 +3,10 @@
 //! at the interface vertices), with contact the contact surface `interface.vtu` (the faces of
 //! each pair's body A on its contact part after the surface overlay, as polygons, with the
 //! columns of `contact.csv` at their vertices) and `contact.csv` (with z columns),
-//! `results.pvd` opening them all, `reactions.csv` and `summary.json`. Pictures are drawn in
-//! the plane only: a scene in space writes none, and its summary says so.
+//! `results.pvd` opening them all, `reactions.csv` and `summary.json`. With contact, the
+//! picture of each contact surface (`pressure.svg`: the consistent pressure seen along the
+//! pair's normal, and with `hertz` its radial profile against Hertz's); the deformed bodies
+//! are drawn in the plane only, and the summary says so.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -12,15 +14,15 @@ use std::time::Instant;
 
 use vem_contact::{InterfaceNode, NodeStatus, PairSummary};
 use vem_mesh::io::{
-    write_atomically, write_polyhedral_vtu, CellType, Cells, DataArray, PvdCollection,
-    UnstructuredGrid, VtkArray, VtuData, VtuEncoding,
+    write_atomically, write_polyhedral_vtu, write_svg_layers, CellType, Cells, DataArray,
+    PvdCollection, SvgLayer, SvgOptions, UnstructuredGrid, VtkArray, VtuData, VtuEncoding,
 };
 use vem_mesh::polyhedral::quality::CellQuality;
-use vem_mesh::Vector3;
+use vem_mesh::{Point3, Vector3};
 use vem_scene::SolvedBody;
 
 use crate::output::status_label;
-use crate::{CliError, Outcome};
+use crate::{plot, CliError, Outcome};
 
 /// The columns of `contact.csv` in space, in order.
 pub const CONTACT_COLUMNS_3D: &str =
@@ -32,8 +34,8 @@ pub const REACTION_COLUMNS: &str = "body,part,components,rigid_plate,force_x,for
 
 /// The note of a run in space about its pictures.
 pub const NO_PICTURES_IN_SPACE: &str =
-    "no pictures: deformed.svg is drawn for bodies in the plane only; open results.pvd in \
-     ParaView for the bodies in space";
+    "no picture of the deformed bodies: deformed.svg is drawn for bodies in the plane only; \
+     open results.pvd in ParaView for the bodies in space";
 
 impl Outcome {
     /// Writes the files of a scene in space into the existing folder `dir`.
@@ -78,6 +80,14 @@ impl Outcome {
             })
             .map_err(mesh_error(&path))?;
             written.push(path);
+            let (pictures, notes) =
+                self.pressure_pictures_3d(dir, &contact.nodes, &contact.model.pairs)?;
+            written.extend(pictures);
+            for note in notes {
+                if !self.summary.notes.contains(&note) {
+                    self.summary.notes.push(note);
+                }
+            }
         }
         let path = dir.join("results.pvd");
         collection.write(&path).map_err(mesh_error(&path))?;
@@ -338,4 +348,280 @@ fn write_reactions_csv(w: &mut dyn Write, summary: &vem_scene::RunSummary) -> st
         }
     }
     Ok(())
+}
+
+impl Outcome {
+    /// The pictures of the contact surfaces in space: per pair (`pressure.svg` for one pair,
+    /// `pressure-<k>.svg` for pair k of several) the consistent pressure as a colour map on
+    /// the faces of body A's contact part (the overlay cells, every vertex a node), seen along
+    /// the pair's mean normal, with a colour bar from 0 to the pair's largest consistent
+    /// pressure; with `hertz = {...}` the radial profile beside it ([`plot::radial_profile`]).
+    /// Above [`vem_mesh::io::VECTOR_CELL_LIMIT`] faces the map is an embedded PNG, so that the
+    /// file's size is bounded whatever the mesh. A pair whose surface cannot be drawn so (no
+    /// face all of whose vertices are nodes, or faces that overlap seen along the normal) has
+    /// no picture, and a note (returned) says why.
+    fn pressure_pictures_3d(
+        &self,
+        dir: &Path,
+        nodes: &[InterfaceNode<3>],
+        pairs: &[PairSummary],
+    ) -> Result<(Vec<PathBuf>, Vec<String>), CliError> {
+        let mut written = Vec::new();
+        let mut notes = Vec::new();
+        let width = self.output_width.unwrap_or(crate::output::DEFAULT_WIDTH);
+        for (k, pair) in pairs.iter().enumerate() {
+            let map = match self.pressure_map(nodes, pair, k) {
+                Ok(map) => map,
+                Err(reason) => {
+                    notes.push(format!("no pressure picture of contact pair {k}: {reason}"));
+                    continue;
+                }
+            };
+            let file = if pairs.len() == 1 {
+                "pressure.svg".to_string()
+            } else {
+                format!("pressure-{k}.svg")
+            };
+            let path = dir.join(file);
+            let fail = |reason: String| CliError::Plot {
+                path: path.clone(),
+                reason,
+            };
+            let hertz = self
+                .summary
+                .contact
+                .as_ref()
+                .and_then(|c| c.hertz.iter().find(|h| h.pair == k));
+            let centre = hertz
+                .filter(|h| h.centre.len() == 3)
+                .map_or(map.centre, |h| {
+                    Point3::new(h.centre[0], h.centre[1], h.centre[2])
+                });
+            let title = &self.summary.title;
+            let options = SvgOptions {
+                width: if hertz.is_some() { 0.55 * width } else { width },
+                title: Some(format!(
+                    "{title}: consistent contact pressure on '{}' of body '{}', seen along \
+                     ({}, {}, {})",
+                    map.part,
+                    map.body,
+                    rounded(map.view.x),
+                    rounded(map.view.y),
+                    rounded(map.view.z)
+                )),
+                parts: false,
+                axes: true,
+                length_unit: self.length_unit.clone(),
+                value_label: "consistent pressure".into(),
+                value_range: (map.largest > 0.0).then_some((0.0, map.largest)),
+                notes: vec![format!(
+                    "largest consistent pressure {}",
+                    vem_scene::short(map.largest)
+                )],
+                ..SvgOptions::default()
+            };
+            write_svg_layers(
+                &path,
+                &[SvgLayer::new(&map.mesh).with_cell_values(&map.values)],
+                &options,
+            )
+            .map_err(|source| CliError::Mesh {
+                context: path.display().to_string(),
+                source,
+            })?;
+            if let Some(hertz) = hertz {
+                let picture = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+                let (map_width, map_height) = svg_size(&picture)
+                    .ok_or_else(|| fail("the map has no width and height".into()))?;
+                let size = (
+                    (width - map_width).max(300.0).round() as u32,
+                    map_height.max(0.6 * (width - map_width)).round() as u32,
+                );
+                let view = map.view;
+                let radius_of = |n: &InterfaceNode<3>| {
+                    let d = n.position - centre;
+                    (d - d.dot(&view) * view).norm()
+                };
+                let range = pair.nodes.clone();
+                let profile =
+                    plot::radial_profile(title, &nodes[range], &radius_of, Some(hertz), size)
+                        .map_err(fail)?;
+                let document = side_by_side(&picture, map_width, map_height, &profile, size);
+                write_atomically(&path, |w| w.write_all(document.as_bytes())).map_err(
+                    |source| CliError::Mesh {
+                        context: path.display().to_string(),
+                        source,
+                    },
+                )?;
+            }
+            written.push(path);
+        }
+        Ok((written, notes))
+    }
+
+    /// The faces of body A's contact part of pair `k` all of whose vertices are nodes of the
+    /// pair, projected onto the plane of the pair (seen along its mean normal, turned so that
+    /// the axes are as close to the coordinate axes as they can be), each with the mean
+    /// consistent pressure of its vertices.
+    fn pressure_map(
+        &self,
+        nodes: &[InterfaceNode<3>],
+        pair: &PairSummary,
+        k: usize,
+    ) -> Result<PressureMap, String> {
+        let range = pair.nodes.clone();
+        let first = nodes.get(range.start).ok_or("the pair has no node")?;
+        let part = self.contact_parts.get(k).ok_or("no contact part")?;
+        let body = self
+            .contact_bodies
+            .get(first.body_a)
+            .and_then(|&i| self.bodies_3d.get(i))
+            .ok_or("body A of the pair was not solved")?;
+        let mesh = body.body.mesh();
+        let node_of: std::collections::HashMap<usize, usize> =
+            range.clone().map(|i| (nodes[i].vertex_a, i)).collect();
+        let normal: Vector3 = range
+            .clone()
+            .map(|i| nodes[i].tributary_measure * nodes[i].normal)
+            .sum();
+        let normal = normal
+            .try_normalize(0.0)
+            .ok_or("the nodal normals of the pair add up to zero")?;
+        // Seen along the coordinate axis closest to the normal, positive way.
+        let axis = (0..3)
+            .max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))
+            .unwrap_or(2);
+        let view = if normal[axis] < 0.0 { -normal } else { normal };
+        let first_axis = Vector3::ith((axis + 1) % 3, 1.0);
+        let u = (first_axis - first_axis.dot(&view) * view)
+            .try_normalize(0.0)
+            .ok_or("no plane to draw the pair in")?;
+        let w = view.cross(&u);
+        let mut local: std::collections::HashMap<usize, usize> = Default::default();
+        let mut vertices = Vec::new();
+        let mut polygons = Vec::new();
+        let mut values = Vec::new();
+        let mut largest = 0.0_f64;
+        let mut weighted = Vector3::zeros();
+        let mut weight = 0.0;
+        for i in range.clone() {
+            largest = largest.max(nodes[i].consistent_pressure);
+            weighted += nodes[i].normal_force.abs() * nodes[i].position.coords;
+            weight += nodes[i].normal_force.abs();
+        }
+        for &f in mesh.part_faces(part).unwrap_or_default() {
+            let Some(face) = mesh
+                .face(f)
+                .iter()
+                .map(|v| node_of.get(v).copied())
+                .collect::<Option<Vec<usize>>>()
+            else {
+                continue;
+            };
+            let mut polygon: Vec<usize> = face
+                .iter()
+                .map(|&i| {
+                    *local.entry(i).or_insert_with(|| {
+                        let p = nodes[i].position.coords;
+                        vertices.push(vem_mesh::Point::new(p.dot(&u), p.dot(&w)));
+                        vertices.len() - 1
+                    })
+                })
+                .collect();
+            let n = polygon.len();
+            let twice_area: f64 = (0..n)
+                .map(|j| {
+                    let (p, q) = (vertices[polygon[j]], vertices[polygon[(j + 1) % n]]);
+                    p.x * q.y - p.y * q.x
+                })
+                .sum();
+            if twice_area < 0.0 {
+                polygon.reverse();
+            }
+            values.push(
+                face.iter()
+                    .map(|&i| nodes[i].consistent_pressure)
+                    .sum::<f64>()
+                    / n as f64,
+            );
+            polygons.push(polygon);
+        }
+        if polygons.is_empty() {
+            return Err(format!(
+                "no face of part '{part}' has all its vertices in contact nodes"
+            ));
+        }
+        let mesh = vem_mesh::Mesh::from_polygons(vertices, &polygons, Vec::new()).map_err(|e| {
+            format!("its faces seen along the normal do not make a mesh in the plane ({e})")
+        })?;
+        let centre = if weight > 0.0 {
+            Point3::from(weighted / weight)
+        } else {
+            first.position
+        };
+        Ok(PressureMap {
+            mesh,
+            values,
+            largest,
+            view,
+            centre,
+            body: body.body.name().to_string(),
+            part: part.clone(),
+        })
+    }
+}
+
+/// A contact surface in the plane of its pair, with a pressure per face.
+struct PressureMap {
+    mesh: vem_mesh::Mesh,
+    values: Vec<f64>,
+    /// The pair's largest consistent pressure.
+    largest: f64,
+    /// The direction it is seen along (unit).
+    view: Vector3,
+    /// The force-weighted centre of the pair's nodes.
+    centre: Point3,
+    body: String,
+    part: String,
+}
+
+/// A component of a unit vector to three decimals, without a sign on zero.
+fn rounded(value: f64) -> String {
+    vem_scene::short((value * 1000.0).round() / 1000.0 + 0.0)
+}
+
+/// The `width` and `height` attributes of an SVG document's root element.
+fn svg_size(document: &str) -> Option<(f64, f64)> {
+    let start = document.find("<svg")?;
+    let tag = &document[start..start + document[start..].find('>')?];
+    let attribute = |name: &str| -> Option<f64> {
+        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        tag[at..at + tag[at..].find('"')?].parse().ok()
+    };
+    Some((attribute("width")?, attribute("height")?))
+}
+
+/// One SVG document with `left` (of `left_width` x `left_height` pixels) and `right` (of
+/// `size`) beside it, each kept as a nested `<svg>` element.
+fn side_by_side(
+    left: &str,
+    left_width: f64,
+    left_height: f64,
+    right: &str,
+    size: (u32, u32),
+) -> String {
+    let body = |document: &str| -> String {
+        let start = document.find("<svg").unwrap_or(0);
+        document[start..].trim_end().to_string()
+    };
+    let right = body(right).replacen("<svg", &format!("<svg x=\"{left_width:.0}\""), 1);
+    let width = left_width + size.0 as f64;
+    let height = left_height.max(size.1 as f64);
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" \
+         xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"{width:.0}\" \
+         height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\">\n<rect width=\"100%\" \
+         height=\"100%\" fill=\"white\"/>\n{}\n{right}\n</svg>\n",
+        body(left)
+    )
 }

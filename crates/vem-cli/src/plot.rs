@@ -495,3 +495,107 @@ pub(crate) fn history(
         Ok(())
     })
 }
+
+/// The radial profile of a contact surface in space, as an SVG document of `width` x
+/// `height` pixels: the consistent pressure of every node against its distance `r` from the
+/// centre of the contact zone in the plane of the pair (dots), and with `hertz` Hertz's
+/// `p0 sqrt(1 - r^2/a^2)` for the same load (line). `radius_of` gives a node's `r`.
+pub(crate) fn radial_profile(
+    title: &str,
+    nodes: &[InterfaceNode<3>],
+    radius_of: &dyn Fn(&InterfaceNode<3>) -> f64,
+    hertz: Option<&HertzComparison>,
+    (width, height): (u32, u32),
+) -> Result<String, String> {
+    let points: Curve = nodes
+        .iter()
+        .map(|n| (radius_of(n), n.consistent_pressure))
+        .collect();
+    let hertz_curve: Curve = hertz
+        .filter(|h| h.half_width > 0.0)
+        .map(|h| {
+            (0..=200)
+                .map(|k| {
+                    let s = k as f64 / 200.0;
+                    (
+                        s * h.half_width,
+                        h.peak_pressure * (1.0 - s * s).max(0.0).sqrt(),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    // Out to twice the contact radius (Hertz's or that of the nodes in contact), or over
+    // every node when nothing touches.
+    let reach = hertz
+        .map(|h| h.half_width.max(h.computed_half_width))
+        .filter(|&a| a > 0.0)
+        .map_or_else(
+            || points.iter().map(|p| p.0).fold(0.0, f64::max),
+            |a| 2.0 * a,
+        );
+    let reach = if reach > 0.0 { reach } else { 1.0 };
+    let in_view: Curve = points.into_iter().filter(|p| p.0 <= reach).collect();
+    let top = in_view
+        .iter()
+        .chain(&hertz_curve)
+        .map(|p| p.1)
+        .fold(0.0, f64::max);
+    let top = if top > 0.0 { top } else { 1.0 };
+    let hertz_label = hertz.map_or_else(String::new, |h| {
+        let four = |v: f64| vem_scene::short(format!("{v:.3e}").parse().unwrap_or(v));
+        format!(
+            "Hertz: p0 sqrt(1 - r^2 / a^2), p0 = {}, a = {}",
+            four(h.peak_pressure),
+            four(h.half_width)
+        )
+    });
+    let mut document = String::new();
+    {
+        let root = SVGBackend::with_string(&mut document, (width, height)).into_drawing_area();
+        let draw = || -> DrawResult {
+            root.fill(&WHITE)?;
+            let area = titled(&root, &format!("{title}: pressure against r"))?;
+            let mut chart = ChartBuilder::on(&area)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..reach * 1.02, 0.0..top * (1.0 + LEGEND_ROOM))?;
+            chart
+                .configure_mesh()
+                .x_desc("r (distance from the centre of the contact zone, in its plane)")
+                .y_desc("contact pressure")
+                .light_line_style(WHITE.mix(0.0))
+                .draw()?;
+            chart
+                .draw_series(
+                    in_view
+                        .iter()
+                        .map(|&p| Circle::new(p, 2, PRESSURE.mix(0.6).filled())),
+                )?
+                .label("consistent pressure at the nodes")
+                .legend(|(x, y)| Circle::new((x + 10, y), 2, PRESSURE.mix(0.6).filled()));
+            if !hertz_curve.is_empty() {
+                chart
+                    .draw_series(LineSeries::new(
+                        hertz_curve.iter().copied(),
+                        HERTZ.stroke_width(2),
+                    ))?
+                    .label(hertz_label.as_str())
+                    .legend(|(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], HERTZ.stroke_width(2))
+                    });
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()?;
+            root.present()?;
+            Ok(())
+        };
+        draw().map_err(|e| e.to_string())?;
+    }
+    Ok(document)
+}

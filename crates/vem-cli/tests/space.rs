@@ -133,6 +133,7 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
             "lower.vtu",
             "interface.vtu",
             "contact.csv",
+            "pressure.svg",
             "results.pvd",
             "reactions.csv",
             "summary.json"
@@ -159,6 +160,17 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
         force += value("normal_force");
     }
     assert!((force / sigma - 1.0).abs() < 1e-10, "{force}");
+    // pressure.svg: the contact surface seen along its normal, its colour bar from 0 to the
+    // largest consistent pressure of contact.csv, one polygon per overlay cell.
+    let largest = rows
+        .iter()
+        .map(|row| row[at("consistent_pressure")].parse::<f64>().unwrap())
+        .fold(0.0, f64::max);
+    let picture = std::fs::read_to_string(dir.join("pressure.svg")).unwrap();
+    let (lo, hi) = colour_bar_range(&picture);
+    assert_eq!(lo, 0.0);
+    assert!((hi / largest - 1.0).abs() < 1e-12, "{hi} vs {largest}");
+    assert!(picture.contains("seen along (0, 0, 1)"), "{picture}");
     // The contact surface: the overlay cells as polygons whose vertices are the nodes, with
     // the columns of contact.csv as point data; the bodies carry the contact pressure.
     let vtu = std::fs::read(dir.join("interface.vtu")).unwrap();
@@ -195,6 +207,45 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
     assert!(
         text.contains("contact: body 'upper' part 'bottom' against body 'lower' part 'top'"),
         "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_file(&path).unwrap();
+}
+
+/// The range `data-min`, `data-max` of the colour bar of an SVG picture.
+fn colour_bar_range(picture: &str) -> (f64, f64) {
+    let bar = &picture[picture.find("class=\"colour-bar\"").expect("a colour bar")..];
+    let value = |name: &str| -> f64 {
+        let at = bar.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+        bar[at..at + bar[at..].find('"').unwrap()].parse().unwrap()
+    };
+    (value("data-min"), value("data-max"))
+}
+
+#[test]
+fn the_pressure_picture_in_space_has_the_radial_profile_with_hertz() {
+    // The stacked blocks with a Hertz comparison asked for (R = 1): the map and the radial
+    // profile beside it, the colour bar up to the largest consistent pressure.
+    let dir = std::env::temp_dir().join(format!("vem-cli-space-profile-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let path = dir.with_extension("toml");
+    std::fs::write(&path, format!("{STACKED}hertz = {{ radius = 1.0 }}\n")).unwrap();
+    let (outcome, _) = vem_cli::run(&path, Some(&dir)).unwrap();
+    let picture = std::fs::read_to_string(dir.join("pressure.svg")).unwrap();
+    let contact = outcome.contact_3d.as_ref().unwrap();
+    let largest = contact
+        .nodes
+        .iter()
+        .map(|n| n.consistent_pressure)
+        .fold(0.0, f64::max);
+    let (_, hi) = colour_bar_range(&picture);
+    assert!((hi / largest - 1.0).abs() < 1e-12, "{hi} vs {largest}");
+    // Three SVG elements: the document, the map and the profile, beside each other.
+    assert_eq!(picture.matches("<svg").count(), 3, "{picture}");
+    assert!(picture.contains("pressure against"), "{picture}");
+    assert!(
+        picture.contains("Hertz: p0 sqrt(1 - r^2 / a^2)"),
+        "{picture}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
     std::fs::remove_file(&path).unwrap();

@@ -1263,16 +1263,30 @@ fn load_time(_scene: &Scene) -> f64 {
     1.0
 }
 
-/// Checks that `part` names a boundary part of `body` (in the plane or in space); the error
-/// lists the parts.
+/// Checks that `part` names a boundary part of `body` (in the plane or in space) with at least
+/// one vertex; the error lists the parts, or names the mesh of an empty part (a physical group
+/// of a mesh file without elements).
 fn check_body_part<const D: usize>(
-    body: &ElasticBody<D>,
+    model_body: &ModelBody<D>,
     part: &str,
     path: &KeyPath,
 ) -> Result<(), SceneError> {
+    let body = &model_body.body;
     let mesh = body.mesh_arc();
     let names = mesh.part_names();
     if names.iter().any(|n| n == part) {
+        if mesh.part_vertices(part).is_ok_and(|v| v.is_empty()) {
+            return Err(SceneError::at(
+                path.clone(),
+                format!(
+                    "body '{}': part '{part}' of its mesh ({}) is empty: a physical group \
+                     without elements; give the group elements in the mesh, or name another \
+                     part",
+                    body.name(),
+                    model_body.mesh_source
+                ),
+            ));
+        }
         return Ok(());
     }
     Err(SceneError::at(
@@ -1351,7 +1365,7 @@ where
 {
     let a = body_index(scene, &spec.body, &path.at("body"))?;
     let body_a = &bodies[a].body;
-    check_body_part(body_a, &spec.part, &path.at("part"))?;
+    check_body_part(&bodies[a], &spec.part, &path.at("part"))?;
     let law_choice = spec
         .law
         .clone()
@@ -1371,7 +1385,7 @@ where
             (Some(other), Some(other_part), _) => {
                 let b = body_index(scene, other, &path.at("other_body"))?;
                 let body_b = &bodies[b].body;
-                check_body_part(body_b, other_part, &path.at("other_part"))?;
+                check_body_part(&bodies[b], other_part, &path.at("other_part"))?;
                 let description = format!(
                     "body '{}' part '{}' against body '{}' part '{other_part}'",
                     body_a.name(),

@@ -249,6 +249,29 @@ fn check_part(
     ))
 }
 
+/// As [`check_part`], and the part must have a face: an empty part (a physical surface group
+/// of the mesh file `source` without elements) is named with its mesh.
+fn check_faces(
+    mesh: &PolyhedralMesh,
+    body: &str,
+    source: &str,
+    part: &str,
+    path: &KeyPath,
+) -> Result<(), SceneError> {
+    check_part(mesh, body, part, path)?;
+    if mesh.part_faces(part).is_ok_and(<[usize]>::is_empty) {
+        return Err(SceneError::at(
+            path.clone(),
+            format!(
+                "body '{body}': part '{part}' of its mesh ({source}) is empty: a physical \
+                 surface group without elements; give the group elements in the mesh, or name \
+                 another part"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The material of a body in space: `E` and `nu`, or `lambda` and `mu` (checked by `check`).
 fn material(spec: &BodyDescription, path: &KeyPath) -> Result<Material, SceneError> {
     let m = spec.material;
@@ -291,17 +314,19 @@ pub(crate) fn build_body(
         .into_iter()
         .collect();
     for (k, d) in spec.dirichlet.iter().enumerate() {
-        check_part(
+        check_faces(
             &mesh,
             &name,
+            &source,
             &d.part,
             &path.at("dirichlet").index(k).at("part"),
         )?;
     }
     for (k, r) in spec.rigid_plate.iter().enumerate() {
-        check_part(
+        check_faces(
             &mesh,
             &name,
+            &source,
             &r.part,
             &path.at("rigid_plate").index(k).at("part"),
         )?;
@@ -309,7 +334,7 @@ pub(crate) fn build_body(
     let mut pressures = Vec::new();
     for (k, t) in spec.traction.iter().enumerate() {
         let at = path.at("traction").index(k);
-        check_part(&mesh, &name, &t.part, &at.at("part"))?;
+        check_faces(&mesh, &name, &source, &t.part, &at.at("part"))?;
         if let Some(p) = t.pressure {
             pressures.push(-p * planar_normal(&mesh, &name, &t.part, &at.at("pressure"))?);
         }

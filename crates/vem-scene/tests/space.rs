@@ -525,3 +525,57 @@ dirichlet = [{sides}]
         "rates {rates:?} from {errors:?}"
     );
 }
+
+#[test]
+fn an_empty_physical_surface_is_named_with_its_body_and_mesh_file() {
+    // The corpus box with one more physical surface group, "rim", that has no element.
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../vem-mesh/tests/data/gmsh-corpus-3d/box_tetrahedra_41.msh");
+    let text = std::fs::read_to_string(source).unwrap();
+    let text = text.replacen(
+        "$PhysicalNames\n7\n",
+        "$PhysicalNames\n8\n2 17 \"rim\"\n",
+        1,
+    );
+    assert!(text.contains("\"rim\""));
+    let file = Path::new(env!("CARGO_TARGET_TMPDIR")).join("box_with_an_empty_group.msh");
+    std::fs::write(&file, text).unwrap();
+    let mesh = format!("{{ file = {:?} }}", file.display().to_string());
+    let good = block(&mesh, "");
+    // A boundary condition on it, and a contact part.
+    let cases = [
+        (
+            good.replace("part = \"bottom\"", "part = \"rim\""),
+            "body[0].dirichlet[2].part",
+        ),
+        (
+            format!(
+                "{good}\n[[contact]]\nbody = \"block\"\npart = \"rim\"\nobstacle = {{ plane = \
+                 {{ point = [0, 0, 0], normal = [0, 0, 1] }} }}\n"
+            ),
+            "contact[0].part",
+        ),
+    ];
+    for (text, key) in cases {
+        let error = error_of(&text);
+        let message = error.to_string();
+        assert!(message.contains(key), "{message}");
+        assert!(
+            message.contains("body 'block': part 'rim'")
+                && message.contains("is empty")
+                && message.contains("box_with_an_empty_group.msh"),
+            "{message}"
+        );
+    }
+    // A part cut by a box that selects no face names the body, the part and its box.
+    let boxed = good.replace(
+        "mesh = {",
+        "mesh = { parts = [{ name = \"corner\", of = \"top\", box = [[5, 5, 5], [6, 6, 6]] }], ",
+    );
+    let message = error_of(&boxed).to_string();
+    assert!(
+        message.contains("body 'block': part 'corner' has no boundary face of part 'top'"),
+        "{message}"
+    );
+    assert!(message.contains("body[0].mesh.parts[0].box"), "{message}");
+}

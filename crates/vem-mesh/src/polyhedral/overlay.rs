@@ -44,8 +44,22 @@
 //!    vertices and of the crossings onto a; on side b the vertices of b and the projections of
 //!    a's. Each contact face is replaced by its cells and, where the other part does not cover
 //!    it, by the rest of it (the face's boundary minus the cells' boundaries, traced as loops;
-//!    it must be one or more simple polygons, not a face with a hole). Every inserted point on
-//!    an edge goes into all faces around that edge, in order along it.
+//!    it must be one or more simple polygons, not a face with a hole; pieces that touch at a
+//!    vertex are traced as separate faces). Every inserted point on an edge goes into all
+//!    faces around that edge, in order along it.
+//!
+//! # Parts that cover each other partly
+//!
+//! Either part may reach beyond the other (a zone larger than the cap facing it), and
+//! `max_distance` may leave part of both unpaired: a vertex whose projection misses the other
+//! part or lies farther than `max_distance` is no node, so the cells stop at the other part's
+//! outline or where the gap passes `max_distance`, and the rest of each face stays as it was.
+//! Parts cut out of a surface by a box have jagged outlines: two faces of one part may meet at
+//! a corner only, so the rest of a face of the other part may be two pieces touching at that
+//! corner, each its own face. What is refused is a part's face that the other part covers
+//! only inside (the other part's outline wholly within one face: the rest would have a hole);
+//! the error names the face and the part, and a finer mesh of that part, or a larger part of
+//! the other side, cures it.
 //!
 //! # Pairs
 //!
@@ -73,7 +87,9 @@
 //! On a curved interface the projections along the normals of neighbouring faces of one part
 //! leave thin seams and overlaps near the edges between them: a projected point that falls
 //! outside every face by less than [`SEAM_FRACTION`] of the nearest edge, nearest to an edge or
-//! vertex inside the part (not on its rim), is placed on that edge or vertex. The overlay is
+//! vertex inside the part (not on its rim), is placed on that edge or vertex. The face the
+//! point misses least decides: a point beyond the part's rim, nearest to a rim edge, is not
+//! placed, even when another face it misses by more has an inner edge within reach. The overlay is
 //! then consistent to within the faces' deviation from the surface (h^2 times the curvature).
 //!
 //! ```
@@ -290,7 +306,7 @@ pub fn insert_surface_overlay(
     for &v in &a_vertices {
         let origin = mesh_a.vertex(v);
         let direction = side_a.vertex_normal(v);
-        let mut best: Option<(Rank, Located)> = None;
+        let mut best: Option<(Rank, Option<Located>)> = None;
         for &ib in &candidates_of_a[&v] {
             let chart = &side_b.charts[ib];
             let denominator = direction.dot(&chart.normal);
@@ -305,7 +321,7 @@ pub fn insert_surface_overlay(
             let place = side_b.locate(ib, hit, snap, &|_| true);
             consider(&mut best, place, gap, ib, hit, &side_b);
         }
-        if let Some((_, located)) = best {
+        if let Some((_, Some(located))) = best {
             loc_of_a.insert(v, located);
         }
     }
@@ -342,7 +358,7 @@ pub fn insert_surface_overlay(
             continue;
         }
         let point = mesh_b.vertex(w);
-        let mut best: Option<(Rank, Located)> = None;
+        let mut best: Option<(Rank, Option<Located>)> = None;
         for &ia in &candidates_of_b[&w] {
             let chart = &side_a.charts[ia];
             let gap = (point - chart.centroid).dot(&chart.normal);
@@ -354,7 +370,7 @@ pub fn insert_surface_overlay(
             let place = side_a.locate(ia, foot, snap, &allowed);
             consider(&mut best, place, gap, ia, foot, &side_a);
         }
-        if let Some((_, located)) = best {
+        if let Some((_, Some(located))) = best {
             loc_of_b.insert(w, located);
         }
     }
@@ -640,13 +656,18 @@ enum Placement {
 }
 
 /// Ranking of candidate placements of one projection: placements on a face first (nearest
-/// along the normal), then seam placements (nearest to the face); ties by chart index.
+/// along the normal), then placements outside every face (nearest to the face first); ties by
+/// chart index.
 type Rank = (u8, f64, usize);
 
 /// Keeps the better of `best` and the placement `place` of a projection at distance `gap`
-/// into chart `chart` of `side` (the point `point` when inside the face).
+/// into chart `chart` of `side` (the point `point` when inside the face). A projection that
+/// misses every face is placed by the face it misses least: on that face's nearest edge or
+/// vertex when this is a seam within [`SEAM_FRACTION`] of it, and nowhere (`None`) when it is
+/// on the part's rim or farther: a point beyond the rim is not rescued onto an inner seam by a
+/// face it misses by more.
 fn consider(
-    best: &mut Option<(Rank, Located)>,
+    best: &mut Option<(Rank, Option<Located>)>,
     place: Placement,
     gap: f64,
     chart: usize,
@@ -654,20 +675,21 @@ fn consider(
     side: &Side,
 ) {
     let (rank, place) = match place {
-        Placement::On(place) => ((0, gap.abs(), chart), place),
+        Placement::On(place) => ((0, gap.abs(), chart), Some(place)),
         Placement::Outside { distance, nearest } => {
-            if !side.is_seam(nearest) || distance > SEAM_FRACTION * side.scale_at(nearest) {
-                return;
-            }
-            ((1, distance, chart), nearest)
+            let seam = side.is_seam(nearest) && distance <= SEAM_FRACTION * side.scale_at(nearest);
+            ((1, distance, chart), seam.then_some(nearest))
         }
     };
     if best.as_ref().is_none_or(|(r, _)| rank < *r) {
-        let point = match place {
-            Loc::Face(_) => point,
-            _ => side.point_at(place),
-        };
-        *best = Some((rank, Located { place, point }));
+        let located = place.map(|place| Located {
+            place,
+            point: match place {
+                Loc::Face(_) => point,
+                _ => side.point_at(place),
+            },
+        });
+        *best = Some((rank, located));
     }
 }
 
@@ -1281,14 +1303,15 @@ fn rebuild(
             Some(cells) => {
                 let cells: Vec<Vec<usize>> = cells.iter().map(|c| densify_cell(f, c)).collect();
                 let normal = mesh.face_normal(f);
-                let rest = remainder(&boundary, &cells)
+                let rest = remainder(&boundary, &cells, &|v| vertices[v], normal)
                     .map_err(|reason| fail(format!("face {f} of '{part}': {reason}")))?;
                 for loop_ in &rest {
                     let points: Vec<Point3> = loop_.iter().map(|&v| vertices[v]).collect();
                     if geometry::face_vector_area(&points).dot(&normal) <= 0.0 {
                         return Err(fail(format!(
                             "face {f} of '{part}': the other part covers an inner region of it \
-                             only (the rest would be a face with a hole)"
+                             only (the rest would be a face with a hole): refine the mesh of \
+                             '{part}' there, or make the other part reach beyond this face"
                         )));
                     }
                 }
@@ -1359,8 +1382,17 @@ fn rebuild(
 }
 
 /// The rest of a face: its boundary loop minus the boundaries of its cells (directed edges
-/// that cancel are dropped), traced as loops. Errors when cells overlap or the rest pinches.
-fn remainder(boundary: &[usize], cells: &[Vec<usize>]) -> Result<Vec<Vec<usize>>, String> {
+/// that cancel are dropped), traced as loops with the rest on their left (seen along
+/// `normal`). Where pieces of the rest touch at a vertex (the other part's outline passes
+/// through a vertex, as where two faces of a box-cut part meet at a corner only), the trace
+/// leaves the vertex by the first edge clockwise from the one it came in by, so that each
+/// piece is its own simple loop. Errors when cells overlap.
+fn remainder(
+    boundary: &[usize],
+    cells: &[Vec<usize>],
+    point: &dyn Fn(usize) -> Point3,
+    normal: Vector3,
+) -> Result<Vec<Vec<usize>>, String> {
     let mut net: BTreeMap<(usize, usize), i32> = BTreeMap::new();
     let mut add = |loop_: &[usize], sign: i32| {
         let n = loop_.len();
@@ -1374,7 +1406,7 @@ fn remainder(boundary: &[usize], cells: &[Vec<usize>]) -> Result<Vec<Vec<usize>>
     for cell in cells {
         add(cell, -1);
     }
-    let mut next: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut next: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (&(x, y), &value) in &net {
         let (from, to) = match value {
             0 => continue,
@@ -1387,21 +1419,57 @@ fn remainder(boundary: &[usize], cells: &[Vec<usize>]) -> Result<Vec<Vec<usize>>
                 ))
             }
         };
-        if next.insert(from, to).is_some() {
-            return Err(format!(
-                "the uncovered rest of the face pinches at vertex {from}"
-            ));
-        }
+        next.entry(from).or_default().push(to);
     }
+    // Chart of the face's plane for the choice at a vertex where pieces touch.
+    let u = {
+        let e = if normal.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        unit(e - e.dot(&normal) * normal)
+    };
+    let w = normal.cross(&u);
+    let angle = |from: usize, to: usize| {
+        let d = point(to) - point(from);
+        d.dot(&w).atan2(d.dot(&u))
+    };
+    let take = |next: &mut BTreeMap<usize, Vec<usize>>,
+                from: usize,
+                came: Option<usize>|
+     -> Option<usize> {
+        let list = next.get_mut(&from)?;
+        let k = match (came, list.len()) {
+            (_, 0) => return None,
+            (None, _) | (_, 1) => 0,
+            (Some(prev), _) => {
+                // The first outgoing edge clockwise from the direction back to `prev`.
+                let back = angle(from, prev);
+                let turn = |to: usize| (back - angle(from, to)).rem_euclid(std::f64::consts::TAU);
+                (0..list.len())
+                    .min_by(|&i, &j| turn(list[i]).total_cmp(&turn(list[j])))
+                    .expect("a non-empty list")
+            }
+        };
+        let to = list.swap_remove(k);
+        if list.is_empty() {
+            next.remove(&from);
+        }
+        Some(to)
+    };
     let mut loops = Vec::new();
-    while let Some((&start, _)) = next.iter().next() {
+    while let Some(start) = next.keys().next().copied() {
         let mut loop_ = vec![start];
-        let mut at = next.remove(&start).expect("present");
+        let mut previous = start;
+        let mut at = take(&mut next, start, None).expect("an outgoing edge");
         while at != start {
             loop_.push(at);
-            at = next.remove(&at).ok_or_else(|| {
+            let to = take(&mut next, at, Some(previous)).ok_or_else(|| {
                 format!("the cells' boundaries leave an open chain at vertex {at}")
             })?;
+            previous = at;
+            at = to;
         }
         if loop_.len() < 3 {
             return Err(format!(
