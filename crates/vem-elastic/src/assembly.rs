@@ -27,12 +27,17 @@
 //! the change of unknowns `u = T v`: symmetric, positive semi-definite like `K`. Its pattern
 //! is built once with the blocks; its values are refilled after each assembly.
 //!
-//! Element matrices are computed in parallel, a chunk of polygons at a time (bounded memory),
-//! and scattered in parallel by disjoint blocks of columns, each entry found by binary search
-//! in its column. Polygons are visited along a Morton curve of their vertex means, which keeps
-//! the scatter in cache on meshes with a random numbering (Voronoi): measured 2-3x faster
-//! there. Every entry is summed in the same order whatever the number of threads, so the
-//! values are reproducible bit for bit.
+//! The pattern is built in passes over compressed arrays, in parallel over blocks of vertices:
+//! the vertex adjacency from the cell-vertex incidence (count, fill, sort and deduplicate per
+//! row), then the three blocks, whose columns of one vertex with one status share their rows
+//! (written once, copied). Element matrices are computed in parallel, a chunk of cells at a
+//! time (about 2 MiB of matrices: bounded memory, still in cache for their scatter), and
+//! scattered in parallel by disjoint blocks of columns; an element's rows are located in the
+//! columns of one of its vertices by one merge along the column's sorted rows, and the
+//! offsets serve the vertex's other columns. Cells are visited along a Morton curve of their
+//! vertex means, which keeps the scatter in cache on meshes with a random numbering (Voronoi):
+//! measured 2-3x faster there. Every entry is summed in the same order whatever the number of
+//! threads, so the values are reproducible bit for bit.
 
 use std::ops::Range;
 
