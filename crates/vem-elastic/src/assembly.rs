@@ -27,12 +27,17 @@
 //! the change of unknowns `u = T v`: symmetric, positive semi-definite like `K`. Its pattern
 //! is built once with the blocks; its values are refilled after each assembly.
 //!
-//! Element matrices are computed in parallel, a chunk of polygons at a time (bounded memory),
-//! and scattered in parallel by disjoint blocks of columns, each entry found by binary search
-//! in its column. Polygons are visited along a Morton curve of their vertex means, which keeps
-//! the scatter in cache on meshes with a random numbering (Voronoi): measured 2-3x faster
-//! there. Every entry is summed in the same order whatever the number of threads, so the
-//! values are reproducible bit for bit.
+//! The pattern is built in passes over compressed arrays, in parallel over blocks of vertices:
+//! the vertex adjacency from the cell-vertex incidence (count, fill, sort and deduplicate per
+//! row), then the three blocks, whose columns of one vertex with one status share their rows
+//! (written once, copied). Element matrices are computed in parallel, a chunk of cells at a
+//! time (about 2 MiB of matrices: bounded memory, still in cache for their scatter), and
+//! scattered in parallel by disjoint blocks of columns; an element's rows are located in the
+//! columns of one of its vertices by one merge along the column's sorted rows, and the
+//! offsets serve the vertex's other columns. Cells are visited along a Morton curve of their
+//! vertex means, which keeps the scatter in cache on meshes with a random numbering (Voronoi):
+//! measured 2-3x faster there. Every entry is summed in the same order whatever the number of
+//! threads, so the values are reproducible bit for bit.
 
 use std::ops::Range;
 
@@ -45,9 +50,10 @@ use vem_mesh::VectorD;
 
 use crate::{DofMap, DofStatus, ElasticError};
 
-/// Number of elements whose matrices are computed together before they are scattered: bounds
-/// the memory held in element matrices independently of the mesh size.
-const CHUNK: usize = 8192;
+/// Bytes of element matrices computed together before they are scattered: bounds the memory
+/// held in element matrices independently of the mesh size, and keeps them in cache between
+/// their computation and their scatter.
+const CHUNK_BYTES: usize = 2 << 20;
 
 /// The stiffness, load and Dirichlet lifting of one body, ready for a linear solver.
 ///
@@ -70,6 +76,9 @@ pub struct AssembledSystem {
     /// vertex means, so that consecutive elements share vertices and the scatter stays in cache
     /// whatever the mesh's numbering.
     element_order: Vec<usize>,
+    /// The number of elements whose matrices are computed together before they are scattered
+    /// (about [`CHUNK_BYTES`] of matrices).
+    chunk: usize,
 }
 
 /// What one element contributes: its global degrees of freedom, matrix and load vector.
@@ -88,7 +97,7 @@ impl AssembledSystem {
     ) -> Self {
         // The adjacency is dropped before the values are allocated: it never lives beside a
         // whole copy of `K`.
-        let (ff, fp, pp) = block_patterns(&vertex_adjacency(mesh), &dofs);
+        let (ff, fp, pp) = block_patterns(&VertexAdjacency::new(mesh), &dofs);
         let bordered = (dofs.n_plates() > 0).then(|| bordered_pattern(&ff, &fp, &dofs));
         let zeros = |p: SymbolicSparseColMat<usize>| {
             let nnz = p.row_idx().len();
@@ -102,6 +111,7 @@ impl AssembledSystem {
             rhs: vec![0.0; dofs.n_unknowns()],
             bordered: bordered.map(zeros),
             element_order: morton_order(mesh),
+            chunk: chunk_len(mesh, dofs.components()),
             dofs,
             stiffness: zeros(ff),
             coupling: zeros(fp),
@@ -132,6 +142,7 @@ impl AssembledSystem {
         F: Fn(usize) -> Result<ElementContribution, ElasticError> + Sync,
     {
         let dofs = &self.dofs;
+        let d = dofs.components();
         let mut blocks = column_blocks(
             dofs,
             &mut self.stiffness,
@@ -140,19 +151,20 @@ impl AssembledSystem {
             &mut self.load,
             rayon::current_num_threads(),
         );
-        for chunk in self.element_order.chunks(CHUNK) {
-            // Each contribution with the status of its degrees of freedom.
-            let contributions: Vec<(Vec<DofStatus>, ElementContribution)> = chunk
+        let statuses = dofs.statuses();
+        for chunk in self.element_order.chunks(self.chunk) {
+            // Each contribution with its rows, found here in parallel once rather than by
+            // every column block it touches.
+            let contributions: Vec<(ElementRows, ElementContribution)> = chunk
                 .par_iter()
                 .map(|&p| {
                     let contribution = element(p)?;
-                    let statuses = contribution.dofs.iter().map(|&g| dofs.status(g)).collect();
-                    Ok((statuses, contribution))
+                    Ok((ElementRows::new(&contribution.dofs, statuses), contribution))
                 })
                 .collect::<Result<_, ElasticError>>()?;
             blocks
                 .par_iter_mut()
-                .for_each(|block| block.scatter(&contributions));
+                .for_each(|block| block.scatter(statuses, d, &contributions));
         }
         Ok(())
     }
@@ -427,6 +439,7 @@ fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
     const BITS: usize = 16;
     let cells = ((1u64 << BITS) - 1) as f64;
     let mut keyed: Vec<(u64, usize)> = (0..mesh.n_cells())
+        .into_par_iter()
         .map(|c| {
             let vertices = mesh.cell_vertices(c);
             let sum = vertices
@@ -444,51 +457,152 @@ fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
             (key, c)
         })
         .collect();
-    keyed.sort_unstable();
+    keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, c)| c).collect()
 }
 
-/// For each vertex, the sorted distinct vertices that share a cell with it (itself included).
-fn vertex_adjacency<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<Vec<usize>> {
-    // Vertex -> cells incidence in compressed form.
-    let n = mesh.n_vertices();
-    let mut offsets = vec![0usize; n + 1];
-    for c in 0..mesh.n_cells() {
-        for &v in mesh.cell_vertices(c) {
-            offsets[v + 1] += 1;
+/// The number of elements of `mesh` whose matrices (of `d` values per vertex) take about
+/// [`CHUNK_BYTES`], between 256 and 8192.
+fn chunk_len<const D: usize>(mesh: &dyn BodyMesh<D>, d: usize) -> usize {
+    let cells = mesh.n_cells().max(1);
+    let vertices: usize = (0..mesh.n_cells())
+        .map(|c| mesh.cell_vertices(c).len())
+        .sum();
+    let local = (d * vertices).div_ceil(cells).max(1);
+    (CHUNK_BYTES / (8 * local * local)).clamp(256, 8192)
+}
+
+/// The vertex adjacency of a mesh in compressed form: for each vertex `v`, the sorted distinct
+/// vertices that share a cell with it (itself included) are
+/// `neighbours[offsets[v]..offsets[v + 1]]`.
+struct VertexAdjacency {
+    offsets: Vec<usize>,
+    neighbours: Vec<usize>,
+}
+
+impl VertexAdjacency {
+    /// Built from the cell-vertex incidence in passes over compressed arrays (no per-vertex
+    /// allocation): the vertex-cell incidence (count, fill), then each vertex's candidates
+    /// (the vertices of its cells, repeats included) gathered, sorted and deduplicated in
+    /// place, in parallel over blocks of vertices, and the distinct ones compacted.
+    fn new<const D: usize>(mesh: &dyn BodyMesh<D>) -> Self {
+        let n = mesh.n_vertices();
+        // Vertex -> cells incidence, and for each vertex the number of its candidates.
+        let mut incidence_offsets = vec![0usize; n + 1];
+        let mut candidate_offsets = vec![0usize; n + 1];
+        for c in 0..mesh.n_cells() {
+            let vertices = mesh.cell_vertices(c);
+            for &v in vertices {
+                incidence_offsets[v + 1] += 1;
+                candidate_offsets[v + 1] += vertices.len();
+            }
+        }
+        for v in 0..n {
+            incidence_offsets[v + 1] += incidence_offsets[v];
+            candidate_offsets[v + 1] += candidate_offsets[v];
+        }
+        let mut next = incidence_offsets[..n].to_vec();
+        let mut incident = vec![0usize; incidence_offsets[n]];
+        for c in 0..mesh.n_cells() {
+            for &v in mesh.cell_vertices(c) {
+                incident[next[v]] = c;
+                next[v] += 1;
+            }
+        }
+        drop(next);
+        // Each vertex's candidates, sorted and deduplicated at the start of its range.
+        let mut candidates = vec![0usize; candidate_offsets[n]];
+        let mut distinct = vec![0usize; n];
+        let blocks = vertex_blocks(n);
+        let mut pieces = Vec::with_capacity(blocks.len());
+        let (mut rest, mut counts) = (candidates.as_mut_slice(), distinct.as_mut_slice());
+        for block in &blocks {
+            let len = candidate_offsets[block.end] - candidate_offsets[block.start];
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(len);
+            let (count_head, count_tail) = std::mem::take(&mut counts).split_at_mut(block.len());
+            pieces.push((block.clone(), head, count_head));
+            (rest, counts) = (tail, count_tail);
+        }
+        pieces.into_par_iter().for_each(|(block, values, counts)| {
+            let base = candidate_offsets[block.start];
+            for (v, count) in block.zip(counts) {
+                let range = candidate_offsets[v] - base..candidate_offsets[v + 1] - base;
+                let row = &mut values[range];
+                let mut k = 0;
+                for &c in &incident[incidence_offsets[v]..incidence_offsets[v + 1]] {
+                    for &w in mesh.cell_vertices(c) {
+                        row[k] = w;
+                        k += 1;
+                    }
+                }
+                row.sort_unstable();
+                *count = dedup_sorted(row);
+            }
+        });
+        drop(incident);
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0);
+        let mut total = 0;
+        for &count in &distinct {
+            total += count;
+            offsets.push(total);
+        }
+        let mut neighbours = Vec::with_capacity(total);
+        for v in 0..n {
+            let start = candidate_offsets[v];
+            neighbours.extend_from_slice(&candidates[start..start + distinct[v]]);
+        }
+        Self {
+            offsets,
+            neighbours,
         }
     }
-    for v in 0..n {
-        offsets[v + 1] += offsets[v];
+
+    fn n_vertices(&self) -> usize {
+        self.offsets.len() - 1
     }
-    let mut next = offsets.clone();
-    let mut incident = vec![0usize; offsets[n]];
-    for c in 0..mesh.n_cells() {
-        for &v in mesh.cell_vertices(c) {
-            incident[next[v]] = c;
-            next[v] += 1;
+
+    /// The sorted neighbours of `v` (itself included).
+    fn of(&self, v: usize) -> &[usize] {
+        &self.neighbours[self.offsets[v]..self.offsets[v + 1]]
+    }
+}
+
+/// Moves the distinct values of the sorted `row` to its start and returns their number.
+fn dedup_sorted(row: &mut [usize]) -> usize {
+    if row.is_empty() {
+        return 0;
+    }
+    let mut len = 1;
+    for k in 1..row.len() {
+        if row[k] != row[len - 1] {
+            row[len] = row[k];
+            len += 1;
         }
     }
+    len
+}
+
+/// Contiguous blocks of the vertices `0..n` for the parallel passes: several per thread, so
+/// that uneven blocks balance.
+fn vertex_blocks(n: usize) -> Vec<Range<usize>> {
+    let size = n.div_ceil(8 * rayon::current_num_threads()).max(1024);
     (0..n)
-        .into_par_iter()
-        .map(|v| {
-            let mut neighbours: Vec<usize> = incident[offsets[v]..offsets[v + 1]]
-                .iter()
-                .flat_map(|&c| mesh.cell_vertices(c).iter().copied())
-                .collect();
-            neighbours.sort_unstable();
-            neighbours.dedup();
-            // The repeats made the vector about twice as long as it stays.
-            neighbours.shrink_to_fit();
-            neighbours
-        })
+        .step_by(size)
+        .map(|start| start..(start + size).min(n))
         .collect()
 }
 
 /// The patterns of `K_ff`, `K_fp` and `K_pp`: every degree of freedom of vertex `v` couples to
 /// every degree of freedom of each neighbour `w` of `v`.
+///
+/// The columns of one vertex that have the same status have the same rows: the free rows of
+/// `v` (the free degrees of freedom of its neighbours, sorted as the free numbering keeps the
+/// global order) and its prescribed rows. The column pointers come from the counts of these
+/// rows per vertex; the rows are written in parallel over blocks of vertices, each vertex's
+/// lists once and copied to its other columns.
 fn block_patterns(
-    adjacency: &[Vec<usize>],
+    adjacency: &VertexAdjacency,
     dofs: &DofMap,
 ) -> (
     SymbolicSparseColMat<usize>,
@@ -496,37 +610,130 @@ fn block_patterns(
     SymbolicSparseColMat<usize>,
 ) {
     let (n_f, n_p) = (dofs.n_free(), dofs.n_prescribed());
+    let n = adjacency.n_vertices();
+    let statuses = dofs.statuses();
+    let free_at = |v: usize| {
+        dofs.vertex_dofs(v)
+            .filter(|&g| matches!(statuses[g], DofStatus::Free(_)))
+            .count()
+    };
     let d = dofs.components();
-    let nnz_estimate = d * d * adjacency.iter().map(Vec::len).sum::<usize>();
-    let mut ff = CscBuilder::new(n_f, nnz_estimate);
-    let mut fp = CscBuilder::new(n_p, 0);
-    let mut pp = CscBuilder::new(n_p, 0);
-    for (v, neighbours) in adjacency.iter().enumerate() {
-        for column in dofs.vertex_dofs(v) {
-            let column = dofs.status(column);
-            for &w in neighbours {
-                for row in dofs.vertex_dofs(w) {
-                    match (column, dofs.status(row)) {
-                        (DofStatus::Free(_), DofStatus::Free(i)) => ff.row_idx.push(i),
-                        (DofStatus::Prescribed(_), DofStatus::Free(i)) => fp.row_idx.push(i),
-                        (DofStatus::Prescribed(_), DofStatus::Prescribed(i)) => pp.row_idx.push(i),
-                        (DofStatus::Free(_), DofStatus::Prescribed(_)) => {}
-                    }
+    // The free and prescribed degrees of freedom of every vertex, then of its neighbours.
+    let free_of: Vec<usize> = (0..n).into_par_iter().map(free_at).collect();
+    let rows_of: Vec<(usize, usize)> = (0..n)
+        .into_par_iter()
+        .map(|v| {
+            let free: usize = adjacency.of(v).iter().map(|&w| free_of[w]).sum();
+            (free, d * adjacency.of(v).len() - free)
+        })
+        .collect();
+    // Column pointers of the three blocks, and where each vertex's columns start.
+    let mut ff_ptr = Vec::with_capacity(n_f + 1);
+    let mut fp_ptr = Vec::with_capacity(n_p + 1);
+    let mut pp_ptr = Vec::with_capacity(n_p + 1);
+    ff_ptr.push(0);
+    fp_ptr.push(0);
+    pp_ptr.push(0);
+    let mut vertex_start = Vec::with_capacity(n + 1);
+    let (mut ff_end, mut fp_end, mut pp_end) = (0, 0, 0);
+    for (v, &(free_rows, prescribed_rows)) in rows_of.iter().enumerate() {
+        vertex_start.push((ff_end, fp_end, pp_end));
+        for g in dofs.vertex_dofs(v) {
+            match statuses[g] {
+                DofStatus::Free(_) => {
+                    ff_end += free_rows;
+                    ff_ptr.push(ff_end);
                 }
-            }
-            match column {
-                DofStatus::Free(_) => ff.close_column(),
                 DofStatus::Prescribed(_) => {
-                    fp.close_column();
-                    pp.close_column();
+                    fp_end += free_rows;
+                    fp_ptr.push(fp_end);
+                    pp_end += prescribed_rows;
+                    pp_ptr.push(pp_end);
                 }
             }
         }
     }
+    vertex_start.push((ff_end, fp_end, pp_end));
+    let mut ff_rows = vec![0usize; ff_end];
+    let mut fp_rows = vec![0usize; fp_end];
+    let mut pp_rows = vec![0usize; pp_end];
+    // Hand out each block of vertices its slices of the three row arrays.
+    let blocks = vertex_blocks(n);
+    let mut pieces = Vec::with_capacity(blocks.len());
+    let (mut ff_rest, mut fp_rest, mut pp_rest) = (
+        ff_rows.as_mut_slice(),
+        fp_rows.as_mut_slice(),
+        pp_rows.as_mut_slice(),
+    );
+    for block in blocks {
+        let (s, e) = (vertex_start[block.start], vertex_start[block.end]);
+        let (ff, tail) = std::mem::take(&mut ff_rest).split_at_mut(e.0 - s.0);
+        ff_rest = tail;
+        let (fp, tail) = std::mem::take(&mut fp_rest).split_at_mut(e.1 - s.1);
+        fp_rest = tail;
+        let (pp, tail) = std::mem::take(&mut pp_rest).split_at_mut(e.2 - s.2);
+        pp_rest = tail;
+        pieces.push((block, ff, fp, pp));
+    }
+    pieces.into_par_iter().for_each(|(block, ff, fp, pp)| {
+        let base = vertex_start[block.start];
+        for v in block {
+            let (free_rows, prescribed_rows) = rows_of[v];
+            let (free_columns, prescribed_columns) = (free_of[v], d - free_of[v]);
+            let start = vertex_start[v];
+            let ff = &mut ff[start.0 - base.0..start.0 - base.0 + free_columns * free_rows];
+            let fp = &mut fp[start.1 - base.1..start.1 - base.1 + prescribed_columns * free_rows];
+            let pp =
+                &mut pp[start.2 - base.2..start.2 - base.2 + prescribed_columns * prescribed_rows];
+            // The free rows into the first column that has them, the prescribed ones likewise.
+            let first_free = if free_columns > 0 {
+                &mut ff[..free_rows]
+            } else {
+                &mut fp[..free_rows]
+            };
+            let (mut k, mut l) = (0, 0);
+            for &w in adjacency.of(v) {
+                for g in dofs.vertex_dofs(w) {
+                    match statuses[g] {
+                        DofStatus::Free(i) => {
+                            first_free[k] = i;
+                            k += 1;
+                        }
+                        DofStatus::Prescribed(i) => {
+                            if prescribed_columns > 0 {
+                                pp[l] = i;
+                            }
+                            l += 1;
+                        }
+                    }
+                }
+            }
+            debug_assert_eq!((k, l), (free_rows, prescribed_rows));
+            // Copied to the vertex's other columns.
+            if free_columns > 0 {
+                for c in 1..free_columns {
+                    ff.copy_within(..free_rows, c * free_rows);
+                }
+                for c in 0..prescribed_columns {
+                    fp[c * free_rows..(c + 1) * free_rows].copy_from_slice(&ff[..free_rows]);
+                }
+            } else {
+                for c in 1..prescribed_columns {
+                    fp.copy_within(..free_rows, c * free_rows);
+                }
+            }
+            for c in 1..prescribed_columns {
+                pp.copy_within(..prescribed_rows, c * prescribed_rows);
+            }
+        }
+    });
+    let finish = |n_rows, n_cols, col_ptr, row_idx| {
+        SymbolicSparseColMat::new_checked(n_rows, n_cols, col_ptr, None, row_idx)
+    };
     (
-        ff.finish(n_f, n_f),
-        fp.finish(n_f, n_p),
-        pp.finish(n_p, n_p),
+        finish(n_f, n_f, ff_ptr, ff_rows),
+        finish(n_f, n_p, fp_ptr, fp_rows),
+        finish(n_p, n_p, pp_ptr, pp_rows),
     )
 }
 
@@ -655,6 +862,39 @@ impl CscBuilder {
     }
 }
 
+/// The rows of one element: `(row, local index)` of its free degrees of freedom sorted by free
+/// index (the first `n_free`), then of its prescribed ones sorted by prescribed index.
+pub(crate) struct ElementRows {
+    rows: Vec<(usize, usize)>,
+    n_free: usize,
+}
+
+impl ElementRows {
+    fn new(dofs: &[usize], statuses: &[DofStatus]) -> Self {
+        let mut rows = Vec::with_capacity(dofs.len());
+        rows.extend(
+            dofs.iter()
+                .enumerate()
+                .filter_map(|(a, &g)| match statuses[g] {
+                    DofStatus::Free(row) => Some((row, a)),
+                    DofStatus::Prescribed(_) => None,
+                }),
+        );
+        let n_free = rows.len();
+        rows.extend(
+            dofs.iter()
+                .enumerate()
+                .filter_map(|(a, &g)| match statuses[g] {
+                    DofStatus::Prescribed(row) => Some((row, a)),
+                    DofStatus::Free(_) => None,
+                }),
+        );
+        rows[..n_free].sort_unstable();
+        rows[n_free..].sort_unstable();
+        Self { rows, n_free }
+    }
+}
+
 /// A view of the values of one block of columns of `K_ff`, `K_fp`, `K_pp` and of the load,
 /// owned by one thread during the scatter.
 struct ColumnBlock<'a> {
@@ -674,45 +914,68 @@ struct BlockValues<'a> {
 }
 
 impl BlockValues<'_> {
-    /// Adds `column[a]` at (`row`, `col`) for every `(row, a)` of `rows` (sorted by row): one
-    /// merge along the column's sorted row indices, which hold every element coupling by
-    /// construction.
+    /// The offsets in column `col` of the rows `rows` (sorted by row): one merge along the
+    /// column's sorted row indices, which hold every element coupling by construction.
     #[inline]
-    fn add_column(&mut self, col: usize, rows: &[(usize, usize)], column: &[f64]) {
-        let range = self.col_ptr[col]..self.col_ptr[col + 1];
-        let offset = range.start - self.col_ptr[self.first_col];
-        let pattern = &self.row_idx[range];
-        let values = &mut self.values[offset..offset + pattern.len()];
+    fn offsets(&self, col: usize, rows: &[(usize, usize)], offsets: &mut Vec<usize>) {
+        let pattern = &self.row_idx[self.col_ptr[col]..self.col_ptr[col + 1]];
+        offsets.clear();
         let mut k = 0;
-        for &(row, a) in rows {
+        for &(row, _) in rows {
             while pattern[k] < row {
                 k += 1;
             }
             debug_assert_eq!(pattern[k], row, "the pattern holds every element coupling");
+            offsets.push(k);
+        }
+    }
+
+    /// Adds `column[a]` at the offset `offsets[i]` of column `col` for the `i`-th `(row, a)`
+    /// of `rows`.
+    #[inline]
+    fn add_column(
+        &mut self,
+        col: usize,
+        rows: &[(usize, usize)],
+        offsets: &[usize],
+        column: &[f64],
+    ) {
+        let range = self.col_ptr[col]..self.col_ptr[col + 1];
+        let start = range.start - self.col_ptr[self.first_col];
+        let values = &mut self.values[start..start + range.len()];
+        debug_assert!(rows
+            .iter()
+            .zip(offsets)
+            .all(|(&(row, _), &k)| self.row_idx[range.start + k] == row));
+        for (&(_, a), &k) in rows.iter().zip(offsets) {
             values[k] += column[a];
         }
     }
 }
 
 impl ColumnBlock<'_> {
-    /// Adds the columns of every contribution that fall in this block's global range.
-    fn scatter(&mut self, contributions: &[(Vec<DofStatus>, ElementContribution)]) {
-        // The element's free and prescribed rows, (row, local index) sorted by row.
-        let (mut free, mut prescribed) = (Vec::new(), Vec::new());
-        for (statuses, contribution) in contributions {
+    /// Adds the columns of every contribution that fall in this block's global range
+    /// (`statuses`: those of every global degree of freedom, `d` per vertex).
+    ///
+    /// The columns of one vertex with the same status have the same rows (see
+    /// [`block_patterns`]), and a prescribed column's free rows are those of a free column of
+    /// the same vertex: the offsets of the element's rows are found once per vertex (one merge
+    /// for the free rows, one for the prescribed ones) and serve its other columns.
+    fn scatter(
+        &mut self,
+        statuses: &[DofStatus],
+        d: usize,
+        contributions: &[(ElementRows, ElementContribution)],
+    ) {
+        // The offsets of the element's free and prescribed rows in the columns of the vertex
+        // they were last found for.
+        let (mut free_at, mut prescribed_at) = (Vec::new(), Vec::new());
+        for (rows, contribution) in contributions {
             if !contribution.dofs.iter().any(|g| self.global.contains(g)) {
                 continue;
             }
-            free.clear();
-            prescribed.clear();
-            for (a, status) in statuses.iter().enumerate() {
-                match *status {
-                    DofStatus::Free(row) => free.push((row, a)),
-                    DofStatus::Prescribed(row) => prescribed.push((row, a)),
-                }
-            }
-            free.sort_unstable();
-            prescribed.sort_unstable();
+            let (free, prescribed) = rows.rows.split_at(rows.n_free);
+            let (mut free_vertex, mut prescribed_vertex) = (usize::MAX, usize::MAX);
             for (b, &gb) in contribution.dofs.iter().enumerate() {
                 if !self.global.contains(&gb) {
                     continue;
@@ -722,11 +985,26 @@ impl ColumnBlock<'_> {
                 }
                 let column = contribution.matrix.column(b);
                 let column = column.as_slice();
-                match statuses[b] {
-                    DofStatus::Free(col) => self.ff.add_column(col, &free, column),
+                let vertex = gb / d;
+                match statuses[gb] {
+                    DofStatus::Free(col) => {
+                        if free_vertex != vertex {
+                            self.ff.offsets(col, free, &mut free_at);
+                            free_vertex = vertex;
+                        }
+                        self.ff.add_column(col, free, &free_at, column);
+                    }
                     DofStatus::Prescribed(col) => {
-                        self.fp.add_column(col, &free, column);
-                        self.pp.add_column(col, &prescribed, column);
+                        if free_vertex != vertex {
+                            self.fp.offsets(col, free, &mut free_at);
+                            free_vertex = vertex;
+                        }
+                        self.fp.add_column(col, free, &free_at, column);
+                        if prescribed_vertex != vertex {
+                            self.pp.offsets(col, prescribed, &mut prescribed_at);
+                            prescribed_vertex = vertex;
+                        }
+                        self.pp.add_column(col, prescribed, &prescribed_at, column);
                     }
                 }
             }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use nalgebra::DVector;
 use vem_mesh::{BodyMesh, Mesh, PointD, VectorD};
 use vem_space::quadrature::GaussLegendre;
-use vem_space::{ElasticityTensor, ElementSpace, MeshElement, PlanarElement};
+use vem_space::{ElasticityTensor, ElementSpace, LocalStiffness, MeshElement, PlanarElement};
 
 use crate::assembly::ElementContribution;
 use crate::boundary::VectorField;
@@ -274,6 +274,7 @@ impl<const D: usize> ElasticBody<D> {
 
     /// Builds the pattern and assembles stiffness, load and Dirichlet lifting (in parallel).
     pub fn assemble(&self) -> Result<AssembledSystem, ElasticError> {
+        // A new system's values are zero: they are first written by the scatter, in parallel.
         let mut system = AssembledSystem::with_pattern(&self.name, &*self.mesh, self.dofs.clone());
         self.fill(&mut system)?;
         Ok(system)
@@ -288,11 +289,12 @@ impl<const D: usize> ElasticBody<D> {
                 body: self.name.clone(),
             });
         }
+        system.clear_values();
         self.fill(system)
     }
 
+    /// Adds every contribution to the values of `system` (zero on entry).
     fn fill(&self, system: &mut AssembledSystem) -> Result<(), ElasticError> {
-        system.clear_values();
         system.scatter_elements(|c| self.element_contribution(c))?;
         for traction in &self.tractions {
             self.for_traction_facets(traction, |dofs, load| system.add_load(dofs, load))?;
@@ -387,11 +389,18 @@ impl<const D: usize> ElasticBody<D> {
             found,
             expected,
         };
-        let matrix = self
+        // consistency + stabilisation (`LocalStiffness::total`), summed in place.
+        let LocalStiffness {
+            consistency: mut matrix,
+            stabilisation,
+        } = self
             .element
             .stiffness(&*self.mesh, c, &self.tensor)
-            .map_err(element_error)?
-            .total();
+            .map_err(element_error)?;
+        if matrix.shape() != stabilisation.shape() {
+            return Err(size_error("a stabilisation", stabilisation.nrows()));
+        }
+        matrix += &stabilisation;
         if matrix.nrows() != expected || matrix.ncols() != expected {
             return Err(size_error("a stiffness matrix", matrix.nrows()));
         }

@@ -259,3 +259,96 @@ fn automatic_parallelism_is_sequential_on_small_factors_and_agrees_with_parallel
         Par::Seq
     );
 }
+
+/// On a mesh large enough for several blocks of vertices and several chunks of elements in
+/// the assembly, with free, partly prescribed and fully prescribed vertices: the three blocks
+/// store exactly the couplings of the cells (no more, no fewer entries), and their values are
+/// the dense reference's.
+#[test]
+fn patterns_are_the_couplings_of_the_cells() {
+    use std::collections::BTreeSet;
+    let mesh = structured_triangles(&Rectangle::unit_square(), 80, 60).unwrap();
+    let body = ElasticBody::builder("plate", mesh, lame(2.0, 1.0), vem())
+        .clamp("left")
+        .dirichlet(Dirichlet::prescribed("bottom", Component::Y, |x| {
+            Vector::new(0.0, 0.01 * x.x)
+        }))
+        .body_force(|x| Vector::new(x.y, -1.0))
+        .build()
+        .unwrap();
+    let system = body.assemble().unwrap();
+    let dofs = system.dofs();
+    // Every pair of global degrees of freedom of one cell, split by status.
+    let (mut ff, mut fp, mut pp) = (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
+    let mesh = body.mesh();
+    for p in 0..mesh.n_polygons() {
+        let mut cell = Vec::new();
+        dofs.cell_dofs(mesh.polygon(p), &mut cell);
+        for &row in &cell {
+            for &col in &cell {
+                match (dofs.status(row), dofs.status(col)) {
+                    (DofStatus::Free(i), DofStatus::Free(j)) => ff.insert((j, i)),
+                    (DofStatus::Free(i), DofStatus::Prescribed(j)) => fp.insert((j, i)),
+                    (DofStatus::Prescribed(i), DofStatus::Prescribed(j)) => pp.insert((j, i)),
+                    (DofStatus::Prescribed(_), DofStatus::Free(_)) => true,
+                };
+            }
+        }
+    }
+    let stored = |a: &SparseColMat<usize, f64>| {
+        let (symbolic, _) = a.parts();
+        let mut entries = Vec::new();
+        for j in 0..a.ncols() {
+            for k in symbolic.col_ptr()[j]..symbolic.col_ptr()[j + 1] {
+                entries.push((j, symbolic.row_idx()[k]));
+            }
+        }
+        entries
+    };
+    // Sorted and distinct rows in every column: the stored list is the set, in order.
+    assert_eq!(
+        stored(system.stiffness()),
+        ff.into_iter().collect::<Vec<_>>()
+    );
+    assert_eq!(
+        stored(system.coupling()),
+        fp.into_iter().collect::<Vec<_>>()
+    );
+    assert_eq!(
+        stored(system.prescribed_block()),
+        pp.into_iter().collect::<Vec<_>>()
+    );
+    // The values against the element matrices summed entry by entry (sparse reference).
+    let mut reference = std::collections::BTreeMap::new();
+    for p in 0..mesh.n_polygons() {
+        let local = body
+            .element()
+            .as_planar()
+            .unwrap()
+            .stiffness(&mesh.polygon_points(p), body.tensor())
+            .unwrap()
+            .total();
+        let mut cell = Vec::new();
+        dofs.cell_dofs(mesh.polygon(p), &mut cell);
+        for (a, &row) in cell.iter().enumerate() {
+            for (b, &col) in cell.iter().enumerate() {
+                *reference.entry((col, row)).or_insert(0.0) += local[(a, b)];
+            }
+        }
+    }
+    let scale = reference.values().fold(0.0f64, |m, v: &f64| m.max(v.abs()));
+    let (free, prescribed) = (dofs.free_dofs(), dofs.prescribed_dofs());
+    for (block, rows, cols) in [
+        (system.stiffness(), free, free),
+        (system.coupling(), free, prescribed),
+        (system.prescribed_block(), prescribed, prescribed),
+    ] {
+        let (symbolic, values) = block.parts();
+        for (j, &col) in cols.iter().enumerate() {
+            let range = symbolic.col_ptr()[j]..symbolic.col_ptr()[j + 1];
+            for (&i, &value) in symbolic.row_idx()[range.clone()].iter().zip(&values[range]) {
+                assert!((value - reference[&(col, rows[i])]).abs() < 1e-13 * scale);
+            }
+        }
+    }
+}
