@@ -11,7 +11,7 @@ use std::sync::Arc;
 
 use vem_contact::{
     CondensedSolver, ContactNormal, ContactProblem, ContactResult, ContactSolver, Coulomb,
-    InterfaceNode, NodeStatus,
+    NodeStatus,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{structured_quads, Rectangle};
@@ -20,6 +20,7 @@ use vem_mesh::io::read_gmsh;
 use vem_mesh::{Point, Vector};
 use vem_space::LowestOrderVem;
 use vem_verify::exact::HertzContact;
+use vem_verify::fretting::zone_half_width as zone;
 
 const RADIUS: f64 = 1.0;
 const COEFFICIENT: f64 = 0.3;
@@ -59,35 +60,6 @@ fn solve(shift: f64, normal: ContactNormal) -> ContactResult {
         .with_normal(normal)
         .solve(&mut CondensedSolver::default())
         .unwrap()
-}
-
-/// Half-length of the run of nodes with `inside` around x = 0, its ends halfway to the next
-/// node outside, and the largest node spacing at its ends.
-fn zone(nodes: &[InterfaceNode], inside: impl Fn(&InterfaceNode) -> bool) -> (f64, f64) {
-    let centre = (0..nodes.len())
-        .filter(|&i| inside(&nodes[i]))
-        .min_by(|&i, &j| {
-            nodes[i]
-                .position
-                .x
-                .abs()
-                .total_cmp(&nodes[j].position.x.abs())
-        })
-        .expect("a node inside");
-    let (mut first, mut last) = (centre, centre);
-    while first > 0 && inside(&nodes[first - 1]) {
-        first -= 1;
-    }
-    while last + 1 < nodes.len() && inside(&nodes[last + 1]) {
-        last += 1;
-    }
-    let x = |i: usize| nodes[i].position.x;
-    let (start, stop) = (
-        0.5 * (x(first) + x(first - 1)),
-        0.5 * (x(last) + x(last + 1)),
-    );
-    let spacing = (x(first) - x(first - 1)).max(x(last + 1) - x(last));
-    (0.5 * (stop - start), spacing)
 }
 
 /// (P, Q) from the force on the upper body.

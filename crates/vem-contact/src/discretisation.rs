@@ -919,6 +919,14 @@ impl<const D: usize> ContactDiscretisation<D> {
                 if let Some((load_along_mode, friction_capacity)) =
                     self.sliding_beyond_capacity(&system)
                 {
+                    if !held {
+                        // The last step's normal forces cannot carry this step's load: start
+                        // again from the held state, whose normal forces decide.
+                        held = true;
+                        bounds = self.bounds(None)?;
+                        source = None;
+                        continue;
+                    }
                     let (n, m) = (system.n_dofs(), system.n_constraints());
                     let residuals = KktResiduals::evaluate(
                         &system,

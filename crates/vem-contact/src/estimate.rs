@@ -70,16 +70,7 @@ impl ContactEstimate {
 
     /// The squared parts summed over the cells of all bodies (`eta^2` is their sum).
     pub fn sum(&self) -> CellIndicator {
-        self.bodies
-            .iter()
-            .map(ElasticEstimate::sum)
-            .fold(CellIndicator::default(), |a, c| CellIndicator {
-                residual: a.residual + c.residual,
-                jump: a.jump + c.jump,
-                boundary: a.boundary + c.boundary,
-                stabilisation: a.stabilisation + c.stabilisation,
-                contact: a.contact + c.contact,
-            })
+        self.bodies.iter().map(ElasticEstimate::sum).sum()
     }
 
     /// `eta_E` of every cell of every body (order of the problem's bodies): the cell field to

@@ -74,6 +74,27 @@ pub struct CellIndicator {
     pub contact: f64,
 }
 
+impl std::ops::Add for CellIndicator {
+    type Output = Self;
+
+    /// The parts added one by one (the indicator of the union of two sets of cells).
+    fn add(self, other: Self) -> Self {
+        CellIndicator {
+            residual: self.residual + other.residual,
+            jump: self.jump + other.jump,
+            boundary: self.boundary + other.boundary,
+            stabilisation: self.stabilisation + other.stabilisation,
+            contact: self.contact + other.contact,
+        }
+    }
+}
+
+impl std::iter::Sum for CellIndicator {
+    fn sum<I: Iterator<Item = Self>>(cells: I) -> Self {
+        cells.fold(CellIndicator::default(), |a, c| a + c)
+    }
+}
+
 impl CellIndicator {
     /// `eta_E^2`: the sum of the parts.
     pub fn squared(&self) -> f64 {
@@ -106,15 +127,7 @@ impl ElasticEstimate {
 
     /// The sum of the parts over the cells (each a squared quantity).
     pub fn sum(&self) -> CellIndicator {
-        self.cells
-            .iter()
-            .fold(CellIndicator::default(), |a, c| CellIndicator {
-                residual: a.residual + c.residual,
-                jump: a.jump + c.jump,
-                boundary: a.boundary + c.boundary,
-                stabilisation: a.stabilisation + c.stabilisation,
-                contact: a.contact + c.contact,
-            })
+        self.cells.iter().copied().sum()
     }
 
     /// `eta = (sum_E eta_E^2)^(1/2)`.

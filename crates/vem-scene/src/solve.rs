@@ -668,17 +668,7 @@ impl Model {
         let estimates = self.estimate_plane(&solved, contact.as_ref())?;
         times.estimate_s = start.elapsed().as_secs_f64();
         let strain_energy: f64 = solved.iter().map(|(_, s)| s.strain_energy()).sum();
-        let parts =
-            estimates
-                .iter()
-                .map(ElasticEstimate::sum)
-                .fold(CellIndicator::default(), |a, c| CellIndicator {
-                    residual: a.residual + c.residual,
-                    jump: a.jump + c.jump,
-                    boundary: a.boundary + c.boundary,
-                    stabilisation: a.stabilisation + c.stabilisation,
-                    contact: a.contact + c.contact,
-                });
+        let parts: CellIndicator = estimates.iter().map(ElasticEstimate::sum).sum();
         let error_estimate = ErrorEstimate::new(&parts, strain_energy);
         let start = Instant::now();
         let bodies = solved
