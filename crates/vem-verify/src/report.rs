@@ -358,27 +358,36 @@ fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
 
 #[cfg(feature = "plots")]
 /// Ticks of a logarithmic axis: the powers of ten in `range`, and 2 and 5 times them when the
-/// range touches fewer than four decades.
+/// range touches fewer than four decades; every integer multiple when that still leaves fewer
+/// than three ticks (a range within about a decade).
 ///
 /// ```
 /// assert_eq!(vem_verify::report::log_ticks(0.03..0.7), vec![0.05, 0.1, 0.2, 0.5]);
 /// assert_eq!(vem_verify::report::log_ticks(1e-6..2e-1), vec![1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]);
 /// assert_eq!(vem_verify::report::log_ticks(9e-3..0.3).len(), 5); // 0.01, 0.02, 0.05, 0.1, 0.2
+/// assert_eq!(vem_verify::report::log_ticks(0.66..1.5).len(), 4); // 0.7, 0.8, 0.9, 1
 /// ```
 pub fn log_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
     let (low, high) = (
         range.start.log10().floor() as i32,
         range.end.log10().ceil() as i32,
     );
-    let mantissas: &[f64] = if high - low < 4 {
-        &[1.0, 2.0, 5.0]
-    } else {
-        &[1.0]
+    let ticks = |mantissas: &[f64]| -> Vec<f64> {
+        (low..=high)
+            .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
+            .filter(|v| range.contains(v))
+            .collect()
     };
-    (low..=high)
-        .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
-        .filter(|v| range.contains(v))
-        .collect()
+    if high - low >= 4 {
+        return ticks(&[1.0]);
+    }
+    let coarse = ticks(&[1.0, 2.0, 5.0]);
+    if coarse.len() >= 3 {
+        coarse
+    } else {
+        // Less than a decade: every integer mantissa.
+        ticks(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
+    }
 }
 
 #[cfg(feature = "plots")]
