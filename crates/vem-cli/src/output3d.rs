@@ -398,26 +398,28 @@ impl Outcome {
                     Point3::new(h.centre[0], h.centre[1], h.centre[2])
                 });
             let title = &self.summary.title;
+            let seen_along = format!(
+                "consistent pressure on '{}' of body '{}', seen along ({}, {}, {})",
+                map.part,
+                map.body,
+                rounded(map.view.x),
+                rounded(map.view.y),
+                rounded(map.view.z)
+            );
+            // Beside a profile the scene's title heads the whole picture and each panel says
+            // what it shows; alone, the map carries the scene's title.
             let options = SvgOptions {
-                width: if hertz.is_some() { 0.55 * width } else { width },
-                title: Some(format!(
-                    "{title}: consistent contact pressure on '{}' of body '{}', seen along \
-                     ({}, {}, {})",
-                    map.part,
-                    map.body,
-                    rounded(map.view.x),
-                    rounded(map.view.y),
-                    rounded(map.view.z)
-                )),
+                width: if hertz.is_some() { 0.5 * width } else { width },
+                title: Some(if hertz.is_some() {
+                    seen_along
+                } else {
+                    format!("{title}: {seen_along}")
+                }),
                 parts: false,
                 axes: true,
                 length_unit: self.length_unit.clone(),
-                value_label: "consistent pressure".into(),
+                value_label: "pressure".into(),
                 value_range: (map.largest > 0.0).then_some((0.0, map.largest)),
-                notes: vec![format!(
-                    "largest consistent pressure {}",
-                    vem_scene::short(map.largest)
-                )],
                 ..SvgOptions::default()
             };
             write_svg_layers(
@@ -443,10 +445,9 @@ impl Outcome {
                     (d - d.dot(&view) * view).norm()
                 };
                 let range = pair.nodes.clone();
-                let profile =
-                    plot::radial_profile(title, &nodes[range], &radius_of, Some(hertz), size)
-                        .map_err(fail)?;
-                let document = side_by_side(&picture, map_width, map_height, &profile, size);
+                let profile = plot::radial_profile(&nodes[range], &radius_of, Some(hertz), size)
+                    .map_err(fail)?;
+                let document = side_by_side(title, &picture, map_width, map_height, &profile, size);
                 write_atomically(&path, |w| w.write_all(document.as_bytes())).map_err(
                     |source| CliError::Mesh {
                         context: path.display().to_string(),
@@ -601,27 +602,41 @@ fn svg_size(document: &str) -> Option<(f64, f64)> {
     Some((attribute("width")?, attribute("height")?))
 }
 
-/// One SVG document with `left` (of `left_width` x `left_height` pixels) and `right` (of
-/// `size`) beside it, each kept as a nested `<svg>` element.
+/// One SVG document headed by `title`, with `left` (of `left_width` x `left_height` pixels)
+/// and `right` (of `size`) beside each other below it, each kept as a nested `<svg>` element.
 fn side_by_side(
+    title: &str,
     left: &str,
     left_width: f64,
     left_height: f64,
     right: &str,
     size: (u32, u32),
 ) -> String {
+    /// The height of the heading line.
+    const HEADING: f64 = 36.0;
     let body = |document: &str| -> String {
         let start = document.find("<svg").unwrap_or(0);
         document[start..].trim_end().to_string()
     };
-    let right = body(right).replacen("<svg", &format!("<svg x=\"{left_width:.0}\""), 1);
+    let left = body(left).replacen("<svg", &format!("<svg y=\"{HEADING:.0}\""), 1);
+    let right = body(right).replacen(
+        "<svg",
+        &format!("<svg x=\"{left_width:.0}\" y=\"{HEADING:.0}\""),
+        1,
+    );
     let width = left_width + size.0 as f64;
-    let height = left_height.max(size.1 as f64);
+    let height = HEADING + left_height.max(size.1 as f64);
+    let title = title
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;");
     format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" \
          xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"{width:.0}\" \
          height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\">\n<rect width=\"100%\" \
-         height=\"100%\" fill=\"white\"/>\n{}\n{right}\n</svg>\n",
-        body(left)
+         height=\"100%\" fill=\"white\"/>\n<text x=\"{:.0}\" y=\"26\" \
+         text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"20\">{title}</text>\n\
+         {left}\n{right}\n</svg>\n",
+        0.5 * width
     )
 }

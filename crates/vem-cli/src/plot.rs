@@ -501,7 +501,6 @@ pub(crate) fn history(
 /// centre of the contact zone in the plane of the pair (dots), and with `hertz` Hertz's
 /// `p0 sqrt(1 - r^2/a^2)` for the same load (line). `radius_of` gives a node's `r`.
 pub(crate) fn radial_profile(
-    title: &str,
     nodes: &[InterfaceNode<3>],
     radius_of: &dyn Fn(&InterfaceNode<3>) -> f64,
     hertz: Option<&HertzComparison>,
@@ -555,11 +554,11 @@ pub(crate) fn radial_profile(
         let root = SVGBackend::with_string(&mut document, (width, height)).into_drawing_area();
         let draw = || -> DrawResult {
             root.fill(&WHITE)?;
-            let area = titled(&root, &format!("{title}: pressure against r"))?;
+            let area = titled(&root, "pressure against r")?;
             let mut chart = ChartBuilder::on(&area)
                 .margin(12)
                 .x_label_area_size(40)
-                .y_label_area_size(70)
+                .y_label_area_size(55)
                 .build_cartesian_2d(0.0..reach * 1.02, 0.0..top * (1.0 + LEGEND_ROOM))?;
             chart
                 .configure_mesh()
