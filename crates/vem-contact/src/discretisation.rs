@@ -51,7 +51,7 @@
 
 use std::borrow::Cow;
 use std::ops::Range;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
@@ -126,7 +126,21 @@ pub struct ContactDiscretisation<const D: usize = 2> {
     /// The warnings about element shapes (see
     /// [`ContactDiscretisation::element_shape_warnings`]).
     element_warnings: Vec<Warning>,
+    /// Per body, the rigid translations along the axes that its boundary conditions leave
+    /// free and that move no gap (see [`ContactDiscretisation::sliding_beyond_capacity`]):
+    /// found at the first Coulomb step, kept until the stiffness changes.
+    sliding_modes: OnceLock<Vec<Vec<SlidingMode>>>,
     work: WorkCounters,
+}
+
+/// A translation `d` of one body along a coordinate axis, free of boundary conditions, resisted
+/// by no stiffness (`K d = 0`) and moving no gap (`B_N d = 0`).
+#[derive(Debug, Clone)]
+struct SlidingMode {
+    /// The system's unknowns `d` moves (by 1 each; a rigid plate's once).
+    unknowns: Vec<usize>,
+    /// Its tangential jumps `B_T d`.
+    slip: Vec<f64>,
 }
 
 impl<const D: usize> ContactDiscretisation<D> {
@@ -207,6 +221,7 @@ impl<const D: usize> ContactDiscretisation<D> {
             load,
             diagonals: Vec::new(),
             element_warnings: Vec::new(),
+            sliding_modes: OnceLock::new(),
             work,
         };
         discretisation.diagonals = checked_diagonals(&discretisation.systems)?;
@@ -647,6 +662,7 @@ impl<const D: usize> ContactDiscretisation<D> {
         self.diagonals = checked_diagonals(&self.systems)?;
         self.load = concatenated_load(&self.systems);
         self.normal_lifting = self.jump_rows(0)?.1;
+        self.sliding_modes = OnceLock::new();
         self.stiffness_version += 1;
         self.work.assemblies += 1;
         self.work.times.assembly += start.elapsed();
@@ -805,49 +821,24 @@ impl<const D: usize> ContactDiscretisation<D> {
     fn sliding_beyond_capacity(&self, system: &ContactSystem<'_>) -> Option<(f64, f64)> {
         let friction = system.friction()?;
         let t = friction.rows_per_node();
-        let n = system.n_dofs();
-        let inf = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (k, body) in self.bodies.iter().enumerate() {
-            let dofs = body.dofs();
-            let stiffness_scale = inf(&self.diagonals[k]);
-            // The free translations along the axes, as vectors of the system's unknowns.
-            let mut axes: Vec<(Vec<f64>, f64)> = Vec::new();
-            for c in 0..D {
-                let mut d = vec![0.0; n];
-                let mut admissible = true;
-                for dof in 0..dofs.n_dofs() {
-                    if dofs.vertex_of(dof).1 != c {
-                        continue;
-                    }
-                    match dofs.unknown_index(dof) {
-                        Some(u) => d[self.offsets[k] + u] = 1.0,
-                        None => {
-                            admissible = false;
-                            break;
-                        }
-                    }
-                }
-                if !admissible {
-                    continue;
-                }
-                let rigid = inf(&system.stiffness_apply(&d)) <= 1e-9 * stiffness_scale;
-                let sliding = inf(&system.normal_rows().apply(&d)) <= 1e-9;
-                if rigid && sliding {
-                    let load: f64 = system.load().iter().zip(&d).map(|(f, x)| f * x).sum();
-                    axes.push((d, load));
-                }
-            }
-            let norm = axes.iter().map(|(_, f)| f * f).sum::<f64>().sqrt();
+        let modes = self
+            .sliding_modes
+            .get_or_init(|| self.find_sliding_modes(system));
+        for body_modes in modes {
+            let loads: Vec<f64> = body_modes
+                .iter()
+                .map(|mode| mode.unknowns.iter().map(|&u| system.load()[u]).sum())
+                .collect();
+            let norm = loads.iter().map(|f| f * f).sum::<f64>().sqrt();
             if norm == 0.0 {
                 continue;
             }
-            let mut d = vec![0.0; n];
-            for (axis, f) in &axes {
-                for (di, a) in d.iter_mut().zip(axis) {
-                    *di += a * f / norm;
+            let mut slip = vec![0.0; friction.tangential_rows().nrows()];
+            for (mode, f) in body_modes.iter().zip(&loads) {
+                for (s, m) in slip.iter_mut().zip(&mode.slip) {
+                    *s += m * f / norm;
                 }
             }
-            let slip = friction.tangential_rows().apply(&d);
             let nodal: Vec<f64> = slip
                 .chunks(t)
                 .map(|s| s.iter().map(|x| x * x).sum::<f64>().sqrt())
@@ -868,6 +859,59 @@ impl<const D: usize> ContactDiscretisation<D> {
             }
         }
         None
+    }
+
+    /// The [`SlidingMode`]s of every body (what [`Self::sliding_beyond_capacity`] checks the
+    /// load along): they depend on the structure and the stiffness only, not on the load or
+    /// the bounds.
+    fn find_sliding_modes(&self, system: &ContactSystem<'_>) -> Vec<Vec<SlidingMode>> {
+        let n = system.n_dofs();
+        let inf = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let Some(friction) = system.friction() else {
+            return Vec::new();
+        };
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(k, body)| {
+                let dofs = body.dofs();
+                let stiffness_scale = inf(&self.diagonals[k]);
+                let mut modes = Vec::new();
+                for c in 0..D {
+                    let mut unknowns = Vec::new();
+                    let mut admissible = true;
+                    for dof in 0..dofs.n_dofs() {
+                        if dofs.vertex_of(dof).1 != c {
+                            continue;
+                        }
+                        match dofs.unknown_index(dof) {
+                            Some(u) => unknowns.push(self.offsets[k] + u),
+                            None => {
+                                admissible = false;
+                                break;
+                            }
+                        }
+                    }
+                    if !admissible {
+                        continue;
+                    }
+                    // The degrees of freedom tied to a rigid plate share its unknown.
+                    unknowns.sort_unstable();
+                    unknowns.dedup();
+                    let mut d = vec![0.0; n];
+                    for &u in &unknowns {
+                        d[u] = 1.0;
+                    }
+                    let rigid = inf(&system.stiffness_apply(&d)) <= 1e-9 * stiffness_scale;
+                    let sliding = inf(&system.normal_rows().apply(&d)) <= 1e-9;
+                    if rigid && sliding {
+                        let slip = friction.tangential_rows().apply(&d);
+                        modes.push(SlidingMode { unknowns, slip });
+                    }
+                }
+                modes
+            })
+            .collect()
     }
 
     /// The fixed point of Tresca problems of the laws whose bounds depend on the state
