@@ -132,22 +132,22 @@ fn m2_3d_has_its_symbolic_reference_values() {
             BodyId::One,
             [0.9, 0.2, 0.75],
             [
-                0.097969818274038306,
-                -0.0037502210222148226,
-                -0.13643114686535213,
+                0.09801856085905232,
+                -0.0037603056949763428,
+                -0.13710719264004809,
             ],
             [
-                1.21181513420209,
-                1.2585225445915258,
-                1.9636229373070426,
-                -0.026705794205383895,
-                -0.31442621180486324,
-                -9.5327678531171914e-05,
+                1.2271389684411698,
+                1.2693391469740227,
+                1.9771438528009617,
+                -0.0077075022853515399,
+                -0.34072224593994643,
+                -0.0026669300509928038,
             ],
             [
-                0.42052923051207552,
-                -0.36618640071052555,
-                -2.5454993084071629,
+                -0.32020384352674047,
+                0.087735494124158694,
+                -1.64411715937546,
             ],
         ),
         (
@@ -172,23 +172,19 @@ fn m2_3d_has_its_symbolic_reference_values() {
             BodyId::Two,
             [0.9, 0.2, -0.75],
             [
-                -0.084844818274038308,
-                0.010312721022214822,
-                0.01224072813464787,
+                -0.084893560859052322,
+                0.010322805694976343,
+                0.011564682359951919,
             ],
             [
-                -0.29681513420208994,
-                -0.34352254459152576,
-                -0.20862293730704259,
-                0.034231705794616103,
-                -0.28630121180486323,
-                9.5327678531171914e-05,
+                -0.31213896844116984,
+                -0.35433914697402263,
+                -0.22214385280096163,
+                0.05322999771464846,
+                -0.31259724593994642,
+                0.0026669300509928038,
             ],
-            [
-                -0.29552923051207552,
-                0.053686400710525536,
-                2.7382506915928371,
-            ],
+            [0.44520384352674047, -0.40023549412415871, 3.63963284062454],
         ),
     ];
     let exact = case();
@@ -226,8 +222,8 @@ fn m2_3d_has_its_symbolic_reference_values() {
     let slip = exact.interface(0.9, 0.2);
     assert!(close(slip.sigma_1tau.x, -0.3625));
     assert!(close(slip.sigma_1tau.y, 0.075));
-    assert!(close(slip.tangential_jump.x, 4.8835384608397164e-06));
-    assert!(close(slip.tangential_jump.y, -1.0103872677599414e-06));
+    assert!(close(slip.tangential_jump.x, 0.00022770678423919571));
+    assert!(close(slip.tangential_jump.y, -4.7111748463281868e-05));
     assert!(close(
         StickSlipContact::friction_bound(0.9, 0.2),
         0.37017732237402118
@@ -320,10 +316,11 @@ fn pairing_runs(
 #[test]
 fn m2_3d_converges_on_non_matching_meshes_and_carries_the_exact_resultants() {
     // Theorem 4.2 in space on a pairing whose interfaces do not match (hexahedra 4:3 over
-    // tetrahedra). At these sizes the rate is still pre-asymptotic (measured: least-squares
-    // E_grad 0.81, successive 0.79 and 0.84; the full run of `cargo xtask convergence` reaches
-    // 0.85 at 20/15, docs/convergence-3d.md, which discusses why). The test holds what is
-    // measured, with a margin, and that the successive rates grow.
+    // tetrahedra), at sizes a test can afford. Measured: least-squares E_grad 0.92 (successive
+    // 0.90 and 0.95), E_0 1.79 (1.85 and 1.71: the body force jumps across the cylinder
+    // r = r_s, docs/manufactured.md, section 11); the full run of `cargo xtask convergence`
+    // judges the rate at its larger sizes (docs/convergence-3d.md). The test holds what is
+    // measured, with a margin, and that the successive rates of E_grad grow.
     let exact = case();
     let exact_normal = exact.exact_normal_resultant();
     let exact_friction = exact.exact_friction_resultant();
@@ -338,14 +335,14 @@ fn m2_3d_converges_on_non_matching_meshes_and_carries_the_exact_resultants() {
         let label = format!("{} n = {}/{}", run.family, run.n, contact.lower_n);
         // The default solver certifies its answer by its own KKT check.
         assert_eq!(contact.status, "Converged", "{label}");
-        // Full contact; both zones found (measured: 57 .. 309 nodes stick, 160 .. 508 slip).
+        // Full contact; both zones found (measured: 64 .. 313 nodes stick, 153 .. 504 slip).
         assert_eq!(contact.active_nodes, contact.interface_nodes, "{label}");
         assert!(
-            friction.stick_nodes > 50 && friction.slip_nodes > 150,
+            friction.stick_nodes > 50 && friction.slip_nodes > 130,
             "{label}"
         );
-        // The resultants: int p dA (measured 3.3e-4 .. 6e-5) and int sigma_1tau dA (measured
-        // 2.1 % .. 0.37 %).
+        // The resultants: int p dA (measured 6.5e-4 .. 6.1e-5) and int sigma_1tau dA (measured
+        // 2.0 % .. 0.36 %).
         let normal = (contact.normal_resultant / exact_normal - 1.0).abs();
         assert!(normal < 1e-3, "{label}: normal resultant error {normal}");
         let found = Vector2::from(friction.friction_resultant);
@@ -369,8 +366,8 @@ fn m2_3d_converges_on_non_matching_meshes_and_carries_the_exact_resultants() {
     let rates = solid_rates(&runs, 3).pop().unwrap();
     let grad = rates.grad_rate.unwrap();
     let l2 = rates.l2_rate.unwrap();
-    assert!(grad >= 0.78, "{}: E_grad rate {grad}", rates.family);
-    assert!(l2 >= 1.85, "{}: E_0 rate {l2}", rates.family);
+    assert!(grad >= 0.88, "{}: E_grad rate {grad}", rates.family);
+    assert!(l2 >= 1.7, "{}: E_0 rate {l2}", rates.family);
     let step = |a: &SolidRun, b: &SolidRun| {
         (a.errors.grad / b.errors.grad).ln() / (a.spacing / b.spacing).ln()
     };

@@ -28,13 +28,13 @@ const STICK_SWITCH: SwitchPower = SwitchPower::from_valid_parts(
     4,
 );
 
-/// `sl = s0 ((s - S)_+ / (1/2 - S))^5` (`sl = s0` at the corners, `s = 1/2`).
+/// `sl = s0 ((s - S)_+ / (1/2 - S))^3` (`sl = s0` at the corners, `s = 1/2`).
 const SLIP_SWITCH: SwitchPower = SwitchPower::from_valid_parts(
     StickSlipContact::PEAK_SLIP,
     SwitchSide::Above,
     STICK_RADIUS_SQUARED,
     0.5 - STICK_RADIUS_SQUARED,
-    5,
+    3,
 );
 
 /// "M2-3D": Tresca friction between the upper box `Omega_1 = (0, 1)^3` and the lower box
@@ -45,7 +45,7 @@ const SLIP_SWITCH: SwitchPower = SwitchPower::from_valid_parts(
 /// s = r^2,  S = r_s^2 = (sqrt 2 - 1)/2,  c = (1/2, 1/2)
 /// m = g0 (1 + x/2, y - 1/2)                 (g0 = 1/4; never zero on the square)
 /// g_F = |m|                                 the friction bound (imposed)
-/// rho = ((S - s)_+ / S)^4,   sl = s0 ((s - S)_+ / (1/2 - S))^5     (s0 = 1/20)
+/// rho = ((S - s)_+ / S)^4,   sl = s0 ((s - S)_+ / (1/2 - S))^3     (s0 = 1/20)
 /// t = (1 - rho) m                           shear traction sigma_Tz, sigma_1tau = -t
 /// alpha_1 = sl m / (2 g0),  alpha_2 = -alpha_1     slip [u]_1tau = sl m / g0
 /// p = p0 (1 + (x + y)/2 - (x^2 + y^2)/2)    pressure (p0 = 1; 1 <= p <= 5/4)
