@@ -33,6 +33,14 @@
 //! [`ContactSolver::solve_forces`] stops before the back substitution: the steps of a Coulomb
 //! fixed point cost interface work only.
 //!
+//! **The iterative interface** ([`InterfaceMethod`]): for large interfaces the dense work
+//! (`|G|^3 / 3` for the trailing block, `W`, `H`) loses against an iteration on the operator
+//! `lambda -> B K^-1 B' lambda`: each body is factorised in its best order (no trailing block)
+//! and the QP is solved by MPGP (`mprgp`), one pair of triangular solves per body and
+//! iteration, warm-started like the dense QP; `B u = [g; s] + d - H lambda` comes from the
+//! last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
+//! forced by the settings; a singular body makes the solver take the dense interface.
+//!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
 //! factorised as `K_s = K + s E_G` (`E_G` the identity on its interface unknowns, `s` a small
@@ -79,6 +87,8 @@ use super::system::{ContactSystem, PatternId};
 use super::{ContactForces, ContactSolution, ContactSolver};
 
 const NAME: &str = "condensed (interface Schur complement)";
+/// The name in the reports of the solves on the iterative interface.
+const ITERATIVE_NAME: &str = "condensed (iterative interface, MPGP)";
 /// The name in the reports of the solves the condensed solver hands over to the active-set
 /// solver: the solver the user chose, and who solved.
 const HANDED_OVER: &str =
@@ -106,8 +116,10 @@ pub enum InterfaceMethod {
     /// iteration, the QP solved by MPGP (MPRGP on sign bounds; gradient projections onto
     /// the disks in space). Its cost grows with the iterations times the cost of a solve.
     Iterative,
-    /// [`InterfaceMethod::Dense`] up to [`ITERATIVE_FROM`] interface unknowns (summed over
-    /// the bodies), [`InterfaceMethod::Iterative`] from there on. The default.
+    /// [`InterfaceMethod::Iterative`] for frictionless problems from [`ITERATIVE_FROM`]
+    /// interface unknowns (summed over the bodies), [`InterfaceMethod::Dense`] otherwise (with
+    /// friction MPGP moves the sliding nodes along their rims by projected gradient steps
+    /// only, which converge linearly: measured in docs/contact-3d.md, section 7). The default.
     #[default]
     Auto,
 }
@@ -412,7 +424,9 @@ impl Factors {
         let iterative = match settings.interface {
             InterfaceMethod::Dense => false,
             InterfaceMethod::Iterative => true,
-            InterfaceMethod::Auto => unknowns >= ITERATIVE_FROM,
+            // Friction: the sliding nodes of MPGP converge by projected gradient steps only
+            // (linearly, at the rate of the condition of H): the dense interface.
+            InterfaceMethod::Auto => unknowns >= ITERATIVE_FROM && system.friction().is_none(),
         };
         if iterative {
             if let Some(factors) =
@@ -1463,7 +1477,11 @@ impl CondensedSolver {
         };
         work.times.contact_solve = start.elapsed();
         let report = SolveReport {
-            solver: NAME,
+            solver: if factors.iterative.is_some() {
+                ITERATIVE_NAME
+            } else {
+                NAME
+            },
             status,
             iterations: interface.iterations,
             work,

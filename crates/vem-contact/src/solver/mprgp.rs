@@ -33,6 +33,9 @@
 
 use super::disk_qp::Disk;
 
+/// The action `x -> H x` of the problem's matrix (with the error of the caller's products).
+type Product<'f, E> = dyn FnMut(&[f64]) -> Result<Vec<f64>, E> + 'f;
+
 /// The outcome of [`Mprgp::solve`].
 #[derive(Debug, Clone)]
 pub(crate) struct MprgpOutcome {
@@ -165,9 +168,7 @@ impl Mprgp<'_> {
         let mut x = start.to_vec();
         self.project(&mut x);
         let linear = self.linear;
-        let gradient_at = |apply: &mut dyn FnMut(&[f64]) -> Result<Vec<f64>, E>,
-                           x: &[f64]|
-         -> Result<Vec<f64>, E> {
+        let gradient_at = |apply: &mut Product<'_, E>, x: &[f64]| -> Result<Vec<f64>, E> {
             let mut g = apply(x)?;
             for (gi, di) in g.iter_mut().zip(linear) {
                 *gi -= di;
@@ -223,7 +224,7 @@ impl Mprgp<'_> {
                 // Proportional: conjugate gradients on the free set.
                 let ap = apply(&p)?;
                 let curvature = dot(&p, &ap);
-                if !(curvature > 0.0) {
+                if curvature.is_nan() || curvature <= 0.0 {
                     break;
                 }
                 let step = dot(&g, &p) / curvature;
