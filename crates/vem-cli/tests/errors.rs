@@ -161,7 +161,7 @@ fn law_settings_must_match_the_law() {
         &[
             "solver 'condensed'",
             "unknown field `penalty`",
-            "expected `tolerance` or `max_iterations`",
+            "expected one of `tolerance`, `max_iterations`, `interface`",
         ],
     );
 }

@@ -104,9 +104,9 @@ fn from_seconds<'de, D: serde::Deserializer<'de>>(d: D) -> Result<std::time::Dur
 pub use solver::{
     ActiveSetSettings, ActiveSetSolver, CondensedSettings, CondensedSolver, ConstraintRows,
     ContactForces, ContactSolution, ContactSolver, ContactSolverError, ContactSystem,
-    ContactSystemError, Friction, KktResiduals, KktScales, KktTolerance, PatternId,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport, SolveStatus,
-    StageTimes, StiffnessBlock, WorkCounters,
+    ContactSystemError, Friction, InterfaceMethod, KktResiduals, KktScales, KktTolerance,
+    PatternId, PenaltyParameter, PenaltySettings, PenaltySolver, SettingsError, SolveReport,
+    SolveStatus, StageTimes, StiffnessBlock, WorkCounters,
 };
 #[cfg(feature = "clarabel")]
 pub use solver::{ExactSettings, ExactSolver};

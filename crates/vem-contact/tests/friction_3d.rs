@@ -9,9 +9,10 @@ use std::sync::Arc;
 
 use faer::sparse::{SparseColMat, Triplet};
 use vem_contact::{
-    CondensedSolver, ConstraintRows, ContactError, ContactLaw, ContactPair, ContactProblem,
-    ContactResult, ContactSolver, ContactSystem, Coulomb, Friction, KktResiduals, Obstacle3,
-    PenaltyParameter, PenaltySettings, PenaltySolver, SolverRegistry, Tresca,
+    CondensedSettings, CondensedSolver, ConstraintRows, ContactError, ContactLaw, ContactPair,
+    ContactProblem, ContactResult, ContactSolver, ContactSystem, Coulomb, Friction,
+    InterfaceMethod, KktResiduals, Obstacle3, PenaltyParameter, PenaltySettings, PenaltySolver,
+    SolverRegistry, Tresca,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material};
 use vem_mesh::generators::polyhedral::{hexahedra, Cuboid};
@@ -35,12 +36,14 @@ fn element() -> Arc<PolyhedralVem> {
 }
 
 /// Every solver of the registry, by name, with its default settings.
+/// The condensed solver with its interface forced to the iterative method is listed as
+/// `"condensed-iterative"` (these problems' interfaces are small: the default is dense).
 fn solvers() -> Vec<(String, Box<dyn ContactSolver>)> {
     let registry = SolverRegistry::builtin();
     let mut names = registry.names();
     // The regularised answer last.
     names.sort_by_key(|&name| name == "penalty");
-    names
+    let mut solvers: Vec<_> = names
         .into_iter()
         .map(|name| {
             (
@@ -48,7 +51,17 @@ fn solvers() -> Vec<(String, Box<dyn ContactSolver>)> {
                 registry.make(name, &Options::new()).unwrap(),
             )
         })
-        .collect()
+        .collect();
+    solvers.insert(
+        1,
+        (
+            "condensed-iterative".to_string(),
+            registry
+                .make("condensed", &Options::new().with("interface", "iterative"))
+                .unwrap(),
+        ),
+    );
+    solvers
 }
 
 fn cube(min: [f64; 3], max: [f64; 3], n: [usize; 3]) -> PolyhedralMesh {
@@ -506,6 +519,57 @@ fn coulomb_in_space_costs_one_factorisation_per_body() {
     }
 }
 
+/// The Coulomb fixed point with the iterative interface (MPGP on the Schur operator, warm
+/// started from step to step) and with the dense one: the same forces and displacements to
+/// the certificate's tolerance, each certified, one factorisation per body either way.
+#[test]
+fn coulomb_in_space_is_the_same_with_the_iterative_interface() {
+    let problem = stacked_blocks(Coulomb::try_new(COEFFICIENT).unwrap());
+    let solve = |interface| {
+        let settings = CondensedSettings::builder()
+            .interface(interface)
+            .build()
+            .unwrap();
+        problem.solve(&mut CondensedSolver::new(settings)).unwrap()
+    };
+    let dense = solve(InterfaceMethod::Dense);
+    let iterative = solve(InterfaceMethod::Iterative);
+    assert_eq!(iterative.work.numeric_factorisations, 2);
+    let scale = dense
+        .nodes
+        .iter()
+        .fold(0.0f64, |m, n| m.max(n.normal_force));
+    let mut largest = 0.0f64;
+    for (a, b) in iterative.nodes.iter().zip(&dense.nodes) {
+        largest = largest
+            .max((a.normal_force - b.normal_force).abs() / scale)
+            .max((a.friction_force - b.friction_force).norm() / scale);
+    }
+    let u_scale = dense.bodies.iter().fold(0.0f64, |m, b| {
+        (0..b.body.mesh().n_vertices())
+            .fold(m, |m, v| m.max(b.solution.vertex_displacement(v).norm()))
+    });
+    let mut largest_u = 0.0f64;
+    for (a, b) in iterative.bodies.iter().zip(&dense.bodies) {
+        for v in 0..a.body.mesh().n_vertices() {
+            let du = a.solution.vertex_displacement(v) - b.solution.vertex_displacement(v);
+            largest_u = largest_u.max(du.norm() / u_scale);
+        }
+    }
+    println!(
+        "Coulomb, iterative against dense: forces {largest:.1e}, displacements {largest_u:.1e}; \
+         {} against {} Tresca steps, {} against {} interface iterations",
+        iterative.fixed_point.as_ref().unwrap().steps,
+        dense.fixed_point.as_ref().unwrap().steps,
+        iterative.report.iterations,
+        dense.report.iterations
+    );
+    assert!(
+        largest < 1e-7 && largest_u < 1e-7,
+        "{largest:e} {largest_u:e}"
+    );
+}
+
 /// The cost of friction in space against one elastic solve (not a check: figures for
 /// `docs/contact-3d.md`). `cargo test -p vem-contact --test friction_3d -- --ignored
 /// --nocapture cost` (the test profile is optimised); the sizes `n` (default 8, 16, 24) from
@@ -517,6 +581,27 @@ fn cost_of_friction_in_space() {
     let sizes: Vec<usize> = std::env::var("FRICTION_COST_SIZES").map_or_else(
         |_| vec![8, 16, 24],
         |v| v.split(',').map(|n| n.trim().parse().unwrap()).collect(),
+    );
+    // The interface methods to compare, in the same run (`FRICTION_COST_INTERFACE`, comma
+    // separated: dense, iterative, auto; default dense and iterative).
+    let methods: Vec<InterfaceMethod> = std::env::var("FRICTION_COST_INTERFACE")
+        .unwrap_or_else(|_| "dense,iterative".to_string())
+        .split(',')
+        .map(|m| match m.trim() {
+            "dense" => InterfaceMethod::Dense,
+            "iterative" => InterfaceMethod::Iterative,
+            _ => InterfaceMethod::Auto,
+        })
+        .collect();
+    // The laws (`FRICTION_COST_LAWS`, comma separated; default all three).
+    let laws: Vec<String> = std::env::var("FRICTION_COST_LAWS")
+        .unwrap_or_else(|_| "frictionless,tresca,coulomb".to_string())
+        .split(',')
+        .map(|l| l.trim().to_string())
+        .collect();
+    println!(
+        "| n | 3 x vertices | contact nodes | law | interface | stick, slip | interface steps \
+         | Tresca steps | solves | contact s | total s | one elastic solve s | ratio |"
     );
     for n in sizes {
         let mesh = || cube([0.0; 3], [1.0, 1.0, 0.5], [n, n, n / 2]);
@@ -538,10 +623,18 @@ fn cost_of_friction_in_space() {
         let _ = held.solve().unwrap();
         let elastic = start.elapsed().as_secs_f64();
         let unknowns = 3 * (n + 1) * (n + 1) * (n / 2 + 1);
-        for (law, name) in [
-            (Arc::new(steep_tresca()) as Arc<dyn ContactLaw<3>>, "tresca"),
+        for ((law, name), &method) in [
+            (
+                Arc::new(vem_contact::Frictionless) as Arc<dyn ContactLaw<3>>,
+                "frictionless",
+            ),
+            (Arc::new(steep_tresca()), "tresca"),
             (Arc::new(Coulomb::try_new(COEFFICIENT).unwrap()), "coulomb"),
-        ] {
+        ]
+        .into_iter()
+        .filter(|(_, name)| laws.iter().any(|l| l == name))
+        .flat_map(|law| methods.iter().map(move |m| (law.clone(), m)))
+        {
             let body = top(ElasticBody::builder_polyhedral(
                 "block",
                 mesh(),
@@ -556,14 +649,26 @@ fn cost_of_friction_in_space() {
             };
             let problem = ContactProblem::against_obstacle(body, "bottom", plane, law);
             let start = Instant::now();
-            let result = problem.solve(&mut CondensedSolver::default()).unwrap();
+            let settings = CondensedSettings::builder()
+                .interface(method)
+                .build()
+                .unwrap();
+            let result = match problem.solve(&mut CondensedSolver::new(settings)) {
+                Ok(result) => result,
+                Err(e) => {
+                    println!("| {n} | {unknowns} | | {name} | {method:?} | {e} |");
+                    continue;
+                }
+            };
             let total = start.elapsed().as_secs_f64();
             println!(
-                "| {n} | {unknowns} | {} | {name} | {:?} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} |",
+                "| {n} | {unknowns} | {} | {name} | {method:?} | {:?} | {} | {} | {} | {:.2} | {:.2} \
+                 | {:.2} | {:.2} |",
                 result.nodes.len(),
                 stick_and_slip(&result),
                 result.report.iterations,
                 result.fixed_point.as_ref().map_or(0, |f| f.steps),
+                result.work.triangular_solves,
                 result.work.times.contact_solve.as_secs_f64(),
                 total,
                 elastic,

@@ -24,10 +24,12 @@ fn element() -> Arc<PolyhedralVem> {
     Arc::new(PolyhedralVem::default())
 }
 
-/// Every solver of the registry, by name, with its default settings.
+/// Every solver of the registry, by name, with its default settings, and the condensed solver
+/// with its interface forced to the iterative method (`"condensed-iterative"`; these problems'
+/// interfaces are small, so the default chooses the dense one).
 fn solvers() -> Vec<(String, Box<dyn vem_contact::ContactSolver>)> {
     let registry = SolverRegistry::builtin();
-    registry
+    let mut solvers: Vec<_> = registry
         .names()
         .into_iter()
         .map(|name| {
@@ -36,7 +38,14 @@ fn solvers() -> Vec<(String, Box<dyn vem_contact::ContactSolver>)> {
                 registry.make(name, &Options::new()).unwrap(),
             )
         })
-        .collect()
+        .collect();
+    solvers.push((
+        "condensed-iterative".to_string(),
+        registry
+            .make("condensed", &Options::new().with("interface", "iterative"))
+            .unwrap(),
+    ));
+    solvers
 }
 
 /// The tolerance on a nodal force, relative to the largest: the interior point's answer is

@@ -33,6 +33,14 @@
 //! [`ContactSolver::solve_forces`] stops before the back substitution: the steps of a Coulomb
 //! fixed point cost interface work only.
 //!
+//! **The iterative interface** ([`InterfaceMethod`]): for large interfaces the dense work
+//! (`|G|^3 / 3` for the trailing block, `W`, `H`) loses against an iteration on the operator
+//! `lambda -> B K^-1 B' lambda`: each body is factorised in its best order (no trailing block)
+//! and the QP is solved by MPGP (`mprgp`), one pair of triangular solves per body and
+//! iteration, warm-started like the dense QP; `B u = [g; s] + d - H lambda` comes from the
+//! last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
+//! forced by the settings; a singular body makes the solver take the dense interface.
+//!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
 //! factorised as `K_s = K + s E_G` (`E_G` the identity on its interface unknowns, `s` a small
@@ -69,6 +77,7 @@ use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
 use super::disk_qp::{Disk, DiskQp};
 use super::error::{ContactSolverError, SettingsError};
+use super::mprgp::{self, Mprgp};
 use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
     WorkCounters,
@@ -78,6 +87,8 @@ use super::system::{ContactSystem, PatternId};
 use super::{ContactForces, ContactSolution, ContactSolver};
 
 const NAME: &str = "condensed (interface Schur complement)";
+/// The name in the reports of the solves on the iterative interface.
+const ITERATIVE_NAME: &str = "condensed (iterative interface, MPGP)";
 /// The name in the reports of the solves the condensed solver hands over to the active-set
 /// solver: the solver the user chose, and who solved.
 const HANDED_OVER: &str =
@@ -89,7 +100,34 @@ pub struct CondensedSettings {
     tolerance: f64,
     max_iterations: usize,
     cholesky: CholeskySettings,
+    interface: InterfaceMethod,
 }
+
+/// How the condensed solver solves its interface problem (the dual QP in the multipliers).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InterfaceMethod {
+    /// The dense interface Schur complement: each body factorised with its interface unknowns
+    /// eliminated last, `H = W'W` formed, the QP solved by projected Newton steps. Exact
+    /// in a few steps; its cost grows like the cube of the interface unknowns.
+    Dense,
+    /// The dual iteration on the Schur operator: each body factorised in its best ordering,
+    /// `lambda -> B K^-1 B' lambda` applied with one pair of triangular solves per body per
+    /// iteration, the QP solved by MPGP (MPRGP on sign bounds; gradient projections onto
+    /// the disks in space). Its cost grows with the iterations times the cost of a solve.
+    Iterative,
+    /// [`InterfaceMethod::Iterative`] for frictionless problems from [`ITERATIVE_FROM`]
+    /// interface unknowns (summed over the bodies), [`InterfaceMethod::Dense`] otherwise (with
+    /// friction MPGP moves the sliding nodes along their rims by projected gradient steps
+    /// only, which converge linearly: measured in docs/contact-3d.md, section 7). The default.
+    #[default]
+    Auto,
+}
+
+/// The number of interface unknowns (summed over the bodies) from which
+/// [`InterfaceMethod::Auto`] chooses the iterative interface (see docs/contact-3d.md,
+/// section 7, for the measurements behind it).
+pub const ITERATIVE_FROM: usize = 4000;
 
 impl Default for CondensedSettings {
     /// Relative tolerance `1e-12` on the projected gradient of the interface problem, at most
@@ -99,6 +137,7 @@ impl Default for CondensedSettings {
             tolerance: 1e-12,
             max_iterations: 200,
             cholesky: CholeskySettings::default(),
+            interface: InterfaceMethod::Auto,
         }
     }
 }
@@ -124,9 +163,15 @@ impl CondensedSettings {
         (100.0 * self.tolerance).max(1e-9)
     }
 
-    /// Limit on the projected Newton steps.
+    /// Limit on the projected Newton steps (the iterative interface allows
+    /// [`ITERATIONS_PER_STEP`] times as many iterations).
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
+    }
+
+    /// How the interface problem is solved.
+    pub fn interface(&self) -> InterfaceMethod {
+        self.interface
     }
 
     /// Settings of the sparse Cholesky factorisation of each body.
@@ -161,6 +206,12 @@ impl CondensedSettingsBuilder {
         self
     }
 
+    /// How the interface problem is solved (default [`InterfaceMethod::Auto`]).
+    pub fn interface(mut self, value: InterfaceMethod) -> Self {
+        self.settings.interface = value;
+        self
+    }
+
     /// Validates the settings.
     ///
     /// # Errors
@@ -179,10 +230,12 @@ impl CondensedSettingsBuilder {
 struct CondensedOptions {
     tolerance: Option<f64>,
     max_iterations: Option<usize>,
+    interface: Option<InterfaceMethod>,
 }
 
 impl CondensedSettings {
-    /// The settings of a table of options (`tolerance`, `max_iterations`), checked.
+    /// The settings of a table of options (`tolerance`, `max_iterations`, `interface` one of
+    /// `"dense"`, `"iterative"`, `"auto"`), checked.
     ///
     /// # Errors
     /// [`OptionsError`] naming the unknown or invalid setting.
@@ -194,6 +247,9 @@ impl CondensedSettings {
         }
         if let Some(m) = o.max_iterations {
             b = b.max_iterations(m);
+        }
+        if let Some(i) = o.interface {
+            b = b.interface(i);
         }
         b.build().map_err(OptionsError::from)
     }
@@ -245,8 +301,11 @@ struct Held {
 #[derive(Debug)]
 struct Factors {
     bodies: Vec<BodyFactor>,
-    /// `H = B M^-1 B'` (rows: normal, then tangential).
+    /// `H = B M^-1 B'` (rows: normal, then tangential); empty for the iterative interface.
     hessian: Mat<f64>,
+    /// The iterative interface: the bodies factorised in their best order (no trailing
+    /// block), `H` applied by solves; `norm` its estimated norm (made at the first solve).
+    iterative: Option<IterativeState>,
     /// The load of the last solve and `u0 = K_s^-1 f` for it.
     unconstrained: Option<(Vec<f64>, Vec<f64>)>,
     /// Per body, the loads solved for so far (see [`LoadSpan`]).
@@ -262,8 +321,9 @@ struct BodyFactor {
     offset: usize,
     n: usize,
     cholesky: CholeskySolver,
-    /// The shared factor (held for the other solvers of the structure).
-    _shared: Arc<BlockFactor>,
+    /// The shared factor (held for the other solvers of the structure; none for the iterative
+    /// interface, whose factor has no other user).
+    _shared: Option<Arc<BlockFactor>>,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
     /// `L_GG`, the trailing block of the factor (empty without interface unknowns): the
@@ -360,6 +420,23 @@ impl Factors {
     ) -> Result<Option<Self>, ContactSolverError> {
         let rows = all_rows(system);
         let interfaces = shared::interfaces(system);
+        let unknowns: usize = interfaces.iter().map(Vec::len).sum();
+        let iterative = match settings.interface {
+            InterfaceMethod::Dense => false,
+            InterfaceMethod::Iterative => true,
+            // Friction: the sliding nodes of MPGP converge by projected gradient steps only
+            // (linearly, at the rate of the condition of H): the dense interface.
+            InterfaceMethod::Auto => unknowns >= ITERATIVE_FROM && system.friction().is_none(),
+        };
+        if iterative {
+            if let Some(factors) =
+                Self::build_iterative(system, settings, interfaces.clone(), work)?
+            {
+                return Ok(Some(factors));
+            }
+            // A body without a Cholesky factor (held only by contact or friction): the dense
+            // interface with its shift and proximal steps.
+        }
         // The bodies' blocks are independent: each is ordered, analysed and factorised on its
         // own thread (an ordering runs on one core; each factorisation chooses its own
         // parallelism), then their interface parts are summed in the order of the bodies.
@@ -402,6 +479,7 @@ impl Factors {
         Ok(Some(Self {
             bodies,
             hessian,
+            iterative: None,
             unconstrained: None,
             spans: Vec::new(),
             multipliers: None,
@@ -409,6 +487,111 @@ impl Factors {
         }))
     }
 }
+
+impl Factors {
+    /// The factors of the iterative interface: each body analysed and factorised in its best
+    /// order (the bodies in parallel), nothing dense. `None` when a body's stiffness is
+    /// singular (the caller turns to the dense interface and its shifted factors).
+    fn build_iterative(
+        system: &ContactSystem<'_>,
+        settings: &CondensedSettings,
+        interfaces: Vec<Vec<usize>>,
+        work: &mut WorkCounters,
+    ) -> Result<Option<Self>, ContactSolverError> {
+        let parts: Vec<Result<(Option<BodyFactor>, WorkCounters), ContactSolverError>> = interfaces
+            .into_par_iter()
+            .enumerate()
+            .map(|(b, interface)| {
+                let mut work = WorkCounters::default();
+                let block = &system.stiffness_blocks()[b];
+                let (offset, k) = (block.offset(), block.matrix());
+                let mut cholesky = CholeskySolver::new(settings.cholesky);
+                let start = Instant::now();
+                cholesky.analyse(k.symbolic()).map_err(backend)?;
+                work.symbolic_analyses += 1;
+                work.times.symbolic += start.elapsed();
+                let start = Instant::now();
+                let outcome = cholesky.factorise(k);
+                work.numeric_factorisations += 1;
+                work.times.numeric += start.elapsed();
+                match outcome {
+                    Ok(()) => Ok((
+                        Some(BodyFactor {
+                            offset,
+                            n: k.nrows(),
+                            cholesky,
+                            _shared: None,
+                            interface,
+                            trailing: Mat::zeros(0, 0),
+                            proximal: None,
+                        }),
+                        work,
+                    )),
+                    Err(SolveError::NotPositiveDefinite { .. }) => Ok((None, work)),
+                    Err(e) => Err(backend(e)),
+                }
+            })
+            .collect();
+        let mut bodies = Vec::with_capacity(parts.len());
+        let mut singular = false;
+        for part in parts {
+            let (body, part_work) = part?;
+            *work += part_work;
+            match body {
+                Some(body) => bodies.push(body),
+                None => singular = true,
+            }
+        }
+        if singular {
+            return Ok(None);
+        }
+        Ok(Some(Self {
+            bodies,
+            hessian: Mat::zeros(0, 0),
+            iterative: Some(IterativeState { norm: None }),
+            unconstrained: None,
+            spans: Vec::new(),
+            multipliers: None,
+            reduced: ReducedFactor::default(),
+        }))
+    }
+
+    /// `H x = B K^-1 B' x` (one pair of triangular solves per body, the bodies in parallel).
+    fn apply_operator(
+        &self,
+        rows: &[(&[usize], &[f64])],
+        n: usize,
+        x: &[f64],
+        work: &mut WorkCounters,
+    ) -> Result<Vec<f64>, ContactSolverError> {
+        let mut load = vec![0.0; n];
+        for (&(cols, values), &l) in rows.iter().zip(x) {
+            if l != 0.0 {
+                for (&c, v) in cols.iter().zip(values) {
+                    load[c] += v * l;
+                }
+            }
+        }
+        self.solve(&mut load, work)?;
+        Ok(rows
+            .iter()
+            .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * load[c]).sum())
+            .collect())
+    }
+}
+
+/// What the iterative interface keeps per structure.
+#[derive(Debug)]
+struct IterativeState {
+    /// The estimate of `|H|_2` (power iterations at the first solve).
+    norm: Option<f64>,
+}
+
+/// Power iterations for the estimate of `|H|_2` of the iterative interface.
+const NORM_ITERATIONS: usize = 10;
+/// The iterative interface allows this many iterations per projected Newton step of
+/// [`CondensedSettings::max_iterations`].
+pub const ITERATIONS_PER_STEP: usize = 10;
 
 /// What one body contributes to [`Factors`]: its shared order and analysis, its factor
 /// (`None` when it stays singular with the shift), `W = L_GG^-1 B_G'` and the work done.
@@ -512,7 +695,7 @@ impl BodyPart {
                 offset,
                 n,
                 cholesky,
-                _shared: block_factor,
+                _shared: Some(block_factor),
                 interface,
                 trailing,
                 proximal,
@@ -747,6 +930,8 @@ struct Interface {
     converged: bool,
     /// The proximal steps moved along a free mode instead of converging.
     free_mode: bool,
+    /// `H lambda` (the iterative interface, which has no `H` to multiply by).
+    hessian_lambda: Option<Vec<f64>>,
 }
 
 /// The bound-constrained interface QP, with the tolerance relative to
@@ -813,6 +998,84 @@ fn interface_qp(
     )
 }
 
+/// The interface QP by MPGP on the Schur operator `H = B K^-1 B'` (the iterative interface),
+/// from `warm`. The stopping test is `|g^P|_inf <= tolerance * L` with `L` the length scale of
+/// the data: `max_i d_i^+` over the normal rows (the largest unconstrained penetration) and
+/// `|d_i|` over the tangential rows whose bound is not zero (the largest slip); zero data give
+/// exactly zero forces. `|H|` is estimated once per structure.
+#[allow(clippy::too_many_arguments)]
+fn iterative_interface(
+    factors: &mut Factors,
+    rows: &[(&[usize], &[f64])],
+    n: usize,
+    d: Vec<f64>,
+    lower: &[f64],
+    upper: &[f64],
+    disks: &[Disk],
+    warm: &[f64],
+    settings: &CondensedSettings,
+    work: &mut WorkCounters,
+) -> Result<Interface, ContactSolverError> {
+    let mut carries = vec![true; d.len()];
+    for (i, c) in carries.iter_mut().enumerate() {
+        *c = upper[i] > lower[i];
+    }
+    for disk in disks {
+        carries[disk.first] = disk.radius > 0.0;
+        carries[disk.first + 1] = disk.radius > 0.0;
+    }
+    // Normal rows: lower bound 0, upper +inf; tangential rows: symmetric bounds or disks.
+    let length_scale = (0..d.len()).filter(|&i| carries[i]).fold(0.0f64, |a, i| {
+        let length = if lower[i] == 0.0 && upper[i] == f64::INFINITY {
+            d[i].max(0.0)
+        } else {
+            d[i].abs()
+        };
+        a.max(length)
+    });
+    if length_scale == 0.0 {
+        return Ok(Interface {
+            lambda: vec![0.0; d.len()],
+            d,
+            iterations: 0,
+            converged: true,
+            free_mode: false,
+            hessian_lambda: Some(vec![0.0; rows.len()]),
+        });
+    }
+    let this: &Factors = factors;
+    let norm = match this.iterative.as_ref().and_then(|s| s.norm) {
+        Some(norm) => norm,
+        None => mprgp::norm_estimate(d.len(), NORM_ITERATIONS, |x| {
+            this.apply_operator(rows, n, x, work)
+        })?,
+    };
+    let outcome = Mprgp {
+        linear: &d,
+        lower,
+        upper,
+        disks,
+    }
+    .solve(
+        warm,
+        settings.tolerance * length_scale,
+        settings.max_iterations * ITERATIONS_PER_STEP,
+        norm,
+        |x| this.apply_operator(rows, n, x, work),
+    )?;
+    if let Some(state) = factors.iterative.as_mut() {
+        state.norm = Some(norm);
+    }
+    Ok(Interface {
+        lambda: outcome.x,
+        d,
+        iterations: outcome.iterations,
+        converged: outcome.converged,
+        free_mode: false,
+        hessian_lambda: Some(outcome.hx),
+    })
+}
+
 /// Proximal point steps on the interface for systems with shifted (singular) bodies: each step
 /// is the interface QP with `d = d0 + sum_b W_b' L_b^-1 (s_b v_b)`, then
 /// `v_b <- u0_b + L_b^-T (L_b^-1 s_b v_b - W_b lambda)` on each shifted body. Stops when the
@@ -837,6 +1100,7 @@ fn proximal_iteration(
         iterations: 0,
         converged: false,
         free_mode: false,
+        hessian_lambda: None,
     };
     let load_scale = inf(system.load());
     let mut reaction = vec![0.0; system.n_dofs()];
@@ -1073,7 +1337,20 @@ impl CondensedSolver {
             .take()
             .filter(|l| l.len() == rows.len())
             .unwrap_or_else(|| vec![0.0; rows.len()]);
-        let interface = if factors.is_shifted() {
+        let interface = if factors.iterative.is_some() {
+            iterative_interface(
+                factors,
+                &rows,
+                system.n_dofs(),
+                d0,
+                &lower,
+                &upper,
+                &disks,
+                &warm,
+                &self.settings,
+                &mut work,
+            )?
+        } else if factors.is_shifted() {
             proximal_iteration(
                 factors,
                 system,
@@ -1103,6 +1380,7 @@ impl CondensedSolver {
                 iterations: outcome.iterations,
                 converged: outcome.converged,
                 free_mode: false,
+                hessian_lambda: None,
             }
         };
         if !interface.converged && !interface.free_mode && factors.is_shifted() {
@@ -1162,8 +1440,12 @@ impl CondensedSolver {
                 }
             }
         }
-        // The correction lies on the interface unknowns: half a solve per body.
-        factors.solve_on_interface(&mut correction, &mut work)?;
+        if factors.iterative.is_some() {
+            factors.solve(&mut correction, &mut work)?;
+        } else {
+            // The correction lies on the interface unknowns: half a solve per body.
+            factors.solve_on_interface(&mut correction, &mut work)?;
+        }
         let displacement: Vec<f64> = u0.iter().zip(&correction).map(|(a, b)| a - b).collect();
         let normal_force = lambda[..m].to_vec();
         let tangential_force = if system.friction().is_some() {
@@ -1195,7 +1477,11 @@ impl CondensedSolver {
         };
         work.times.contact_solve = start.elapsed();
         let report = SolveReport {
-            solver: NAME,
+            solver: if factors.iterative.is_some() {
+                ITERATIVE_NAME
+            } else {
+                NAME
+            },
             status,
             iterations: interface.iterations,
             work,
@@ -1320,12 +1606,18 @@ impl ContactSolver for CondensedSolver {
             .expect("an interface answer has factors");
         let m = system.n_constraints();
         let lambda = &interface.lambda;
-        let h = factors.hessian.as_ref();
         let mut values = interface.d.clone();
-        for (j, &l) in lambda.iter().enumerate() {
-            if l != 0.0 {
-                for (v, hij) in values.iter_mut().zip(h.col(j).iter()) {
-                    *v -= hij * l;
+        if let Some(hessian_lambda) = &interface.hessian_lambda {
+            for (v, hl) in values.iter_mut().zip(hessian_lambda) {
+                *v -= hl;
+            }
+        } else {
+            let h = factors.hessian.as_ref();
+            for (j, &l) in lambda.iter().enumerate() {
+                if l != 0.0 {
+                    for (v, hij) in values.iter_mut().zip(h.col(j).iter()) {
+                        *v -= hij * l;
+                    }
                 }
             }
         }

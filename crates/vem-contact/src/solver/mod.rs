@@ -34,6 +34,7 @@ mod disk_qp;
 mod error;
 #[cfg(feature = "clarabel")]
 mod exact;
+mod mprgp;
 mod newton_matrix;
 mod penalty;
 mod report;
@@ -41,7 +42,10 @@ mod shared;
 mod system;
 
 pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};
-pub use condensed::{CondensedSettings, CondensedSettingsBuilder, CondensedSolver};
+pub use condensed::{
+    CondensedSettings, CondensedSettingsBuilder, CondensedSolver, InterfaceMethod,
+    ITERATIONS_PER_STEP, ITERATIVE_FROM,
+};
 pub use error::{ContactSolverError, SettingsError};
 #[cfg(feature = "clarabel")]
 pub use exact::{ExactSettings, ExactSettingsBuilder, ExactSolver};

@@ -1,0 +1,447 @@
+//! Matrix-free convex quadratic programs with separable constraints,
+//!
+//! ```text
+//! minimise q(x) = 1/2 x'Hx - d'x   subject to   lower_i <= x_i <= upper_i,
+//!                                               |(x_j, x_j+1)| <= r  for every disk (j, r),
+//! ```
+//!
+//! with `H` symmetric positive (semi)definite and known only through its action `x -> Hx`:
+//! the interface problem of the condensed solver when its interface is too large for the dense
+//! `H` (`Hx = B K^-1 B' x`, one pair of triangular solves per body).
+//!
+//! Solved by **MPGP**, Dostál's modified proportioning with gradient projections (MPRGP for
+//! bounds, extended to separable convex sets by Dostál and Kozubek): conjugate gradients on the
+//! free variables while the gradient of the active constraints is small against the free one
+//! (proportional iterates), and
+//!
+//! - an **expansion step** when a conjugate gradient step would leave the set: the feasible
+//!   part of the step, then a projected gradient step `x <- P(x - alpha g)` of fixed length
+//!   `alpha = 1.9 / |H|` (`|H|` estimated by power iterations; a step that raises `q` halves
+//!   `alpha` for good), which may add many constraints at once;
+//! - a **proportioning step** when the chopped gradient `beta` (the part of the projected
+//!   gradient on the active constraints) dominates: the exact minimisation along `-beta` when it
+//!   stays feasible (always for sign bounds: it only releases), else the projected gradient
+//!   step.
+//!
+//! The free set is the set of variables strictly inside their bounds, and the disks strictly
+//! inside their rim. On a rim `n = x / |x|` (outward) the projected gradient is `g` when
+//! `g . n >= 0` (the descent direction points inward) and its tangential part `g - (g . n) n`
+//! otherwise; on a disk of radius 0 it vanishes.
+//!
+//! Stopping test: `|g^P|_inf <= tolerance` (a length in the interface problem: a gap or slip
+//! residual), then confirmed with a freshly computed gradient.
+
+use super::disk_qp::Disk;
+
+/// The action `x -> H x` of the problem's matrix (with the error of the caller's products).
+type Product<'f, E> = dyn FnMut(&[f64]) -> Result<Vec<f64>, E> + 'f;
+
+/// The outcome of [`Mprgp::solve`].
+#[derive(Debug, Clone)]
+pub(crate) struct MprgpOutcome {
+    pub x: Vec<f64>,
+    /// `H x` at the returned `x` (computed afresh at the end, not by recurrence).
+    pub hx: Vec<f64>,
+    /// Iterations (conjugate gradient, expansion and proportioning steps).
+    pub iterations: usize,
+    pub converged: bool,
+}
+
+/// The constraint set of the problem (borrowed data). The variables of a disk have the bounds
+/// `-inf, +inf`.
+pub(crate) struct Mprgp<'a> {
+    pub linear: &'a [f64],
+    pub lower: &'a [f64],
+    pub upper: &'a [f64],
+    pub disks: &'a [Disk],
+}
+
+/// The proportioning constant `Gamma` (Dostál's recommended value).
+const GAMMA: f64 = 1.0;
+/// The fixed step length relative to `1 / |H|` (in `(0, 2)`).
+const STEP: f64 = 1.9;
+/// A disk point within this fraction of its radius from the rim is on it.
+const RIM: f64 = 1e-12;
+
+impl Mprgp<'_> {
+    /// `P(x)`: the scalars clamped, the disks' points returned radially.
+    fn project(&self, x: &mut [f64]) {
+        for (i, xi) in x.iter_mut().enumerate() {
+            *xi = xi.max(self.lower[i]).min(self.upper[i]);
+        }
+        for disk in self.disks {
+            let (a, b) = (x[disk.first], x[disk.first + 1]);
+            let norm = a.hypot(b);
+            if norm > disk.radius {
+                let s = if norm > 0.0 { disk.radius / norm } else { 0.0 };
+                x[disk.first] = a * s;
+                x[disk.first + 1] = b * s;
+            }
+        }
+    }
+
+    /// The free gradient `phi` (the gradient on the free variables, zero elsewhere) and the
+    /// chopped gradient `beta` (the projected gradient on the active constraints).
+    fn split(&self, x: &[f64], g: &[f64], in_disk: &[bool]) -> (Vec<f64>, Vec<f64>) {
+        let m = x.len();
+        let mut phi = vec![0.0; m];
+        let mut beta = vec![0.0; m];
+        for i in (0..m).filter(|&i| !in_disk[i]) {
+            let (at_lower, at_upper) = (x[i] <= self.lower[i], x[i] >= self.upper[i]);
+            match (at_lower, at_upper) {
+                // A point: nothing moves.
+                (true, true) => {}
+                (true, false) => beta[i] = g[i].min(0.0),
+                (false, true) => beta[i] = g[i].max(0.0),
+                (false, false) => phi[i] = g[i],
+            }
+        }
+        for disk in self.disks {
+            let (a, b) = (disk.first, disk.first + 1);
+            if disk.radius <= 0.0 {
+                continue;
+            }
+            let norm = x[a].hypot(x[b]);
+            if norm < disk.radius * (1.0 - RIM) {
+                phi[a] = g[a];
+                phi[b] = g[b];
+            } else {
+                let n = [x[a] / norm, x[b] / norm];
+                let outward = (g[a] * n[0] + g[b] * n[1]).min(0.0);
+                beta[a] = g[a] - outward * n[0];
+                beta[b] = g[b] - outward * n[1];
+            }
+        }
+        (phi, beta)
+    }
+
+    /// The largest `a >= 0` with `x - a p` in the set.
+    fn feasible_step(&self, x: &[f64], p: &[f64], in_disk: &[bool]) -> f64 {
+        let mut step = f64::INFINITY;
+        for i in (0..x.len()).filter(|&i| !in_disk[i]) {
+            if p[i] > 0.0 {
+                step = step.min((x[i] - self.lower[i]) / p[i]);
+            } else if p[i] < 0.0 {
+                step = step.min((x[i] - self.upper[i]) / p[i]);
+            }
+        }
+        for disk in self.disks {
+            let (a, b) = (disk.first, disk.first + 1);
+            let pp = p[a] * p[a] + p[b] * p[b];
+            if pp == 0.0 {
+                continue;
+            }
+            let xp = x[a] * p[a] + x[b] * p[b];
+            let c = x[a] * x[a] + x[b] * x[b] - disk.radius * disk.radius;
+            // |x - a p|^2 = r^2: the larger root.
+            let root = (xp + (xp * xp - pp * c).max(0.0).sqrt()) / pp;
+            step = step.min(root.max(0.0));
+        }
+        step.max(0.0)
+    }
+
+    /// `|g^P|_inf`.
+    fn projected_gradient(phi: &[f64], beta: &[f64]) -> f64 {
+        phi.iter()
+            .zip(beta)
+            .fold(0.0f64, |m, (a, b)| m.max((a + b).abs()))
+    }
+
+    /// Minimises from `start` (projected onto the set) until `|g^P|_inf <= tolerance` or
+    /// `max_iterations` iterations, with `apply(x) = H x` and `norm` an estimate of `|H|_2`
+    /// from below (power iterations). An error of `apply` ends the solve with it.
+    pub fn solve<E>(
+        &self,
+        start: &[f64],
+        tolerance: f64,
+        max_iterations: usize,
+        norm: f64,
+        mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+    ) -> Result<MprgpOutcome, E> {
+        let m = self.linear.len();
+        let mut in_disk = vec![false; m];
+        for disk in self.disks {
+            in_disk[disk.first] = true;
+            in_disk[disk.first + 1] = true;
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let mut x = start.to_vec();
+        self.project(&mut x);
+        let linear = self.linear;
+        let gradient_at = |apply: &mut Product<'_, E>, x: &[f64]| -> Result<Vec<f64>, E> {
+            let mut g = apply(x)?;
+            for (gi, di) in g.iter_mut().zip(linear) {
+                *gi -= di;
+            }
+            Ok(g)
+        };
+        let energy = |x: &[f64], g: &[f64]| -> f64 {
+            // q = 1/2 x'(Hx - d) - 1/2 d'x = 1/2 x'(g - d).
+            0.5 * x
+                .iter()
+                .zip(g)
+                .zip(self.linear)
+                .map(|((x, g), d)| x * (g - d))
+                .sum::<f64>()
+        };
+        // The round-off of q: a rise below it is no sign of a too long step.
+        let noise = |x: &[f64], g: &[f64]| -> f64 {
+            8.0 * f64::EPSILON
+                * x.iter()
+                    .zip(g)
+                    .zip(self.linear)
+                    .map(|((x, g), d)| (x * g).abs() + (x * d).abs())
+                    .sum::<f64>()
+        };
+        let mut alpha = if norm > 0.0 { STEP / norm } else { 1.0 };
+        let mut g = gradient_at(&mut apply, &x)?;
+        let (mut phi, mut beta) = self.split(&x, &g, &in_disk);
+        let mut p = phi.clone();
+        let mut iterations = 0;
+        let mut converged = false;
+        loop {
+            let pg = Self::projected_gradient(&phi, &beta);
+            if pg <= tolerance {
+                // Confirmed with the gradient computed afresh (the recurrences drift).
+                g = gradient_at(&mut apply, &x)?;
+                (phi, beta) = self.split(&x, &g, &in_disk);
+                if Self::projected_gradient(&phi, &beta) <= tolerance {
+                    converged = true;
+                    break;
+                }
+                p = phi.clone();
+            }
+            if iterations == max_iterations {
+                break;
+            }
+            iterations += 1;
+            // The reduced free gradient: the part of the free gradient step the set allows.
+            let mut moved: Vec<f64> = (0..m).map(|i| x[i] - alpha * phi[i]).collect();
+            self.project(&mut moved);
+            let reduced_phi: f64 = (0..m).map(|i| (x[i] - moved[i]) / alpha * phi[i]).sum();
+            let chopped = dot(&beta, &beta);
+            if chopped <= GAMMA * GAMMA * reduced_phi {
+                // Proportional: conjugate gradients on the free set.
+                let ap = apply(&p)?;
+                let curvature = dot(&p, &ap);
+                if curvature.is_nan() || curvature <= 0.0 {
+                    break;
+                }
+                let step = dot(&g, &p) / curvature;
+                let feasible = self.feasible_step(&x, &p, &in_disk);
+                if step <= feasible {
+                    for i in 0..m {
+                        x[i] -= step * p[i];
+                        g[i] -= step * ap[i];
+                    }
+                    (phi, beta) = self.split(&x, &g, &in_disk);
+                    let gamma = dot(&phi, &ap) / curvature;
+                    for i in 0..m {
+                        p[i] = phi[i] - gamma * p[i];
+                    }
+                } else {
+                    // Expansion: the feasible part, then a projected gradient step.
+                    for i in 0..m {
+                        x[i] -= feasible * p[i];
+                        g[i] -= feasible * ap[i];
+                    }
+                    self.project(&mut x);
+                    let before = energy(&x, &g);
+                    let mut trial: Vec<f64> = (0..m).map(|i| x[i] - alpha * g[i]).collect();
+                    self.project(&mut trial);
+                    let g_trial = gradient_at(&mut apply, &trial)?;
+                    if energy(&trial, &g_trial) > before + noise(&trial, &g_trial) {
+                        // |H| was underestimated: a shorter fixed step from now on.
+                        alpha *= 0.5;
+                    }
+                    x = trial;
+                    g = g_trial;
+                    (phi, beta) = self.split(&x, &g, &in_disk);
+                    p = phi.clone();
+                }
+            } else {
+                // Proportioning: release the active constraints along the chopped gradient.
+                let ab = apply(&beta)?;
+                let curvature = dot(&beta, &ab);
+                let step = if curvature > 0.0 {
+                    chopped / curvature
+                } else {
+                    f64::INFINITY
+                };
+                let feasible = self.feasible_step(&x, &beta, &in_disk);
+                if step <= feasible {
+                    for i in 0..m {
+                        x[i] -= step * beta[i];
+                        g[i] -= step * ab[i];
+                    }
+                    self.project(&mut x);
+                } else {
+                    let before = energy(&x, &g);
+                    let mut trial: Vec<f64> = (0..m).map(|i| x[i] - alpha * g[i]).collect();
+                    self.project(&mut trial);
+                    let g_trial = gradient_at(&mut apply, &trial)?;
+                    if energy(&trial, &g_trial) > before + noise(&trial, &g_trial) {
+                        alpha *= 0.5;
+                    }
+                    x = trial;
+                    g = g_trial;
+                }
+                (phi, beta) = self.split(&x, &g, &in_disk);
+                p = phi.clone();
+            }
+        }
+        let hx: Vec<f64> = g.iter().zip(self.linear).map(|(g, d)| g + d).collect();
+        Ok(MprgpOutcome {
+            x,
+            hx,
+            iterations,
+            converged,
+        })
+    }
+}
+
+/// An estimate of `|H|_2` from below: the Rayleigh quotient of `iterations` power iterations
+/// from the vector of ones (close to the smoothest mode, which the largest eigenvalue of a
+/// Schur complement of the inverse stiffness belongs to).
+pub(crate) fn norm_estimate<E>(
+    m: usize,
+    iterations: usize,
+    mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+) -> Result<f64, E> {
+    let mut v = vec![1.0 / (m.max(1) as f64).sqrt(); m];
+    let mut estimate = 0.0f64;
+    for _ in 0..iterations {
+        let w = apply(&v)?;
+        let quotient: f64 = v.iter().zip(&w).map(|(a, b)| a * b).sum();
+        estimate = estimate.max(quotient);
+        let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            break;
+        }
+        v = w.into_iter().map(|x| x / norm).collect();
+    }
+    Ok(estimate)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::disk_qp::DiskQp;
+    use super::*;
+    use faer::Mat;
+    use std::convert::Infallible;
+
+    fn next(seed: &mut u64) -> f64 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+
+    fn product(h: &Mat<f64>) -> impl FnMut(&[f64]) -> Result<Vec<f64>, Infallible> + '_ {
+        move |x: &[f64]| {
+            Ok((0..h.nrows())
+                .map(|i| (0..h.ncols()).map(|j| h[(i, j)] * x[j]).sum())
+                .collect())
+        }
+    }
+
+    /// Random positive definite problems with sign bounds, boxes and disks: MPGP finds the
+    /// minimiser the dense projected Newton method (an independent algorithm) finds.
+    #[test]
+    fn random_problems_give_the_projected_newton_minimiser() {
+        let mut seed = 7u64;
+        for case in 0..40 {
+            let n = 24;
+            let a = Mat::<f64>::from_fn(n, n, |_, _| next(&mut seed));
+            let h = &a * a.transpose() + Mat::<f64>::identity(n, n) * 0.2;
+            let d: Vec<f64> = (0..n).map(|_| 3.0 * next(&mut seed)).collect();
+            let mut lower = vec![f64::NEG_INFINITY; n];
+            let mut upper = vec![f64::INFINITY; n];
+            // Eight sign bounds, four boxes, then six disks.
+            for l in lower.iter_mut().take(8) {
+                *l = 0.0;
+            }
+            for i in 8..12 {
+                let b = 0.5 * next(&mut seed).abs();
+                lower[i] = -b;
+                upper[i] = b;
+            }
+            let disks: Vec<Disk> = (0..6)
+                .map(|k| Disk {
+                    first: 12 + 2 * k,
+                    radius: if k == 5 && case % 2 == 0 {
+                        0.0
+                    } else {
+                        0.1 + 0.5 * next(&mut seed).abs()
+                    },
+                })
+                .collect();
+            let reference = DiskQp {
+                hessian: h.as_ref(),
+                linear: &d,
+                lower: &lower,
+                upper: &upper,
+                disks: &disks,
+            }
+            .solve(&vec![0.0; n], 1e-14, 200);
+            assert!(reference.converged);
+            let qp = Mprgp {
+                linear: &d,
+                lower: &lower,
+                upper: &upper,
+                disks: &disks,
+            };
+            let norm = norm_estimate(n, 10, product(&h)).unwrap();
+            let out = qp
+                .solve(&vec![0.0; n], 1e-13, 20_000, norm, product(&h))
+                .unwrap();
+            assert!(out.converged, "case {case}: {} iterations", out.iterations);
+            let scale = reference.x.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (x, y) in out.x.iter().zip(&reference.x) {
+                assert!(
+                    (x - y).abs() <= 1e-9 * scale,
+                    "case {case}: {x} against {y}"
+                );
+            }
+            // Hx is H x.
+            let hx = product(&h)(&out.x).unwrap();
+            for (a, b) in out.hx.iter().zip(&hx) {
+                assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()));
+            }
+        }
+    }
+
+    /// Without active constraints MPGP is conjugate gradients: at most `n` iterations on an
+    /// `n x n` problem (in exact arithmetic), and the solution `H^-1 d`.
+    #[test]
+    fn an_unconstrained_problem_is_solved_by_conjugate_gradients() {
+        let n = 12;
+        let h = Mat::<f64>::from_fn(n, n, |i, j| {
+            if i == j {
+                2.0 + i as f64
+            } else if i.abs_diff(j) == 1 {
+                -1.0
+            } else {
+                0.0
+            }
+        });
+        // d = H 1: the solution is the vector of ones.
+        let ones = vec![1.0; n];
+        let d = product(&h)(&ones).unwrap();
+        let qp = Mprgp {
+            linear: &d,
+            lower: &vec![f64::NEG_INFINITY; n],
+            upper: &vec![f64::INFINITY; n],
+            disks: &[],
+        };
+        let norm = norm_estimate(n, 10, product(&h)).unwrap();
+        let out = qp
+            .solve(&vec![0.0; n], 1e-12, 100, norm, product(&h))
+            .unwrap();
+        assert!(out.converged);
+        assert!(out.iterations <= n + 2, "{} iterations", out.iterations);
+        for x in &out.x {
+            assert!((x - 1.0).abs() < 1e-11);
+        }
+    }
+}
