@@ -832,3 +832,53 @@ fn fretting_cycle_is_a_hysteresis_loop() {
     let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
     assert_eq!(history.lines().count(), 15);
 }
+
+/// The L-shaped bracket meshed on its polygon: the cells tile the polygon (area 1.75), the
+/// parts named after its edges have their edges' lengths, the strip cut out of "inner" by a
+/// box lies on the arm's upper face, and the clamp's reaction balances the end load and the
+/// strip's pressure.
+#[test]
+fn bracket_on_a_polygon_balances_its_loads() {
+    let (outcome, _dir) = run("bracket");
+    let bracket = body(&outcome, "bracket");
+    let mesh = bracket.body.mesh();
+    let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
+    assert!((area - 1.75).abs() < 1e-12 * 1.75, "{area}");
+    let length = |part: &str| -> f64 {
+        mesh.part(part)
+            .unwrap()
+            .edges
+            .iter()
+            .map(|&e| {
+                let [a, b] = mesh.edge(e).vertices;
+                (mesh.vertex(b) - mesh.vertex(a)).norm()
+            })
+            .sum()
+    };
+    for (part, expected) in [
+        ("bottom", 2.0),
+        ("end", 0.5),
+        ("inner", 3.0),
+        ("top", 0.5),
+        ("back", 2.0),
+    ] {
+        assert!((length(part) - expected).abs() < 1e-12, "{part}");
+    }
+    let strip = length("strip");
+    assert!(strip > 0.25 && strip <= 0.4 + 1e-12, "{strip}");
+    for v in mesh.part_vertices("strip").unwrap() {
+        let p = mesh.vertex(v);
+        assert!(
+            (p.y - 0.5).abs() < 1e-12 && (1.2..=1.6).contains(&p.x),
+            "{p}"
+        );
+    }
+    // Loads: (0, -1) on the end (length 0.5), pressure 0.5 on the strip (outward normal +y).
+    let reaction = bracket.solution.reaction("top").unwrap();
+    let expected = 0.5 + 0.5 * strip;
+    assert!(reaction.x.abs() < 1e-10, "{reaction}");
+    assert!(
+        (reaction.y - expected).abs() < 1e-10 * expected,
+        "{reaction}"
+    );
+}

@@ -411,6 +411,16 @@ pub enum MeshError {
         /// What is wrong.
         reason: String,
     },
+    /// The polygon of a generated mesh's domain is not a simple counter-clockwise polygon
+    /// (too few vertices, a non-finite coordinate, a zero-length edge, edges that cross or
+    /// touch, clockwise or zero area) or its edge names do not fit it.
+    #[error("domain polygon: {reason}")]
+    BadDomainPolygon {
+        /// The vertex where the problem is (edge k starts at vertex k), if one is to blame.
+        vertex: Option<usize>,
+        /// What is wrong, naming the vertex or edge.
+        reason: String,
+    },
     /// A setting (of [`crate::InterfaceOptions`]) is outside its range.
     #[error("{setting} = {value} must be {requirement}")]
     InvalidOption {

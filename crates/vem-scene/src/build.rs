@@ -11,7 +11,7 @@ use vem_contact::{
     ErrorModel, LawRegistry, Obstacle, Obstacle3, RigidObstacle, SolverRegistry,
 };
 use vem_elastic::{Component, Dirichlet, ElasticBody, ElasticError, Material, Plane, Traction};
-use vem_mesh::generators::{MeshFamily, Rectangle};
+use vem_mesh::generators::{polygon_mesh, MeshFamily, PolygonDomain, Rectangle};
 use vem_mesh::interface::InterfaceOptions;
 use vem_mesh::{Mesh, Point, Point3, Vector, Vector3};
 use vem_space::{Choice, ElementRegistry, RegistryError, SpaceError};
@@ -517,20 +517,29 @@ fn generated_size(
     }
 }
 
-/// The rectangle and family of a generated mesh (checked by `check`).
+/// The family, the rectangle and, for a mesh of a `polygon`, the polygon of a generated mesh
+/// (checked by `check`); the rectangle of a polygon is its bounding rectangle, on which the
+/// family's mesh is made and then cut.
 fn generator(
     spec: &BodyDescription,
     path: &KeyPath,
-) -> Result<(MeshFamily, Rectangle), SceneError> {
+) -> Result<(MeshFamily, Rectangle, Option<PolygonDomain>), SceneError> {
     let mesh = &spec.mesh;
-    let (Some(family), Some(rectangle)) = (&mesh.family, &mesh.rectangle) else {
+    let Some(family) = &mesh.family else {
         return Err(SceneError::at(path.at("mesh"), "incomplete mesh"));
     };
     let family: MeshFamily = family.parse().map_err(|e: vem_mesh::MeshError| {
         SceneError::at(path.at("mesh").at("family"), e.to_string())
     })?;
+    if mesh.polygon.is_some() {
+        let domain = crate::check::polygon_domain(mesh, &spec.name, &path.at("mesh"))?;
+        return Ok((family, domain.bounding_rectangle(), Some(domain)));
+    }
+    let Some(rectangle) = &mesh.rectangle else {
+        return Err(SceneError::at(path.at("mesh"), "incomplete mesh"));
+    };
     let corner = |k: usize| Point::new(rectangle[k][0], rectangle[k][1]);
-    Ok((family, Rectangle::new(corner(0), corner(1))))
+    Ok((family, Rectangle::new(corner(0), corner(1)), None))
 }
 
 /// Refuses, before any mesh is generated, a scene whose generated meshes would not fit the
@@ -547,7 +556,8 @@ fn check_planned_memory(scene: &Scene, limit: &MemoryLimit) -> Result<(), SceneE
         }
         let path = KeyPath::key("body").index(i);
         let (n, _, _) = generated_size(scene, spec, &path)?;
-        let (family, rect) = generator(spec, &path)?;
+        // A polygon's mesh is at most about its bounding rectangle's.
+        let (family, rect, _) = generator(spec, &path)?;
         let name = &spec.name;
         let size = family
             .size(&rect, n)
@@ -741,11 +751,13 @@ fn build_mesh(
         return Ok((BuiltMesh::Plane(read), format!("mesh file {file}"), None));
     }
     let (n, chosen, predicted) = generated_size(scene, spec, path)?;
-    let (family, rect) = generator(spec, path)?;
+    let (family, rect, polygon) = generator(spec, path)?;
     let seed = spec.mesh.seed.unwrap_or(1);
-    let generated = family
-        .generate(&rect, n, seed)
-        .map_err(|e| SceneError::at(path.at("mesh"), format!("body '{name}': {e}")))?;
+    let generated = match &polygon {
+        Some(domain) => polygon_mesh(domain, family, n, seed),
+        None => family.generate(&rect, n, seed),
+    }
+    .map_err(|e| SceneError::at(path.at("mesh"), format!("body '{name}': {e}")))?;
     let random = if family.is_random() {
         format!(", seed {seed}")
     } else {
@@ -753,12 +765,20 @@ fn build_mesh(
     };
     let (a, b) = (rect.min, rect.max);
     let generated = with_sub_parts(generated, spec, path)?;
+    let domain = match &polygon {
+        Some(domain) => format!(
+            "the polygon of {} vertices in [{}, {}] x [{}, {}]",
+            domain.vertices().len(),
+            a.x,
+            b.x,
+            a.y,
+            b.y
+        ),
+        None => format!("[{}, {}] x [{}, {}]", a.x, b.x, a.y, b.y),
+    };
     Ok((
         BuiltMesh::Plane(generated),
-        format!(
-            "{family}, n = {n}{chosen}{random}, on [{}, {}] x [{}, {}]",
-            a.x, b.x, a.y, b.y
-        ),
+        format!("{family}, n = {n}{chosen}{random}, on {domain}"),
         predicted,
     ))
 }

@@ -22,7 +22,7 @@ pub const MAX_WIDTH: f64 = 20_000.0;
 pub const DIMENSION: usize = 2;
 
 /// The dimension a body's mesh declares before it is generated or read: 3 for a generated
-/// `box` and inline `polyhedra`, 2 for a generated `rectangle`, inline `polygons` and the
+/// `box` and inline `polyhedra`, 2 for a generated `rectangle` or `polygon`, inline `polygons` and the
 /// planar file formats (VTK, PolyMesher);
 /// `None` for a Gmsh file, whose elements decide (surfaces in the plane, volumes in space).
 pub fn declared_dimension(body: &BodyDescription) -> Option<usize> {
@@ -30,7 +30,7 @@ pub fn declared_dimension(body: &BodyDescription) -> Option<usize> {
     if mesh.cuboid.is_some() {
         return Some(3);
     }
-    if mesh.rectangle.is_some() || mesh.polygons.is_some() {
+    if mesh.rectangle.is_some() || mesh.polygon.is_some() || mesh.polygons.is_some() {
         return Some(2);
     }
     if mesh.polyhedra.is_some() {
@@ -206,6 +206,8 @@ fn what_decides(body: &BodyDescription) -> &'static str {
         "its mesh is generated on a `box`"
     } else if body.mesh.rectangle.is_some() {
         "its mesh is generated on a `rectangle`"
+    } else if body.mesh.polygon.is_some() {
+        "its mesh is generated on a `polygon`"
     } else if body.mesh.polygons.is_some() {
         "its mesh is given as `polygons`"
     } else if body.mesh.polyhedra.is_some() {
@@ -573,7 +575,43 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
         _ if inline => check_inline_mesh(mesh, name, &mesh_path)?,
         // Exactly one source, checked above.
         (None, None) | (Some(_), Some(_)) => {}
+        (Some(family), None) if mesh.polygon.is_some() => {
+            if mesh.rectangle.is_some() || mesh.cuboid.is_some() {
+                let (key, what) = if mesh.cuboid.is_some() {
+                    (
+                        "box",
+                        "a `polygon` is a domain in the plane; a mesh in space is generated \
+                         on a `box`",
+                    )
+                } else {
+                    ("rectangle", "give `rectangle` or `polygon`, not both")
+                };
+                return Err(SceneError::at(
+                    mesh_path.at(key),
+                    format!("body '{name}': {what}"),
+                ));
+            }
+            if let Err(e) = family.parse::<vem_mesh::generators::MeshFamily>() {
+                let space = family
+                    .parse::<vem_mesh::generators::polyhedral::PolyhedralFamily>()
+                    .is_ok();
+                let note = if space {
+                    " (a family of a `box` in space; a `polygon` is meshed in the plane)"
+                } else {
+                    ""
+                };
+                return Err(SceneError::at(mesh_path.at("family"), format!("{e}{note}")));
+            }
+            polygon_domain(mesh, name, &mesh_path)?;
+            check_generated_size(scene, mesh, name, &mesh_path, 2)?;
+        }
         (Some(family), None) => {
+            if mesh.edge_names.is_some() {
+                return Err(SceneError::at(
+                    mesh_path.at("edge_names"),
+                    format!("body '{name}': `edge_names` names the edges of a `polygon`"),
+                ));
+            }
             let (domain, key, dimension) = match (&mesh.rectangle, &mesh.cuboid) {
                 (Some(rectangle), None) => (rectangle, "rectangle", 2),
                 (None, Some(cuboid)) => (cuboid, "box", 3),
@@ -616,34 +654,12 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
             for (k, corner) in domain.iter().enumerate() {
                 exact_len(corner.len(), dimension, &corners.index(k))?;
             }
-            if dimension == 3 && mesh.n.is_none() {
-                return Err(SceneError::at(
-                    mesh_path,
-                    format!(
-                        "body '{name}': a generated mesh in space needs `n` (the error model \
-                         that chooses it from `accuracy` or `target_error` is fitted in the \
-                         plane)"
-                    ),
-                ));
-            }
-            if mesh.n.is_none() && scene.accuracy.is_none() && scene.target_error.is_none() {
-                return Err(SceneError::at(
-                    mesh_path,
-                    format!(
-                        "body '{name}': a generated mesh needs `n`, or the scene's `accuracy` or \
-                         `target_error` to choose it"
-                    ),
-                ));
-            }
-            if !mesh.part_names.is_empty() {
-                return Err(SceneError::at(
-                    mesh_path.at("part_names"),
-                    format!("body '{name}': `part_names` belongs to a mesh `file` (VTK)"),
-                ));
-            }
+            check_generated_size(scene, mesh, name, &mesh_path, dimension)?;
         }
         (None, Some(_)) => {
             if mesh.rectangle.is_some()
+                || mesh.polygon.is_some()
+                || mesh.edge_names.is_some()
                 || mesh.cuboid.is_some()
                 || mesh.n.is_some()
                 || mesh.seed.is_some()
@@ -651,8 +667,8 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
                 return Err(SceneError::at(
                     mesh_path,
                     format!(
-                        "body '{name}': `rectangle`, `box`, `n` and `seed` belong to a generated \
-                         mesh, not to a mesh `file`"
+                        "body '{name}': `rectangle`, `polygon`, `edge_names`, `box`, `n` and \
+                         `seed` belong to a generated mesh, not to a mesh `file`"
                     ),
                 ));
             }
@@ -687,6 +703,79 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
         }
     }
     Ok(())
+}
+
+/// The checks of a generated mesh's size and keys shared by every domain: `n` (or the
+/// scene's `accuracy` or `target_error` in the plane), no `part_names`.
+fn check_generated_size(
+    scene: &Scene,
+    mesh: &MeshDescription,
+    name: &str,
+    mesh_path: &KeyPath,
+    dimension: usize,
+) -> Result<(), SceneError> {
+    if dimension == 3 && mesh.n.is_none() {
+        return Err(SceneError::at(
+            mesh_path.clone(),
+            format!(
+                "body '{name}': a generated mesh in space needs `n` (the error model \
+                 that chooses it from `accuracy` or `target_error` is fitted in the \
+                 plane)"
+            ),
+        ));
+    }
+    if mesh.n.is_none() && scene.accuracy.is_none() && scene.target_error.is_none() {
+        return Err(SceneError::at(
+            mesh_path.clone(),
+            format!(
+                "body '{name}': a generated mesh needs `n`, or the scene's `accuracy` or \
+                 `target_error` to choose it"
+            ),
+        ));
+    }
+    if !mesh.part_names.is_empty() {
+        return Err(SceneError::at(
+            mesh_path.at("part_names"),
+            format!("body '{name}': `part_names` belongs to a mesh `file` (VTK)"),
+        ));
+    }
+    Ok(())
+}
+
+/// The polygon of a generated mesh (`polygon` with `edge_names`), checked: two coordinates per
+/// vertex, a simple counter-clockwise polygon, one name per edge. An error is at the key of
+/// the vertex to blame (`body[0].mesh.polygon[3]`) or of `edge_names`.
+pub(crate) fn polygon_domain(
+    mesh: &MeshDescription,
+    name: &str,
+    mesh_path: &KeyPath,
+) -> Result<vem_mesh::generators::PolygonDomain, SceneError> {
+    let at = mesh_path.at("polygon");
+    let Some(polygon) = &mesh.polygon else {
+        return Err(SceneError::at(at, format!("body '{name}': no `polygon`")));
+    };
+    for (k, point) in polygon.iter().enumerate() {
+        exact_len(point.len(), 2, &at.index(k))?;
+    }
+    let vertices = polygon
+        .iter()
+        .map(|p| vem_mesh::Point::new(p[0], p[1]))
+        .collect();
+    let domain = vem_mesh::generators::PolygonDomain::new(vertices).map_err(|e| {
+        let path = match &e {
+            vem_mesh::MeshError::BadDomainPolygon {
+                vertex: Some(k), ..
+            } => at.index(*k),
+            _ => at.clone(),
+        };
+        SceneError::at(path, format!("body '{name}': {e}"))
+    })?;
+    match &mesh.edge_names {
+        Some(names) => domain
+            .with_edge_names(names)
+            .map_err(|e| SceneError::at(mesh_path.at("edge_names"), format!("body '{name}': {e}"))),
+        None => Ok(domain),
+    }
 }
 
 /// The checks of a mesh given inline (`vertices` with `polygons` or `polyhedra`) that need no
@@ -735,6 +824,8 @@ pub(crate) fn check_inline_mesh(
     }
     let foreign = [
         ("rectangle", mesh.rectangle.is_some()),
+        ("polygon", mesh.polygon.is_some()),
+        ("edge_names", mesh.edge_names.is_some()),
         ("box", mesh.cuboid.is_some()),
         ("n", mesh.n.is_some()),
         ("seed", mesh.seed.is_some()),

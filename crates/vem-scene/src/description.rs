@@ -118,16 +118,16 @@ pub struct BodyDescription {
     pub body_force_curve: Option<Vec<[f64; 2]>>,
 }
 
-/// A mesh: generated (`family` with `rectangle` in the plane or `box` in space, `n`, `seed`),
-/// read (`file`) or given inline (`vertices` with `polygons` in the plane or `polyhedra` in
-/// space, boundary parts by `part_edges` or `part_faces`). The mesh decides the dimension of
-/// its body: a `rectangle`, a planar file or `polygons` give a body in the plane, a `box`, a
-/// Gmsh file of volume elements or `polyhedra` a body in space.
+/// A mesh: generated (`family` with `rectangle` or `polygon` in the plane or `box` in space,
+/// `n`, `seed`), read (`file`) or given inline (`vertices` with `polygons` in the plane or
+/// `polyhedra` in space, boundary parts by `part_edges` or `part_faces`). The mesh decides the
+/// dimension of its body: a `rectangle`, a `polygon`, a planar file or `polygons` give a body
+/// in the plane, a `box`, a Gmsh file of volume elements or `polyhedra` a body in space.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDescription {
-    /// A mesh family name: of a `rectangle` "quads", "triangles", "hexagons", "voronoi",
-    /// "perturbed", "perturbed:0.2", "nonconvex", "hanging"; of a `box` "hexahedra",
+    /// A mesh family name: of a `rectangle` or a `polygon` "quads", "triangles", "hexagons",
+    /// "voronoi", "perturbed", "perturbed:0.2", "nonconvex", "hanging"; of a `box` "hexahedra",
     /// "tetrahedra", "perturbed-hexahedra", "perturbed-hexahedra:0.2", "voronoi", "nonconvex",
     /// "octree".
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -135,6 +135,17 @@ pub struct MeshDescription {
     /// The rectangle `[[x0, y0], [x1, y1]]` of a generated mesh in the plane.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rectangle: Option<Vec<Vec<f64>>>,
+    /// The polygon `[[x, y], ...]` of a generated mesh in the plane: a simple polygon, its
+    /// vertices counter-clockwise, possibly non-convex (an L-shaped bracket, a notched
+    /// block). The family's mesh of its bounding rectangle is cut by it; the boundary edges on
+    /// its edge k form the part named `edge_names[k]` (default `"edge<k>"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygon: Option<Vec<Vec<f64>>>,
+    /// The names of the edges of `polygon`, one per edge (edge k from vertex k to vertex
+    /// k + 1, the last back to vertex 0); an empty name keeps `"edge<k>"`, edges sharing a
+    /// name make one part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_names: Option<Vec<String>>,
     /// The box `[[x0, y0, z0], [x1, y1, z1]]` of a generated mesh in space.
     #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
     pub cuboid: Option<Vec<Vec<f64>>>,

@@ -16,6 +16,10 @@
 //! | nonconvex | [`nonconvex`] | chevrons (one reflex vertex each) |
 //! | hanging | [`hanging_nodes`] | checkerboard of split squares, hanging nodes |
 //!
+//! Any family also meshes a simple polygon ([`PolygonDomain`], [`polygon_mesh`]): its mesh of
+//! the polygon's bounding rectangle, cut by the polygon, boundary parts named after the
+//! polygon's edges.
+//!
 //! [`MeshFamily`] names them all for command lines and convergence studies:
 //!
 //! ```
@@ -34,6 +38,7 @@ mod hanging;
 mod hexagons;
 mod nonconvex;
 mod perturbed;
+pub mod polygon;
 pub mod polyhedral;
 mod structured;
 mod voronoi;
@@ -43,6 +48,7 @@ pub use hanging::hanging_nodes;
 pub use hexagons::hexagons;
 pub use nonconvex::{nonconvex, CHEVRON_RISE};
 pub use perturbed::perturbed_quads;
+pub use polygon::{cut_to_polygon, polygon_mesh, PolygonDomain, MERGE_AREA_RATIO, SNAP_RATIO};
 pub use structured::{structured_quads, structured_triangles};
 pub use voronoi::{voronoi, LLOYD_ITERATIONS, MAX_VORONOI_CELLS, SHORT_EDGE_RATIO};
 
