@@ -87,7 +87,7 @@ pub fn quick_note() -> String {
          the smallest rates they gave when they were chosen (E_grad 0.96 on octree, E_0 1.88 \
          on the non-convex prisms): E_grad >= {}, E_0 >= {}. The contact case {CONTACT_CASE} at \
          its quick sizes: E_grad >= {}, E_0 >= {}, {FRICTION_CASE}: E_grad >= {}, E_0 >= {} \
-         (the full run: {}, {} for both).",
+         (the full run: {}, {}; {FRICTION_CASE}: {}, {}).",
         THRESHOLDS.grad,
         THRESHOLDS.l2,
         QUICK_THRESHOLDS.grad,
@@ -97,7 +97,9 @@ pub fn quick_note() -> String {
         QUICK_FRICTION_THRESHOLDS.grad,
         QUICK_FRICTION_THRESHOLDS.l2,
         CONTACT_THRESHOLDS.grad,
-        CONTACT_THRESHOLDS.l2
+        CONTACT_THRESHOLDS.l2,
+        FRICTION_THRESHOLDS.grad,
+        FRICTION_THRESHOLDS.l2
     )
 }
 
@@ -109,6 +111,16 @@ pub const CONTACT_THRESHOLDS: Thresholds = Thresholds {
     l2: 1.8,
 };
 
+/// The thresholds of M2-3D in the full run: first order in `E_grad` (Theorem 4.2); `E_0` judged
+/// at 1.5, because its body force jumps across the cylinder `r = r_s` (the slip grows like a
+/// cube from the stick circle, `docs/manufactured.md`, section 11): `f` is not in `H^1`, and the
+/// load's consistency error in `L^2` is then of order `h^(3/2)`, not `h^2` (measured: 1.74 on
+/// hexahedra over tetrahedra, falling with the sizes).
+pub const FRICTION_THRESHOLDS: Thresholds = Thresholds {
+    grad: 0.95,
+    l2: 1.5,
+};
+
 /// The thresholds of M1-3D and M2-3D in `--quick`: what their small sizes honestly show,
 /// about 0.03 below the smallest rates they gave when they were chosen (E_grad 0.78 on Voronoi
 /// over hexahedra, E_0 1.6); a smoke test of the whole chain, the rate itself is judged by the
@@ -118,12 +130,12 @@ pub const QUICK_CONTACT_THRESHOLDS: Thresholds = Thresholds {
     l2: 1.5,
 };
 
-/// The thresholds of M2-3D in `--quick`: what its small sizes honestly show, 0.03 below the
-/// smallest rates they gave (E_grad 0.72 on hexahedra over tetrahedra, E_0 1.73 on Voronoi
-/// over hexahedra); the full run judges it at [`CONTACT_THRESHOLDS`].
+/// The thresholds of M2-3D in `--quick`: what its small sizes honestly show, about 0.03 below
+/// the smallest rates they gave (E_grad 0.82 and E_0 1.67, both on hexahedra over tetrahedra);
+/// the full run judges it at [`FRICTION_THRESHOLDS`].
 pub const QUICK_FRICTION_THRESHOLDS: Thresholds = Thresholds {
-    grad: 0.69,
-    l2: 1.5,
+    grad: 0.79,
+    l2: 1.64,
 };
 
 /// The meshes of the contact case: the upper body's family over the lower body's, with the
@@ -133,6 +145,9 @@ struct Pairing {
     upper: PolyhedralFamily,
     lower: PolyhedralFamily,
     full: &'static [(usize, usize)],
+    /// The full run's sizes of [`FRICTION_CASE`] where they differ from `full` (one size
+    /// further, where its fit needs it).
+    friction_full: Option<&'static [(usize, usize)]>,
     quick: &'static [(usize, usize)],
 }
 
@@ -143,12 +158,14 @@ const PAIRINGS: [Pairing; 3] = [
         upper: PolyhedralFamily::Hexahedra,
         lower: PolyhedralFamily::Tetrahedra,
         full: &[(8, 6), (12, 9), (16, 12), (20, 15)],
+        friction_full: None,
         quick: &[(6, 5), (8, 6), (12, 9)],
     },
     Pairing {
         upper: PolyhedralFamily::Voronoi,
         lower: PolyhedralFamily::Hexahedra,
         full: &[(8, 7), (12, 11), (16, 14), (20, 18)],
+        friction_full: None,
         quick: &[(6, 5), (8, 7), (10, 9)],
     },
     Pairing {
@@ -157,16 +174,19 @@ const PAIRINGS: [Pairing; 3] = [
         },
         lower: PolyhedralFamily::Octree,
         full: &[(8, 4), (12, 6), (16, 8), (20, 10)],
+        // The coarse octree side keeps M2-3D's successive rates below 0.95 up to 20/10 (0.83,
+        // 0.91, 0.94; 0.96 from 20/10 to 24/12): its fit needs the next size.
+        friction_full: Some(&[(12, 6), (16, 8), (20, 10), (24, 12)]),
         quick: &[(6, 3), (8, 4), (12, 6)],
     },
 ];
 
 impl Pairing {
-    fn sizes(&self, quick: bool) -> &'static [(usize, usize)] {
-        if quick {
-            self.quick
-        } else {
-            self.full
+    fn sizes(&self, case: &str, quick: bool) -> &'static [(usize, usize)] {
+        match (quick, self.friction_full) {
+            (true, _) => self.quick,
+            (false, Some(sizes)) if case == FRICTION_CASE => sizes,
+            (false, _) => self.full,
         }
     }
 
@@ -296,8 +316,12 @@ impl Expectation {
             Expectation::Exact {
                 tolerance: PATCH_TOLERANCE,
             }
-        } else if case == FRICTION_CASE && quick {
-            Expectation::Rates(QUICK_FRICTION_THRESHOLDS)
+        } else if case == FRICTION_CASE {
+            Expectation::Rates(if quick {
+                QUICK_FRICTION_THRESHOLDS
+            } else {
+                FRICTION_THRESHOLDS
+            })
         } else if CONTACT_CASES.contains(&case) {
             Expectation::Rates(if quick {
                 QUICK_CONTACT_THRESHOLDS
@@ -509,7 +533,7 @@ fn run_contact_series(
 ) -> Result<Series, Box<dyn std::error::Error>> {
     let case = exact.name();
     let expectation = Expectation::of(case, quick);
-    let sizes = pairing.sizes(quick);
+    let sizes = pairing.sizes(case, quick);
     let weight = |(a, b): (usize, usize)| (a as u64).pow(3) + (b as u64).pow(3);
     let bar = bars.add(ProgressBar::new(sizes.iter().map(|&s| weight(s)).sum()));
     bar.set_style(style.clone());
@@ -813,8 +837,11 @@ the exact solutions of [manufactured.md](manufactured.md), section 11:
   small sizes.
 - **M2-3D**: Tresca friction between the same boxes, in contact everywhere, sticking inside a
   disc of the interface and slipping outside it, with a friction bound `g_F(x, y)` that varies
-  and a slip that turns with it (Theorem 4.2 in space), on the same pairings with the same
-  solver, measures and verdict (the quick run: `E_grad >= 0.69`, `E_0 >= 1.5`).
+  and a slip that turns with it (Theorem 4.2 in space), on the same pairings (perturbed
+  hexahedra over octree cubes from 12/6 to 24/12) with the same solver and measures; verdict `E_grad >= 0.95` and `E_0 >= 1.5` (its body force jumps across
+  the cylinder below the stick circle, so that second order in `E_0` is not to be expected;
+  manufactured.md, section 11), every solve certified (the quick run: `E_grad >= 0.79`,
+  `E_0 >= 1.64`).
 
 `lambda = 2`, `mu = 1`; element `vem1` (dofi-dofi, `trace(C)`) unless the run names another; the
 default sparse Cholesky solver. Families: hexahedra, tetrahedra (six Kuhn tetrahedra per box),
@@ -899,9 +926,14 @@ pub fn markdown(outcome: &Outcome, command: &str, default_run: bool) -> String {
             quick_note()
         } else {
             format!(
-                "Thresholds: E_grad >= {}, E_0 >= {} ({CONTACT_CASE}, {FRICTION_CASE}: \
-                 E_grad >= {}, E_0 >= {}).",
-                THRESHOLDS.grad, THRESHOLDS.l2, CONTACT_THRESHOLDS.grad, CONTACT_THRESHOLDS.l2
+                "Thresholds: E_grad >= {}, E_0 >= {} ({CONTACT_CASE}: E_grad >= {}, E_0 >= {}; \
+                 {FRICTION_CASE}: E_grad >= {}, E_0 >= {}).",
+                THRESHOLDS.grad,
+                THRESHOLDS.l2,
+                CONTACT_THRESHOLDS.grad,
+                CONTACT_THRESHOLDS.l2,
+                FRICTION_THRESHOLDS.grad,
+                FRICTION_THRESHOLDS.l2
             )
         }
     ));
@@ -1059,8 +1091,11 @@ mod tests {
     fn every_pairing_has_growing_non_matching_sizes_to_fit() {
         for pairing in &PAIRINGS {
             assert_ne!(pairing.upper, pairing.lower, "{}", pairing.name());
-            for quick in [false, true] {
-                let sizes = pairing.sizes(quick);
+            for (case, quick) in CONTACT_CASES
+                .iter()
+                .flat_map(|&case| [(case, false), (case, true)])
+            {
+                let sizes = pairing.sizes(case, quick);
                 assert!(sizes.len() >= FITTED, "{}", pairing.name());
                 assert!(sizes.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 < w[1].1));
                 assert!(sizes.iter().all(|(a, b)| a != b), "{}", pairing.name());
