@@ -501,9 +501,10 @@ const FRICTION_LAWS: [(&str, FrictionLaw); 6] = [
 ];
 
 /// Friction in space at the extremes, by every solver: the stacked non-matching blocks pressed
-/// and sheared ([`ShearedStack`]), Tresca and Coulomb with the bounds of [`FRICTION_LAWS`], at
-/// stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with the
-/// locking-free element `vem1-bbar`.
+/// and sheared (the exact answer: the uniform state `sigma_zz = -p`, `sigma_xz = tau` with the
+/// stick shear or the bound), Tresca and Coulomb with the bound 0, half the stick shear and
+/// `1e8 p`, at stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with
+/// the locking-free element `vem1-bbar`.
 pub fn solid_friction(size: &Size) -> Vec<Row> {
     let base = Stack {
         poisson: 0.0,
