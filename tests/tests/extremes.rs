@@ -3,14 +3,8 @@
 //! a wrong answer reported as converged; and the default solver must give the expected answer
 //! wherever it does today.
 
-#[allow(dead_code)]
-#[path = "../../xtask/src/extremes/rows.rs"]
-mod rows;
-#[path = "../../xtask/src/extremes/space.rs"]
-mod space;
-
-use rows::{Row, Size, Verdict};
 use vem_contact::SolverRegistry;
+use vem_verify::extremes::{self as rows, Row, Size, Verdict};
 
 /// Runs `group` at the test size and checks: no outcome is a wrong "converged"; the default
 /// solver passes every row but those whose name contains one of `default_may_refuse` (there it
@@ -185,7 +179,7 @@ fn in_space_the_locking_free_elements_do_not_lock_and_the_others_say_so() {
     // E2-3D at nu up to 0.49999 against 0.3: vem1-shear and vem1-bbar within 2x on hexahedra and
     // Voronoi cells. (Tetrahedra lock with every element - P1, the stabilisation vanishes - which
     // the full-size rows report as a warning; at this size the growth stays below 2x.)
-    let rows = check(space::solid_poisson, &[], &[]);
+    let rows = check(rows::solid_poisson, &[], &[]);
     for row in &rows {
         let verdict = &row.outcomes[0].verdict;
         let free = row.name.starts_with("vem1-shear") || row.name.starts_with("vem1-bbar");
@@ -202,7 +196,7 @@ fn in_space_the_contact_patch_test_is_exact_at_the_extremes() {
     // wrong answer reported as converged; the default solver gives the exact field everywhere
     // but on the flat tetrahedra of aspect 1e-6, where a warning names the element; every
     // solver passes the scaled units and the warped cells.
-    let rows = space::solid_contact(&Size::test());
+    let rows = rows::solid_contact(&Size::test());
     assert_eq!(rows.len(), 12);
     for row in &rows {
         for outcome in &row.outcomes {
@@ -219,4 +213,32 @@ fn in_space_the_contact_patch_test_is_exact_at_the_extremes() {
             }
         }
     }
+}
+
+#[test]
+fn friction_in_space_at_the_extremes_is_exact_or_refused() {
+    // The sheared blocks (8 rows) for each of the six laws: Tresca and Coulomb with the bound 0,
+    // half the stick shear and 1e8 p. No wrong answer reported as converged, and the default
+    // solver gives the exact uniform state everywhere.
+    let rows = rows::solid_friction(&Size::test());
+    assert_eq!(rows.len(), 8 * 6);
+    let mut problems = Vec::new();
+    for row in &rows {
+        for outcome in &row.outcomes {
+            let here = format!(
+                "{} / {}: {} ({})",
+                row.name,
+                outcome.solver,
+                outcome.verdict.word(),
+                outcome.measured
+            );
+            if !outcome.verdict.is_honest() {
+                problems.push(format!("wrong answer without error or warning: {here}"));
+            }
+            if outcome.solver == SolverRegistry::DEFAULT && outcome.verdict != Verdict::Pass {
+                problems.push(format!("default solver: {here}"));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
 }

@@ -234,3 +234,85 @@ pub fn loglog_svg(
     }
     Ok(svg)
 }
+
+/// Fills the named placeholders `{{name}}` of the Markdown template `template` (called `name`
+/// in errors, e.g. `templates/tradeoff.md`) with `values`. Refused: a placeholder of the
+/// template without a value (named with its line), a value for a placeholder the template does
+/// not have, and a `{{` without its `}}`.
+pub fn render(name: &str, template: &str, values: &[(&str, String)]) -> Result<String, String> {
+    let mut out = String::with_capacity(template.len());
+    let mut used = vec![false; values.len()];
+    let mut rest = template;
+    let line_of = |rest: &str| {
+        template[..template.len() - rest.len()]
+            .matches('\n')
+            .count()
+            + 1
+    };
+    while let Some(start) = rest.find("{{") {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + 2..];
+        let Some(end) = after.find("}}") else {
+            return Err(format!(
+                "{name}:{}: '{{{{' without its '}}}}'",
+                line_of(&rest[start..])
+            ));
+        };
+        let key = &after[..end];
+        match values.iter().position(|(k, _)| *k == key) {
+            Some(i) => {
+                out.push_str(&values[i].1);
+                used[i] = true;
+            }
+            None => {
+                return Err(format!(
+                    "{name}:{}: the placeholder {{{{{key}}}}} has no value",
+                    line_of(&rest[start..])
+                ))
+            }
+        }
+        rest = &after[end + 2..];
+    }
+    out.push_str(rest);
+    if let Some(i) = used.iter().position(|u| !u) {
+        return Err(format!(
+            "{name}: a value for {{{{{}}}}}, which the template does not have",
+            values[i].0
+        ));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::render;
+
+    #[test]
+    fn a_template_is_filled_and_a_missing_or_extra_value_is_named() {
+        let template = "# Title\n\nC = {{c}}; n = {{n}}.\n{{table}}";
+        let values = |extra: bool| {
+            let mut v = vec![
+                ("c", "2.9".to_string()),
+                ("n", "29".to_string()),
+                ("table", "| a |\n".to_string()),
+            ];
+            if extra {
+                v.push(("rate", "1".to_string()));
+            }
+            v
+        };
+        assert_eq!(
+            render("t.md", template, &values(false)).unwrap(),
+            "# Title\n\nC = 2.9; n = 29.\n| a |\n"
+        );
+        let unfilled = render("t.md", template, &values(false)[..2]).unwrap_err();
+        assert!(
+            unfilled.contains("t.md:4") && unfilled.contains("{{table}}"),
+            "{unfilled}"
+        );
+        let unknown = render("t.md", template, &values(true)).unwrap_err();
+        assert!(unknown.contains("{{rate}}"), "{unknown}");
+        let open = render("t.md", "a\n{{c", &values(false)).unwrap_err();
+        assert!(open.contains("t.md:2"), "{open}");
+    }
+}

@@ -2,11 +2,9 @@
 //! 0.49999, stiffness contrasts, units, degenerate cells, penalty factors, gaps, friction
 //! bounds; in the plane and in space) is solved by every registered solver and judged against
 //! an independent expected answer; the report goes to `target/extremes/extremes.md`
-//! (`--out docs/extremes.md` for the tracked one). The rows themselves are in [`rows`] and
-//! [`space`], shared with the workspace test `tests/tests/extremes.rs`.
-
-pub mod rows;
-pub mod space;
+//! (`--out docs/extremes.md` for the tracked one). The rows themselves, with their expected
+//! answers, are in `vem_verify::extremes`, shared with the workspace test
+//! `tests/tests/extremes.rs`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -15,7 +13,7 @@ use std::time::Instant;
 use clap::Args;
 use vem_verify::report::write_text;
 
-use rows::{Row, Size, Verdict};
+use vem_verify::extremes::{self as rows, Row, Size, Verdict};
 
 /// Options of `cargo xtask extremes`.
 #[derive(Debug, Args)]
@@ -46,7 +44,7 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let start = Instant::now();
     let mut all = Vec::new();
     let friction: (&str, rows::Group) =
-        ("In space: friction at the extremes", space::solid_friction);
+        ("In space: friction at the extremes", rows::solid_friction);
     for (title, group) in rows::groups().into_iter().chain([friction]) {
         let t = Instant::now();
         let rows = group(&size);

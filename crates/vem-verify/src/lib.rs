@@ -15,6 +15,8 @@
 //! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
 //! - [`cases`]: the registry of cases by name (built-in and a user's own) the tools run;
 //! - [`report`]: Markdown tables, log-log SVG plots and JSON;
+//! - `extremes` (feature `extremes`): the rows of the study of stability at the extremes, each
+//!   with its independent expected answer, in the plane and in space;
 //! - [`three_d`]: the same in space: exact solutions on the unit cube, errors on polyhedral
 //!   meshes, the patch test and the convergence study on every polyhedral family.
 //!
@@ -36,8 +38,9 @@
 //! # Cargo features
 //!
 //! `plots` (on by default) adds the log-log SVG plots of [`report`] (`report::plot_svg`,
-//! `report::write_plot`) and with them the `plotters` dependency; everything else needs no
-//! feature.
+//! `report::write_plot`) and with them the `plotters` dependency; `extremes` adds the module
+//! `extremes` (the rows of the study of stability at the extremes) and with it the `vem-scene`
+//! dependency; everything else needs no feature.
 #![deny(missing_docs)]
 
 pub mod adaptive;
@@ -45,6 +48,8 @@ pub mod cases;
 pub mod diagnostics;
 mod error;
 pub mod exact;
+#[cfg(feature = "extremes")]
+pub mod extremes;
 pub mod fretting;
 pub mod norms;
 pub mod plan;

@@ -1,17 +1,9 @@
-//! The rows of `cargo xtask extremes`: each extreme with its independent expected answer, solved
-//! by every registered contact solver and judged. Shared with the workspace test
-//! `tests/tests/extremes.rs`, which runs every group at a small size.
-//!
-//! Expected answers come from outside the solvers:
-//! - two-body linear patch tests (uniform stress in each body, any Lamé parameters per body):
-//!   the lowest-order VEM reproduces them exactly on any mesh, so the nodal displacements and
-//!   the normal resultant are known exactly;
-//! - invariances: a problem whose lengths are scaled by `s` and moduli by `m` has the
-//!   displacement `s u(x/s)` and nodal forces `m s` times those of the unscaled problem;
-//!   Tresca with `g_F = 0` is the frictionless problem;
-//! - the divergence-free solutions E2 (one body) and E2c (two bodies in contact) of
-//!   `vem-verify` for the locking measure, and plane-strain Hertz for the shipped Hertz scene.
+//! The rows in the plane: two-body linear patch tests at every Poisson ratio up to 0.49999, at
+//! stiffness contrasts, on degenerate cells and at extreme gaps and penalty factors; the
+//! invariances of M1 and M2 under scaled lengths and moduli and of Tresca with a zero bound;
+//! the locking measure on E2 and E2c; the shipped Hertz scene near incompressibility.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use vem_contact::{
@@ -22,195 +14,16 @@ use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 use vem_space::{ElementRegistry, ElementSpace, Options};
-use vem_verify::cases::{CaseRegistry, PATCH_TOLERANCE};
-use vem_verify::exact::{BodyId, ExactContact, ExactSolution, Lame, Side};
-use vem_verify::nalgebra::Matrix2;
-use vem_verify::norms::ErrorNorms;
-use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 
-/// Relative change of an answer allowed under a change of units.
-pub const UNITS_TOLERANCE: f64 = 1e-10;
-/// Relative difference allowed between two solves of the same mathematical problem posed two
-/// ways (Tresca with a zero bound against frictionless): the solvers' tolerances. The interior
-/// point of the exact solver certifies less: see [`same_problem_tolerance`].
-pub const SAME_PROBLEM_TOLERANCE: f64 = 1e-7;
-/// Largest ratio of the E2 errors at a Poisson ratio to those at nu = 0.3 (issue: locking-free
-/// means within 2x).
-pub const LOCKING_RATIO: f64 = 2.0;
-/// Poisson ratios of the locking sweep.
-pub const POISSON_RATIOS: [f64; 6] = [0.3, 0.4, 0.49, 0.499, 0.4999, 0.49999];
-
-/// How a row came out for one solver.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Verdict {
-    /// The expected answer, within the row's tolerance.
-    Pass,
-    /// The solver (or the model building) refused with an error: no wrong answer was given.
-    Refused(String),
-    /// A wrong answer, but reported with a warning.
-    Warned(String),
-    /// A wrong answer reported as converged without a warning.
-    Wrong,
-}
-
-impl Verdict {
-    /// The word of the report.
-    pub fn word(&self) -> &'static str {
-        match self {
-            Verdict::Pass => "PASS",
-            Verdict::Refused(_) => "FAIL (refused: error)",
-            Verdict::Warned(_) => "FAIL (warned)",
-            Verdict::Wrong => "FAIL (wrong answer reported as converged)",
-        }
-    }
-
-    /// True unless a wrong answer came without an error or a warning.
-    #[allow(dead_code)] // used by tests/tests/extremes.rs
-    pub fn is_honest(&self) -> bool {
-        !matches!(self, Verdict::Wrong)
-    }
-}
-
-/// One solver's outcome of a row.
-#[derive(Debug, Clone)]
-pub struct Outcome {
-    /// Solver name (registry name), or the linear solver for elasticity rows.
-    pub solver: String,
-    /// What was measured, in words and numbers.
-    pub measured: String,
-    /// The judgement.
-    pub verdict: Verdict,
-}
-
-/// One extreme: what is expected and what each solver gave.
-#[derive(Debug, Clone)]
-pub struct Row {
-    /// The extreme, e.g. "nu = 0.49999, vem1".
-    pub name: String,
-    /// The expected answer and its tolerance.
-    pub expected: String,
-    /// One per solver.
-    pub outcomes: Vec<Outcome>,
-}
-
-/// Sizes of a run.
-#[derive(Debug, Clone)]
-pub struct Size {
-    /// Cells across each body in the patch tests.
-    pub patch: usize,
-    /// Cells across each body in the manufactured problems (M1, M2).
-    pub manufactured: usize,
-    /// Cells across in the locking study (E2).
-    pub locking: usize,
-    /// Mesh families of the locking study.
-    pub locking_families: Vec<MeshFamily>,
-    /// Contact solvers (registry names).
-    pub solvers: Vec<String>,
-    /// Block meshes (files beside the shipped Hertz scene) of the near-incompressible Hertz
-    /// rows.
-    pub hertz_blocks: Vec<&'static str>,
-    /// Cells across the unit cube in the locking rows in space (E2-3D).
-    pub solid: usize,
-    /// Cells across the upper block of the contact patch tests in space.
-    pub solid_patch: usize,
-}
-
-impl Size {
-    /// Sizes for a run: `quick` for CI, otherwise the full report.
-    pub fn new(quick: bool) -> Self {
-        let all_families = vec![
-            MeshFamily::Quads,
-            MeshFamily::Voronoi,
-            MeshFamily::Hexagons,
-            MeshFamily::NonConvex,
-            MeshFamily::PerturbedQuads { distortion: 0.3 },
-            MeshFamily::Triangles,
-        ];
-        if quick {
-            Self {
-                patch: 6,
-                manufactured: 8,
-                locking: 16,
-                locking_families: vec![
-                    MeshFamily::Quads,
-                    MeshFamily::Voronoi,
-                    MeshFamily::Triangles,
-                ],
-                solvers: solver_names(),
-                hertz_blocks: vec!["hertz_block.msh"],
-                solid: 4,
-                solid_patch: 3,
-            }
-        } else {
-            Self {
-                patch: 12,
-                manufactured: 16,
-                locking: 32,
-                locking_families: all_families,
-                solvers: solver_names(),
-                hertz_blocks: vec!["hertz_block.msh", "hertz_block_triangles.msh"],
-                solid: 8,
-                solid_patch: 4,
-            }
-        }
-    }
-
-    /// The smallest sizes (for the workspace tests).
-    #[allow(dead_code)] // used by tests/tests/extremes.rs
-    pub fn test() -> Self {
-        Self {
-            patch: 4,
-            manufactured: 6,
-            locking: 8,
-            locking_families: vec![
-                MeshFamily::Quads,
-                MeshFamily::Voronoi,
-                MeshFamily::Hexagons,
-                MeshFamily::NonConvex,
-                MeshFamily::PerturbedQuads { distortion: 0.3 },
-                MeshFamily::Triangles,
-            ],
-            solvers: solver_names(),
-            hertz_blocks: vec!["hertz_block.msh"],
-            solid: 3,
-            solid_patch: 3,
-        }
-    }
-}
-
-/// Every solver of the registry.
-pub fn solver_names() -> Vec<String> {
-    SolverRegistry::builtin()
-        .names()
-        .iter()
-        .map(|s| s.to_string())
-        .collect()
-}
-
-/// A group of rows.
-pub type Group = fn(&Size) -> Vec<Row>;
-
-/// The groups, in the order of the report.
-pub fn groups() -> Vec<(&'static str, Group)> {
-    vec![
-        ("Poisson ratio up to 0.49999", poisson as Group),
-        ("Near-incompressible contact", incompressible_contact),
-        ("Stiffness contrast between the bodies", contrast),
-        ("Units: lengths and moduli scaled", units),
-        ("Degenerate cells", cells),
-        ("Penalty factors", penalty),
-        ("Gaps", gaps),
-        ("Friction bound 0 and huge", friction),
-        (
-            "In space: Poisson ratio up to 0.49999",
-            super::space::solid_poisson,
-        ),
-        (
-            "In space: the contact patch test at the extremes",
-            super::space::solid_contact,
-        ),
-    ]
-}
+use super::{
+    chain, judge, locking_row, one_outcome, patch_tolerance, solve, Outcome, Row, Size, Verdict,
+    LOCKING_RATIO, POISSON_RATIOS, SAME_PROBLEM_TOLERANCE, UNITS_TOLERANCE,
+};
+use crate::cases::{CaseRegistry, PATCH_TOLERANCE};
+use crate::exact::{BodyId, ExactContact, ExactSolution, Lame, Side};
+use crate::nalgebra::Matrix2;
+use crate::norms::ErrorNorms;
+use crate::problem::{DiscreteProblem, ProblemSettings};
 
 // ---------------------------------------------------------------------------------------------
 // Two-body linear patch tests
@@ -629,71 +442,11 @@ fn default_element() -> Arc<dyn ElementSpace> {
         .expect("the default element is registered")
 }
 
-/// An error and its sources, on one line.
-pub fn chain(error: &dyn std::error::Error) -> String {
-    let mut text = error.to_string();
-    let mut source = error.source();
-    while let Some(cause) = source {
-        text.push_str(": ");
-        text.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    text
-}
-
-pub(crate) fn solve<const D: usize>(
-    problem: &ContactProblem<D>,
-    solver: &str,
-    options: &Options,
-) -> Result<ContactResult<D>, String> {
-    let mut solver = SolverRegistry::builtin()
-        .make(solver, options)
-        .map_err(|e| chain(&e))?;
-    problem
-        .solve(solver.as_mut())
-        .map_err(|e: ContactError| chain(&e))
-}
-
-/// The verdict of one solve: `check` gives what was measured and whether it is the expected
-/// answer.
-pub(crate) fn judge<const D: usize>(
-    solver: &str,
-    outcome: Result<ContactResult<D>, String>,
-    check: impl Fn(&ContactResult<D>) -> (String, bool),
-) -> Outcome {
-    match outcome {
-        Err(error) => Outcome {
-            solver: solver.to_string(),
-            measured: format!("error: {error}"),
-            verdict: Verdict::Refused(error),
-        },
-        Ok(result) => {
-            let (measured, ok) = check(&result);
-            let verdict = if ok {
-                Verdict::Pass
-            } else if let Some(w) = result.warnings.first() {
-                Verdict::Warned(w.to_string())
-            } else {
-                Verdict::Wrong
-            };
-            let measured = match result.warnings.first() {
-                Some(w) if !ok => format!("{measured}; warning: {w}"),
-                _ => measured,
-            };
-            Outcome {
-                solver: solver.to_string(),
-                measured,
-                verdict,
-            }
-        }
-    }
-}
-
 /// Relative difference allowed between two answers of `solver` to the same problem posed two
 /// ways: [`SAME_PROBLEM_TOLERANCE`], or for the exact solver the complementarity its
 /// acceptance test certifies (an interior point stops at a barrier parameter of about its
 /// tolerance, and a weakly active node's force and gap are accurate to its square root).
-fn same_problem_tolerance(solver: &str) -> f64 {
+pub fn same_problem_tolerance(solver: &str) -> f64 {
     if solver == "exact" {
         vem_contact::ExactSettings::default()
             .acceptance()
@@ -701,16 +454,6 @@ fn same_problem_tolerance(solver: &str) -> f64 {
             .max(SAME_PROBLEM_TOLERANCE)
     } else {
         SAME_PROBLEM_TOLERANCE
-    }
-}
-
-/// Patch tolerance of a solver: the penalty solver answers the penalised problem, whose
-/// error is `O(1 / factor)` (default factor 1e3).
-pub(crate) fn patch_tolerance(solver: &str) -> f64 {
-    if solver == "penalty" {
-        1e-3
-    } else {
-        PATCH_TOLERANCE
     }
 }
 
@@ -1436,7 +1179,7 @@ pub fn incompressible_contact(size: &Size) -> Vec<Row> {
     }
     for block in &size.hertz_blocks {
         for element in [None, Some("vem1"), Some("vem1-bbar")] {
-            rows.push(hertz_locking(block, element));
+            rows.push(hertz_locking(&size.scenes, block, element));
         }
     }
     rows
@@ -1453,7 +1196,7 @@ fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Optio
         let (lambda, mu) = lame_of(nu);
         let lame = Lame::try_new(lambda, mu).map_err(|e| chain(&e))?;
         let exact: Arc<dyn ExactSolution> =
-            Arc::new(vem_verify::exact::DivergenceFreeContact::new(lame));
+            Arc::new(crate::exact::DivergenceFreeContact::new(lame));
         let mut meshes = Vec::new();
         for (body, seed) in [(BodyId::One, 1), (BodyId::Two, 2)] {
             let mesh = family
@@ -1486,67 +1229,17 @@ fn e2c_locking(variant: &ElementVariant, family: &MeshFamily, n: usize) -> Optio
     })
 }
 
-/// The row of a locking measure: the relative errors `(E_grad, E_0)` that `errors` gives at
-/// each of `ratios` against those at nu = 0.3, within [`LOCKING_RATIO`] to pass; an element
-/// that locks is a warning (it answers what it computes; the scene layer warns about it).
-/// `None` when the element does not support the cells (p1 on other cells than simplices).
-pub(crate) fn locking_row(
-    name: String,
-    solver: String,
-    ratios: &[f64],
-    errors: impl Fn(f64) -> Result<(f64, f64), String>,
-) -> Option<Row> {
-    let expected = format!("relative E_grad and E_0 within {LOCKING_RATIO}x of those at nu = 0.3");
-    let (grad, l2) = match errors(0.3) {
-        Ok(e) => e,
-        Err(error) if error.contains("support") => return None,
-        Err(error) => {
-            return Some(one_outcome(
-                name,
-                expected,
-                solver,
-                format!("error at nu = 0.3: {error}"),
-                Verdict::Refused(error),
-            ))
-        }
-    };
-    let mut measured = vec![format!("E_grad {grad:.2e}, E_0 {l2:.2e} at 0.3")];
-    let mut worst: f64 = 0.0;
-    let mut refused = None;
-    for &nu in ratios {
-        match errors(nu) {
-            Ok((g, l)) => {
-                let (g, l) = (g / grad, l / l2);
-                worst = worst.max(g).max(l);
-                measured.push(format!("{nu}: x{g:.2} / x{l:.2}"));
-            }
-            Err(error) => refused = Some(format!("nu = {nu}: {error}")),
-        }
-    }
-    let verdict = match refused {
-        Some(e) => Verdict::Refused(e),
-        None if worst <= LOCKING_RATIO => Verdict::Pass,
-        None => Verdict::Warned("locking: the element's error grows with lambda".into()),
-    };
-    Some(one_outcome(
-        name,
-        expected,
-        solver,
-        measured.join("; "),
-        verdict,
-    ))
-}
-
-/// The shipped Hertz scene with `block` as the block's mesh file, Poisson's ratio `nu` on both
-/// bodies and `element` forced on both (the default choice when `None`): the relative errors
-/// of the half-width and the peak pressure against plane-strain Hertz, and the warnings.
+/// The Hertz scene `hertz.toml` of `scenes` with `block` as the block's mesh file, Poisson's
+/// ratio `nu` on both bodies and `element` forced on both (the default choice when `None`):
+/// the relative errors of the half-width and the peak pressure against plane-strain Hertz, and
+/// the warnings.
 fn hertz_errors(
+    scenes: &Path,
     block: &str,
     nu: f64,
     element: Option<&str>,
 ) -> Result<((f64, f64), Vec<String>), String> {
     use vem_scene::{BuildOptions, Model};
-    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../crates/vem-cli/scenes");
     let text = std::fs::read_to_string(scenes.join("hertz.toml"))
         .map_err(|e| format!("hertz.toml: {e}"))?
         .replace("hertz_block.msh", block)
@@ -1560,7 +1253,7 @@ fn hertz_errors(
     };
     let (scene, _) = vem_scene::toml_file::parse(&text).map_err(|e| e.message)?;
     let options = BuildOptions {
-        base: scenes,
+        base: scenes.to_path_buf(),
         ..BuildOptions::default()
     };
     let model = Model::build(&scene, &options).map_err(|e| e.to_string())?;
@@ -1587,7 +1280,7 @@ fn hertz_errors(
 /// The Hertz scene with the block `block` and `element` (the default choice when `None`): the
 /// change of the half-width and peak-pressure errors from nu = 0.3 to each nu of
 /// [`CONTACT_POISSON_RATIOS`].
-fn hertz_locking(block: &str, element: Option<&str>) -> Row {
+fn hertz_locking(scenes: &Path, block: &str, element: Option<&str>) -> Row {
     let label = element.unwrap_or("default element");
     let name = format!("{label}: Hertz scene, block {block}, nu = 0.3 .. 0.4999");
     let expected = format!(
@@ -1604,7 +1297,7 @@ fn hertz_locking(block: &str, element: Option<&str>) -> Row {
             Verdict::Refused(error),
         )
     };
-    let ((a_0, p_0), _) = match hertz_errors(block, 0.3, element) {
+    let ((a_0, p_0), _) = match hertz_errors(scenes, block, 0.3, element) {
         Ok(r) => r,
         Err(error) => return refused(error),
     };
@@ -1615,7 +1308,7 @@ fn hertz_locking(block: &str, element: Option<&str>) -> Row {
     )];
     let (mut worst, mut warned) = (0.0_f64, Vec::new());
     for &nu in &CONTACT_POISSON_RATIOS {
-        match hertz_errors(block, nu, element) {
+        match hertz_errors(scenes, block, nu, element) {
             Ok(((a, p), warnings)) => {
                 worst = worst.max((a - a_0).abs()).max((p - p_0).abs());
                 measured.push(format!(
@@ -1636,23 +1329,4 @@ fn hertz_locking(block: &str, element: Option<&str>) -> Row {
         Verdict::Wrong
     };
     one_outcome(name, expected, solver, measured.join("; "), verdict)
-}
-
-/// A row of one outcome.
-pub(crate) fn one_outcome(
-    name: String,
-    expected: String,
-    solver: String,
-    measured: String,
-    verdict: Verdict,
-) -> Row {
-    Row {
-        name,
-        expected,
-        outcomes: vec![Outcome {
-            solver,
-            measured,
-            verdict,
-        }],
-    }
 }

@@ -1,5 +1,4 @@
-//! The rows of `cargo xtask extremes` in space (`D = 3`), shared with the workspace test
-//! `tests/tests/extremes.rs` as [`rows`](super::rows) is:
+//! The rows in space (`D = 3`):
 //!
 //! - the locking measure on the divergence-free solution E2-3D (errors at a Poisson ratio close
 //!   to 1/2 against those at 0.3) for every element on polyhedra and three families;
@@ -11,6 +10,9 @@
 
 use std::sync::Arc;
 
+use super::{chain, judge, locking_row, patch_tolerance, solve, Outcome, Row, Size};
+use crate::exact::Lame;
+use crate::three_d::{solve_solid, DivergenceFreeSolid, SOLID_SEED};
 use vem_contact::{ContactProblem, ContactResult, Coulomb, Frictionless, Tresca};
 use vem_elastic::{Component, Dirichlet, ElasticBody, Material};
 use vem_mesh::generators::polyhedral::{
@@ -18,10 +20,6 @@ use vem_mesh::generators::polyhedral::{
 };
 use vem_mesh::{Point3, PolyhedralMesh, Vector3};
 use vem_space::{Choice, ElementRegistry, Options, PolyhedralElement};
-use vem_verify::exact::Lame;
-use vem_verify::three_d::{solve_solid, DivergenceFreeSolid, SOLID_SEED};
-
-use super::rows::{chain, judge, locking_row, patch_tolerance, solve, Outcome, Row, Size};
 
 /// Poisson's ratios of the locking rows in space, each against nu = 0.3.
 pub const SOLID_POISSON_RATIOS: [f64; 3] = [0.49, 0.4999, 0.49999];
@@ -503,9 +501,10 @@ const FRICTION_LAWS: [(&str, FrictionLaw); 6] = [
 ];
 
 /// Friction in space at the extremes, by every solver: the stacked non-matching blocks pressed
-/// and sheared ([`ShearedStack`]), Tresca and Coulomb with the bounds of [`FRICTION_LAWS`], at
-/// stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with the
-/// locking-free element `vem1-bbar`.
+/// and sheared (the exact answer: the uniform state `sigma_zz = -p`, `sigma_xz = tau` with the
+/// stick shear or the bound), Tresca and Coulomb with the bound 0, half the stick shear and
+/// `1e8 p`, at stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with
+/// the locking-free element `vem1-bbar`.
 pub fn solid_friction(size: &Size) -> Vec<Row> {
     let base = Stack {
         poisson: 0.0,
@@ -584,39 +583,4 @@ pub fn solid_friction(size: &Size) -> Vec<Row> {
         }
     }
     rows
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use vem_contact::SolverRegistry;
-
-    /// Every friction row in space at the test size: no wrong answer reported as converged,
-    /// and the default solver gives the exact uniform state.
-    #[test]
-    fn friction_in_space_at_the_extremes_is_exact_or_refused() {
-        let rows = solid_friction(&Size::test());
-        assert_eq!(rows.len(), 8 * FRICTION_LAWS.len());
-        let mut problems = Vec::new();
-        for row in &rows {
-            for outcome in &row.outcomes {
-                let here = format!(
-                    "{} / {}: {} ({})",
-                    row.name,
-                    outcome.solver,
-                    outcome.verdict.word(),
-                    outcome.measured
-                );
-                if !outcome.verdict.is_honest() {
-                    problems.push(format!("wrong answer without error or warning: {here}"));
-                }
-                if outcome.solver == SolverRegistry::DEFAULT
-                    && outcome.verdict != super::super::rows::Verdict::Pass
-                {
-                    problems.push(format!("default solver: {here}"));
-                }
-            }
-        }
-        assert!(problems.is_empty(), "{}", problems.join("\n"));
-    }
 }
