@@ -84,21 +84,27 @@ impl Direction {
     }
 }
 
+/// `P(x)`, the projection onto the feasible set: the scalars clamped to `lower..=upper`, the
+/// disks' points returned radially (shared by the projected Newton method here and MPGP).
+pub(crate) fn project(lower: &[f64], upper: &[f64], disks: &[Disk], x: &mut [f64]) {
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi = xi.max(lower[i]).min(upper[i]);
+    }
+    for disk in disks {
+        let (a, b) = (x[disk.first], x[disk.first + 1]);
+        let norm = a.hypot(b);
+        if norm > disk.radius {
+            let s = if norm > 0.0 { disk.radius / norm } else { 0.0 };
+            x[disk.first] = a * s;
+            x[disk.first + 1] = b * s;
+        }
+    }
+}
+
 impl DiskQp<'_> {
     /// `P(x)`: the scalars clamped, the disks' points returned radially.
     fn project(&self, x: &mut [f64]) {
-        for (i, xi) in x.iter_mut().enumerate() {
-            *xi = xi.max(self.lower[i]).min(self.upper[i]);
-        }
-        for disk in self.disks {
-            let (a, b) = (x[disk.first], x[disk.first + 1]);
-            let norm = a.hypot(b);
-            if norm > disk.radius {
-                let s = if norm > 0.0 { disk.radius / norm } else { 0.0 };
-                x[disk.first] = a * s;
-                x[disk.first + 1] = b * s;
-            }
-        }
+        project(self.lower, self.upper, self.disks, x);
     }
 
     /// `H x`.

@@ -31,7 +31,7 @@
 //! Stopping test: `|g^P|_inf <= tolerance` (a length in the interface problem: a gap or slip
 //! residual), then confirmed with a freshly computed gradient.
 
-use super::disk_qp::Disk;
+use super::disk_qp::{project, Disk};
 
 /// The action `x -> H x` of the problem's matrix (with the error of the caller's products).
 type Product<'f, E> = dyn FnMut(&[f64]) -> Result<Vec<f64>, E> + 'f;
@@ -66,18 +66,7 @@ const RIM: f64 = 1e-12;
 impl Mprgp<'_> {
     /// `P(x)`: the scalars clamped, the disks' points returned radially.
     fn project(&self, x: &mut [f64]) {
-        for (i, xi) in x.iter_mut().enumerate() {
-            *xi = xi.max(self.lower[i]).min(self.upper[i]);
-        }
-        for disk in self.disks {
-            let (a, b) = (x[disk.first], x[disk.first + 1]);
-            let norm = a.hypot(b);
-            if norm > disk.radius {
-                let s = if norm > 0.0 { disk.radius / norm } else { 0.0 };
-                x[disk.first] = a * s;
-                x[disk.first + 1] = b * s;
-            }
-        }
+        project(self.lower, self.upper, self.disks, x);
     }
 
     /// The free gradient `phi` (the gradient on the free variables, zero elsewhere) and the
