@@ -54,6 +54,7 @@
 //! ```
 
 use nalgebra::{Matrix2, Matrix3, SymmetricEigen};
+use rayon::prelude::*;
 use vem_mesh::{geometry, Point, Vector};
 use vem_space::quadrature::{polygon_rule, GaussLegendre, TriangleRule};
 
@@ -177,31 +178,39 @@ impl ElasticBody<2> {
         };
         let weight = 1.0 / coercivity(&self.tensor().voigt());
         let n_cells = mesh.n_polygons();
-        let mut cells = vec![CellIndicator::default(); n_cells];
-        let mut stresses = Vec::with_capacity(n_cells);
         let rule = TriangleRule::degree5();
-        for (c, cell) in cells.iter_mut().enumerate() {
-            let local = self.local_values(c, displacement);
-            let strain = self
-                .element()
-                .strain(self.body_mesh(), c, &local)
-                .map_err(element_error(c))?;
-            stresses.push(self.tensor().stress_tensor(&strain));
-            let stiffness = self
-                .element()
-                .stiffness(self.body_mesh(), c, self.tensor())
-                .map_err(element_error(c))?;
-            cell.stabilisation = local.dot(&(&stiffness.stabilisation * &local)).max(0.0);
-            if let Some(force) = self.body_force() {
-                let points = mesh.polygon_points(c);
-                let h = geometry::diameter(&points);
-                let integral: f64 = polygon_rule(&points, &rule)
-                    .iter()
-                    .map(|q| q.weight * force(q.point).norm_squared())
-                    .sum();
-                cell.residual = weight * h * h * integral.max(0.0);
-            }
-        }
+        // Each cell on its own: its stress, its stabilisation term and its residual (the
+        // element matrices as in the assembly, so on every thread).
+        let per_cell = (0..n_cells)
+            .into_par_iter()
+            .map(|c| {
+                let local = self.local_values(c, displacement);
+                let strain = self
+                    .element()
+                    .strain(self.body_mesh(), c, &local)
+                    .map_err(element_error(c))?;
+                let stiffness = self
+                    .element()
+                    .stiffness(self.body_mesh(), c, self.tensor())
+                    .map_err(element_error(c))?;
+                let mut cell = CellIndicator {
+                    stabilisation: local.dot(&(&stiffness.stabilisation * &local)).max(0.0),
+                    ..CellIndicator::default()
+                };
+                if let Some(force) = self.body_force() {
+                    let points = mesh.polygon_points(c);
+                    let h = geometry::diameter(&points);
+                    let integral: f64 = polygon_rule(&points, &rule)
+                        .iter()
+                        .map(|q| q.weight * force(q.point).norm_squared())
+                        .sum();
+                    cell.residual = weight * h * h * integral.max(0.0);
+                }
+                Ok((cell, self.tensor().stress_tensor(&strain)))
+            })
+            .collect::<Result<Vec<_>, ElasticError>>()?;
+        let (mut cells, stresses): (Vec<CellIndicator>, Vec<Matrix2<f64>>) =
+            per_cell.into_iter().unzip();
         // Boundary edges: prescribed components, tractions, contact.
         let mut prescribed = vec![[false; 2]; mesh.n_edges()];
         let mesh_error = |source| ElasticError::Mesh {
