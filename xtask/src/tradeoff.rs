@@ -1004,8 +1004,13 @@ fn of_key<'a>(rows: &'a [Row], key: &(String, String, String)) -> Vec<&'a Row> {
         .collect()
 }
 
+/// Errors closer than this (relative) are the same error: the settings that solve the same
+/// discretisation to within their tolerances differ in the last digits, and a slower one
+/// whose error is smaller only there is not more accurate (the tables print three digits).
+const SAME_ERROR: f64 = 1e-3;
+
 /// The rows on the Pareto front of (total time, primary error): no other row is both faster
-/// and more accurate. Sorted by time.
+/// and more accurate (by more than [`SAME_ERROR`]). Sorted by time.
 fn pareto<'a>(rows: &[&'a Row]) -> Vec<&'a Row> {
     let mut valid: Vec<&Row> = rows
         .iter()
@@ -1017,7 +1022,7 @@ fn pareto<'a>(rows: &[&'a Row]) -> Vec<&'a Row> {
     let mut best = f64::INFINITY;
     for r in valid {
         let e = r.primary().unwrap_or(f64::INFINITY);
-        if e < best {
+        if e < best * (1.0 - SAME_ERROR) {
             best = e;
             front.push(r);
         }
