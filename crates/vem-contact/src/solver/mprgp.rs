@@ -182,6 +182,28 @@ impl Mprgp<'_> {
                     .map(|((x, g), d)| (x * g).abs() + (x * d).abs())
                     .sum::<f64>()
         };
+        // The projected gradient step of fixed length `alpha`, halved for good when it raises
+        // the energy beyond round-off (|H| was underestimated).
+        let projected_step = |apply: &mut Product<'_, E>,
+                              x: &mut Vec<f64>,
+                              g: &mut Vec<f64>,
+                              alpha: &mut f64|
+         -> Result<(), E> {
+            let before = energy(x, g);
+            let mut trial: Vec<f64> = x
+                .iter()
+                .zip(g.iter())
+                .map(|(x, g)| x - *alpha * g)
+                .collect();
+            self.project(&mut trial);
+            let g_trial = gradient_at(apply, &trial)?;
+            if energy(&trial, &g_trial) > before + noise(&trial, &g_trial) {
+                *alpha *= 0.5;
+            }
+            *x = trial;
+            *g = g_trial;
+            Ok(())
+        };
         let mut alpha = if norm > 0.0 { STEP / norm } else { 1.0 };
         let mut g = gradient_at(&mut apply, &x)?;
         let (mut phi, mut beta) = self.split(&x, &g, &in_disk);
@@ -235,16 +257,7 @@ impl Mprgp<'_> {
                         g[i] -= feasible * ap[i];
                     }
                     self.project(&mut x);
-                    let before = energy(&x, &g);
-                    let mut trial: Vec<f64> = (0..m).map(|i| x[i] - alpha * g[i]).collect();
-                    self.project(&mut trial);
-                    let g_trial = gradient_at(&mut apply, &trial)?;
-                    if energy(&trial, &g_trial) > before + noise(&trial, &g_trial) {
-                        // |H| was underestimated: a shorter fixed step from now on.
-                        alpha *= 0.5;
-                    }
-                    x = trial;
-                    g = g_trial;
+                    projected_step(&mut apply, &mut x, &mut g, &mut alpha)?;
                     (phi, beta) = self.split(&x, &g, &in_disk);
                     p = phi.clone();
                 }
@@ -265,15 +278,7 @@ impl Mprgp<'_> {
                     }
                     self.project(&mut x);
                 } else {
-                    let before = energy(&x, &g);
-                    let mut trial: Vec<f64> = (0..m).map(|i| x[i] - alpha * g[i]).collect();
-                    self.project(&mut trial);
-                    let g_trial = gradient_at(&mut apply, &trial)?;
-                    if energy(&trial, &g_trial) > before + noise(&trial, &g_trial) {
-                        alpha *= 0.5;
-                    }
-                    x = trial;
-                    g = g_trial;
+                    projected_step(&mut apply, &mut x, &mut g, &mut alpha)?;
                 }
                 (phi, beta) = self.split(&x, &g, &in_disk);
                 p = phi.clone();
