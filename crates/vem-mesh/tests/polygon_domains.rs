@@ -95,8 +95,9 @@ fn cells_tile_the_polygon_and_parts_are_its_edges() {
 /// The cut cells keep the families' shape regularity (docs/meshes.md, "Meshes of a
 /// polygon"): on the L-shape gamma (the smaller of the shortest-edge and star ratios) stays
 /// above 0.035 for every family and size; on the notched trapezoid the median star ratio stays
-/// that of the family's cells and every cell is star-shaped with ratio at least 0.025, except
-/// the chevron family, one of whose cut cells holds the notch's reflex corner (n = 20).
+/// that of the family's cells and every cell is star-shaped with ratio at least 0.045 (a cut
+/// cell around the notch's reflex corner that no merge makes star-shaped is split: the chevron
+/// family at n = 20 had a cell of star ratio 0 before).
 #[test]
 fn cut_meshes_are_shape_regular() {
     for (shape, domain) in [("L", l_shape()), ("notched", notched_trapezoid())] {
@@ -117,8 +118,8 @@ fn cut_meshes_are_shape_regular() {
                 assert!(q.star_ratio.median >= 0.2, "{what}");
                 if shape == "L" {
                     assert!(q.gamma >= 0.035, "{what}");
-                } else if family != MeshFamily::NonConvex {
-                    assert!(q.star_ratio.min >= 0.025, "{what}");
+                } else {
+                    assert!(q.star_ratio.min >= 0.045, "{what}");
                     assert!(q.shortest_edge_ratio.min >= 0.01, "{what}");
                 }
             }

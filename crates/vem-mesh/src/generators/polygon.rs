@@ -18,6 +18,9 @@
 //! 4. Merge: a cut cell smaller than [`MERGE_AREA_RATIO`] times the cell it was cut from joins
 //!    the neighbour with which it shares the longest stretch of edges (when they share one
 //!    connected stretch and no other vertex), so that no sliver is left.
+//! 5. Split: a cut cell still much less star-shaped than the cell it was cut from (a chevron
+//!    around a reflex corner of the polygon that no merge made star-shaped) is split in two
+//!    by the diagonal from one of its reflex vertices whose halves are best shaped.
 //!
 //! The cells then tile the polygon exactly (their areas sum to its area up to round-off), and
 //! the boundary edges on polygon edge `k` form the boundary part named after that edge
@@ -315,6 +318,8 @@ enum Piece {
     Mesh { edge: usize, forward: bool },
     /// A piece of polygon edge k.
     Boundary(usize),
+    /// A diagonal splitting a cut cell that no merge made star-shaped.
+    Diagonal,
 }
 
 fn cut(
@@ -513,19 +518,30 @@ fn cut(
             }
         }
     }
-    let pieces: Vec<([usize; 2], Piece)> = order
+    let mut pieces: Vec<([usize; 2], Piece)> = order
         .iter()
         .map(|&(u, v)| ([u, v], graph[&(u, v)]))
         .collect();
 
-    // 5. Faces, then merges of small cut cells, round after round.
+    // 5. Faces, then merges of small cut cells, round after round, then the split of the cut
+    //    cells still misshapen.
     let mut removed = vec![false; pieces.len()];
-    let faces = loop {
+    let mut faces = loop {
         let faces = Faces::of(&points, &pieces, &removed)?;
         if !merge || !faces.merge_small(&points, &pieces, background, &mut removed) {
             break faces;
         }
     };
+    if merge {
+        let diagonals = faces.split_misshapen(&points, &pieces, background);
+        if !diagonals.is_empty() {
+            for diagonal in diagonals {
+                pieces.push((diagonal, Piece::Diagonal));
+                removed.push(false);
+            }
+            faces = Faces::of(&points, &pieces, &removed)?;
+        }
+    }
 
     // 6. The mesh: used vertices renumbered, parts by edge name.
     let mut new_id = vec![usize::MAX; points.len()];
@@ -684,23 +700,7 @@ impl Faces {
         background: &Mesh,
         removed: &mut [bool],
     ) -> bool {
-        let edges = background.edges();
         let origin = |h: usize| pieces[h / 2].0[h % 2];
-        // The background cell on the left of a mesh half-edge.
-        let cell_left = |h: usize| -> Option<usize> {
-            let Piece::Mesh { edge, forward } = pieces[h / 2].1 else {
-                return None;
-            };
-            // Half-edge 2 i runs along the key order, which runs along the mesh edge when
-            // `forward`.
-            let along = forward == (h % 2 == 0);
-            let e = &edges[edge];
-            if along {
-                Some(e.left)
-            } else {
-                e.right
-            }
-        };
         let star = |loop_: &[usize]| -> f64 {
             let polygon: Vec<Point> = loop_.iter().map(|&v| points[v]).collect();
             element_quality(&polygon).star_ratio
@@ -712,11 +712,7 @@ impl Faces {
         // (area, face, small, own star ratio)
         let mut candidates: Vec<(f64, usize, bool, f64)> = Vec::new();
         for (f, cell) in self.cells.iter().enumerate() {
-            let Some(reference) = cell
-                .iter()
-                .filter_map(|&h| cell_left(h))
-                .max_by(|&a, &b| background.area(a).total_cmp(&background.area(b)))
-            else {
+            let Some(reference) = reference_cell(background, pieces, cell) else {
                 continue; // the polygon inside one cell
             };
             let cut = cell
@@ -799,4 +795,140 @@ impl Faces {
         }
         merged
     }
+
+    /// The diagonals that split each cut cell still misshapen after the merges (its star ratio
+    /// below half that of the cell it was cut from: a chevron around a reflex corner of the
+    /// polygon that no union with a neighbour made star-shaped) in two: from a reflex vertex
+    /// of the cell to another of its vertices, inside it, both halves more star-shaped than
+    /// the cell: of those the one whose halves have the largest smaller gamma (the smaller of
+    /// the shortest-edge and star ratios), taken when that is at least the cell's own gamma.
+    fn split_misshapen(
+        &self,
+        points: &[Point],
+        pieces: &[([usize; 2], Piece)],
+        background: &Mesh,
+    ) -> Vec<[usize; 2]> {
+        let quality = |loop_: &[usize]| {
+            let polygon: Vec<Point> = loop_.iter().map(|&v| points[v]).collect();
+            element_quality(&polygon)
+        };
+        let mut diagonals = Vec::new();
+        for cell in &self.cells {
+            let cut = cell
+                .iter()
+                .any(|&h| matches!(pieces[h / 2].1, Piece::Boundary(_)));
+            // The background cells it was cut from (the left side of its mesh pieces).
+            let reference = reference_cell(background, pieces, cell);
+            let (true, Some(reference)) = (cut, reference) else {
+                continue;
+            };
+            let loop_: Vec<usize> = cell.iter().map(|&h| self.origin(pieces, h)).collect();
+            let polygon: Vec<Point> = loop_.iter().map(|&v| points[v]).collect();
+            let own = element_quality(&polygon);
+            let reference_star = element_quality(&background.polygon_points(reference)).star_ratio;
+            if own.star_ratio >= 0.5 * reference_star {
+                continue;
+            }
+            let m = loop_.len();
+            let mut best: Option<(f64, [usize; 2])> = None;
+            for i in 0..m {
+                let (prev, here, next) =
+                    (polygon[(i + m - 1) % m], polygon[i], polygon[(i + 1) % m]);
+                if cross(here - prev, next - here) >= 0.0 {
+                    continue; // not reflex
+                }
+                for j in 0..m {
+                    if j == i || j == (i + 1) % m || (j + 1) % m == i {
+                        continue;
+                    }
+                    if !is_inner_diagonal(&polygon, i, j) {
+                        continue;
+                    }
+                    let first: Vec<usize> = (0..m)
+                        .map(|k| loop_[(i + k) % m])
+                        .take((j + m - i) % m + 1)
+                        .collect();
+                    let second: Vec<usize> = (0..m)
+                        .map(|k| loop_[(j + k) % m])
+                        .take((i + m - j) % m + 1)
+                        .collect();
+                    let (a, b) = (quality(&first), quality(&second));
+                    if a.star_ratio.min(b.star_ratio) <= own.star_ratio {
+                        continue;
+                    }
+                    let worse = a.gamma().min(b.gamma());
+                    if best.is_none_or(|(g, _)| worse > g) {
+                        best = Some((worse, [loop_[i], loop_[j]]));
+                    }
+                }
+            }
+            if let Some((worse, diagonal)) = best {
+                if worse >= own.gamma() {
+                    diagonals.push(diagonal);
+                }
+            }
+        }
+        diagonals
+    }
+}
+
+/// The background cell on the left of half-edge `h` when it is a piece of a mesh edge.
+fn cell_left(background: &Mesh, pieces: &[([usize; 2], Piece)], h: usize) -> Option<usize> {
+    let Piece::Mesh { edge, forward } = pieces[h / 2].1 else {
+        return None;
+    };
+    // Half-edge 2 i runs along the key order, which runs along the mesh edge when `forward`.
+    let e = &background.edges()[edge];
+    if forward == (h % 2 == 0) {
+        Some(e.left)
+    } else {
+        e.right
+    }
+}
+
+/// The background cell a cut cell (a loop of half-edges) was cut from: the largest of the
+/// cells on the left of its mesh pieces (`None` for the polygon inside one cell).
+fn reference_cell(
+    background: &Mesh,
+    pieces: &[([usize; 2], Piece)],
+    cell: &[usize],
+) -> Option<usize> {
+    cell.iter()
+        .filter_map(|&h| cell_left(background, pieces, h))
+        .max_by(|&a, &b| background.area(a).total_cmp(&background.area(b)))
+}
+
+/// True when the segment from vertex `i` to vertex `j` of the counter-clockwise simple polygon
+/// `polygon` lies inside it: it leaves `i` into the polygon's angle there and crosses or
+/// touches no edge but those at its ends.
+fn is_inner_diagonal(polygon: &[Point], i: usize, j: usize) -> bool {
+    let m = polygon.len();
+    let (a, b) = (polygon[i], polygon[j]);
+    let d = b - a;
+    // Inside the angle at i (reflex: outside the cone of the exterior).
+    let (prev, next) = (polygon[(i + m - 1) % m], polygon[(i + 1) % m]);
+    let (to_next, to_prev) = (next - a, prev - a);
+    let inside_angle = if cross(a - prev, next - a) >= 0.0 {
+        cross(to_next, d) > 0.0 && cross(d, to_prev) > 0.0
+    } else {
+        !(cross(to_prev, d) >= 0.0 && cross(d, to_next) >= 0.0)
+    };
+    if !inside_angle {
+        return false;
+    }
+    for k in 0..m {
+        let l = (k + 1) % m;
+        if k == i || l == i || k == j || l == j {
+            continue;
+        }
+        let (p, q) = (polygon[k], polygon[l]);
+        let side = |o: Point, u: Point, w: Point| cross(u - o, w - o);
+        let (s1, s2) = (side(a, b, p), side(a, b, q));
+        let (s3, s4) = (side(p, q, a), side(p, q, b));
+        // Any contact (crossing or touching) disqualifies the diagonal.
+        if s1 * s2 <= 0.0 && s3 * s4 <= 0.0 {
+            return false;
+        }
+    }
+    true
 }
