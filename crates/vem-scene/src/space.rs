@@ -123,12 +123,15 @@ pub(crate) fn read_gmsh(path: &Path) -> Result<BuiltMesh, MeshError> {
         path: path.to_path_buf(),
         reason: format!("cannot read the file: {e}"),
     })?;
-    let volumes = vem_mesh::io::read_msh_bytes(&bytes)
-        .is_ok_and(|file| file.elements.iter().any(|e| e.entity_dim == 3));
-    if volumes {
-        vem_mesh::io::read_gmsh_polyhedral_bytes(&bytes, path).map(BuiltMesh::Space)
+    // Parsed once: the elements decide which reader turns the file into a mesh.
+    let file = vem_mesh::io::read_msh_bytes(&bytes).map_err(|e| MeshError::Read {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })?;
+    if file.elements.iter().any(|e| e.entity_dim == 3) {
+        vem_mesh::io::polyhedral_mesh_from_msh(&file, path).map(BuiltMesh::Space)
     } else {
-        vem_mesh::io::read_gmsh_bytes(&bytes, path).map(BuiltMesh::Plane)
+        vem_mesh::io::mesh_from_msh(&file, path).map(BuiltMesh::Plane)
     }
 }
 

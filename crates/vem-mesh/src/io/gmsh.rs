@@ -73,6 +73,16 @@ pub fn read_gmsh_bytes(bytes: &[u8], name: impl AsRef<Path>) -> Result<Mesh, Mes
     convert(&parsed).map_err(fail)
 }
 
+/// The 2D mesh of an already parsed Gmsh file, exactly as [`read_gmsh_bytes`] makes it from
+/// the file's bytes (for a caller that parsed the file to look at it first, so that it is not
+/// parsed twice); `name` is the file name used in error messages.
+pub fn mesh_from_msh(msh: &MshFile, name: impl AsRef<Path>) -> Result<Mesh, MeshError> {
+    convert(msh).map_err(|reason| MeshError::Read {
+        path: name.as_ref().to_path_buf(),
+        reason,
+    })
+}
+
 /// Node tags to positions in the `$Nodes` section: a table indexed by tag when the tags are
 /// dense (as Gmsh writes them), else the tags sorted for binary search.
 pub(super) enum TagIndex {

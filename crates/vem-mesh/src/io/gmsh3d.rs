@@ -120,6 +120,18 @@ pub fn read_gmsh_polyhedral_bytes(
     convert(&parsed).map_err(fail)
 }
 
+/// The 3D mesh of an already parsed Gmsh file, exactly as [`read_gmsh_polyhedral_bytes`]
+/// makes it from the file's bytes; `name` is the file name used in error messages.
+pub fn polyhedral_mesh_from_msh(
+    msh: &MshFile,
+    name: impl AsRef<Path>,
+) -> Result<PolyhedralMesh, MeshError> {
+    convert(msh).map_err(|reason| MeshError::Read {
+        path: name.as_ref().to_path_buf(),
+        reason,
+    })
+}
+
 /// A volume element of the file, as read.
 struct Volume<'a> {
     tag: u64,

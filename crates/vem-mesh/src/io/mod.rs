@@ -42,9 +42,9 @@ mod vtu;
 mod vtu_polyhedral;
 
 #[cfg(feature = "gmsh")]
-pub use gmsh::{read_gmsh, read_gmsh_bytes};
+pub use gmsh::{mesh_from_msh, read_gmsh, read_gmsh_bytes};
 #[cfg(feature = "gmsh")]
-pub use gmsh3d::{read_gmsh_polyhedral, read_gmsh_polyhedral_bytes};
+pub use gmsh3d::{polyhedral_mesh_from_msh, read_gmsh_polyhedral, read_gmsh_polyhedral_bytes};
 #[cfg(feature = "gmsh")]
 pub use msh::{
     element_type_name, read_msh_bytes, MshElement, MshEntity, MshError, MshFile, MshLocation,

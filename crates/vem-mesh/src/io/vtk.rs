@@ -341,36 +341,6 @@ impl Values {
             Values::UInt8(v) => v.get(k).map(|&x| i64::from(x)),
         }
     }
-
-    /// The values as little-endian bytes.
-    fn to_le_bytes(&self) -> Vec<u8> {
-        match self {
-            Values::Float64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
-            Values::Int32(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
-            Values::Int64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
-            Values::UInt8(v) => v.clone(),
-        }
-    }
-
-    /// Appends the values as text, separated by spaces, `per_line` to a line.
-    fn write_text(&self, out: &mut String, per_line: usize) {
-        let per_line = per_line.max(1);
-        for k in 0..self.len() {
-            out.push_str(if k % per_line == 0 {
-                "\n          "
-            } else {
-                " "
-            });
-            match self {
-                Values::Float64(v) => write!(out, "{:e}", v[k]),
-                Values::Int32(v) => write!(out, "{}", v[k]),
-                Values::Int64(v) => write!(out, "{}", v[k]),
-                Values::UInt8(v) => write!(out, "{}", v[k]),
-            }
-            .expect("writing to a String cannot fail");
-        }
-        out.push_str("\n        ");
-    }
 }
 
 /// A named data array of points or cells: `components` values per point (or cell), one
@@ -613,7 +583,9 @@ impl UnstructuredGrid {
             path: path.to_path_buf(),
             reason,
         })?;
-        write_atomically(path, |w| write_document(w, self, encoding))
+        write_atomically(path, |w| {
+            write_document(w, &Document::of_grid(self), encoding)
+        })
     }
 
     /// The `.vtu` file of the grid in `encoding`, in memory (checked as by
@@ -621,7 +593,8 @@ impl UnstructuredGrid {
     pub fn to_vtu_bytes(&self, encoding: VtuEncoding) -> Result<Vec<u8>, String> {
         self.check()?;
         let mut bytes = Vec::new();
-        write_document(&mut bytes, self, encoding).map_err(|e| e.to_string())?;
+        write_document(&mut bytes, &Document::of_grid(self), encoding)
+            .map_err(|e| e.to_string())?;
         Ok(bytes)
     }
 }
@@ -665,76 +638,329 @@ fn check_arrays(group: &str, arrays: &[VtkArray], entries: usize) -> Result<(), 
 /// Uncompressed bytes per zlib block (VTK's default).
 const BLOCK_SIZE: usize = 1 << 15;
 
+/// Bytes of raw binary data encoded at a time on their way to the file (the scratch buffer
+/// stays in cache; the file sees a few large writes).
+const BINARY_CHUNK: usize = 1 << 18;
+
 /// zlib's compression level (1 fastest, 9 smallest): 1 compresses integer arrays nearly as
 /// well as 6 at several times the speed (floating-point values compress little at any level).
 const COMPRESSION_LEVEL: u8 = 1;
 
-/// One array of the document: where it goes, its XML attributes and its values.
-struct Entry<'a> {
-    name: &'a str,
-    components: usize,
-    values: std::borrow::Cow<'a, Values>,
+/// Where the values of one array of a document come from: borrowed from the caller's data
+/// and converted to their type in the file on the way out (no copy of a whole array).
+#[derive(Clone, Copy)]
+pub(super) enum Source<'a> {
+    /// `Float64` values as they are.
+    Float64(&'a [f64]),
+    /// `Float64` pairs, each written with a third component 0.
+    Pairs(&'a [f64]),
+    /// Points in space (`Float64`, three per point).
+    Points(&'a [[f64; 3]]),
+    /// Points in the plane, written with z = 0.
+    PlanePoints(&'a [crate::Point]),
+    /// Indices, written as `Int64`.
+    Indices(&'a [usize]),
+    /// `Int64` values.
+    Int64(&'a [i64]),
+    /// `Int32` values.
+    Int32(&'a [i32]),
+    /// `UInt8` values.
+    UInt8(&'a [u8]),
+    /// Cell types, written as their `UInt8` VTK numbers.
+    Types(&'a [CellType]),
+    /// One cell type `count` times.
+    Repeated(CellType, usize),
 }
 
-impl<'a> Entry<'a> {
-    fn of(array: &'a VtkArray) -> Self {
-        Entry {
-            name: &array.name,
-            components: array.components,
-            values: std::borrow::Cow::Borrowed(&array.values),
+/// One value of a [`Source`], for text.
+enum Number {
+    Float(f64),
+    Integer(i64),
+}
+
+impl<'a> Source<'a> {
+    /// The values of an array.
+    fn of(values: &'a Values) -> Self {
+        match values {
+            Values::Float64(v) => Source::Float64(v),
+            Values::Int32(v) => Source::Int32(v),
+            Values::Int64(v) => Source::Int64(v),
+            Values::UInt8(v) => Source::UInt8(v),
+        }
+    }
+
+    /// The number of values written (components included).
+    fn len(&self) -> usize {
+        match *self {
+            Source::Int32(v) => v.len(),
+            Source::UInt8(v) => v.len(),
+            Source::Float64(v) => v.len(),
+            Source::Pairs(v) => v.len() / 2 * 3,
+            Source::Points(v) => 3 * v.len(),
+            Source::PlanePoints(v) => 3 * v.len(),
+            Source::Indices(v) => v.len(),
+            Source::Int64(v) => v.len(),
+            Source::Types(v) => v.len(),
+            Source::Repeated(_, count) => count,
+        }
+    }
+
+    /// VTK's name of the type written.
+    fn type_name(&self) -> &'static str {
+        match *self {
+            Source::Int32(_) => "Int32",
+            Source::Float64(_) | Source::Pairs(_) | Source::Points(_) | Source::PlanePoints(_) => {
+                "Float64"
+            }
+            Source::Indices(_) | Source::Int64(_) => "Int64",
+            Source::UInt8(_) | Source::Types(_) | Source::Repeated(..) => "UInt8",
+        }
+    }
+
+    /// Bytes per value in binary.
+    fn value_bytes(&self) -> usize {
+        match *self {
+            Source::Int32(_) => 4,
+            Source::UInt8(_) | Source::Types(_) | Source::Repeated(..) => 1,
+            _ => 8,
+        }
+    }
+
+    /// Value `k`, for text.
+    fn number(&self, k: usize) -> Number {
+        let plane = |x: f64, y: f64, c: usize| match c {
+            0 => x,
+            1 => y,
+            _ => 0.0,
+        };
+        match *self {
+            Source::Float64(v) => Number::Float(v[k]),
+            Source::Int32(v) => Number::Integer(i64::from(v[k])),
+            Source::Int64(v) => Number::Integer(v[k]),
+            Source::UInt8(v) => Number::Integer(i64::from(v[k])),
+            Source::Pairs(v) => {
+                let (i, c) = (k / 3, k % 3);
+                Number::Float(plane(v[2 * i], v[2 * i + 1], c))
+            }
+            Source::Points(v) => Number::Float(v[k / 3][k % 3]),
+            Source::PlanePoints(v) => {
+                let p = v[k / 3];
+                Number::Float(plane(p.x, p.y, k % 3))
+            }
+            Source::Indices(v) => Number::Integer(v[k] as i64),
+            Source::Types(v) => Number::Integer(i64::from(v[k].vtk_id())),
+            Source::Repeated(t, _) => Number::Integer(i64::from(t.vtk_id())),
+        }
+    }
+
+    /// Appends the values as text, separated by spaces, `per_line` to a line.
+    fn write_text(&self, out: &mut String, per_line: usize) {
+        let per_line = per_line.max(1);
+        for k in 0..self.len() {
+            out.push_str(if k % per_line == 0 {
+                "\n          "
+            } else {
+                " "
+            });
+            match self.number(k) {
+                Number::Float(x) => write!(out, "{x:e}"),
+                Number::Integer(i) => write!(out, "{i}"),
+            }
+            .expect("writing to a String cannot fail");
+        }
+        out.push_str("\n        ");
+    }
+
+    /// Hands the values as little-endian bytes to `sink`, in pieces of `chunk` bytes (a
+    /// multiple of 8; the last piece shorter), encoded into `scratch`.
+    fn for_each_chunk(
+        &self,
+        chunk: usize,
+        scratch: &mut Vec<u8>,
+        sink: &mut dyn FnMut(&[u8]) -> io::Result<()>,
+    ) -> io::Result<()> {
+        /// Encodes `count` items of `N` bytes each (`at(k)`), handing `chunk` bytes at a time.
+        fn encode<const N: usize>(
+            count: usize,
+            at: impl Fn(usize) -> [u8; N],
+            chunk: usize,
+            scratch: &mut Vec<u8>,
+            sink: &mut dyn FnMut(&[u8]) -> io::Result<()>,
+        ) -> io::Result<()> {
+            let per_chunk = chunk / N;
+            let mut k = 0;
+            while k < count {
+                let end = (k + per_chunk).min(count);
+                scratch.clear();
+                for i in k..end {
+                    scratch.extend_from_slice(&at(i));
+                }
+                sink(scratch)?;
+                k = end;
+            }
+            Ok(())
+        }
+        let plane = |x: f64, y: f64, c: usize| match c {
+            0 => x,
+            1 => y,
+            _ => 0.0,
+        };
+        match *self {
+            Source::Float64(v) => encode(v.len(), |k| v[k].to_le_bytes(), chunk, scratch, sink),
+            Source::Int32(v) => encode(v.len(), |k| v[k].to_le_bytes(), chunk, scratch, sink),
+            Source::Int64(v) => encode(v.len(), |k| v[k].to_le_bytes(), chunk, scratch, sink),
+            Source::UInt8(v) => v.chunks(chunk).try_for_each(sink),
+            Source::Pairs(v) => encode(
+                self.len(),
+                |k| plane(v[2 * (k / 3)], v[2 * (k / 3) + 1], k % 3).to_le_bytes(),
+                chunk,
+                scratch,
+                sink,
+            ),
+            Source::Points(v) => encode(
+                self.len(),
+                |k| v[k / 3][k % 3].to_le_bytes(),
+                chunk,
+                scratch,
+                sink,
+            ),
+            Source::PlanePoints(v) => encode(
+                self.len(),
+                |k| plane(v[k / 3].x, v[k / 3].y, k % 3).to_le_bytes(),
+                chunk,
+                scratch,
+                sink,
+            ),
+            Source::Indices(v) => encode(
+                v.len(),
+                |k| (v[k] as i64).to_le_bytes(),
+                chunk,
+                scratch,
+                sink,
+            ),
+            Source::Types(v) => encode(v.len(), |k| [v[k].vtk_id()], chunk, scratch, sink),
+            Source::Repeated(t, count) => encode(count, |_| [t.vtk_id()], chunk, scratch, sink),
         }
     }
 }
 
-/// Writes the whole document.
-fn write_document(
+/// One array of a document: its name, components per entry and values.
+pub(super) struct Column<'a> {
+    pub(super) name: &'a str,
+    pub(super) components: usize,
+    pub(super) source: Source<'a>,
+}
+
+impl<'a> Column<'a> {
+    fn of(array: &'a VtkArray) -> Self {
+        Column {
+            name: &array.name,
+            components: array.components,
+            source: Source::of(&array.values),
+        }
+    }
+}
+
+/// What a `.vtu` file holds, borrowed from the caller: the arrays are converted on their way
+/// to the file.
+pub(super) struct Document<'a> {
+    pub(super) n_points: usize,
+    pub(super) n_cells: usize,
+    /// The point coordinates (three components).
+    pub(super) points: Source<'a>,
+    /// connectivity, offsets, types (and faces, faceoffsets for polyhedra).
+    pub(super) cells: Vec<Column<'a>>,
+    pub(super) field_data: Vec<Column<'a>>,
+    pub(super) point_data: Vec<Column<'a>>,
+    pub(super) cell_data: Vec<Column<'a>>,
+}
+
+impl<'a> Document<'a> {
+    /// The document of `grid`.
+    fn of_grid(grid: &'a UnstructuredGrid) -> Self {
+        let cells = &grid.cells;
+        let mut columns = vec![
+            Column {
+                name: "connectivity",
+                components: 1,
+                source: Source::Indices(&cells.connectivity),
+            },
+            Column {
+                name: "offsets",
+                components: 1,
+                source: Source::Indices(&cells.offsets[1..]),
+            },
+            Column {
+                name: "types",
+                components: 1,
+                source: Source::Types(&cells.types),
+            },
+        ];
+        if !cells.face_offsets.is_empty() {
+            columns.push(Column {
+                name: "faces",
+                components: 1,
+                source: Source::Indices(&cells.faces),
+            });
+            columns.push(Column {
+                name: "faceoffsets",
+                components: 1,
+                source: Source::Int64(&cells.face_offsets),
+            });
+        }
+        Document {
+            n_points: grid.points.len(),
+            n_cells: cells.len(),
+            points: Source::Points(&grid.points),
+            cells: columns,
+            field_data: grid.field_data.iter().map(Column::of).collect(),
+            point_data: grid.point_data.iter().map(Column::of).collect(),
+            cell_data: grid.cell_data.iter().map(Column::of).collect(),
+        }
+    }
+
+    /// The document of a planar mesh's vertices (z = 0) and polygons, without data.
+    pub(super) fn of_mesh(mesh: &'a Mesh) -> Self {
+        Document {
+            n_points: mesh.n_vertices(),
+            n_cells: mesh.n_polygons(),
+            points: Source::PlanePoints(mesh.vertices()),
+            cells: vec![
+                Column {
+                    name: "connectivity",
+                    components: 1,
+                    source: Source::Indices(mesh.polygon_vertex_indices()),
+                },
+                Column {
+                    name: "offsets",
+                    components: 1,
+                    source: Source::Indices(&mesh.polygon_offsets()[1..]),
+                },
+                Column {
+                    name: "types",
+                    components: 1,
+                    source: Source::Repeated(CellType::Polygon, mesh.n_polygons()),
+                },
+            ],
+            field_data: Vec::new(),
+            point_data: Vec::new(),
+            cell_data: Vec::new(),
+        }
+    }
+}
+
+/// Writes the whole document. In binary the XML comes first, with the offsets of the arrays
+/// computed from their sizes, then every array is encoded straight into `w`.
+pub(super) fn write_document(
     w: &mut dyn Write,
-    grid: &UnstructuredGrid,
+    document: &Document,
     encoding: VtuEncoding,
 ) -> io::Result<()> {
-    let cells = &grid.cells;
-    let as_i64 = |v: &[usize]| Values::Int64(v.iter().map(|&x| x as i64).collect());
-    let points = Values::Float64(grid.points.concat());
-    let mut cell_entries = vec![
-        Entry {
-            name: "connectivity",
-            components: 1,
-            values: std::borrow::Cow::Owned(as_i64(&cells.connectivity)),
-        },
-        Entry {
-            name: "offsets",
-            components: 1,
-            values: std::borrow::Cow::Owned(as_i64(&cells.offsets[1..])),
-        },
-        Entry {
-            name: "types",
-            components: 1,
-            values: std::borrow::Cow::Owned(Values::UInt8(
-                cells.types.iter().map(|t| t.vtk_id()).collect(),
-            )),
-        },
-    ];
-    if !cells.face_offsets.is_empty() {
-        cell_entries.push(Entry {
-            name: "faces",
-            components: 1,
-            values: std::borrow::Cow::Owned(as_i64(&cells.faces)),
-        });
-        cell_entries.push(Entry {
-            name: "faceoffsets",
-            components: 1,
-            values: std::borrow::Cow::Owned(Values::Int64(cells.face_offsets.clone())),
-        });
-    }
-    let field_entries: Vec<Entry> = grid.field_data.iter().map(Entry::of).collect();
-    let point_entries: Vec<Entry> = grid.point_data.iter().map(Entry::of).collect();
-    let data_entries: Vec<Entry> = grid.cell_data.iter().map(Entry::of).collect();
-    let point_coordinates = [Entry {
+    let point_coordinates = [Column {
         name: "Points",
         components: 3,
-        values: std::borrow::Cow::Borrowed(&points),
+        source: document.points,
     }];
-
     let mut xml = String::new();
     let compressor = if encoding == VtuEncoding::Compressed {
         " compressor=\"vtkZLibDataCompressor\""
@@ -749,71 +975,77 @@ fn write_document(
     )
     .unwrap_or(());
     writeln!(xml, "  <UnstructuredGrid>").unwrap_or(());
-    // The appended blocks, in the order of the arrays in the XML.
-    let mut appended: Vec<u8> = Vec::new();
-    let mut sections: Vec<(&str, String, &[Entry])> = vec![
+    let mut sections: Vec<(&str, String, &[Column])> = vec![
         (
             "PointData",
-            active_attributes(&grid.point_data),
-            &point_entries,
+            active_attributes(&document.point_data),
+            &document.point_data,
         ),
         (
             "CellData",
-            active_attributes(&grid.cell_data),
-            &data_entries,
+            active_attributes(&document.cell_data),
+            &document.cell_data,
         ),
         ("Points", String::new(), &point_coordinates),
-        ("Cells", String::new(), &cell_entries),
+        ("Cells", String::new(), &document.cells),
     ];
-    if !field_entries.is_empty() {
-        sections.insert(0, ("FieldData", String::new(), &field_entries));
+    if !document.field_data.is_empty() {
+        sections.insert(0, ("FieldData", String::new(), &document.field_data));
     }
-    for (tag, attributes, entries) in sections.drain(..) {
-        if tag == "PointData" {
+    // Compressed: the appended blocks, in the order of the arrays in the XML. Binary: the
+    // arrays in that order, written after the XML.
+    let mut compressed: Vec<u8> = Vec::new();
+    let mut binary: Vec<&Source> = Vec::new();
+    let mut binary_offset = 0usize;
+    let mut scratch = Vec::new();
+    for (tag, attributes, columns) in &sections {
+        if *tag == "PointData" {
             writeln!(
                 xml,
                 "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-                grid.points.len(),
-                cells.len()
+                document.n_points, document.n_cells
             )
             .unwrap_or(());
         }
         writeln!(xml, "      <{tag}{attributes}>").unwrap_or(());
-        for entry in entries {
+        for column in columns.iter() {
+            let source = &column.source;
             write!(
                 xml,
                 "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"",
-                entry.values.type_name(),
-                xml_escape(entry.name),
-                entry.components
+                source.type_name(),
+                xml_escape(column.name),
+                column.components
             )
             .unwrap_or(());
-            if tag == "FieldData" {
+            if *tag == "FieldData" {
                 write!(
                     xml,
                     " NumberOfTuples=\"{}\"",
-                    entry.values.len() / entry.components.max(1)
+                    source.len() / column.components.max(1)
                 )
                 .unwrap_or(());
             }
             match encoding {
                 VtuEncoding::Ascii => {
                     xml.push_str(" format=\"ascii\">");
-                    entry
-                        .values
-                        .write_text(&mut xml, text_per_line(entry.components));
+                    source.write_text(&mut xml, text_per_line(column.components));
                     xml.push_str("</DataArray>\n");
                 }
-                VtuEncoding::Binary | VtuEncoding::Compressed => {
-                    writeln!(xml, " format=\"appended\" offset=\"{}\"/>", appended.len())
+                VtuEncoding::Binary => {
+                    writeln!(xml, " format=\"appended\" offset=\"{binary_offset}\"/>")
                         .unwrap_or(());
-                    let raw = entry.values.to_le_bytes();
-                    if encoding == VtuEncoding::Binary {
-                        appended.extend_from_slice(&(raw.len() as u64).to_le_bytes());
-                        appended.extend_from_slice(&raw);
-                    } else {
-                        compressed_block(&raw, &mut appended);
-                    }
+                    binary_offset += 8 + source.len() * source.value_bytes();
+                    binary.push(source);
+                }
+                VtuEncoding::Compressed => {
+                    writeln!(
+                        xml,
+                        " format=\"appended\" offset=\"{}\"/>",
+                        compressed.len()
+                    )
+                    .unwrap_or(());
+                    compressed_block(source, &mut scratch, &mut compressed)?;
                 }
             }
         }
@@ -824,7 +1056,16 @@ fn write_document(
     w.write_all(xml.as_bytes())?;
     if encoding != VtuEncoding::Ascii {
         w.write_all(b"  <AppendedData encoding=\"raw\">\n   _")?;
-        w.write_all(&appended)?;
+        if encoding == VtuEncoding::Binary {
+            for source in binary {
+                let bytes = (source.len() * source.value_bytes()) as u64;
+                w.write_all(&bytes.to_le_bytes())?;
+                source
+                    .for_each_chunk(BINARY_CHUNK, &mut scratch, &mut |piece| w.write_all(piece))?;
+            }
+        } else {
+            w.write_all(&compressed)?;
+        }
         w.write_all(b"\n  </AppendedData>\n")?;
     }
     w.write_all(b"</VTKFile>\n")
@@ -842,7 +1083,7 @@ fn text_per_line(components: usize) -> usize {
 /// The `Scalars`/`Vectors`/`Tensors` attributes of `<PointData>` or `<CellData>`: the first
 /// array with 1, 3 and 9 (or 6) components, so that viewers colour, warp and glyph by them
 /// without a choice.
-fn active_attributes(arrays: &[VtkArray]) -> String {
+fn active_attributes(arrays: &[Column]) -> String {
     let mut active = String::new();
     let pick = |components: &[usize]| arrays.iter().find(|a| components.contains(&a.components));
     for (attribute, components) in [
@@ -851,24 +1092,29 @@ fn active_attributes(arrays: &[VtkArray]) -> String {
         ("Tensors", &[9, 6]),
     ] {
         if let Some(a) = pick(components) {
-            write!(active, " {attribute}=\"{}\"", xml_escape(&a.name)).unwrap_or(());
+            write!(active, " {attribute}=\"{}\"", xml_escape(a.name)).unwrap_or(());
         }
     }
     active
 }
 
-/// Appends `raw` compressed in VTK's block layout: a header of UInt64 (number of blocks,
-/// uncompressed block size, uncompressed size of the last block if partial else 0, then the
-/// compressed size of each block) followed by the zlib streams of the blocks.
-fn compressed_block(raw: &[u8], out: &mut Vec<u8>) {
-    let blocks: Vec<Vec<u8>> = raw
-        .chunks(BLOCK_SIZE)
-        .map(|block| miniz_oxide::deflate::compress_to_vec_zlib(block, COMPRESSION_LEVEL))
-        .collect();
+/// Appends the values of `source` compressed in VTK's block layout: a header of UInt64
+/// (number of blocks, uncompressed block size, uncompressed size of the last block if partial
+/// else 0, then the compressed size of each block) followed by the zlib streams of the blocks.
+fn compressed_block(source: &Source, scratch: &mut Vec<u8>, out: &mut Vec<u8>) -> io::Result<()> {
+    let mut blocks: Vec<Vec<u8>> = Vec::new();
+    source.for_each_chunk(BLOCK_SIZE, scratch, &mut |block| {
+        blocks.push(miniz_oxide::deflate::compress_to_vec_zlib(
+            block,
+            COMPRESSION_LEVEL,
+        ));
+        Ok(())
+    })?;
+    let raw_len = source.len() * source.value_bytes();
     let header = [
         blocks.len() as u64,
         BLOCK_SIZE as u64,
-        (raw.len() % BLOCK_SIZE) as u64,
+        (raw_len % BLOCK_SIZE) as u64,
     ];
     for value in header
         .into_iter()
@@ -879,6 +1125,7 @@ fn compressed_block(raw: &[u8], out: &mut Vec<u8>) {
     for block in &blocks {
         out.extend_from_slice(block);
     }
+    Ok(())
 }
 
 /// One dataset of a `.pvd` collection: a file for a time step and a part.
@@ -989,5 +1236,96 @@ impl PvdCollection {
         }
         let xml = self.to_xml();
         write_atomically(path, |w| w.write_all(xml.as_bytes()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every kind of source, pieces of 16 bytes joined, gives the little-endian bytes of its
+    /// values one by one.
+    #[test]
+    fn sources_in_small_pieces_give_their_values_bytes() {
+        let floats = [1.5, -0.0, 1e-300, 7.0, f64::MAX];
+        let points = [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]];
+        let plane = [crate::Point::new(0.25, -8.0), crate::Point::new(3.0, 1e10)];
+        let indices = [0usize, 7, 1 << 40];
+        let types = [CellType::Polygon, CellType::Line, CellType::Polyhedron];
+        let int32 = Values::Int32(vec![-3, 5, 1 << 30]);
+        let bytes_of =
+            |values: &[f64]| -> Vec<u8> { values.iter().flat_map(|x| x.to_le_bytes()).collect() };
+        let cases: Vec<(Source, Vec<u8>)> = vec![
+            (Source::Float64(&floats), bytes_of(&floats)),
+            (
+                Source::Pairs(&floats[..4]),
+                bytes_of(&[1.5, -0.0, 0.0, 1e-300, 7.0, 0.0]),
+            ),
+            (
+                Source::Points(&points),
+                bytes_of(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            ),
+            (
+                Source::PlanePoints(&plane),
+                bytes_of(&[0.25, -8.0, 0.0, 3.0, 1e10, 0.0]),
+            ),
+            (
+                Source::Indices(&indices),
+                indices
+                    .iter()
+                    .flat_map(|&i| (i as i64).to_le_bytes())
+                    .collect(),
+            ),
+            (Source::Types(&types), vec![7, 3, 42]),
+            (Source::Repeated(CellType::Polygon, 3), vec![7, 7, 7]),
+            (
+                Source::of(&int32),
+                [-3i32, 5, 1 << 30]
+                    .iter()
+                    .flat_map(|x| x.to_le_bytes())
+                    .collect(),
+            ),
+        ];
+        for (source, expected) in cases {
+            assert_eq!(source.len() * source.value_bytes(), expected.len());
+            let mut joined = Vec::new();
+            let mut scratch = Vec::new();
+            source
+                .for_each_chunk(16, &mut scratch, &mut |piece| {
+                    assert!(piece.len() <= 16);
+                    joined.extend_from_slice(piece);
+                    Ok(())
+                })
+                .unwrap();
+            assert_eq!(joined, expected, "{}", source.type_name());
+        }
+    }
+
+    /// Arrays longer than a zlib block and than a binary piece read back bit for bit.
+    #[test]
+    fn long_arrays_read_back_in_every_encoding() {
+        let n = 40_000;
+        let mut cells = Cells::new();
+        for p in 0..n {
+            cells.push(CellType::Vertex, &[p]);
+        }
+        let f = |k: usize| ((k as f64) * 0.37).sin() * 1e3 + 1e-300 * k as f64;
+        let grid =
+            UnstructuredGrid::new((0..n).map(|k| [f(k), f(k + 1), f(k + 2)]).collect(), cells)
+                .with_point_data(VtkArray::scalars("a", (0..n).map(f).collect()))
+                .with_cell_data(VtkArray::new(
+                    "b",
+                    1,
+                    Values::UInt8((0..n).map(|k| (k % 251) as u8).collect()),
+                ));
+        for encoding in [
+            VtuEncoding::Ascii,
+            VtuEncoding::Binary,
+            VtuEncoding::Compressed,
+        ] {
+            let bytes = grid.to_vtu_bytes(encoding).unwrap();
+            let back = crate::io::read_vtu_bytes(&bytes, "long.vtu").unwrap();
+            assert_eq!(back, grid, "{encoding:?}");
+        }
     }
 }

@@ -8,7 +8,8 @@
 
 use std::path::Path;
 
-use super::vtk::{UnstructuredGrid, Values, VtkArray, VtuEncoding};
+use super::vtk::{write_document, Column, Document, Source, Values, VtkArray, VtuEncoding};
+use super::write_atomically;
 use crate::{Mesh, MeshError, Vector};
 
 /// A named array of values attached to the points or to the cells of a mesh.
@@ -44,6 +45,20 @@ impl DataArray {
     /// A plane vector array: one vector per point or cell.
     pub fn vectors(name: impl Into<String>, values: &[Vector]) -> Self {
         Self::new(name, 2, values.iter().flat_map(|v| [v.x, v.y]).collect())
+    }
+
+    /// The array as written, borrowed: two components padded to three with zeros.
+    fn column(&self) -> Column<'_> {
+        let (components, source) = if self.components == 2 {
+            (3, Source::Pairs(&self.values))
+        } else {
+            (self.components, Source::Float64(&self.values))
+        };
+        Column {
+            name: &self.name,
+            components,
+            source,
+        }
     }
 
     /// The array as written: Float64, two components padded to three with zeros.
@@ -148,10 +163,12 @@ pub fn write_vtu_with(
     };
     check_arrays("point", &data.point_data, mesh.n_vertices(), "vertices").map_err(fail)?;
     check_arrays("cell", &data.cell_data, mesh.n_polygons(), "polygons").map_err(fail)?;
-    let mut grid = UnstructuredGrid::from_mesh(mesh);
-    grid.point_data = data.point_data.iter().map(DataArray::to_vtk).collect();
-    grid.cell_data = data.cell_data.iter().map(DataArray::to_vtk).collect();
-    grid.write(path, encoding)
+    // The mesh and the arrays go to the file as they are, without a grid of copies (the mesh
+    // is valid and the arrays are checked: what `UnstructuredGrid::check` would find holds).
+    let mut document = Document::of_mesh(mesh);
+    document.point_data = data.point_data.iter().map(DataArray::column).collect();
+    document.cell_data = data.cell_data.iter().map(DataArray::column).collect();
+    write_atomically(path, |w| write_document(w, &document, encoding))
 }
 
 /// Checks the arrays of one group ("point" or "cell") against the number of entries (`what`:
@@ -194,4 +211,56 @@ pub(super) fn check_arrays(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::UnstructuredGrid;
+    use crate::Point;
+
+    /// The mesh's own arrays, converted on the way out, give the bytes of the grid that holds
+    /// copies of them, in every encoding.
+    #[test]
+    fn a_mesh_is_written_as_the_grid_of_its_copies() {
+        let vertices = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(2.0, 0.1),
+            Point::new(0.0, 1.0),
+            Point::new(1.0, 1.0),
+            Point::new(2.0, 1.0),
+        ];
+        let polygons = vec![vec![0, 1, 4, 3], vec![1, 2, 5], vec![1, 5, 4]];
+        let mesh = Mesh::from_polygons(vertices, &polygons, Vec::new()).unwrap();
+        let data = VtuData::new()
+            .with_point_vectors(
+                "u",
+                &(0..6)
+                    .map(|i| Vector::new(i as f64, -0.5 / (1.0 + i as f64)))
+                    .collect::<Vec<_>>(),
+            )
+            .with_point_scalars("p", (0..6).map(|i| 1.0 / (3.0 + i as f64)).collect())
+            .with_cell_data(DataArray::new(
+                "s",
+                3,
+                (0..9).map(|i| (i as f64).sqrt()).collect(),
+            ))
+            .with_cell_scalars("e", vec![1e-300, -2.5, 7.0]);
+        let mut grid = UnstructuredGrid::from_mesh(&mesh);
+        grid.point_data = data.point_data.iter().map(DataArray::to_vtk).collect();
+        grid.cell_data = data.cell_data.iter().map(DataArray::to_vtk).collect();
+        for encoding in [
+            VtuEncoding::Ascii,
+            VtuEncoding::Binary,
+            VtuEncoding::Compressed,
+        ] {
+            let mut document = Document::of_mesh(&mesh);
+            document.point_data = data.point_data.iter().map(DataArray::column).collect();
+            document.cell_data = data.cell_data.iter().map(DataArray::column).collect();
+            let mut direct = Vec::new();
+            write_document(&mut direct, &document, encoding).unwrap();
+            assert_eq!(direct, grid.to_vtu_bytes(encoding).unwrap(), "{encoding:?}");
+        }
+    }
 }
