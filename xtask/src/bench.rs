@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 
-use crate::common::{chain, loglog_svg, machine, peak_memory, seconds, LogLogPlot};
+use crate::common::{chain, machine, peak_memory, render, seconds};
 use crate::whole_run::{self, WholeRun};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
@@ -29,6 +29,7 @@ use vem_mesh::generators::{structured_quads, voronoi, MeshFamily, Rectangle};
 use vem_mesh::{Mesh, Point, Point3, Vector, Vector3};
 use vem_space::{LowestOrderVem, Options, PolyhedralVem};
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
+use vem_verify::plot::{loglog_svg, LogLogPlot};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 use vem_verify::report::{write_json, write_text};
 
@@ -614,10 +615,7 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
     bar.finish_with_message("done");
     let whole_runs = whole_runs(args)?;
     let seconds = started.elapsed().as_secs_f64();
-    let mut markdown = markdown(&rows, args, seconds);
-    if !whole_runs.is_empty() {
-        markdown.push_str(&whole_run_markdown(&whole_runs, args));
-    }
+    let markdown = markdown(&rows, &whole_runs, args, seconds)?;
     println!("{markdown}");
     write_text(args.out.join("bench.md"), &markdown)?;
     write_json(
@@ -696,26 +694,21 @@ fn whole_runs(args: &BenchArgs) -> Result<Vec<WholeRun>, Box<dyn std::error::Err
     Ok(runs)
 }
 
-/// The whole-run table.
-fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> String {
-    let mut out = format!(
-        "\n## Whole runs\n\nA scene from its mesh files to every output written (`vem run`: \
-         `Scene::load`, `Model::build`, `Model::solve`, `Outcome::write`), the median of {} \
-         runs each in its own process, against one Cholesky (analyse + factorise + solve by \
-         `CholeskySolver`, default settings) of the stiffness of every body on its solved mesh, \
-         in a process of its own after the same model building and assembly (untimed). \
-         `hertz-gmsh`: a block of triangles with a parabolic gap (R = 1) pressed on a block of \
-         quadrilaterals 1.25 times finer, frictionless, both meshes written as MSH 4.1 ASCII \
-         files. Times in seconds; *read*: the scene and mesh files to validated meshes; \
-         *other*: what the named stages leave of the whole run.\n\n",
-        args.repeat
-    );
-    out.push_str(whole_run::TABLE_HEADER);
+/// The section of the whole runs: its template (`xtask/templates/bench-whole-runs.md`) and
+/// table.
+fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> Result<String, String> {
+    let mut table = whole_run::TABLE_HEADER.to_string();
     for run in runs {
-        out.push_str(&whole_run::row(run));
-        out.push('\n');
+        table.push_str(&whole_run::row(run));
+        table.push('\n');
     }
-    out
+    // The template supplies the line break that ends the section.
+    let table = table.strip_suffix('\n').unwrap_or(&table).to_string();
+    render(
+        "xtask/templates/bench-whole-runs.md",
+        include_str!("../templates/bench-whole-runs.md"),
+        &[("repeat", args.repeat.to_string()), ("table", table)],
+    )
 }
 
 const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
@@ -786,41 +779,44 @@ fn row_line(m: &Measurement, exact: Option<f64>) -> String {
     )
 }
 
-/// The Markdown report.
-fn markdown(rows: &[Measurement], args: &BenchArgs, seconds: f64) -> String {
-    let mut out = String::from("# Benchmark: contact against one elastic solve\n\n");
-    out.push_str(&format!(
-        "Run: `cargo xtask bench{}`, {} measurements in {seconds:.0} s on {}.\n\n",
-        options(args),
-        rows.len(),
-        machine()
-    ));
-    out.push_str("Cases: ");
-    out.push_str(
-        &Case::ALL
-            .iter()
-            .map(|c| format!("`{}` {}", c.name(), c.describe()))
-            .collect::<Vec<_>>()
-            .join("; "),
-    );
-    out.push_str(
-        ".\n\nTimes in seconds. *contact / elastic*: the contact solve against one elastic \
-         solve (assembly + analyse + factorise + solve of every body alone with its Dirichlet \
-         data, same enlarged meshes, same process). *exact / this*: the exact solver's contact \
-         solve against this one's. Iterations: the solver's (summed over the fixed-point steps, \
-         in parentheses, for Coulomb). Peaks: VmHWM after discretising, after the contact solve \
-         and at the end, GiB; K: the stiffness matrices; L: the elastic factors.\n\n",
-    );
-    out.push_str(
-        "| case | unknowns | rows | solver | meshes | insertion / assembly | symbolic / numeric / solves | contact solve | contact / elastic | iterations (steps) | factorisations / solves | elastic | exact / this | peak build / contact / total [GiB] | K / L [GiB] | status |\n",
-    );
-    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+/// The Markdown report: its template (`xtask/templates/bench.md`) filled with the run, the
+/// cases, the table of the measurements and the section of the whole runs (if any).
+fn markdown(
+    rows: &[Measurement],
+    whole_runs: &[WholeRun],
+    args: &BenchArgs,
+    seconds: f64,
+) -> Result<String, String> {
+    let mut table = String::new();
     for m in rows {
-        out.push_str(&row_line(m, exact_time(rows, m)));
-        out.push('\n');
+        table.push_str(&row_line(m, exact_time(rows, m)));
+        table.push('\n');
     }
-    out.push_str("\n![contact / elastic](bench.svg)\n");
-    out
+    let whole_runs = if whole_runs.is_empty() {
+        String::new()
+    } else {
+        whole_run_markdown(whole_runs, args)?
+    };
+    render(
+        "xtask/templates/bench.md",
+        include_str!("../templates/bench.md"),
+        &[
+            ("options", options(args)),
+            ("measurement_count", rows.len().to_string()),
+            ("seconds", format!("{seconds:.0}")),
+            ("machine", machine()),
+            (
+                "cases",
+                Case::ALL
+                    .iter()
+                    .map(|c| format!("`{}` {}", c.name(), c.describe()))
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            ),
+            ("table", table),
+            ("whole_runs", whole_runs),
+        ],
+    )
 }
 
 fn options(args: &BenchArgs) -> String {
@@ -884,7 +880,7 @@ fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> 
             None => series.push((label, vec![point])),
         }
     }
-    loglog_svg(
+    Ok(loglog_svg(
         &LogLogPlot {
             caption: "contact solve / one elastic solve",
             x_desc: "unknowns",
@@ -894,5 +890,5 @@ fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> 
         },
         &series,
         None,
-    )
+    )?)
 }

@@ -1,11 +1,9 @@
 //! Helpers shared by the measuring tasks (`bench`, `tradeoff`): peak memory and CPU time of
-//! this process, the machine, an error chain on one line, log-log SVG plots.
+//! this process, the machine, an error chain on one line, Markdown templates. The plots are
+//! drawn by `vem_verify::plot`.
 
 use std::process::Command;
 use std::time::Duration;
-
-use plotters::prelude::*;
-use vem_verify::report::log_ticks;
 
 /// `VmHWM` of this process in bytes (0 where /proc is not available).
 pub fn peak_memory() -> u64 {
@@ -84,155 +82,6 @@ pub fn machine() -> String {
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         .unwrap_or_default();
     format!("{model}, {cores} logical cores, {memory}, {rustc}")
-}
-
-/// Captions and tick formats of a [`loglog_svg`] plot.
-pub struct LogLogPlot<'a> {
-    /// The caption.
-    pub caption: &'a str,
-    /// The x axis.
-    pub x_desc: &'a str,
-    /// The y axis.
-    pub y_desc: &'a str,
-    /// Tick labels of x.
-    pub x_format: fn(&f64) -> String,
-    /// Tick labels of y.
-    pub y_format: fn(&f64) -> String,
-}
-
-/// A line drawn over the series of a [`loglog_svg`] plot: a label and its points.
-#[derive(Debug, Clone, Copy)]
-pub enum Overlay<'a> {
-    /// A thick black line with squares: a Pareto front.
-    Front(&'a str, &'a [(f64, f64)]),
-    /// A thin dashed grey line without markers: a reference slope `C h^p`.
-    Reference(&'a str, &'a [(f64, f64)]),
-}
-
-/// The colours of the series, in order (Tableau's ten, readable on white; no yellow): the
-/// same as the convergence plots of `vem_verify::report`.
-const SERIES_COLOURS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-];
-
-/// A log-log plot (900 x 600 SVG) of `series` (label, points; non-positive values are left
-/// out), each a line with dots, and an optional [`Overlay`].
-pub fn loglog_svg(
-    plot: &LogLogPlot<'_>,
-    series: &[(String, Vec<(f64, f64)>)],
-    highlight: Option<Overlay<'_>>,
-) -> Result<String, Box<dyn std::error::Error>> {
-    let positive = |p: &&(f64, f64)| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite();
-    let all = series
-        .iter()
-        .flat_map(|(_, p)| p.iter())
-        .chain(highlight.into_iter().flat_map(|o| match o {
-            Overlay::Front(_, p) | Overlay::Reference(_, p) => p.iter(),
-        }))
-        .filter(positive);
-    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::INFINITY, 0.0_f64, f64::INFINITY, 0.0_f64);
-    for &(x, y) in all {
-        (x_lo, x_hi, y_lo, y_hi) = (x_lo.min(x), x_hi.max(x), y_lo.min(y), y_hi.max(y));
-    }
-    let (x_lo, x_hi) = if x_lo.is_finite() {
-        (x_lo / 1.5, x_hi * 1.5)
-    } else {
-        (1e3, 1e7)
-    };
-    let (y_lo, y_hi) = if y_lo.is_finite() {
-        (y_lo / 1.5, y_hi * 1.5)
-    } else {
-        (0.1, 100.0)
-    };
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
-        let draw = |e: &dyn std::fmt::Display| format!("plot: {e}");
-        root.fill(&WHITE).map_err(|e| draw(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(plot.caption, ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d(
-                (x_lo..x_hi)
-                    .log_scale()
-                    .with_key_points(log_ticks(x_lo..x_hi)),
-                (y_lo..y_hi)
-                    .log_scale()
-                    .with_key_points(log_ticks(y_lo..y_hi)),
-            )
-            .map_err(|e| draw(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc(plot.x_desc)
-            .y_desc(plot.y_desc)
-            .max_light_lines(0)
-            .x_label_formatter(&plot.x_format)
-            .y_label_formatter(&plot.y_format)
-            .draw()
-            .map_err(|e| draw(&e))?;
-        for (k, (label, pts)) in series.iter().enumerate() {
-            let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let colour = SERIES_COLOURS[k % SERIES_COLOURS.len()].to_rgba();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
-                .map_err(|e| draw(&e))?
-                .label(label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-            chart
-                .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
-                .map_err(|e| draw(&e))?;
-        }
-        match highlight {
-            Some(Overlay::Front(label, pts)) => {
-                let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), BLACK.stroke_width(3)))
-                    .map_err(|e| draw(&e))?
-                    .label(label)
-                    .legend(|(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3))
-                    });
-                chart
-                    .draw_series(pts.into_iter().map(|p| {
-                        EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], BLACK.filled())
-                    }))
-                    .map_err(|e| draw(&e))?;
-            }
-            Some(Overlay::Reference(label, pts)) => {
-                let mut pts: Vec<(f64, f64)> = pts.iter().filter(positive).copied().collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let grey = RGBColor(90, 90, 90);
-                chart
-                    .draw_series(DashedLineSeries::new(pts, 10, 6, grey.stroke_width(1)))
-                    .map_err(|e| draw(&e))?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
-            }
-            None => {}
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| draw(&e))?;
-        root.present().map_err(|e| draw(&e))?;
-    }
-    Ok(svg)
 }
 
 /// Fills the named placeholders `{{name}}` of the Markdown template `template` (called `name`

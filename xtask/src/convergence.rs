@@ -6,12 +6,13 @@
 
 mod three_d;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use serde::{Deserialize, Serialize};
 use vem_contact::SolverRegistry;
 use vem_space::{ElementRegistry, ElementSpace};
 use vem_verify::cases::CaseRegistry;
@@ -43,6 +44,10 @@ pub struct ConvergenceArgs {
     /// repeatable. M1, M2, E1 and the three cases in space are the default run.
     #[arg(long = "case", value_name = "CASE")]
     cases: Vec<String>,
+    /// Rewrite convergence.md and convergence/*.svg from the studies in the plane of
+    /// `<out>/convergence.json`, without running them.
+    #[arg(long)]
+    report_only: bool,
 }
 
 /// The element of the default run.
@@ -86,64 +91,15 @@ fn plan(quick: bool, wanted: &[String], cases: &CaseRegistry) -> Result<Plan, St
     Ok(Plan { studies, solid })
 }
 
-/// What the studies measure, for the head of the Markdown report.
-const INTRODUCTION: &str = r#"# Convergence of the lowest-order VEM for two-body contact
-
-The paper proves (Theorems 4.1 and 4.2, [formulation.md](formulation.md) section 3) that the lowest-order
-virtual element method converges at the optimal rate O(h) in the energy norm for the contact
-of two elastic bodies, frictionless (P1) and with Tresca friction (P2), on meshes that do not
-match on the contact interface. This report checks it with manufactured solutions
-([manufactured.md](manufactured.md)):
-
-- **M1** (Theorem 4.1): frictionless; contact on [0, x_c), separation on (x_c, 1],
-  x_c = (sqrt 5 - 1)/2.
-- **M2** (Theorem 4.2): Tresca with g_F = 1/4; contact everywhere, stick on [0, x_s), slip on
-  (x_s, 1], x_s = sqrt 2 / 2.
-- **E1**: elasticity alone (one body clamped all round), the reference for the rates.
-
-Body 1 = (0,1) x (0,1) on top, body 2 = (0,1) x (-1,0) below, Gamma_C = (0,1) x {0};
-lambda = 2, mu = 1 (plane strain). Each body is meshed by its own family; the interface nodes
-of each side are inserted into the other side's boundary polygons, so the contact constraint
-is node-to-node (`vem-contact`). The contact solver is named in the summary (default: the
-condensed solver, exact up to round-off).
-
-**Measured** (per body, then the square root of the sum of squares over the bodies;
-`vem_verify::norms`):
-
-- E_grad = ||grad(u - Pi u_h)||, broken over the elements (Pi = the energy projection);
-- E_a = a_h(u_I - u_h, u_I - u_h)^(1/2), u_I the nodal interpolant, a_h the assembled VEM form;
-- E_0 = ||u - Pi u_h||_0;
-
-integrals on a sub-triangulation of every polygon with a degree-5 rule. h is the largest
-element diameter over both bodies. Contact columns: ΔN = |sum of nodal contact forces +
-int sigma_nu ds|, ΔT = |sum of nodal friction forces - int sigma_1tau ds|, the discrete switch
-point (last active node for M1, first slipping node for M2) with its distance to x_c or x_s,
-and the number of interface nodes whose status contradicts the sets that must hold
-(M1: active for x <= x_c - 0.2, open for x >= x_c + 0.2; M2: stick for x <= x_s - 0.35, slip
-for x >= x_s + 0.2).
-
-**Expected**: E_grad and E_a at least first order (E_a may superconverge on structured
-meshes), E_0 second order (expected, not proved for contact). Verdict per study: the
-least-squares rates over the three finest sizes are E_grad >= 0.9, E_a >= 0.9, E_0 >= 1.8,
-and on the finest mesh no interface node contradicts the expected sets. The switch points
-themselves are reported, not asserted: the transitions are flat by design
-([manufactured.md](manufactured.md) section 8), so nodes just past them may take either status.
-
-**Reproduce**: `cargo xtask convergence` (this report, its studies in the time given below on
-2 cores), `cargo xtask convergence --quick` (reduced sizes), `--out DIR` (default
-`target/convergence`), `--solver NAME` (a name of the solver registry: `condensed`, `exact`,
-`penalty`, `active-set`), `--element NAME` (`vem1`, `vem1-shear`, `vem1-drecipe`, `vem1-bbar`,
-`p1`), `--case NAME` (repeatable; any case of the case registry, e.g. `M3` or `PTC2`, or a case
-in space). The same command runs the study of the element on polyhedra in space (E1-3D, E2-3D,
-PT0-3D on six polyhedral families), reported in [convergence-3d.md](convergence-3d.md); the exit
-status is 1 when a study of either falls short. One study of your own: `cargo run --release -p
-vem-verify --example study -- M2 voronoi/quads*2 8,16,32`; a user-defined exact solution:
-`cargo run --release -p vem-verify --example custom_solution`.
-"#;
+/// The report's text around its tables (`xtask/templates/convergence.md`).
+const TEMPLATE: &str = include_str!("../templates/convergence.md");
 
 /// Runs the planned studies, in the plane then in space, prints and writes their reports;
 /// `Ok(true)` when every study passes.
 pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    if args.report_only {
+        return report_only(&args.out);
+    }
     let start = Instant::now();
     let solvers = SolverRegistry::builtin();
     if !solvers.names().contains(&args.solver.as_str()) {
@@ -188,7 +144,8 @@ pub fn run(args: &ConvergenceArgs) -> Result<bool, Box<dyn std::error::Error>> {
         );
         let default_run =
             plan.solid == three_d::DEFAULT_CASES && !args.quick && args.element == DEFAULT_ELEMENT;
-        three_d::write(&outcome, &args.out, &command_options(args), default_run)?;
+        let options = command_options(args.quick, &args.solver, &args.element, &args.cases);
+        three_d::write(&outcome, &args.out, &options, default_run)?;
         println!(
             "the full tables (errors per size, rates per step, times): {}",
             args.out.join("convergence-3d.md").display()
@@ -269,8 +226,7 @@ fn run_studies(
         } else {
             "FAIL"
         });
-        let plot = plots.join(format!("{}-{}.svg", result.case, result.slug));
-        write_plot(&plot, &result)?;
+        write_plot(plot_path(&args.out, &result), &result)?;
         results.push(result);
     }
     let seconds = start.elapsed().as_secs_f64();
@@ -285,19 +241,52 @@ fn run_studies(
         "the full tables (errors per size, contact diagnostics, times): {}",
         args.out.join("convergence.md").display()
     );
-    write_text(
-        args.out.join("convergence.md"),
-        &markdown(&results, args, seconds),
-    )?;
-    write_json(
-        args.out.join("convergence.json"),
-        &json_report(&results, args, seconds),
-    )?;
+    let report = JsonReport {
+        quick: args.quick,
+        solver: args.solver.clone(),
+        element: args.element.clone(),
+        cases: args.cases.clone(),
+        seconds,
+        threads: std::thread::available_parallelism().map_or(1, usize::from),
+        passed,
+        studies: results,
+    };
+    write_text(args.out.join("convergence.md"), &markdown(&report)?)?;
+    write_json(args.out.join("convergence.json"), &report)?;
     eprintln!(
         "wrote {}/convergence.md, convergence.json and convergence/*.svg",
         args.out.display()
     );
-    Ok(results)
+    Ok(report.studies)
+}
+
+/// `--report-only`: rewrites `convergence.md` and `convergence/*.svg` in `out` from
+/// `out/convergence.json`; `Ok(true)` when every study stored there passed.
+fn report_only(out: &Path) -> Result<bool, Box<dyn std::error::Error>> {
+    let path = out.join("convergence.json");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let report: JsonReport =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let plots = out.join("convergence");
+    std::fs::create_dir_all(&plots)
+        .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;
+    for study in &report.studies {
+        write_plot(plot_path(out, study), study)?;
+    }
+    write_text(out.join("convergence.md"), &markdown(&report)?)?;
+    eprintln!(
+        "rewrote {}/convergence.md and convergence/*.svg from {}",
+        out.display(),
+        path.display()
+    );
+    Ok(report.studies.iter().all(|r| r.verdict.passed))
+}
+
+/// `out/convergence/<case>-<slug>.svg`: the plot of `study`.
+fn plot_path(out: &Path, study: &StudyResult) -> PathBuf {
+    out.join("convergence")
+        .join(format!("{}-{}.svg", study.case, study.slug))
 }
 
 /// `8, 16, 32`.
@@ -398,80 +387,86 @@ fn console_summary(results: &[StudyResult]) -> String {
     out
 }
 
-/// The whole Markdown report: introduction, summary, one section per case with its plots.
-fn markdown(results: &[StudyResult], args: &ConvergenceArgs, seconds: f64) -> String {
-    let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    let mut out = String::from(INTRODUCTION);
-    out.push_str(&format!(
-        "\n## Summary\n\nRun: `cargo xtask convergence{}`, {} studies in {seconds:.0} s on {threads} \
-         threads, contact solver: {}, element: {}.\n\n",
-        command_options(args),
-        results.len(),
-        args.solver,
-        results.first().map_or(args.element.as_str(), |r| r.element.as_str()),
-    ));
-    out.push_str(&summary_markdown(results));
+/// The whole Markdown report: its template (introduction, summary) filled with the summary
+/// table and one section per case with its plots.
+fn markdown(report: &JsonReport) -> Result<String, String> {
+    let results = &report.studies;
+    let mut studies = String::new();
     let mut case = "";
     for result in results {
         if result.case != case {
             case = &result.case;
-            out.push_str(&format!("\n## {case}\n"));
+            studies.push_str(&format!("\n## {case}\n"));
         }
-        out.push('\n');
-        out.push_str(&study_markdown(result));
-        out.push_str(&format!(
+        studies.push('\n');
+        studies.push_str(&study_markdown(result));
+        studies.push_str(&format!(
             "\n![{}](convergence/{}-{}.svg)\n",
             result.title(),
             result.case,
             result.slug
         ));
     }
-    out
+    // The template supplies the line break that ends the report.
+    let studies = studies.strip_suffix('\n').unwrap_or(&studies).to_string();
+    crate::common::render(
+        "xtask/templates/convergence.md",
+        TEMPLATE,
+        &[
+            (
+                "options",
+                command_options(report.quick, &report.solver, &report.element, &report.cases),
+            ),
+            ("study_count", results.len().to_string()),
+            ("seconds", format!("{:.0}", report.seconds)),
+            ("threads", report.threads.to_string()),
+            ("solver", report.solver.clone()),
+            (
+                "element",
+                results
+                    .first()
+                    .map_or(report.element.as_str(), |r| r.element.as_str())
+                    .to_string(),
+            ),
+            ("summary", summary_markdown(results)),
+            ("studies", studies),
+        ],
+    )
 }
 
 /// The options of the run as they were given, e.g. `" --quick --solver penalty --case M1"`.
-fn command_options(args: &ConvergenceArgs) -> String {
+fn command_options(quick: bool, solver: &str, element: &str, cases: &[String]) -> String {
     let mut options = String::new();
-    if args.quick {
+    if quick {
         options.push_str(" --quick");
     }
-    if args.solver != SolverRegistry::DEFAULT {
-        options.push_str(&format!(" --solver {}", args.solver));
+    if solver != SolverRegistry::DEFAULT {
+        options.push_str(&format!(" --solver {solver}"));
     }
-    if args.element != DEFAULT_ELEMENT {
-        options.push_str(&format!(" --element {}", args.element));
+    if element != DEFAULT_ELEMENT {
+        options.push_str(&format!(" --element {element}"));
     }
-    for case in &args.cases {
+    for case in cases {
         options.push_str(&format!(" --case {case}"));
     }
     options
 }
 
-/// The JSON document: run metadata and every study.
-fn json_report<'a>(
-    results: &'a [StudyResult],
-    args: &'a ConvergenceArgs,
-    seconds: f64,
-) -> JsonReport<'a> {
-    JsonReport {
-        quick: args.quick,
-        solver: &args.solver,
-        element: &args.element,
-        seconds,
-        passed: results.iter().all(|r| r.verdict.passed),
-        studies: results,
-    }
-}
-
-/// The JSON form of a run.
-#[derive(serde::Serialize)]
-struct JsonReport<'a> {
+/// The JSON form of a run in the plane: its options, time and threads, and every study; what
+/// `--report-only` reads back.
+#[derive(Serialize, Deserialize)]
+struct JsonReport {
     quick: bool,
-    solver: &'a str,
-    element: &'a str,
+    solver: String,
+    element: String,
+    /// The cases asked for (`--case`; empty: the default run).
+    #[serde(default)]
+    cases: Vec<String>,
     seconds: f64,
+    /// The threads the studies ran on.
+    threads: usize,
     passed: bool,
-    studies: &'a [StudyResult],
+    studies: Vec<StudyResult>,
 }
 
 #[cfg(test)]
@@ -507,6 +502,48 @@ mod tests {
             expected_label(&Expectation::Exact { tolerance: 1e-10 }),
             "exact to 1e-10"
         );
+    }
+
+    /// The committed run in the plane, as `--report-only` reads it.
+    fn committed() -> JsonReport {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/convergence.json");
+        let text = std::fs::read_to_string(path).expect("docs/convergence.json");
+        serde_json::from_str(&text).expect("the committed convergence.json parses")
+    }
+
+    /// The report is its template filled from the committed studies: what `--report-only
+    /// --out docs` writes is docs/convergence.md, byte for byte.
+    #[test]
+    fn the_report_of_the_committed_studies_is_docs_convergence_md() {
+        let report = committed();
+        let markdown = markdown(&report).expect("the report renders");
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/convergence.md");
+        let committed = std::fs::read_to_string(path).expect("docs/convergence.md");
+        assert!(
+            markdown == committed,
+            "docs/convergence.md is not the rendered report"
+        );
+    }
+
+    /// The plots of the committed studies are docs/convergence/*.svg, byte for byte: the
+    /// pictures of the report are those of its JSON.
+    #[test]
+    fn the_plots_of_the_committed_studies_are_docs_convergence_svg() {
+        let report = committed();
+        assert_eq!(report.studies.len(), 13);
+        for study in &report.studies {
+            let path = plot_path(
+                &Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs"),
+                study,
+            );
+            let committed = std::fs::read_to_string(&path).expect("a committed plot");
+            let drawn = vem_verify::report::plot_svg(study).expect("the plot draws");
+            assert!(
+                drawn == committed,
+                "{} is not the drawn plot",
+                path.display()
+            );
+        }
     }
 
     #[test]

@@ -56,7 +56,7 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
         all.push((title, rows));
     }
     let elapsed = start.elapsed().as_secs_f64();
-    let markdown = report(&all, &size, args.quick, elapsed);
+    let markdown = report(&all, &size, args.quick, elapsed)?;
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -81,87 +81,23 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
     Ok(wrong == 0)
 }
 
-/// What the report says before the tables.
-const INTRODUCTION: &str = r#"# Stability at the extremes
+/// The report's text around its tables (`xtask/templates/extremes.md`).
+const TEMPLATE: &str = include_str!("../templates/extremes.md");
 
-Written by `cargo xtask extremes` (`--quick`: smaller meshes, in CI). Every row is an extreme
-of the data, the mesh or a solver setting, solved by every registered contact solver and judged
-against an expected answer that does not come from a solver:
-
-- **Patch tests.** Body 1 = (0, 1) x (0, 1) above body 2 = (0, 1) x (-1, 0), uniform stress
-  `[[sigma_xx_i, q], [q, -p]]` in body i with its own Lamé parameters, the matching linear
-  displacement prescribed on body 1's top and body 2's bottom, the exact tractions on the
-  lateral sides, the interface y = 0 in contact with the imposed gap equal to the exact normal
-  jump (plus an opening for the open case). The lowest-order VEM reproduces linear fields on
-  any mesh, so every nodal displacement and the normal resultant `p` are known exactly. Body
-  2 has one cell more across than body 1, so interface nodes are inserted.
-- **Invariances.** M1 (frictionless, contact then separation) and M2 (Tresca, stick then slip)
-  with every length multiplied by `s` and both moduli by `m` (data transformed accordingly):
-  displacements must be `s` times, nodal forces `s m` times those of the unscaled run.
-  Tresca with `g_F = 0` must equal the frictionless solve of the same meshes.
-- **Locking.** The divergence-free solution E2 at Poisson ratios 0.4 .. 0.49999 against 0.3
-  (mu = 1, lambda = 2 nu / (1 - 2 nu), up to lambda/mu = 5e4): relative errors within 2x.
-- **Near-incompressible contact.** The two-body divergence-free contact solution E2c on
-  non-matching triangles, quadrilaterals and Voronoi cells at nu = 0.49, 0.499, 0.4999 against
-  0.3, for every element (and `vem1-bbar` with edge midpoints on triangles, the default's
-  choice there): relative errors within 2x. The shipped Hertz scene with nu changed on both
-  bodies, with the default element and with `vem1` or `vem1-bbar` forced: the errors of the
-  half-width and the peak pressure against plane-strain Hertz within 3 % of those at 0.3; an
-  element that misses this must carry the scene's locking warning.
-- **In space.** The divergence-free solution E2-3D on hexahedra, Voronoi cells and tetrahedra
-  at nu = 0.49, 0.4999, 0.49999 against 0.3, for every element on polyhedra (and `vem1-bbar`
-  on tetrahedra with edge midpoints, the default's choice there; one Cholesky solve each):
-  relative errors within 2x. The contact patch test of two stacked blocks,
-  `[0, 1]^2 x [0, 1]` on `[0, 1]^2 x [-0.5, 0]`, hexahedra on tetrahedra (non-matching: the
-  surface overlay makes the interface node-to-node), rollers on the sides x = 0 and y = 0, the
-  upper top moved down by d = 0.01: the uniform uniaxial stress `p = d / (h_1/E_1 + h_2/E_2)`
-  and its linear displacement, exactly, at stiffness contrasts 1e+-8, lengths 1e+-6 and moduli
-  1e-9, nu = 0.49999 (`vem1`, `vem1-bbar`), a lower block 1e-3 and 1e-6 thin (flat
-  tetrahedra), and warped hexahedra on Voronoi cells. Friction in space: the same blocks
-  pressed (d = 0.01) and sheared (the upper top moved by D = 0.004 along x), the exact
-  displacements prescribed on the upper top and the lower bottom and the exact shear tractions
-  on the sides x = 0, 1, so that the answer is the uniform state `sigma_zz = -p`,
-  `sigma_xz = tau` with `tau` the stick shear `tau_s = D / (h_1/G_1 + h_2/G_2)` or the bound,
-  and a uniform slip: Tresca and Coulomb with the bound 0 (free slip), `tau_s / 2` (slip) and
-  `1e8 p` (stick), at the stiffness contrasts 1e+-8, lengths 1e+-6 and moduli 1e-9 (`nu = 0`:
-  with lateral contraction the two blocks contract alike only for equal `nu / E`), and at
-  nu = 0.49999 with `vem1-bbar` and equal moduli; nodal error and resultant errors exact.
-
-Verdicts: **PASS** (the expected answer within the tolerance); **FAIL (refused: error)** (the
-solver or the model building returned an error: no answer, but no wrong one);
-**FAIL (warned)** (a wrong answer carrying a warning, or an element that locks);
-**FAIL (wrong answer reported as converged)** (a wrong answer with neither; `cargo xtask
-extremes` exits with status 1 when there is one). The penalty solver answers the penalised
-problem: its rows expect an error below `1/factor` (default factor 1e3).
-
-Each row is also a test of the workspace at a small size (`tests/tests/extremes.rs`).
-"#;
-
-fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -> String {
-    let mut md = String::from(INTRODUCTION);
+/// The report: its template filled with the run's sizes and solvers, the summary, the rows
+/// that fail and every group's table.
+fn report(
+    groups: &[(&str, Vec<Row>)],
+    size: &Size,
+    quick: bool,
+    elapsed: f64,
+) -> Result<String, String> {
+    let mut summary = String::new();
     let _ = writeln!(
-        md,
-        "\nRun: `cargo xtask extremes{}`; patch tests on {} cells across (body 2: one more), \
-         M1/M2 on {} / {} quads, E2 on {} cells across ({}); solvers: {}; {elapsed:.0} s \
-         (timings are of a shared machine).\n",
-        if quick { " --quick" } else { "" },
-        size.patch,
-        size.manufactured,
-        size.manufactured + size.manufactured / 2,
-        size.locking,
-        size.locking_families
-            .iter()
-            .map(|f| f.name())
-            .collect::<Vec<_>>()
-            .join(", "),
-        size.solvers.join(", "),
-    );
-    let _ = writeln!(md, "## Summary\n");
-    let _ = writeln!(
-        md,
+        summary,
         "| group | rows | outcomes | pass | refused | warned | wrong |"
     );
-    let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(summary, "|---|---:|---:|---:|---:|---:|---:|");
     for (title, rows) in groups {
         let outcomes: Vec<&Verdict> = rows
             .iter()
@@ -169,7 +105,7 @@ fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -
             .collect();
         let n = |f: fn(&Verdict) -> bool| outcomes.iter().filter(|v| f(v)).count();
         let _ = writeln!(
-            md,
+            summary,
             "| {title} | {} | {} | {} | {} | {} | {} |",
             rows.len(),
             outcomes.len(),
@@ -185,15 +121,15 @@ fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -
         .flat_map(|r| r.outcomes.iter().map(move |o| (r, o)))
         .filter(|(_, o)| o.verdict != Verdict::Pass)
         .collect();
-    let _ = writeln!(md, "\n## Rows that fail\n");
+    let mut failing_table = String::new();
     if failing.is_empty() {
-        let _ = writeln!(md, "None.");
+        let _ = writeln!(failing_table, "None.");
     } else {
-        let _ = writeln!(md, "| row | solver | verdict |");
-        let _ = writeln!(md, "|---|---|---|");
+        let _ = writeln!(failing_table, "| row | solver | verdict |");
+        let _ = writeln!(failing_table, "|---|---|---|");
         for (row, outcome) in failing {
             let _ = writeln!(
-                md,
+                failing_table,
                 "| {} | {} | {} |",
                 row.name,
                 outcome.solver,
@@ -201,10 +137,11 @@ fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -
             );
         }
     }
+    let mut tables = String::new();
     for (title, rows) in groups {
-        let _ = writeln!(md, "\n## {title}\n");
-        let _ = writeln!(md, "| row | expected | solver | measured | verdict |");
-        let _ = writeln!(md, "|---|---|---|---|---|");
+        let _ = writeln!(tables, "\n## {title}\n");
+        let _ = writeln!(tables, "| row | expected | solver | measured | verdict |");
+        let _ = writeln!(tables, "|---|---|---|---|---|");
         for row in rows {
             for (k, outcome) in row.outcomes.iter().enumerate() {
                 let (name, expected) = if k == 0 {
@@ -213,7 +150,7 @@ fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -
                     ("", "")
                 };
                 let _ = writeln!(
-                    md,
+                    tables,
                     "| {name} | {expected} | {} | {} | {} |",
                     outcome.solver,
                     cell(&outcome.measured),
@@ -222,7 +159,35 @@ fn report(groups: &[(&str, Vec<Row>)], size: &Size, quick: bool, elapsed: f64) -
             }
         }
     }
-    md
+    // The template supplies the line break that ends the report.
+    let tables = tables.strip_suffix('\n').unwrap_or(&tables).to_string();
+    crate::common::render(
+        "xtask/templates/extremes.md",
+        TEMPLATE,
+        &[
+            ("options", if quick { " --quick" } else { "" }.to_string()),
+            ("patch", size.patch.to_string()),
+            ("manufactured", size.manufactured.to_string()),
+            (
+                "manufactured_body_2",
+                (size.manufactured + size.manufactured / 2).to_string(),
+            ),
+            ("locking", size.locking.to_string()),
+            (
+                "locking_families",
+                size.locking_families
+                    .iter()
+                    .map(|f| f.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ),
+            ("solvers", size.solvers.join(", ")),
+            ("seconds", format!("{elapsed:.0}")),
+            ("table_summary", summary),
+            ("failing", failing_table),
+            ("groups", tables),
+        ],
+    )
 }
 
 /// A table cell: no line breaks or pipes, long messages cut.

@@ -21,6 +21,7 @@ use serde::{Deserialize, Serialize};
 use vem_contact::{
     AccuracyPreset, ContactDiscretisation, ContactResult, ErrorModel, SolverRegistry, WorkCounters,
 };
+use vem_verify::plot::{loglog_svg, LogLogPlot, Overlay};
 use vem_verify::report::{write_json, write_text};
 use vem_verify::study::fitted_rate;
 use vem_verify::tradeoff::{
@@ -29,9 +30,7 @@ use vem_verify::tradeoff::{
 };
 
 use crate::bench::{self, Case};
-use crate::common::{
-    chain, cpu_seconds, loglog_svg, machine, peak_memory, render, seconds, LogLogPlot, Overlay,
-};
+use crate::common::{chain, cpu_seconds, machine, peak_memory, render, seconds};
 
 /// The problems of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]

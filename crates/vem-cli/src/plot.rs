@@ -1,4 +1,4 @@
-//! Plots along the contact interface (plotters, SVG): the contact pressure (with the Hertz
+//! Plots along the contact interface (SVG, drawn with `vem_verify::plot`): the contact pressure (with the Hertz
 //! curve when asked for, and the friction traction against its bound with friction), and the
 //! slip coloured by node status.
 //!
@@ -8,10 +8,12 @@
 use std::ops::Range;
 use std::path::Path;
 
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use vem_contact::{InterfaceNode, NodeStatus};
 use vem_mesh::io::write_atomically;
+use vem_verify::plot::{
+    draw_chart, svg_document, titled, Area, Axis, Chart, Color, Layer, Pen, PlotError, RGBColor,
+    BLACK, SERIES_COLOURS,
+};
 
 use crate::CliError;
 use vem_scene::HertzComparison;
@@ -63,16 +65,13 @@ impl CattaneoMindlin {
     }
 }
 
-/// A drawing error of plotters, as text.
-type DrawResult = Result<(), Box<dyn std::error::Error>>;
-
-const PRESSURE: RGBColor = RGBColor(31, 119, 180);
-const HERTZ: RGBColor = RGBColor(214, 39, 40);
-const FRICTION: RGBColor = RGBColor(44, 160, 44);
-const CATTANEO: RGBColor = RGBColor(148, 103, 189);
-const BOUND: RGBColor = RGBColor(127, 127, 127);
-const STICK: RGBColor = RGBColor(31, 119, 180);
-const SLIP: RGBColor = RGBColor(214, 39, 40);
+const PRESSURE: RGBColor = SERIES_COLOURS[0];
+const HERTZ: RGBColor = SERIES_COLOURS[2];
+const FRICTION: RGBColor = SERIES_COLOURS[1];
+const CATTANEO: RGBColor = SERIES_COLOURS[3];
+const BOUND: RGBColor = SERIES_COLOURS[8];
+const STICK: RGBColor = SERIES_COLOURS[0];
+const SLIP: RGBColor = SERIES_COLOURS[2];
 const OPEN: RGBColor = RGBColor(170, 170, 170);
 
 /// Which coordinate the interface runs along: 0 for x, 1 for y.
@@ -103,30 +102,6 @@ fn padded(values: impl Iterator<Item = f64>, top: f64) -> Range<f64> {
     (lo - 0.05 * span)..(hi + top * span)
 }
 
-/// `area` below the title `text`, wrapped at word boundaries into lines that fit the area's
-/// width (20-pixel sans-serif: about 10 pixels a character), never cut.
-fn titled<'a>(
-    area: &DrawingArea<SVGBackend<'a>, Shift>,
-    text: &str,
-) -> Result<DrawingArea<SVGBackend<'a>, Shift>, Box<dyn std::error::Error>> {
-    let room = ((area.dim_in_pixel().0 as f64 - 40.0) / 10.0).max(20.0) as usize;
-    let mut lines: Vec<String> = Vec::new();
-    for word in text.split_whitespace() {
-        match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= room => {
-                line.push(' ');
-                line.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
-    let mut below = area.clone();
-    for line in &lines {
-        below = below.titled(line, ("sans-serif", 20))?;
-    }
-    Ok(below)
-}
-
 /// Room above the curves for the legend, as a fraction of the value span.
 const LEGEND_ROOM: f64 = 0.35;
 /// Room above the curves for the legend of a pressure plot with friction (twice the rows:
@@ -138,20 +113,13 @@ const FRICTION_LEGEND_ROOM: f64 = 0.55;
 fn svg_file(
     path: &Path,
     width: f64,
-    draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> DrawResult,
+    draw: impl FnOnce(&Area<'_>) -> Result<(), PlotError>,
 ) -> Result<(), CliError> {
     let size = (width.round() as u32, (0.6 * width).round() as u32);
-    let mut document = String::new();
-    let fail = |reason: String| CliError::Plot {
+    let document = svg_document(size, draw).map_err(|e| CliError::Plot {
         path: path.to_path_buf(),
-        reason,
-    };
-    {
-        let root = SVGBackend::with_string(&mut document, size).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| fail(e.to_string()))?;
-        draw(&root).map_err(|e| fail(e.to_string()))?;
-        root.present().map_err(|e| fail(e.to_string()))?;
-    }
+        reason: e.0,
+    })?;
     write_atomically(path, |w| w.write_all(document.as_bytes())).map_err(|source| CliError::Mesh {
         context: path.display().to_string(),
         source,
@@ -281,99 +249,49 @@ pub(crate) fn pressure(
             four(h.half_width)
         )
     });
+    let mut layers = Vec::new();
+    if !hertz_curve.is_empty() {
+        layers.push(Layer::line(hertz_curve, Pen::new(HERTZ, 2)).labelled(hertz_label));
+    }
+    let visible =
+        |points: &[(f64, f64)]| -> Curve { points.iter().filter(in_view).copied().collect() };
+    layers.push(
+        Layer::line(visible(&consistent), Pen::new(PRESSURE, 2))
+            .labelled("consistent pressure (projection of the normal forces, >= 0)"),
+    );
+    layers.push(
+        Layer::dots(visible(&pressure), 2, PRESSURE.mix(0.5))
+            .labelled("nodal pressure (normal force / tributary length)"),
+    );
+    if let Some((points, label)) = cattaneo_curve {
+        layers.push(Layer::line(points, Pen::new(CATTANEO, 2)).labelled(label));
+    }
+    let y_desc = if friction.is_some() {
+        "pressure, friction traction"
+    } else {
+        "contact pressure"
+    };
+    if let Some((traction, consistent_traction, bounds)) = &friction {
+        layers.push(
+            Layer::line(visible(consistent_traction), Pen::new(FRICTION, 2))
+                .labelled("consistent friction traction (projection within the bound)"),
+        );
+        layers.push(
+            Layer::dots(visible(traction), 2, FRICTION.mix(0.5))
+                .labelled("nodal friction traction (friction force / tributary length)"),
+        );
+        let bounds = visible(bounds);
+        let below = bounds.iter().map(|&(x, g)| (x, -g)).collect();
+        layers.push(Layer::line(bounds, Pen::new(BOUND, 1)).labelled("+/- friction bound"));
+        layers.push(Layer::line(below, Pen::new(BOUND, 1)));
+    }
+    let chart = Chart::new(
+        Axis::linear(name, x_range.clone()),
+        Axis::linear(y_desc, y_range),
+    );
     svg_file(path, width, |root| {
         let area = titled(root, &format!("{title}: contact pressure"))?;
-        let mut chart = ChartBuilder::on(&area)
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x_range.clone(), y_range)?;
-        chart
-            .configure_mesh()
-            .x_desc(name)
-            .y_desc(if friction.is_some() {
-                "pressure, friction traction"
-            } else {
-                "contact pressure"
-            })
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
-        if !hertz_curve.is_empty() {
-            chart
-                .draw_series(LineSeries::new(
-                    hertz_curve.iter().copied(),
-                    HERTZ.stroke_width(2),
-                ))?
-                .label(hertz_label.as_str())
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], HERTZ.stroke_width(2))
-                });
-        }
-        chart
-            .draw_series(LineSeries::new(
-                consistent.iter().filter(in_view).copied(),
-                PRESSURE.stroke_width(2),
-            ))?
-            .label("consistent pressure (projection of the normal forces, >= 0)")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PRESSURE.stroke_width(2)));
-        chart
-            .draw_series(
-                pressure
-                    .iter()
-                    .filter(in_view)
-                    .map(|&p| Circle::new(p, 2, PRESSURE.mix(0.5).filled())),
-            )?
-            .label("nodal pressure (normal force / tributary length)")
-            .legend(|(x, y)| Circle::new((x + 10, y), 2, PRESSURE.mix(0.5).filled()));
-        if let Some((points, label)) = &cattaneo_curve {
-            chart
-                .draw_series(LineSeries::new(
-                    points.iter().copied(),
-                    CATTANEO.stroke_width(2),
-                ))?
-                .label(label.as_str())
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], CATTANEO.stroke_width(2))
-                });
-        }
-        if let Some((traction, consistent_traction, bounds)) = &friction {
-            chart
-                .draw_series(LineSeries::new(
-                    consistent_traction.iter().filter(in_view).copied(),
-                    FRICTION.stroke_width(2),
-                ))?
-                .label("consistent friction traction (projection within the bound)")
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], FRICTION.stroke_width(2))
-                });
-            chart
-                .draw_series(
-                    traction
-                        .iter()
-                        .filter(in_view)
-                        .map(|&p| Circle::new(p, 2, FRICTION.mix(0.5).filled())),
-                )?
-                .label("nodal friction traction (friction force / tributary length)")
-                .legend(|(x, y)| Circle::new((x + 10, y), 2, FRICTION.mix(0.5).filled()));
-            chart
-                .draw_series(LineSeries::new(
-                    bounds.iter().filter(in_view).copied(),
-                    BOUND.stroke_width(1),
-                ))?
-                .label("+/- friction bound")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BOUND));
-            chart.draw_series(LineSeries::new(
-                bounds.iter().filter(in_view).map(|&(x, g)| (x, -g)),
-                BOUND.stroke_width(1),
-            ))?;
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
-        Ok(())
+        draw_chart(&area, &chart, &layers)
     })
 }
 
@@ -388,46 +306,30 @@ pub(crate) fn slip(
     let points: Vec<(f64, f64)> = nodes.iter().map(|n| (n.position[c], n.slip_t())).collect();
     let x_range = padded(points.iter().map(|p| p.0), 0.05);
     let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), LEGEND_ROOM);
+    let mut layers = vec![Layer::line(points.clone(), Pen::new(BLACK.mix(0.4), 1))];
+    for (status, colour) in [
+        (NodeStatus::Stick, STICK),
+        (NodeStatus::Slip, SLIP),
+        (NodeStatus::Open, OPEN),
+    ] {
+        let marked: Curve = nodes
+            .iter()
+            .zip(&points)
+            .filter(|(n, _)| n.status == status)
+            .map(|(_, &p)| p)
+            .collect();
+        if !marked.is_empty() {
+            layers.push(Layer::dots(marked, 3, colour).labelled(status.name()));
+        }
+    }
+    let chart = Chart::new(
+        Axis::linear(["x", "y"][c], x_range),
+        Axis::linear("slip [u]_tau", y_range),
+    )
+    .frame(12, (40, 80));
     svg_file(path, width, |root| {
         let area = titled(root, &format!("{title}: slip"))?;
-        let mut chart = ChartBuilder::on(&area)
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_range, y_range)?;
-        chart
-            .configure_mesh()
-            .x_desc(["x", "y"][c])
-            .y_desc("slip [u]_tau")
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
-        chart.draw_series(LineSeries::new(points.iter().copied(), BLACK.mix(0.4)))?;
-        for (status, colour) in [
-            (NodeStatus::Stick, STICK),
-            (NodeStatus::Slip, SLIP),
-            (NodeStatus::Open, OPEN),
-        ] {
-            let marked: Vec<(f64, f64)> = nodes
-                .iter()
-                .zip(&points)
-                .filter(|(n, _)| n.status == status)
-                .map(|(_, &p)| p)
-                .collect();
-            if marked.is_empty() {
-                continue;
-            }
-            chart
-                .draw_series(marked.iter().map(|&p| Circle::new(p, 3, colour.filled())))?
-                .label(status.name())
-                .legend(move |(x, y)| Circle::new((x + 10, y), 3, colour.filled()));
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
-        Ok(())
+        draw_chart(&area, &chart, &layers)
     })
 }
 
@@ -465,32 +367,23 @@ pub(crate) fn history(
         let (left, right) = area.split_horizontally(area.dim_in_pixel().0 / 2);
         for (area, (points, colour, kind, force, displacement)) in [left, right].iter().zip(&panels)
         {
-            let x_range = padded(points.iter().map(|p| p.0), 0.05);
-            let y_range = padded(points.iter().map(|p| p.1).chain([0.0]), 0.05);
             let x_desc = if against_time {
                 "pseudo-time t".to_string()
             } else {
                 format!("load point displacement {displacement}")
             };
-            let mut chart = ChartBuilder::on(area)
-                .caption(
-                    format!("{kind} force {force} on body A"),
-                    ("sans-serif", 16),
-                )
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(70)
-                .build_cartesian_2d(x_range, y_range)?;
-            chart
-                .configure_mesh()
-                .x_desc(x_desc.as_str())
-                .y_desc(*force)
-                .x_labels(5)
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            let colour = *colour;
-            chart.draw_series(LineSeries::new(points.iter().copied(), colour))?;
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+            let caption = format!("{kind} force {force} on body A");
+            let chart = Chart::new(
+                Axis::linear(&x_desc, padded(points.iter().map(|p| p.0), 0.05)).labels(5),
+                Axis::linear(force, padded(points.iter().map(|p| p.1).chain([0.0]), 0.05)),
+            )
+            .caption(&caption, 16)
+            .legend(None);
+            let layers = [
+                Layer::line(points.clone(), Pen::new(*colour, 1)),
+                Layer::dots(points.clone(), 3, *colour),
+            ];
+            draw_chart(area, &chart, &layers)?;
         }
         Ok(())
     })
@@ -549,52 +442,23 @@ pub(crate) fn radial_profile(
             four(h.half_width)
         )
     });
-    let mut document = String::new();
-    {
-        let root = SVGBackend::with_string(&mut document, (width, height)).into_drawing_area();
-        let draw = || -> DrawResult {
-            root.fill(&WHITE)?;
-            let area = titled(&root, "pressure against r")?;
-            let mut chart = ChartBuilder::on(&area)
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(55)
-                .build_cartesian_2d(0.0..reach * 1.02, 0.0..top * (1.0 + LEGEND_ROOM))?;
-            chart
-                .configure_mesh()
-                .x_desc("r (distance from the centre of the contact zone, in its plane)")
-                .y_desc("contact pressure")
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            chart
-                .draw_series(
-                    in_view
-                        .iter()
-                        .map(|&p| Circle::new(p, 2, PRESSURE.mix(0.6).filled())),
-                )?
-                .label("consistent pressure at the nodes")
-                .legend(|(x, y)| Circle::new((x + 10, y), 2, PRESSURE.mix(0.6).filled()));
-            if !hertz_curve.is_empty() {
-                chart
-                    .draw_series(LineSeries::new(
-                        hertz_curve.iter().copied(),
-                        HERTZ.stroke_width(2),
-                    ))?
-                    .label(hertz_label.as_str())
-                    .legend(|(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], HERTZ.stroke_width(2))
-                    });
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()?;
-            root.present()?;
-            Ok(())
-        };
-        draw().map_err(|e| e.to_string())?;
+    let mut layers = vec![
+        Layer::dots(in_view, 2, PRESSURE.mix(0.6)).labelled("consistent pressure at the nodes")
+    ];
+    if !hertz_curve.is_empty() {
+        layers.push(Layer::line(hertz_curve, Pen::new(HERTZ, 2)).labelled(hertz_label));
     }
-    Ok(document)
+    let chart = Chart::new(
+        Axis::linear(
+            "r (distance from the centre of the contact zone, in its plane)",
+            0.0..reach * 1.02,
+        ),
+        Axis::linear("contact pressure", 0.0..top * (1.0 + LEGEND_ROOM)),
+    )
+    .frame(12, (40, 55));
+    svg_document((width, height), |root| {
+        let area = titled(root, "pressure against r")?;
+        draw_chart(&area, &chart, &layers)
+    })
+    .map_err(|e| e.0)
 }

@@ -15,6 +15,9 @@
 //! - [`study`]: convergence studies over mesh sizes with fitted rates and a verdict;
 //! - [`cases`]: the registry of cases by name (built-in and a user's own) the tools run;
 //! - [`report`]: Markdown tables, log-log SVG plots and JSON;
+//! - `plot` (feature `plots`): every plot of the workspace as an SVG document (charts of
+//!   layers, the log-log plot of the studies, ticks), used by `report`, `cargo xtask` and
+//!   `vem run`;
 //! - `extremes` (feature `extremes`): the rows of the study of stability at the extremes, each
 //!   with its independent expected answer, in the plane and in space;
 //! - [`three_d`]: the same in space: exact solutions on the unit cube, errors on polyhedral
@@ -37,8 +40,9 @@
 //!
 //! # Cargo features
 //!
-//! `plots` (on by default) adds the log-log SVG plots of [`report`] (`report::plot_svg`,
-//! `report::write_plot`) and with them the `plotters` dependency; `extremes` adds the module
+//! `plots` (on by default) adds the module `plot` (SVG plots) and the log-log plots of
+//! [`report`] (`report::plot_svg`, `report::write_plot`), and with them the `plotters`
+//! dependency; `extremes` adds the module
 //! `extremes` (the rows of the study of stability at the extremes) and with it the `vem-scene`
 //! dependency; everything else needs no feature.
 #![deny(missing_docs)]
@@ -53,6 +57,8 @@ pub mod extremes;
 pub mod fretting;
 pub mod norms;
 pub mod plan;
+#[cfg(feature = "plots")]
+pub mod plot;
 pub mod problem;
 pub mod report;
 pub mod study;

@@ -1,5 +1,5 @@
-//! Reports of convergence studies: Markdown tables, log-log SVG plots with reference slopes,
-//! JSON. Files are written whole or not at all (`vem_mesh::io::write_atomically`).
+//! Reports of convergence studies: Markdown tables, log-log SVG plots with reference slopes
+//! (drawn with [`crate::plot`]), JSON. Files are written whole or not at all (`vem_mesh::io::write_atomically`).
 //!
 //! ```
 //! use std::sync::Arc;
@@ -19,16 +19,10 @@
 
 use std::path::Path;
 
-#[cfg(feature = "plots")]
-use plotters::prelude::*;
 use serde::Serialize;
 
 use crate::study::{successive_rates, Expectation, SizeRecord, StudyResult};
 use crate::VerifyError;
-
-#[cfg(feature = "plots")]
-/// A plotted series: name, colour, points `(h, error)`.
-type Series = (&'static str, RGBColor, Vec<(f64, f64)>);
 
 #[cfg(feature = "plots")]
 /// The reference slopes are drawn this factor below the finest error they start from.
@@ -244,23 +238,19 @@ pub fn summary_markdown(studies: &[StudyResult]) -> String {
 /// # Errors
 /// A study without positive errors to plot, or a drawing failure.
 pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
+    use crate::plot::{
+        chart_svg, three_digits, Axis, Chart, Layer, LegendPosition, Pen, REFERENCE_GREY,
+        SERIES_COLOURS,
+    };
     let plot_error = |reason: String| VerifyError::InvalidSetting {
         reason: format!("plot of {}: {reason}", study.title()),
     };
-    let series: [Series; 3] = [
-        (
-            "E_grad",
-            RGBColor(31, 119, 180),
-            points(study, |r| r.errors.grad),
-        ),
-        (
-            "E_a",
-            RGBColor(44, 160, 44),
-            points(study, |r| r.errors.energy),
-        ),
-        ("E_0", RGBColor(214, 39, 40), points(study, |r| r.errors.l2)),
+    let series = [
+        ("E_grad", points(study, |r| r.errors.grad)),
+        ("E_a", points(study, |r| r.errors.energy)),
+        ("E_0", points(study, |r| r.errors.l2)),
     ];
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.2.iter().copied()).collect();
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
     if all.is_empty() {
         return Err(plot_error("no positive errors".to_string()));
     }
@@ -268,83 +258,47 @@ pub fn plot_svg(study: &StudyResult) -> Result<String, VerifyError> {
     let (e_min, e_max) = bounds(all.iter().map(|p| p.1));
     let x_range = (h_min / 1.3)..(h_max * 1.3);
     let y_range = (e_min / 3.0)..(e_max * 3.0);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, PLOT_SIZE).into_drawing_area();
-        let draw = |e: &dyn std::fmt::Display| plot_error(e.to_string());
-        root.fill(&WHITE).map_err(|e| draw(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(study.title(), ("sans-serif", 20))
-            .margin(16)
-            .x_label_area_size(44)
-            .y_label_area_size(70)
-            .build_cartesian_2d(
-                x_range.log_scale().with_key_points(h_ticks(&all)),
-                y_range
-                    .clone()
-                    .log_scale()
-                    .with_key_points(log_ticks(y_range)),
-            )
-            .map_err(|e| draw(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("h (largest element diameter)")
-            .y_desc("error")
-            .max_light_lines(0)
-            .x_label_formatter(&|v| three_digits(*v))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .draw()
-            .map_err(|e| draw(&e))?;
-        for (name, color, data) in &series {
-            if data.is_empty() {
-                continue;
-            }
-            let color = *color;
-            chart
-                .draw_series(LineSeries::new(data.iter().copied(), color.stroke_width(2)))
-                .map_err(|e| draw(&e))?
-                .label(*name)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart
-                .draw_series(data.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                .map_err(|e| draw(&e))?;
+    let mut layers = Vec::new();
+    for (k, (name, data)) in series.iter().enumerate() {
+        if data.is_empty() {
+            continue;
         }
-        // Reference slopes below the finest E_grad (slope 1) and E_0 (slope 2), dashed in
-        // data coordinates (dashes of equal length in log h).
-        for (slope, anchor, label) in [
-            (1.0, series[0].2.last(), "O(h)"),
-            (2.0, series[2].2.last(), "O(h^2)"),
-        ] {
-            let Some(&(h0, e0)) = anchor else { continue };
-            let e0 = e0 * REFERENCE_OFFSET;
-            let (t0, t1) = (h0.ln(), h_max.ln());
-            let dashes = (2 * REFERENCE_DASHES) as f64;
-            let grey = RGBColor(90, 90, 90);
-            let at = |k: f64| {
-                let h = (t0 + (t1 - t0) * k / dashes).exp();
-                (h, e0 * (h / h0).powf(slope))
-            };
-            chart
-                .draw_series((0..REFERENCE_DASHES).map(|k| {
-                    let k = 2.0 * k as f64;
-                    PathElement::new(vec![at(k), at(k + 1.0)], grey.stroke_width(1))
-                }))
-                .map_err(|e| draw(&e))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| draw(&e))?;
-        root.present().map_err(|e| draw(&e))?;
+        let colour = SERIES_COLOURS[k];
+        layers.push(Layer::line(data.clone(), Pen::new(colour, 2)).labelled(*name));
+        layers.push(Layer::dots(data.clone(), 4, colour));
     }
-    Ok(svg)
+    // Reference slopes below the finest E_grad (slope 1) and E_0 (slope 2), dashed in
+    // data coordinates (dashes of equal length in log h).
+    for (slope, anchor, label) in [
+        (1.0, series[0].1.last(), "O(h)"),
+        (2.0, series[2].1.last(), "O(h^2)"),
+    ] {
+        let Some(&(h0, e0)) = anchor else { continue };
+        let e0 = e0 * REFERENCE_OFFSET;
+        let (t0, t1) = (h0.ln(), h_max.ln());
+        let dashes = (2 * REFERENCE_DASHES) as f64;
+        let at = |k: f64| {
+            let h = (t0 + (t1 - t0) * k / dashes).exp();
+            (h, e0 * (h / h0).powf(slope))
+        };
+        let segments = (0..REFERENCE_DASHES)
+            .map(|k| {
+                let k = 2.0 * k as f64;
+                [at(k), at(k + 1.0)]
+            })
+            .collect();
+        layers.push(Layer::segments(segments, Pen::new(REFERENCE_GREY, 1)).labelled(label));
+    }
+    let (x_format, y_format) = (|v: &f64| three_digits(*v), |v: &f64| format!("{v:.0e}"));
+    let title = study.title();
+    let chart = Chart::new(
+        Axis::log("h (largest element diameter)", x_range, h_ticks(&all)).format(&x_format),
+        Axis::log("error", y_range.clone(), crate::plot::log_ticks(y_range)).format(&y_format),
+    )
+    .caption(&title, 20)
+    .frame(16, (44, 70))
+    .legend(Some(LegendPosition::LowerRight));
+    chart_svg(PLOT_SIZE, &chart, &layers).map_err(|e| plot_error(e.to_string()))
 }
 
 #[cfg(feature = "plots")]
@@ -357,54 +311,13 @@ fn h_ticks(points: &[(f64, f64)]) -> Vec<f64> {
 }
 
 #[cfg(feature = "plots")]
-/// Ticks of a logarithmic axis: the powers of ten in `range`, and 2 and 5 times them when the
-/// range touches fewer than four decades; every integer multiple when that still leaves fewer
-/// than three ticks (a range within about a decade).
-///
-/// ```
-/// assert_eq!(vem_verify::report::log_ticks(0.03..0.7), vec![0.05, 0.1, 0.2, 0.5]);
-/// assert_eq!(vem_verify::report::log_ticks(1e-6..2e-1), vec![1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]);
-/// assert_eq!(vem_verify::report::log_ticks(9e-3..0.3).len(), 5); // 0.01, 0.02, 0.05, 0.1, 0.2
-/// assert_eq!(vem_verify::report::log_ticks(0.66..1.5).len(), 4); // 0.7, 0.8, 0.9, 1
-/// ```
-pub fn log_ticks(range: std::ops::Range<f64>) -> Vec<f64> {
-    let (low, high) = (
-        range.start.log10().floor() as i32,
-        range.end.log10().ceil() as i32,
-    );
-    let ticks = |mantissas: &[f64]| -> Vec<f64> {
-        (low..=high)
-            .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
-            .filter(|v| range.contains(v))
-            .collect()
-    };
-    if high - low >= 4 {
-        return ticks(&[1.0]);
-    }
-    let coarse = ticks(&[1.0, 2.0, 5.0]);
-    if coarse.len() >= 3 {
-        coarse
-    } else {
-        // Less than a decade: every integer mantissa.
-        ticks(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
-    }
-}
-
-#[cfg(feature = "plots")]
-/// `v` with three significant digits in fixed notation (0.354, 0.0221).
-fn three_digits(v: f64) -> String {
-    let precision = (2 - v.abs().log10().floor() as i32).max(0) as usize;
-    format!("{v:.precision$}")
-}
-
-#[cfg(feature = "plots")]
 /// The positive points `(h, error)` of a study.
 fn points(study: &StudyResult, error: fn(&SizeRecord) -> f64) -> Vec<(f64, f64)> {
     study
         .records
         .iter()
         .map(|r| (r.h, error(r)))
-        .filter(|&(h, e)| h > 0.0 && e > 0.0 && h.is_finite() && e.is_finite())
+        .filter(crate::plot::positive)
         .collect()
 }
 

@@ -22,7 +22,7 @@ use vem_verify::three_d::{
     ExactSolution3d, SolidRates, SolidRun, StackedContact, StickSlipContact, SOLID_CASE_NAMES,
 };
 
-use crate::common::{loglog_svg, LogLogPlot, Overlay};
+use vem_verify::plot::{loglog_svg, LogLogPlot, Overlay};
 
 /// The cases in space of the default run, in the order they run.
 pub const DEFAULT_CASES: [&str; 5] = ["E1-3D", "E2-3D", "PT0-3D", CONTACT_CASE, FRICTION_CASE];
@@ -1022,7 +1022,7 @@ fn plot(outcome: &Outcome, case: &str, error: &str) -> Result<String, Box<dyn st
             .find(|(e, _)| *e == error)
             .map_or(error, |(_, what)| what)
     );
-    loglog_svg(
+    Ok(loglog_svg(
         &LogLogPlot {
             caption: &caption,
             x_desc: "mean cell size (1/cells)^(1/3)",
@@ -1033,7 +1033,7 @@ fn plot(outcome: &Outcome, case: &str, error: &str) -> Result<String, Box<dyn st
         &series,
         c.is_finite()
             .then_some(Overlay::Reference(label.as_str(), &reference[..])),
-    )
+    )?)
 }
 
 /// Writes `convergence-3d.md`, `convergence-3d.json` and `convergence-3d/<case>-<error>.svg`
