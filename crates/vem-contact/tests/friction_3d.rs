@@ -535,27 +535,7 @@ fn coulomb_in_space_is_the_same_with_the_iterative_interface() {
     let dense = solve(InterfaceMethod::Dense);
     let iterative = solve(InterfaceMethod::Iterative);
     assert_eq!(iterative.work.numeric_factorisations, 2);
-    let scale = dense
-        .nodes
-        .iter()
-        .fold(0.0f64, |m, n| m.max(n.normal_force));
-    let mut largest = 0.0f64;
-    for (a, b) in iterative.nodes.iter().zip(&dense.nodes) {
-        largest = largest
-            .max((a.normal_force - b.normal_force).abs() / scale)
-            .max((a.friction_force - b.friction_force).norm() / scale);
-    }
-    let u_scale = dense.bodies.iter().fold(0.0f64, |m, b| {
-        (0..b.body.mesh().n_vertices())
-            .fold(m, |m, v| m.max(b.solution.vertex_displacement(v).norm()))
-    });
-    let mut largest_u = 0.0f64;
-    for (a, b) in iterative.bodies.iter().zip(&dense.bodies) {
-        for v in 0..a.body.mesh().n_vertices() {
-            let du = a.solution.vertex_displacement(v) - b.solution.vertex_displacement(v);
-            largest_u = largest_u.max(du.norm() / u_scale);
-        }
-    }
+    let (largest, largest_u) = largest_differences(&iterative, &dense);
     println!(
         "Coulomb, iterative against dense: forces {largest:.1e}, displacements {largest_u:.1e}; \
          {} against {} Tresca steps, {} against {} interface iterations",
@@ -568,6 +548,65 @@ fn coulomb_in_space_is_the_same_with_the_iterative_interface() {
         largest < 1e-7 && largest_u < 1e-7,
         "{largest:e} {largest_u:e}"
     );
+}
+
+/// The largest differences of two answers of the same problem: nodal normal forces and
+/// friction vectors relative to the largest normal force, displacements relative to the
+/// largest displacement.
+fn largest_differences(a: &ContactResult<3>, b: &ContactResult<3>) -> (f64, f64) {
+    let scale = b.nodes.iter().fold(0.0f64, |m, n| m.max(n.normal_force));
+    let mut forces = 0.0f64;
+    for (x, y) in a.nodes.iter().zip(&b.nodes) {
+        forces = forces
+            .max((x.normal_force - y.normal_force).abs() / scale)
+            .max((x.friction_force - y.friction_force).norm() / scale);
+    }
+    let u_scale = b.bodies.iter().fold(0.0f64, |m, b| {
+        (0..b.body.mesh().n_vertices())
+            .fold(m, |m, v| m.max(b.solution.vertex_displacement(v).norm()))
+    });
+    let mut displacements = 0.0f64;
+    for (x, y) in a.bodies.iter().zip(&b.bodies) {
+        for v in 0..x.body.mesh().n_vertices() {
+            let du = x.solution.vertex_displacement(v) - y.solution.vertex_displacement(v);
+            displacements = displacements.max(du.norm() / u_scale);
+        }
+    }
+    (forces, displacements)
+}
+
+/// Tresca with stick and slip zones on both problems: the iterative interface (projected
+/// Newton steps along the rims, their Newton systems by conjugate gradients on the Schur
+/// operator) and the dense one (the same steps with direct Newton systems) give the same
+/// forces and displacements to `1e-9` of the largest, each certified.
+#[test]
+fn tresca_in_space_is_the_same_with_the_iterative_interface() {
+    for (name, problem) in [
+        ("block on a plane", block_on_plane(steep_tresca(), SHEAR)),
+        ("two blocks", stacked_blocks(variable_tresca())),
+    ] {
+        let solve = |interface| {
+            let settings = CondensedSettings::builder()
+                .interface(interface)
+                .build()
+                .unwrap();
+            problem.solve(&mut CondensedSolver::new(settings)).unwrap()
+        };
+        let dense = solve(InterfaceMethod::Dense);
+        let iterative = solve(InterfaceMethod::Iterative);
+        let (stick, slip) = stick_and_slip(&iterative);
+        assert!(stick > 0 && slip > 0, "{name}: stick {stick}, slip {slip}");
+        let (forces, displacements) = largest_differences(&iterative, &dense);
+        println!(
+            "{name}: forces {forces:.1e}, displacements {displacements:.1e}; {} Newton steps, \
+             {} triangular solve pairs",
+            iterative.report.iterations, iterative.work.triangular_solves
+        );
+        assert!(
+            forces < 1e-9 && displacements < 1e-9,
+            "{name}: {forces:e} {displacements:e}"
+        );
+    }
 }
 
 /// The cost of friction in space against one elastic solve (not a check: figures for

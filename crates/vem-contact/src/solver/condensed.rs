@@ -36,8 +36,9 @@
 //! **The iterative interface** ([`InterfaceMethod`]): for large interfaces the dense work
 //! (`|G|^3 / 3` for the trailing block, `W`, `H`) loses against an iteration on the operator
 //! `lambda -> B K^-1 B' lambda`: each body is factorised in its best order (no trailing block)
-//! and the QP is solved by MPGP (`mprgp`), one pair of triangular solves per body and
-//! iteration, warm-started like the dense QP; `B u = [g; s] + d - H lambda` comes from the
+//! and the QP is solved by MPGP (`mprgp`; with friction in space by projected Newton steps
+//! along the rims whose Newton systems are solved by conjugate gradients, `mprgp`), one pair
+//! of triangular solves per body and product, warm-started like the dense QP; `B u = [g; s] + d - H lambda` comes from the
 //! last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
 //! forced by the settings; a singular body makes the solver take the dense interface.
 //!
@@ -113,13 +114,17 @@ pub enum InterfaceMethod {
     Dense,
     /// The dual iteration on the Schur operator: each body factorised in its best ordering,
     /// `lambda -> B K^-1 B' lambda` applied with one pair of triangular solves per body per
-    /// iteration, the QP solved by MPGP (MPRGP on sign bounds; gradient projections onto
-    /// the disks in space). Its cost grows with the iterations times the cost of a solve.
+    /// product, the QP solved by MPGP (MPRGP on sign bounds and boxes) or, with disks
+    /// (friction in space), by projected Newton steps whose Newton systems are solved by
+    /// conjugate gradients on the products. Its cost grows with the products times the cost
+    /// of a solve.
     Iterative,
     /// [`InterfaceMethod::Iterative`] for frictionless problems from [`ITERATIVE_FROM`]
     /// interface unknowns (summed over the bodies), [`InterfaceMethod::Dense`] otherwise (with
-    /// friction MPGP moves the sliding nodes along their rims by projected gradient steps
-    /// only, which converge linearly: measured in docs/contact-3d.md, section 7). The default.
+    /// friction the iterative interface's Newton systems, solved by conjugate gradients
+    /// without a preconditioner, cost about as much as the dense interface for Tresca at 1e5
+    /// unknowns and far more for a Coulomb fixed point: measured in docs/contact-3d.md,
+    /// section 7). The default.
     #[default]
     Auto,
 }
@@ -164,7 +169,8 @@ impl CondensedSettings {
     }
 
     /// Limit on the projected Newton steps (the iterative interface allows
-    /// [`ITERATIONS_PER_STEP`] times as many iterations).
+    /// [`ITERATIONS_PER_STEP`] times as many MPGP iterations, or as many operator products in
+    /// its Newton steps with friction in space).
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -424,8 +430,8 @@ impl Factors {
         let iterative = match settings.interface {
             InterfaceMethod::Dense => false,
             InterfaceMethod::Iterative => true,
-            // Friction: the sliding nodes of MPGP converge by projected gradient steps only
-            // (linearly, at the rate of the condition of H): the dense interface.
+            // Friction: the iterative interface's Newton systems (conjugate gradients without a
+            // preconditioner) cost more than the dense interface, measured up to 1e5 unknowns.
             InterfaceMethod::Auto => unknowns >= ITERATIVE_FROM && system.friction().is_none(),
         };
         if iterative {
@@ -589,7 +595,8 @@ struct IterativeState {
 
 /// Power iterations for the estimate of `|H|_2` of the iterative interface.
 const NORM_ITERATIONS: usize = 10;
-/// The iterative interface allows this many iterations per projected Newton step of
+/// The iterative interface allows this many MPGP iterations (or operator products of its
+/// projected Newton steps, with friction in space) per projected Newton step of
 /// [`CondensedSettings::max_iterations`].
 pub const ITERATIONS_PER_STEP: usize = 10;
 
@@ -1050,19 +1057,28 @@ fn iterative_interface(
             this.apply_operator(rows, n, x, work)
         })?,
     };
-    let outcome = Mprgp {
+    let qp = Mprgp {
         linear: &d,
         lower,
         upper,
         disks,
-    }
-    .solve(
-        warm,
-        settings.tolerance * length_scale,
-        settings.max_iterations * ITERATIONS_PER_STEP,
-        norm,
-        |x| this.apply_operator(rows, n, x, work),
-    )?;
+    };
+    let tolerance = settings.tolerance * length_scale;
+    let budget = settings.max_iterations * ITERATIONS_PER_STEP;
+    let apply = |x: &[f64]| this.apply_operator(rows, n, x, work);
+    let outcome = if disks.is_empty() {
+        qp.solve(warm, tolerance, budget, norm, apply)?
+    } else {
+        // Friction in space: the sliding nodes move along their rims by Newton steps.
+        qp.solve_by_newton(
+            warm,
+            tolerance,
+            settings.max_iterations,
+            budget,
+            norm,
+            apply,
+        )?
+    };
     if let Some(state) = factors.iterative.as_mut() {
         state.norm = Some(norm);
     }

@@ -59,7 +59,7 @@ const MAX_HALVINGS: usize = 60;
 
 /// One column of the basis `Z` of the Newton subspace: a unit vector or a disk's tangent.
 #[derive(Debug, Clone, Copy)]
-enum Direction {
+pub(crate) enum Direction {
     Unit(usize),
     Tangent { first: usize, tau: [f64; 2] },
 }
@@ -99,6 +99,171 @@ pub(crate) fn project(lower: &[f64], upper: &[f64], disks: &[Disk], x: &mut [f64
             x[disk.first + 1] = b * s;
         }
     }
+}
+
+/// The subspace of a projected Newton step at `x` and the step of the binding constraints.
+pub(crate) struct NewtonSubspace {
+    /// The basis `Z`: every free scalar, both coordinates of a disk that is not binding, the
+    /// tangent of a binding rim.
+    pub basis: Vec<Direction>,
+    /// The curvature `C` added to each column: `mu / r` for a rim's tangent (`mu = -g . n`,
+    /// the rim's multiplier: the Hessian of the Lagrangian), zero otherwise.
+    pub curvature: Vec<f64>,
+    /// The step: on the binding constraints a bound's scaled gradient step and a point's
+    /// radial step onto its rim; on the free scalars the scaled gradient step until
+    /// [`NewtonSubspace::set_newton_step`] replaces it.
+    pub step: Vec<f64>,
+}
+
+impl NewtonSubspace {
+    /// The Newton step `y` in the subspace: the free scalars' entries of `step` become those
+    /// of `Z y`, a rim's tangential move is added to its radial one.
+    pub fn set_newton_step(&mut self, y: &[f64]) {
+        for (direction, &ya) in self.basis.iter().zip(y) {
+            match *direction {
+                Direction::Unit(i) => self.step[i] = ya,
+                Direction::Tangent { first, tau } => {
+                    self.step[first] += ya * tau[0];
+                    self.step[first + 1] += ya * tau[1];
+                }
+            }
+        }
+    }
+
+    /// `Z v`, a vector of the `m` variables.
+    pub fn expand(&self, v: &[f64], m: usize) -> Vec<f64> {
+        let mut x = vec![0.0; m];
+        for (direction, &va) in self.basis.iter().zip(v) {
+            for (i, c) in direction.entries() {
+                x[i] += c * va;
+            }
+        }
+        x
+    }
+
+    /// `Z' w`.
+    pub fn restrict(&self, w: &[f64]) -> Vec<f64> {
+        self.basis
+            .iter()
+            .map(|d| d.entries().map(|(i, c)| c * w[i]).sum())
+            .collect()
+    }
+}
+
+/// The Newton subspace at `x` (gradient `g`): a bound, or a disk's rim, is binding when `x`
+/// is within `eps = min(pg, EPS_WIDTH` of the box's width or the disk's radius`)` of it and
+/// the gradient pushes outward; a binding bound moves along the scaled gradient `-D g`
+/// (`scaling = diag(D)`, the projection clamps it), a binding point of a disk radially onto
+/// its rim. Shared by the dense projected Newton method and its operator form (`mprgp`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn newton_subspace(
+    lower: &[f64],
+    upper: &[f64],
+    disks: &[Disk],
+    in_disk: &[bool],
+    x: &[f64],
+    g: &[f64],
+    pg: f64,
+    scaling: &[f64],
+) -> NewtonSubspace {
+    let m = x.len();
+    let mut step: Vec<f64> = (0..m).map(|i| -g[i] * scaling[i]).collect();
+    let mut basis = Vec::with_capacity(m);
+    let mut curvature = Vec::with_capacity(m);
+    for i in (0..m).filter(|&i| !in_disk[i]) {
+        let eps = pg.min(EPS_WIDTH * (upper[i] - lower[i]));
+        let binding =
+            (x[i] <= lower[i] + eps && g[i] > 0.0) || (x[i] >= upper[i] - eps && g[i] < 0.0);
+        if !binding {
+            basis.push(Direction::Unit(i));
+            curvature.push(0.0);
+        }
+    }
+    for disk in disks {
+        let (a, b) = (disk.first, disk.first + 1);
+        if disk.radius <= 0.0 {
+            // A point: nothing moves (the projection undoes the gradient step).
+            continue;
+        }
+        let norm = x[a].hypot(x[b]);
+        let eps = pg.min(EPS_WIDTH * disk.radius);
+        let outward = if norm > 0.0 {
+            -(g[a] * x[a] + g[b] * x[b]) / norm
+        } else {
+            0.0
+        };
+        if norm >= disk.radius - eps && outward > 0.0 {
+            let n = [x[a] / norm, x[b] / norm];
+            let tau = [-n[1], n[0]];
+            // Radial: onto the rim (a longer outward step would be cut back by the
+            // projection, and shrink the tangential step with it); tangential: the Newton
+            // step.
+            let radial = disk.radius - norm;
+            step[a] = radial * n[0];
+            step[b] = radial * n[1];
+            basis.push(Direction::Tangent { first: a, tau });
+            curvature.push(outward / disk.radius);
+        } else {
+            basis.push(Direction::Unit(a));
+            basis.push(Direction::Unit(b));
+            curvature.extend([0.0, 0.0]);
+        }
+    }
+    NewtonSubspace {
+        basis,
+        curvature,
+        step,
+    }
+}
+
+/// The Armijo search along the projection arc `x(a) = P(x + a p)` from `x` (gradient `g`),
+/// `a = 1, 1/2, ...`: the accepted point and `H (x(a) - x)` (one product `apply` per trial),
+/// `None` when no decrease is representable in floating point.
+///
+/// The round-off of q's change near the minimiser: the radial return of a point moved along a
+/// rim is exact to `eps r`, which `mu` turns into an error of `eps r |g|` in q, far above the
+/// decrease of a tangential step of size `e` (`O(e^2)`) once `e` is below about `sqrt(eps)`. A
+/// full step whose change is below that round-off is the Newton step of a converging
+/// iteration: taken as it is (the projected gradient decides).
+#[allow(clippy::too_many_arguments)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn armijo_on_arc<E>(
+    lower: &[f64],
+    upper: &[f64],
+    disks: &[Disk],
+    x: &[f64],
+    g: &[f64],
+    p: &[f64],
+    mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+) -> Result<Option<(Vec<f64>, Vec<f64>)>, E> {
+    let m = x.len();
+    let noise = 8.0
+        * f64::EPSILON
+        * (x.iter().zip(g).map(|(x, g)| (x * g).abs()).sum::<f64>()
+            + disks
+                .iter()
+                .map(|d| d.radius * g[d.first].hypot(g[d.first + 1]))
+                .sum::<f64>());
+    let mut alpha = 1.0;
+    for _ in 0..MAX_HALVINGS {
+        let mut trial: Vec<f64> = (0..m).map(|i| x[i] + alpha * p[i]).collect();
+        project(lower, upper, disks, &mut trial);
+        let step: Vec<f64> = trial.iter().zip(x).map(|(t, x)| t - x).collect();
+        let slope: f64 = (0..m).map(|i| step[i] * g[i]).sum();
+        if slope >= 0.0 && !(alpha == 1.0 && slope.abs() <= noise) {
+            // Not a descent step: a shorter one is not either unless the arc bends.
+            alpha *= 0.5;
+            continue;
+        }
+        let h_step = apply(&step)?;
+        let change: f64 = slope + 0.5 * (0..m).map(|i| step[i] * h_step[i]).sum::<f64>();
+        let unresolved = alpha == 1.0 && change.abs() <= noise && slope.abs() <= noise;
+        if (slope < 0.0 && -change >= -ARMIJO * slope) || unresolved {
+            return Ok(Some((trial, h_step)));
+        }
+        alpha *= 0.5;
+    }
+    Ok(None)
 }
 
 impl DiskQp<'_> {
@@ -158,14 +323,14 @@ impl DiskQp<'_> {
             }
         };
         let mut scaling: Vec<f64> = diagonal.iter().map(|&d| inverse(d)).collect();
-        let mut in_disk = vec![None; m];
-        for (k, disk) in self.disks.iter().enumerate() {
+        let mut in_disk = vec![false; m];
+        for disk in self.disks {
             let (a, b) = (disk.first, disk.first + 1);
             let s = inverse(diagonal[a].max(diagonal[b]));
             scaling[a] = s;
             scaling[b] = s;
-            in_disk[a] = Some(k);
-            in_disk[b] = Some(k);
+            in_disk[a] = true;
+            in_disk[b] = true;
         }
         let mut x = start.to_vec();
         self.project(&mut x);
@@ -189,98 +354,26 @@ impl DiskQp<'_> {
             }
             outcome.iterations += 1;
             // The Newton subspace and the scaled gradient step of the binding constraints.
-            let mut p: Vec<f64> = (0..m).map(|i| -g[i] * scaling[i]).collect();
-            let mut basis = Vec::with_capacity(m);
-            let mut curvature = Vec::with_capacity(m);
-            for i in (0..m).filter(|&i| in_disk[i].is_none()) {
-                let eps = pg.min(EPS_WIDTH * (self.upper[i] - self.lower[i]));
-                let binding = (x[i] <= self.lower[i] + eps && g[i] > 0.0)
-                    || (x[i] >= self.upper[i] - eps && g[i] < 0.0);
-                if !binding {
-                    basis.push(Direction::Unit(i));
-                    curvature.push(0.0);
-                }
+            let mut subspace = newton_subspace(
+                self.lower, self.upper, self.disks, &in_disk, &x, &g, pg, &scaling,
+            );
+            let newton = self.reduced_newton_step(&subspace.basis, &subspace.curvature, &g, kept);
+            if let Some(y) = newton {
+                subspace.set_newton_step(&y);
             }
-            for disk in self.disks {
-                let (a, b) = (disk.first, disk.first + 1);
-                if disk.radius <= 0.0 {
-                    // A point: nothing moves (the projection undoes the gradient step).
-                    continue;
-                }
-                let norm = x[a].hypot(x[b]);
-                let eps = pg.min(EPS_WIDTH * disk.radius);
-                let outward = if norm > 0.0 {
-                    -(g[a] * x[a] + g[b] * x[b]) / norm
-                } else {
-                    0.0
-                };
-                if norm >= disk.radius - eps && outward > 0.0 {
-                    let n = [x[a] / norm, x[b] / norm];
-                    let tau = [-n[1], n[0]];
-                    // Radial: onto the rim (a longer outward step would be cut back by the
-                    // projection, and shrink the tangential step with it); tangential: the
-                    // Newton step below.
-                    let radial = disk.radius - norm;
-                    p[a] = radial * n[0];
-                    p[b] = radial * n[1];
-                    basis.push(Direction::Tangent { first: a, tau });
-                    curvature.push(outward / disk.radius);
-                } else {
-                    basis.push(Direction::Unit(a));
-                    basis.push(Direction::Unit(b));
-                    curvature.extend([0.0, 0.0]);
-                }
-            }
-            let newton = self.reduced_newton_step(&basis, &curvature, &g, kept);
-            if let Some(step) = newton {
-                for (direction, y) in basis.iter().zip(step) {
-                    match *direction {
-                        Direction::Unit(i) => p[i] = y,
-                        Direction::Tangent { first, tau } => {
-                            p[first] += y * tau[0];
-                            p[first + 1] += y * tau[1];
-                        }
-                    }
-                }
-            }
-            // The round-off of q's change near the minimiser: the radial return of a point
-            // moved along a rim is exact to `eps r`, which `mu` turns into an error of
-            // `eps r |g|` in q, far above the decrease of a tangential step of size `e`
-            // (`O(e^2)`) once `e` is below about `sqrt(eps)`.
-            let noise = 8.0
-                * f64::EPSILON
-                * (x.iter().zip(&g).map(|(x, g)| (x * g).abs()).sum::<f64>()
-                    + self
-                        .disks
-                        .iter()
-                        .map(|d| d.radius * g[d.first].hypot(g[d.first + 1]))
-                        .sum::<f64>());
-            // Armijo search along the projection arc.
-            let mut alpha = 1.0;
-            let mut accepted = false;
-            for _ in 0..MAX_HALVINGS {
-                let mut trial: Vec<f64> = (0..m).map(|i| x[i] + alpha * p[i]).collect();
-                self.project(&mut trial);
-                let step: Vec<f64> = trial.iter().zip(&x).map(|(t, x)| t - x).collect();
-                let h_step = self.apply(&step);
-                let slope: f64 = (0..m).map(|i| step[i] * g[i]).sum();
-                let change: f64 = slope + 0.5 * (0..m).map(|i| step[i] * h_step[i]).sum::<f64>();
-                // A full step whose change is below the round-off of q is the Newton step of
-                // a converging iteration: taken as it is (the projected gradient decides).
-                let unresolved = alpha == 1.0 && change.abs() <= noise && slope.abs() <= noise;
-                if (slope < 0.0 && -change >= -ARMIJO * slope) || unresolved {
+            let p = subspace.step;
+            let trial = armijo_on_arc(self.lower, self.upper, self.disks, &x, &g, &p, |v| {
+                Ok::<_, std::convert::Infallible>(self.apply(v))
+            });
+            match trial {
+                Ok(Some((trial, h_step))) => {
                     for i in 0..m {
                         g[i] += h_step[i];
                     }
                     x = trial;
-                    accepted = true;
-                    break;
                 }
-                alpha *= 0.5;
-            }
-            if !accepted {
                 // No decrease representable in floating point: x is as good as it gets.
-                break;
+                _ => break,
             }
         }
         outcome.x = x;

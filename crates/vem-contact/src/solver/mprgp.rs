@@ -30,8 +30,16 @@
 //!
 //! Stopping test: `|g^P|_inf <= tolerance` (a length in the interface problem: a gap or slip
 //! residual), then confirmed with a freshly computed gradient.
+//!
+//! MPGP moves a node sliding on its disk's rim by projected gradient steps only, which
+//! converge linearly at the rate of the condition of `H`. With disks the condensed solver
+//! therefore takes [`Mprgp::solve_by_newton`]: the projected Newton method of the dense disk QP
+//! (`disk_qp`: a binding rim's tangent with the rim's curvature `mu / r` in the Newton
+//! subspace, an Armijo search along the projection arc), its Newton systems
+//! `(Z'HZ + C) y = -Z'g` solved inexactly by conjugate gradients on the products `x -> Hx`,
+//! with Eisenstat and Walker's forcing terms.
 
-use super::disk_qp::{project, Disk};
+use super::disk_qp::{armijo_on_arc, newton_subspace, project, Disk};
 
 /// The action `x -> H x` of the problem's matrix (with the error of the caller's products).
 type Product<'f, E> = dyn FnMut(&[f64]) -> Result<Vec<f64>, E> + 'f;
@@ -42,7 +50,8 @@ pub(crate) struct MprgpOutcome {
     pub x: Vec<f64>,
     /// `H x` at the returned `x` (computed afresh at the end, not by recurrence).
     pub hx: Vec<f64>,
-    /// Iterations (conjugate gradient, expansion and proportioning steps).
+    /// Iterations (MPGP: conjugate gradient, expansion and proportioning steps; the Newton
+    /// method: Newton steps).
     pub iterations: usize,
     pub converged: bool,
 }
@@ -294,6 +303,157 @@ impl Mprgp<'_> {
     }
 }
 
+impl Mprgp<'_> {
+    /// Minimises by the projected Newton method of the dense disk QP (`disk_qp`: the binding
+    /// bounds and rims, a rim's tangent with its curvature `mu / r` in the Newton subspace, an
+    /// Armijo search along the projection arc) with each Newton system
+    /// `(Z'HZ + C) y = -Z'g` solved inexactly by conjugate gradients on products `apply`:
+    /// the residual reduced by the forcing term `eta_k` of Eisenstat and Walker (choice 2,
+    /// `eta_k = 0.9 (|g^P_k| / |g^P_k-1|)^2` with their safeguard, at most [`ETA_MAX`]), or to
+    /// a quarter of `tolerance`. The binding tests measure the projected gradient as a force
+    /// with the scaling `1 / |H|` (`norm`, an estimate of `|H|_2`; the diagonal of `H` is not
+    /// at hand), and a binding bound moves along `-g / |H|`.
+    ///
+    /// Stops as [`Mprgp::solve`] does (`|g^P|_inf <= tolerance`, confirmed with a fresh
+    /// gradient), after `max_steps` Newton steps, or when the products exceed `max_products`.
+    /// `iterations` of the outcome counts the Newton steps.
+    pub fn solve_by_newton<E>(
+        &self,
+        start: &[f64],
+        tolerance: f64,
+        max_steps: usize,
+        max_products: usize,
+        norm: f64,
+        mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+    ) -> Result<MprgpOutcome, E> {
+        let m = self.linear.len();
+        let mut in_disk = vec![false; m];
+        for disk in self.disks {
+            in_disk[disk.first] = true;
+            in_disk[disk.first + 1] = true;
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let scaling = vec![if norm > 0.0 { 1.0 / norm } else { 1.0 }; m];
+        let mut products = 0usize;
+        let mut counted = |x: &[f64], products: &mut usize| {
+            *products += 1;
+            apply(x)
+        };
+        let mut x = start.to_vec();
+        self.project(&mut x);
+        let gradient_at = |hx: Vec<f64>| -> Vec<f64> {
+            hx.into_iter()
+                .zip(self.linear)
+                .map(|(h, d)| h - d)
+                .collect()
+        };
+        let mut g = gradient_at(counted(&x, &mut products)?);
+        let mut iterations = 0;
+        let mut converged = false;
+        let (mut previous, mut eta) = (f64::NAN, ETA_MAX);
+        loop {
+            let (phi, beta) = self.split(&x, &g, &in_disk);
+            let pg = Self::projected_gradient(&phi, &beta);
+            if pg <= tolerance {
+                // Confirmed with the gradient computed afresh (the updates drift).
+                g = gradient_at(counted(&x, &mut products)?);
+                let (phi, beta) = self.split(&x, &g, &in_disk);
+                if Self::projected_gradient(&phi, &beta) <= tolerance {
+                    converged = true;
+                    break;
+                }
+            }
+            if iterations == max_steps || products >= max_products {
+                break;
+            }
+            iterations += 1;
+            // The projected gradient as a force (the binding tests' eps).
+            let mut moved: Vec<f64> = (0..m).map(|i| x[i] - g[i] * scaling[i]).collect();
+            self.project(&mut moved);
+            let pg_force = x
+                .iter()
+                .zip(&moved)
+                .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+            let mut subspace = newton_subspace(
+                self.lower, self.upper, self.disks, &in_disk, &x, &g, pg_force, &scaling,
+            );
+            // The forcing term.
+            if previous.is_finite() {
+                let next = 0.9 * (pg / previous).powi(2);
+                let safeguard = 0.9 * eta * eta;
+                eta = if safeguard > 0.1 {
+                    next.max(safeguard)
+                } else {
+                    next
+                }
+                .min(ETA_MAX);
+            }
+            previous = pg;
+            // Conjugate gradients on (Z'HZ + C) y = -Z'g from y = 0.
+            let k = subspace.basis.len();
+            let mut y = vec![0.0; k];
+            let mut r: Vec<f64> = subspace.restrict(&g).iter().map(|v| -v).collect();
+            let target = eta * dot(&r, &r).sqrt();
+            let mut p = r.clone();
+            let mut rr = dot(&r, &r);
+            while k > 0 && products < max_products {
+                let r_inf = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                if rr.sqrt() <= target || r_inf <= 0.25 * tolerance {
+                    break;
+                }
+                let hv = counted(&subspace.expand(&p, m), &mut products)?;
+                let mut ap = subspace.restrict(&hv);
+                for ((a, c), pa) in ap.iter_mut().zip(&subspace.curvature).zip(&p) {
+                    *a += c * pa;
+                }
+                let curvature = dot(&p, &ap);
+                if curvature.is_nan() || curvature <= 0.0 {
+                    break;
+                }
+                let step = rr / curvature;
+                for a in 0..k {
+                    y[a] += step * p[a];
+                    r[a] -= step * ap[a];
+                }
+                let rr_next = dot(&r, &r);
+                let ratio = rr_next / rr;
+                rr = rr_next;
+                for a in 0..k {
+                    p[a] = r[a] + ratio * p[a];
+                }
+            }
+            subspace.set_newton_step(&y);
+            let trial = armijo_on_arc(
+                self.lower,
+                self.upper,
+                self.disks,
+                &x,
+                &g,
+                &subspace.step,
+                |v| counted(v, &mut products),
+            )?;
+            let Some((trial, h_step)) = trial else {
+                // No decrease representable in floating point.
+                break;
+            };
+            for (gi, h) in g.iter_mut().zip(&h_step) {
+                *gi += h;
+            }
+            x = trial;
+        }
+        let hx: Vec<f64> = g.iter().zip(self.linear).map(|(g, d)| g + d).collect();
+        Ok(MprgpOutcome {
+            x,
+            hx,
+            iterations,
+            converged,
+        })
+    }
+}
+
+/// The largest forcing term of [`Mprgp::solve_by_newton`] (the first Newton step's).
+const ETA_MAX: f64 = 0.5;
+
 /// An estimate of `|H|_2` from below: the Rayleigh quotient of `iterations` power iterations
 /// from the vector of ones (close to the smoothest mode, which the largest eigenvalue of a
 /// Schur complement of the inverse stiffness belongs to).
@@ -339,8 +499,9 @@ mod tests {
         }
     }
 
-    /// Random positive definite problems with sign bounds, boxes and disks: MPGP finds the
-    /// minimiser the dense projected Newton method (an independent algorithm) finds.
+    /// Random positive definite problems with sign bounds, boxes and disks: MPGP and the
+    /// projected Newton method with conjugate gradients find the minimiser the dense projected
+    /// Newton method (direct Newton systems) finds.
     #[test]
     fn random_problems_give_the_projected_newton_minimiser() {
         let mut seed = 7u64;
@@ -386,21 +547,30 @@ mod tests {
                 disks: &disks,
             };
             let norm = norm_estimate(n, 10, product(&h)).unwrap();
-            let out = qp
+            let mpgp = qp
                 .solve(&vec![0.0; n], 1e-13, 20_000, norm, product(&h))
                 .unwrap();
-            assert!(out.converged, "case {case}: {} iterations", out.iterations);
+            let newton = qp
+                .solve_by_newton(&vec![0.0; n], 1e-13, 200, 20_000, norm, product(&h))
+                .unwrap();
             let scale = reference.x.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            for (x, y) in out.x.iter().zip(&reference.x) {
+            for (name, out) in [("MPGP", mpgp), ("Newton", newton)] {
                 assert!(
-                    (x - y).abs() <= 1e-9 * scale,
-                    "case {case}: {x} against {y}"
+                    out.converged,
+                    "{name}, case {case}: {} iterations",
+                    out.iterations
                 );
-            }
-            // Hx is H x.
-            let hx = product(&h)(&out.x).unwrap();
-            for (a, b) in out.hx.iter().zip(&hx) {
-                assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()));
+                for (x, y) in out.x.iter().zip(&reference.x) {
+                    assert!(
+                        (x - y).abs() <= 1e-9 * scale,
+                        "{name}, case {case}: {x} against {y}"
+                    );
+                }
+                // Hx is H x.
+                let hx = product(&h)(&out.x).unwrap();
+                for (a, b) in out.hx.iter().zip(&hx) {
+                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{name}");
+                }
             }
         }
     }
