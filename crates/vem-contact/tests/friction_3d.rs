@@ -519,21 +519,26 @@ fn coulomb_in_space_costs_one_factorisation_per_body() {
     }
 }
 
-/// The Coulomb fixed point with the iterative interface (MPGP on the Schur operator, warm
-/// started from step to step) and with the dense one: the same forces and displacements to
+/// The condensed solver's answer with the interface method `interface`.
+fn solve_with_interface(
+    problem: &ContactProblem<3>,
+    interface: InterfaceMethod,
+) -> ContactResult<3> {
+    let settings = CondensedSettings::builder()
+        .interface(interface)
+        .build()
+        .unwrap();
+    problem.solve(&mut CondensedSolver::new(settings)).unwrap()
+}
+
+/// The Coulomb fixed point with the iterative interface (projected Newton steps on the Schur
+/// operator, warm started from step to step) and with the dense one: the same forces and displacements to
 /// the certificate's tolerance, each certified, one factorisation per body either way.
 #[test]
 fn coulomb_in_space_is_the_same_with_the_iterative_interface() {
     let problem = stacked_blocks(Coulomb::try_new(COEFFICIENT).unwrap());
-    let solve = |interface| {
-        let settings = CondensedSettings::builder()
-            .interface(interface)
-            .build()
-            .unwrap();
-        problem.solve(&mut CondensedSolver::new(settings)).unwrap()
-    };
-    let dense = solve(InterfaceMethod::Dense);
-    let iterative = solve(InterfaceMethod::Iterative);
+    let dense = solve_with_interface(&problem, InterfaceMethod::Dense);
+    let iterative = solve_with_interface(&problem, InterfaceMethod::Iterative);
     assert_eq!(iterative.work.numeric_factorisations, 2);
     let (largest, largest_u) = largest_differences(&iterative, &dense);
     println!(
@@ -585,15 +590,8 @@ fn tresca_in_space_is_the_same_with_the_iterative_interface() {
         ("block on a plane", block_on_plane(steep_tresca(), SHEAR)),
         ("two blocks", stacked_blocks(variable_tresca())),
     ] {
-        let solve = |interface| {
-            let settings = CondensedSettings::builder()
-                .interface(interface)
-                .build()
-                .unwrap();
-            problem.solve(&mut CondensedSolver::new(settings)).unwrap()
-        };
-        let dense = solve(InterfaceMethod::Dense);
-        let iterative = solve(InterfaceMethod::Iterative);
+        let dense = solve_with_interface(&problem, InterfaceMethod::Dense);
+        let iterative = solve_with_interface(&problem, InterfaceMethod::Iterative);
         let (stick, slip) = stick_and_slip(&iterative);
         assert!(stick > 0 && slip > 0, "{name}: stick {stick}, slip {slip}");
         let (forces, displacements) = largest_differences(&iterative, &dense);

@@ -91,18 +91,8 @@ pub fn svg_document(
 /// A drawing failure.
 pub fn titled<'a>(area: &Area<'a>, text: &str) -> Result<Area<'a>, PlotError> {
     let room = ((area.dim_in_pixel().0 as f64 - 40.0) / 10.0).max(20.0) as usize;
-    let mut lines: Vec<String> = Vec::new();
-    for word in text.split_whitespace() {
-        match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= room => {
-                line.push(' ');
-                line.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
     let mut below = area.clone();
-    for line in &lines {
+    for line in &vem_mesh::io::wrap(text, room) {
         below = below.titled(line, (FONT, CAPTION_SIZE))?;
     }
     Ok(below)

@@ -65,6 +65,11 @@ pub(crate) struct Mprgp<'a> {
     pub disks: &'a [Disk],
 }
 
+/// `a . b`.
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
 /// The proportioning constant `Gamma` (Dostál's recommended value).
 const GAMMA: f64 = 1.0;
 /// The fixed step length relative to `1 / |H|` (in `(0, 2)`).
@@ -76,6 +81,16 @@ impl Mprgp<'_> {
     /// `P(x)`: the scalars clamped, the disks' points returned radially.
     fn project(&self, x: &mut [f64]) {
         project(self.lower, self.upper, self.disks, x);
+    }
+
+    /// True for the variables of a disk.
+    fn in_disk(&self) -> Vec<bool> {
+        let mut in_disk = vec![false; self.linear.len()];
+        for disk in self.disks {
+            in_disk[disk.first] = true;
+            in_disk[disk.first + 1] = true;
+        }
+        in_disk
     }
 
     /// The free gradient `phi` (the gradient on the free variables, zero elsewhere) and the
@@ -157,12 +172,7 @@ impl Mprgp<'_> {
         mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
     ) -> Result<MprgpOutcome, E> {
         let m = self.linear.len();
-        let mut in_disk = vec![false; m];
-        for disk in self.disks {
-            in_disk[disk.first] = true;
-            in_disk[disk.first + 1] = true;
-        }
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let in_disk = self.in_disk();
         let mut x = start.to_vec();
         self.project(&mut x);
         let linear = self.linear;
@@ -327,12 +337,7 @@ impl Mprgp<'_> {
         mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
     ) -> Result<MprgpOutcome, E> {
         let m = self.linear.len();
-        let mut in_disk = vec![false; m];
-        for disk in self.disks {
-            in_disk[disk.first] = true;
-            in_disk[disk.first + 1] = true;
-        }
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let in_disk = self.in_disk();
         let scaling = vec![if norm > 0.0 { 1.0 / norm } else { 1.0 }; m];
         let mut products = 0usize;
         let mut counted = |x: &[f64], products: &mut usize| {

@@ -53,7 +53,8 @@ pub use msh::{
 pub use polymesher::{read_polymesher, read_polymesher_bytes};
 #[cfg(feature = "svg")]
 pub use svg::{
-    write_svg, write_svg_layers, SvgLayer, SvgMarks, SvgOptions, EDGE_MIN_PIXELS, VECTOR_CELL_LIMIT,
+    wrap, write_svg, write_svg_layers, SvgLayer, SvgMarks, SvgOptions, EDGE_MIN_PIXELS,
+    VECTOR_CELL_LIMIT,
 };
 #[cfg(feature = "vtu")]
 pub use vtk::{

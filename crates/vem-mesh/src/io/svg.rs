@@ -601,8 +601,12 @@ fn title_room(width: f64) -> usize {
 }
 
 /// `text` broken at spaces into lines of at most `room` characters (a longer word on a line
-/// of its own): nothing is cut.
-fn wrap(text: &str, room: usize) -> Vec<String> {
+/// of its own): nothing is cut. The titles of every picture and plot of the workspace wrap so.
+///
+/// ```
+/// assert_eq!(vem_mesh::io::wrap("one two three", 7), vec!["one two", "three"]);
+/// ```
+pub fn wrap(text: &str, room: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split_whitespace() {
         match lines.last_mut() {
