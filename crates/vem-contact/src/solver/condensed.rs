@@ -38,8 +38,8 @@
 //! `lambda -> B K^-1 B' lambda`: each body is factorised in its best order (no trailing block)
 //! and the QP is solved by MPGP (`mprgp`; with friction in space by projected Newton steps
 //! along the rims whose Newton systems are solved by conjugate gradients, `mprgp`), one pair
-//! of triangular solves per body and product, warm-started like the dense QP; `B u = [g; s] + d - H lambda` comes from the
-//! last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
+//! of triangular solves per body and product, warm-started like the dense QP;
+//! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
 //! forced by the settings; a singular body makes the solver take the dense interface.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in

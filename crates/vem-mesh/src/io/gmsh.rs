@@ -65,12 +65,11 @@ pub fn read_gmsh(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
 /// Reads a 2D mesh from the contents of a Gmsh `.msh` file held in memory, exactly as
 /// [`read_gmsh`] does; `name` is the file name used in error messages.
 pub fn read_gmsh_bytes(bytes: &[u8], name: impl AsRef<Path>) -> Result<Mesh, MeshError> {
-    let fail = |reason: String| MeshError::Read {
+    let parsed = read_msh_bytes(bytes).map_err(|e| MeshError::Read {
         path: name.as_ref().to_path_buf(),
-        reason,
-    };
-    let parsed = read_msh_bytes(bytes).map_err(|e| fail(e.to_string()))?;
-    convert(&parsed).map_err(fail)
+        reason: e.to_string(),
+    })?;
+    mesh_from_msh(&parsed, name)
 }
 
 /// The 2D mesh of an already parsed Gmsh file, exactly as [`read_gmsh_bytes`] makes it from

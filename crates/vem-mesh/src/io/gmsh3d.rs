@@ -112,12 +112,11 @@ pub fn read_gmsh_polyhedral_bytes(
     bytes: &[u8],
     name: impl AsRef<Path>,
 ) -> Result<PolyhedralMesh, MeshError> {
-    let fail = |reason: String| MeshError::Read {
+    let parsed = read_msh_bytes(bytes).map_err(|e| MeshError::Read {
         path: name.as_ref().to_path_buf(),
-        reason,
-    };
-    let parsed = read_msh_bytes(bytes).map_err(|e| fail(e.to_string()))?;
-    convert(&parsed).map_err(fail)
+        reason: e.to_string(),
+    })?;
+    polyhedral_mesh_from_msh(&parsed, name)
 }
 
 /// The 3D mesh of an already parsed Gmsh file, exactly as [`read_gmsh_polyhedral_bytes`]
