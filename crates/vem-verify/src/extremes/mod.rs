@@ -213,6 +213,21 @@ fn shipped_scenes() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../vem-cli/scenes")
 }
 
+/// The name of the condensed solver with its interface forced to the iterative method (MPGP
+/// on the Schur operator, projected Newton steps with friction) in the rows in space, whose
+/// interfaces are small enough for the default to choose the dense one.
+pub const ITERATIVE_INTERFACE: &str = "condensed-iterative";
+
+/// The solvers of the rows in space: those of `size`, and the condensed solver's iterative
+/// interface ([`ITERATIVE_INTERFACE`]) when the condensed solver is among them.
+pub(crate) fn space_solvers(size: &Size) -> Vec<String> {
+    let mut solvers = size.solvers.clone();
+    if solvers.iter().any(|s| s == "condensed") {
+        solvers.push(ITERATIVE_INTERFACE.to_string());
+    }
+    solvers
+}
+
 /// Every solver of the registry.
 pub fn solver_names() -> Vec<String> {
     SolverRegistry::builtin()
@@ -261,9 +276,14 @@ pub(crate) fn solve<const D: usize>(
     solver: &str,
     options: &Options,
 ) -> Result<ContactResult<D>, String> {
-    let mut solver = SolverRegistry::builtin()
-        .make(solver, options)
-        .map_err(|e| chain(&e))?;
+    let registry = SolverRegistry::builtin();
+    let made = if solver == ITERATIVE_INTERFACE {
+        let options = options.clone().with("interface", "iterative");
+        registry.make("condensed", &options)
+    } else {
+        registry.make(solver, options)
+    };
+    let mut solver = made.map_err(|e| chain(&e))?;
     problem
         .solve(solver.as_mut())
         .map_err(|e: ContactError| chain(&e))

@@ -10,7 +10,7 @@
 
 use std::sync::Arc;
 
-use super::{chain, judge, locking_row, patch_tolerance, solve, Outcome, Row, Size};
+use super::{chain, judge, locking_row, patch_tolerance, solve, space_solvers, Outcome, Row, Size};
 use crate::exact::Lame;
 use crate::three_d::{solve_solid, DivergenceFreeSolid, SOLID_SEED};
 use vem_contact::{ContactProblem, ContactResult, Coulomb, Frictionless, Tresca};
@@ -262,15 +262,15 @@ fn stack_row(name: String, stack: &Stack, size: &Size) -> Row {
             patch_tolerance(""),
             patch_tolerance("penalty")
         ),
-        outcomes: size
-            .solvers
+        outcomes: space_solvers(size)
             .iter()
             .map(|s| stack.judge(size.solid_patch, s))
             .collect(),
     }
 }
 
-/// The contact patch test in space at the extremes, by every solver: stiffness contrast
+/// The contact patch test in space at the extremes, by every solver (and the condensed
+/// solver's iterative interface, [`super::ITERATIVE_INTERFACE`]): stiffness contrast
 /// 1e+-8, lengths 1e+-6 and moduli 1e-9, nu = 0.49999, thin blocks (flat cells of aspect
 /// 1e-3 and 1e-6), distorted cells (warped hexahedra on Voronoi cells).
 pub fn solid_contact(size: &Size) -> Vec<Row> {
@@ -500,7 +500,8 @@ const FRICTION_LAWS: [(&str, FrictionLaw); 6] = [
     ("Coulomb F huge (stick)", FrictionLaw::Coulomb(f64::NAN)),
 ];
 
-/// Friction in space at the extremes, by every solver: the stacked non-matching blocks pressed
+/// Friction in space at the extremes, by every solver (and the condensed solver's iterative
+/// interface): the stacked non-matching blocks pressed
 /// and sheared (the exact answer: the uniform state `sigma_zz = -p`, `sigma_xz = tau` with the
 /// stick shear or the bound), Tresca and Coulomb with the bound 0, half the stick shear and
 /// `1e8 p`, at stiffness contrast 1e+-8, lengths 1e+-6 and moduli 1e-9, and nu = 0.49999 with
@@ -574,8 +575,7 @@ pub fn solid_friction(size: &Size) -> Vec<Row> {
                     patch_tolerance(""),
                     patch_tolerance("penalty")
                 ),
-                outcomes: size
-                    .solvers
+                outcomes: space_solvers(size)
                     .iter()
                     .map(|s| sheared.judge(size.solid_patch, s))
                     .collect(),
