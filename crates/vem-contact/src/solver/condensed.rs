@@ -39,8 +39,10 @@
 //! and the QP is solved by MPGP (`mprgp`; with friction in space by projected Newton steps
 //! along the rims whose Newton systems are solved by conjugate gradients, `mprgp`), one pair
 //! of triangular solves per body and product, warm-started like the dense QP;
-//! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size for frictionless problems ([`ITERATIVE_FROM`]) or
-//! forced by the settings; a singular body makes the solver take the dense interface.
+//! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size
+//! ([`ITERATIVE_FROM`] interface unknowns without friction, [`ITERATIVE_WITH_FRICTION_FROM`]
+//! with friction) or forced by the settings; a singular body makes the solver take the dense
+//! interface.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
@@ -119,20 +121,30 @@ pub enum InterfaceMethod {
     /// conjugate gradients on the products. Its cost grows with the products times the cost
     /// of a solve.
     Iterative,
-    /// [`InterfaceMethod::Iterative`] for frictionless problems from [`ITERATIVE_FROM`]
-    /// interface unknowns (summed over the bodies), [`InterfaceMethod::Dense`] otherwise (with
-    /// friction the iterative interface's Newton systems, solved by conjugate gradients
-    /// without a preconditioner, cost about as much as the dense interface for Tresca at 1e5
-    /// unknowns and far more for a Coulomb fixed point: measured in docs/contact-3d.md,
-    /// section 7). The default.
+    /// [`InterfaceMethod::Iterative`] from [`ITERATIVE_FROM`] interface unknowns (summed
+    /// over the bodies) for frictionless problems and from [`ITERATIVE_WITH_FRICTION_FROM`]
+    /// with friction, [`InterfaceMethod::Dense`] below (with friction the iterative
+    /// interface's Newton systems, solved by conjugate gradients without a preconditioner,
+    /// cost more than the dense interface up to about 7 000 interface unknowns for Tresca and
+    /// up to about 40 000 for a Coulomb fixed point, whose later steps the dense interface
+    /// solves cheaply; measured in docs/contact-3d.md, section 7). The default.
     #[default]
     Auto,
 }
 
 /// The number of interface unknowns (summed over the bodies) from which
-/// [`InterfaceMethod::Auto`] chooses the iterative interface (see docs/contact-3d.md,
-/// section 7, for the measurements behind it).
+/// [`InterfaceMethod::Auto`] chooses the iterative interface for frictionless problems (see
+/// docs/contact-3d.md, section 7, for the measurements behind it).
 pub const ITERATIVE_FROM: usize = 4000;
+
+/// The number of interface unknowns from which [`InterfaceMethod::Auto`] chooses the
+/// iterative interface for problems with friction. Measured at 5 043 and 9 747 interface
+/// unknowns (docs/contact-3d.md, section 7), Tresca's crossover lies near 7 000 and a Coulomb
+/// fixed point's, extrapolated (the dense time growing like `m^2.5`, the iterative like
+/// `m^2`), near 40 000; between them the dense interface's `H` and trailing block take
+/// `16 m^2` bytes, 6.4 GB at 20 000, the point from which its memory outweighs the time
+/// Coulomb would lose (at most 1.5 times).
+pub const ITERATIVE_WITH_FRICTION_FROM: usize = 20_000;
 
 impl Default for CondensedSettings {
     /// Relative tolerance `1e-12` on the projected gradient of the interface problem, at most
@@ -431,8 +443,14 @@ impl Factors {
             InterfaceMethod::Dense => false,
             InterfaceMethod::Iterative => true,
             // Friction: the iterative interface's Newton systems (conjugate gradients without a
-            // preconditioner) cost more than the dense interface, measured up to 1e5 unknowns.
-            InterfaceMethod::Auto => unknowns >= ITERATIVE_FROM && system.friction().is_none(),
+            // preconditioner) cost more than the dense interface up to larger interfaces.
+            InterfaceMethod::Auto => {
+                let from = match system.friction() {
+                    None => ITERATIVE_FROM,
+                    Some(_) => ITERATIVE_WITH_FRICTION_FROM,
+                };
+                unknowns >= from
+            }
         };
         if iterative {
             if let Some(factors) =

@@ -44,7 +44,7 @@ mod system;
 pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolver};
 pub use condensed::{
     CondensedSettings, CondensedSettingsBuilder, CondensedSolver, InterfaceMethod,
-    ITERATIONS_PER_STEP, ITERATIVE_FROM,
+    ITERATIONS_PER_STEP, ITERATIVE_FROM, ITERATIVE_WITH_FRICTION_FROM,
 };
 pub use error::{ContactSolverError, SettingsError};
 #[cfg(feature = "clarabel")]
