@@ -78,6 +78,18 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// `H x` by `apply`, or zero without a product when `x = 0` (a cold start).
+fn product_at<E>(
+    x: &[f64],
+    apply: impl FnOnce(&[f64]) -> Result<Vec<f64>, E>,
+) -> Result<Vec<f64>, E> {
+    if x.iter().all(|&v| v == 0.0) {
+        Ok(vec![0.0; x.len()])
+    } else {
+        apply(x)
+    }
+}
+
 /// The proportioning constant `Gamma` (Dostál's recommended value).
 const GAMMA: f64 = 1.0;
 /// The fixed step length relative to `1 / |H|` (in `(0, 2)`).
@@ -188,12 +200,7 @@ impl Mprgp<'_> {
         self.project(&mut x);
         let linear = self.linear;
         let gradient_at = |apply: &mut Product<'_, E>, x: &[f64]| -> Result<Vec<f64>, E> {
-            // H 0 = 0 without a product (a cold start).
-            let mut g = if x.iter().all(|&v| v == 0.0) {
-                vec![0.0; x.len()]
-            } else {
-                apply(x)?
-            };
+            let mut g = product_at(x, |x| apply(x))?;
             for (gi, di) in g.iter_mut().zip(linear) {
                 *gi -= di;
             }
@@ -374,8 +381,10 @@ impl Mprgp<'_> {
         let scaling = vec![if norm > 0.0 { 1.0 / norm } else { 1.0 }; m];
         let mut products = 0usize;
         let mut counted = |x: &[f64], products: &mut usize| {
-            *products += 1;
-            apply(x)
+            product_at(x, |x| {
+                *products += 1;
+                apply(x)
+            })
         };
         let mut x = start.to_vec();
         self.project(&mut x);
@@ -385,11 +394,7 @@ impl Mprgp<'_> {
                 .map(|(h, d)| h - d)
                 .collect()
         };
-        let mut g = if x.iter().all(|&v| v == 0.0) {
-            gradient_at(vec![0.0; m])
-        } else {
-            gradient_at(counted(&x, &mut products)?)
-        };
+        let mut g = gradient_at(counted(&x, &mut products)?);
         let mut iterations = 0;
         let mut converged = false;
         let (mut previous, mut eta) = (f64::NAN, ETA_MAX);
