@@ -110,7 +110,7 @@ pub use ordering::elimination_order;
 pub use post::{ElementField, PartReaction, Solution};
 pub use solver::{
     CholeskyAnalysis, CholeskyFactor, CholeskySettings, CholeskySettingsBuilder, CholeskySolver,
-    FactorStatistics, FactorisationParallelism, LinearSolver, Ordering,
+    FactorStatistics, FactorisationParallelism, LinearSolver, Ordering, SolveSupport,
 };
 #[cfg(feature = "testkit")]
 pub mod testkit;

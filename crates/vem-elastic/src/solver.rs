@@ -18,7 +18,7 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
 
 use crate::ordering::elimination_order;
 pub use crate::ordering::Ordering;
@@ -634,6 +634,234 @@ impl CholeskySolver {
         }
         Ok(())
     }
+
+    /// The part of the factor that solves with a right-hand side on `unknowns` reach, for
+    /// [`CholeskySolver::solve_on_support`]: made once per set of unknowns (a contact
+    /// interface), used for every solve on it.
+    ///
+    /// # Errors
+    /// [`SolveError::OutOfOrder`] before an analysis, [`SolveError::Mismatch`] for an unknown
+    /// out of range.
+    pub fn support(&self, unknowns: &[usize]) -> Result<SolveSupport, SolveError> {
+        let Some(analysis) = &self.analysis else {
+            return Err(SolveError::OutOfOrder {
+                reason: "support before an analysis",
+            });
+        };
+        SolveSupport::new(analysis, unknowns)
+    }
+
+    /// `(K^-1 b)` at the support's unknowns for a `b` that vanishes outside them: `values`
+    /// holds `b` on the unknowns (in the order [`CholeskySolver::support`] was given them)
+    /// and receives the solution there. The forward substitution of such a `b` is non-zero
+    /// only on the elimination-tree ancestors of its unknowns, and the solution at them needs
+    /// the backward substitution only there: both run over the supernodes of those ancestors
+    /// ([`SolveSupport::reached_fraction`] of the factor's entries), the rest of the factor
+    /// is not read. Equal to a full solve up to round-off (a test).
+    ///
+    /// # Errors
+    /// [`SolveError::OutOfOrder`] before a factorisation, [`SolveError::Mismatch`] for a
+    /// support of another analysis or values of the wrong length.
+    pub fn solve_on_support(
+        &self,
+        support: &SolveSupport,
+        values: &mut [f64],
+    ) -> Result<(), SolveError> {
+        let Some(factor) = &self.factor else {
+            return Err(SolveError::OutOfOrder {
+                reason: "solve before a successful factorise",
+            });
+        };
+        let analysis = &factor.analysis;
+        if !Arc::ptr_eq(analysis, &support.analysis) || values.len() != support.unknowns.len() {
+            return Err(SolveError::Mismatch {
+                reason: format!(
+                    "{} values for a support of {} unknowns{}",
+                    values.len(),
+                    support.unknowns.len(),
+                    if Arc::ptr_eq(analysis, &support.analysis) {
+                        ""
+                    } else {
+                        " made on another analysis"
+                    }
+                ),
+            });
+        }
+        let SymbolicCholeskyRaw::Supernodal(s) = analysis.symbolic.raw() else {
+            // The simplicial factor (small systems): a full solve.
+            let mut x = vec![0.0; analysis.n];
+            for (&i, &v) in support.unknowns.iter().zip(values.iter()) {
+                x[i] = v;
+            }
+            self.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, analysis.n, 1))?;
+            for (&i, v) in support.unknowns.iter().zip(values.iter_mut()) {
+                *v = x[i];
+            }
+            return Ok(());
+        };
+        let l = SupernodalLltRef::new(s, &factor.values);
+        let par = self.settings.solve_parallelism;
+        // Entries outside the reached supernodes are never read or written.
+        let mut x = Mat::<f64>::zeros(analysis.n, 1);
+        for (&p, &v) in support.positions.iter().zip(values.iter()) {
+            x[(p, 0)] = v;
+        }
+        let mut tmp = vec![0.0; support.longest_pattern];
+        // L z = b over the reached supernodes, in elimination order.
+        for &k in &support.supernodes {
+            let node = l.supernode(k);
+            let (start, block, pattern) = (node.start(), node.val(), node.pattern());
+            let width = block.ncols();
+            let (top, bottom) = block.split_at_row(width);
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+                top,
+                x.as_mut().subrows_mut(start, width),
+                par,
+            );
+            let below =
+                MatMut::from_column_major_slice_mut(&mut tmp[..pattern.len()], pattern.len(), 1);
+            faer::linalg::matmul::matmul(
+                below,
+                faer::Accum::Replace,
+                bottom,
+                x.as_ref().subrows(start, width),
+                1.0,
+                par,
+            );
+            for (&i, &t) in pattern.iter().zip(&tmp) {
+                x[(i, 0)] -= t;
+            }
+        }
+        // L' x = z over the same supernodes, backwards: the solution at the support's
+        // unknowns needs it only at their ancestors.
+        for &k in support.supernodes.iter().rev() {
+            let node = l.supernode(k);
+            let (start, block, pattern) = (node.start(), node.val(), node.pattern());
+            let width = block.ncols();
+            let (top, bottom) = block.split_at_row(width);
+            for (t, &i) in tmp.iter_mut().zip(pattern) {
+                *t = x[(i, 0)];
+            }
+            let above = MatRef::from_column_major_slice(&tmp[..pattern.len()], pattern.len(), 1);
+            faer::linalg::matmul::matmul(
+                x.as_mut().subrows_mut(start, width),
+                faer::Accum::Add,
+                bottom.transpose(),
+                above,
+                -1.0,
+                par,
+            );
+            faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+                top.transpose(),
+                x.as_mut().subrows_mut(start, width),
+                par,
+            );
+        }
+        for (&p, v) in support.positions.iter().zip(values.iter_mut()) {
+            *v = x[(p, 0)];
+        }
+        Ok(())
+    }
+}
+
+/// The unknowns of a sparse right-hand side and the supernodes of the factor that solves with
+/// it reach (the unknowns' ancestors in the supernodal elimination tree), for
+/// [`CholeskySolver::solve_on_support`].
+#[derive(Debug, Clone)]
+pub struct SolveSupport {
+    analysis: Arc<CholeskyAnalysis>,
+    /// The unknowns, in the caller's order and numbering.
+    unknowns: Vec<usize>,
+    /// Their positions in the elimination order.
+    positions: Vec<usize>,
+    /// The reached supernodes, ascending (empty for a simplicial factor).
+    supernodes: Vec<usize>,
+    /// The longest row pattern below a reached supernode.
+    longest_pattern: usize,
+    /// Factor entries in the reached supernodes.
+    reached_entries: usize,
+}
+
+impl SolveSupport {
+    fn new(analysis: &Arc<CholeskyAnalysis>, unknowns: &[usize]) -> Result<Self, SolveError> {
+        let n = analysis.n;
+        let mut position = vec![0usize; n];
+        for (new, &old) in analysis.elimination_order().iter().enumerate() {
+            position[old] = new;
+        }
+        let positions = unknowns
+            .iter()
+            .map(|&i| {
+                position
+                    .get(i)
+                    .copied()
+                    .ok_or_else(|| SolveError::Mismatch {
+                        reason: format!("unknown {i} of a support for a system of {n}"),
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut support = Self {
+            analysis: Arc::clone(analysis),
+            unknowns: unknowns.to_vec(),
+            positions,
+            supernodes: Vec::new(),
+            longest_pattern: 0,
+            reached_entries: analysis.factor_entries(),
+        };
+        let SymbolicCholeskyRaw::Supernodal(s) = analysis.symbolic.raw() else {
+            return Ok(support);
+        };
+        let (begin, end) = (s.supernode_begin(), s.supernode_end());
+        let mut owner = vec![0usize; n];
+        for k in 0..s.n_supernodes() {
+            owner[begin[k]..end[k]].fill(k);
+        }
+        let (ptr, rows) = (s.col_ptr_for_row_idx(), s.row_idx());
+        // The supernodal elimination tree: a supernode's parent owns its first row below.
+        let parent = |k: usize| (ptr[k] < ptr[k + 1]).then(|| owner[rows[ptr[k]]]);
+        let mut reached = vec![false; s.n_supernodes()];
+        for &p in &support.positions {
+            let mut k = Some(owner[p]);
+            while let Some(node) = k {
+                if reached[node] {
+                    break;
+                }
+                reached[node] = true;
+                k = parent(node);
+            }
+        }
+        support.supernodes = (0..s.n_supernodes()).filter(|&k| reached[k]).collect();
+        support.longest_pattern = support
+            .supernodes
+            .iter()
+            .map(|&k| ptr[k + 1] - ptr[k])
+            .max()
+            .unwrap_or(0);
+        support.reached_entries = support
+            .supernodes
+            .iter()
+            .map(|&k| {
+                let width = end[k] - begin[k];
+                width * (width + ptr[k + 1] - ptr[k])
+            })
+            .sum();
+        Ok(support)
+    }
+
+    /// The support's unknowns.
+    pub fn unknowns(&self) -> &[usize] {
+        &self.unknowns
+    }
+
+    /// The fraction of the factor's entries a solve on the support reads (1 for a simplicial
+    /// factor, solved whole).
+    pub fn reached_fraction(&self) -> f64 {
+        let total = self.analysis.factor_entries();
+        if total == 0 {
+            return 1.0;
+        }
+        (self.reached_entries as f64 / total as f64).min(1.0)
+    }
 }
 
 /// Multiply-adds of the numeric factorisation: `sum_j c_j^2` over the stored columns.
@@ -1135,6 +1363,69 @@ mod tests {
                 for (a, e) in x.iter().zip(&full) {
                     assert!((a - e).abs() < 1e-12 * scale, "{a} vs {e}");
                 }
+            }
+        }
+        assert_eq!(
+            kinds,
+            [true, true],
+            "both simplicial and supernodal factors"
+        );
+    }
+
+    /// A solve on a support (one side of the grid and a few scattered unknowns) equals the
+    /// full solve there, on simplicial and supernodal factors, in every ordering; a support of
+    /// another analysis is refused.
+    #[test]
+    fn a_solve_on_a_support_equals_the_full_solve_there() {
+        let mut kinds = [false; 2];
+        for n in [6, 40, 120] {
+            let k = grid(n);
+            let size = k.nrows();
+            let unknowns: Vec<usize> = (0..n).rev().chain([size / 2, size - 1, 7]).collect();
+            for ordering in [Ordering::Amd, Ordering::Natural] {
+                let settings = CholeskySettings::builder()
+                    .ordering(ordering)
+                    .build()
+                    .unwrap();
+                let mut solver = CholeskySolver::new(settings);
+                solver.analyse(k.symbolic()).unwrap();
+                solver.factorise(k.as_ref()).unwrap();
+                let supernodal = solver.is_supernodal().unwrap();
+                kinds[usize::from(supernodal)] = true;
+                let support = solver.support(&unknowns).unwrap();
+                assert_eq!(support.unknowns(), &unknowns[..]);
+                let fraction = support.reached_fraction();
+                assert!(fraction > 0.0 && fraction <= 1.0, "{fraction}");
+                let values: Vec<f64> = (0..unknowns.len())
+                    .map(|p| (p as f64 * 0.7).sin() + 0.1)
+                    .collect();
+                let mut b = vec![0.0; size];
+                for (&i, &v) in unknowns.iter().zip(&values) {
+                    b[i] = v;
+                }
+                let full = solver.solve(&b).unwrap();
+                let mut on_support = values.clone();
+                solver.solve_on_support(&support, &mut on_support).unwrap();
+                let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for (&i, a) in unknowns.iter().zip(&on_support) {
+                    assert!((a - full[i]).abs() < 1e-13 * scale, "{a} vs {}", full[i]);
+                }
+                // The other analysis' support, or too few values: refused.
+                let mut other = CholeskySolver::default();
+                other.analyse(k.symbolic()).unwrap();
+                other.factorise(k.as_ref()).unwrap();
+                assert!(matches!(
+                    other.solve_on_support(&support, &mut on_support),
+                    Err(SolveError::Mismatch { .. })
+                ));
+                assert!(matches!(
+                    solver.solve_on_support(&support, &mut on_support[1..]),
+                    Err(SolveError::Mismatch { .. })
+                ));
+                assert!(matches!(
+                    solver.support(&[size]),
+                    Err(SolveError::Mismatch { .. })
+                ));
             }
         }
         assert_eq!(

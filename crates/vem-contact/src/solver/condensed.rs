@@ -74,7 +74,9 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-use vem_elastic::{CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError};
+use vem_elastic::{
+    CholeskyAnalysis, CholeskySettings, CholeskySolver, LinearSolver, SolveError, SolveSupport,
+};
 
 use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
@@ -344,6 +346,9 @@ struct BodyFactor {
     _shared: Option<Arc<BlockFactor>>,
     /// The body's interface unknowns (local numbering, in trailing order).
     interface: Vec<usize>,
+    /// The iterative interface: the part of the factor a solve on the interface unknowns
+    /// reaches (`None` for the dense interface).
+    support: Option<SolveSupport>,
     /// `L_GG`, the trailing block of the factor (empty without interface unknowns): the
     /// forward substitution of a right-hand side on the interface unknowns.
     trailing: Mat<f64>,
@@ -543,6 +548,7 @@ impl Factors {
                         Some(BodyFactor {
                             offset,
                             n: k.nrows(),
+                            support: Some(cholesky.support(&interface).map_err(backend)?),
                             cholesky,
                             _shared: None,
                             interface,
@@ -599,7 +605,7 @@ impl Factors {
                 }
             }
         }
-        self.solve(&mut load, work)?;
+        self.solve_at_interface(&mut load, work)?;
         Ok(rows
             .iter()
             .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * load[c]).sum())
@@ -730,6 +736,7 @@ impl BodyPart {
                 cholesky,
                 _shared: Some(block_factor),
                 interface,
+                support: None,
                 trailing,
                 proximal,
             }),
@@ -788,10 +795,8 @@ fn factorise_or_shift(
 }
 
 impl Factors {
-    /// `K_s^-1 x`, the bodies in parallel (their blocks are independent).
-    fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
-        let start = Instant::now();
-        // The bodies' parts of x, in the order of the bodies (consecutive blocks).
+    /// The bodies' parts of `x`, in the order of the bodies (consecutive blocks).
+    fn parts<'a>(&'a self, x: &'a mut [f64]) -> Vec<(&'a BodyFactor, &'a mut [f64])> {
         let mut parts = Vec::with_capacity(self.bodies.len());
         let mut rest = x;
         let mut position = 0;
@@ -803,6 +808,46 @@ impl Factors {
             position = body.offset + body.n;
         }
         parts
+    }
+
+    /// `(K_s^-1 x)` at the interface unknowns for an `x` that vanishes outside them, the
+    /// bodies in parallel, each by [`CholeskySolver::solve_on_support`] (the iterative
+    /// interface): the supernodes that the interface unknowns do not reach are not read.
+    /// Entries of `x` outside the interface unknowns are left as they were.
+    fn solve_at_interface(
+        &self,
+        x: &mut [f64],
+        work: &mut WorkCounters,
+    ) -> Result<(), ContactSolverError> {
+        let start = Instant::now();
+        self.parts(x)
+            .into_par_iter()
+            .map(|(body, part)| {
+                let Some(support) = &body.support else {
+                    return body
+                        .cholesky
+                        .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                        .map_err(backend);
+                };
+                let mut values: Vec<f64> = body.interface.iter().map(|&i| part[i]).collect();
+                body.cholesky
+                    .solve_on_support(support, &mut values)
+                    .map_err(backend)?;
+                for (&i, v) in body.interface.iter().zip(values) {
+                    part[i] = v;
+                }
+                Ok(())
+            })
+            .collect::<Result<Vec<()>, _>>()?;
+        work.triangular_solves += self.bodies.len();
+        work.times.solves += start.elapsed();
+        Ok(())
+    }
+
+    /// `K_s^-1 x`, the bodies in parallel (their blocks are independent).
+    fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
+        let start = Instant::now();
+        self.parts(x)
             .into_par_iter()
             .map(|(body, part)| {
                 body.cholesky
@@ -825,17 +870,7 @@ impl Factors {
         work: &mut WorkCounters,
     ) -> Result<(), ContactSolverError> {
         let start = Instant::now();
-        let mut parts = Vec::with_capacity(self.bodies.len());
-        let mut rest = x;
-        let mut position = 0;
-        for body in &self.bodies {
-            let (_, tail) = rest.split_at_mut(body.offset - position);
-            let (part, tail) = tail.split_at_mut(body.n);
-            parts.push((body, part));
-            rest = tail;
-            position = body.offset + body.n;
-        }
-        parts
+        self.parts(x)
             .into_par_iter()
             .map(|(body, part)| {
                 if body.interface.is_empty() {
