@@ -148,6 +148,10 @@ pub const ITERATIVE_FROM: usize = 4000;
 /// Coulomb would lose (at most 1.5 times).
 pub const ITERATIVE_WITH_FRICTION_FROM: usize = 20_000;
 
+/// The loosest tolerance of the interface problem that [`ContactSolver::solve_forces`]
+/// accepts from a caller's `accuracy`.
+const LOOSEST_TOLERANCE: f64 = 1e-3;
+
 impl Default for CondensedSettings {
     /// Relative tolerance `1e-12` on the projected gradient of the interface problem, at most
     /// 200 projected Newton steps, the default sparse Cholesky settings.
@@ -1752,12 +1756,18 @@ impl ContactSolver for CondensedSolver {
 
     /// The forces of the interface answer and `B u = [g; s] + d - H lambda` (the gap and the
     /// reference slip less the dual gradient), without the back substitution: interface work
-    /// only once `u0` is known.
+    /// only once `u0` is known. The interface problem stops at `accuracy` where it is looser
+    /// than the settings' tolerance (at most [`LOOSEST_TOLERANCE`]).
     fn solve_forces(
         &mut self,
         system: &ContactSystem<'_>,
+        accuracy: f64,
     ) -> Result<ContactForces, ContactSolverError> {
-        let (interface, u0, start, mut work) = match self.interface_stage(system)? {
+        let tolerance = self.settings.tolerance;
+        self.settings.tolerance = tolerance.max(accuracy.min(LOOSEST_TOLERANCE));
+        let stage = self.interface_stage(system);
+        self.settings.tolerance = tolerance;
+        let (interface, u0, start, mut work) = match stage? {
             Stage::Done(solution) => return Ok(ContactForces::of_solution(system, solution)),
             Stage::Interface {
                 interface,

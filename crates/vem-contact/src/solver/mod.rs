@@ -137,12 +137,19 @@ pub trait ContactSolver {
     /// answer in [`ContactForces::solution`]. These forces are not certified: the complete
     /// solve is.
     ///
+    /// `accuracy` is the relative accuracy the caller needs (`0`: the solver's own): an
+    /// iterative solver may stop at it where it is looser than its own tolerance (the condensed
+    /// solver does), so that the early steps of a fixed point, whose forces only make the next
+    /// step's bounds, cost less (an inexact fixed point). The default ignores it.
+    ///
     /// # Errors
     /// As [`ContactSolver::solve`].
     fn solve_forces(
         &mut self,
         system: &ContactSystem<'_>,
+        accuracy: f64,
     ) -> Result<ContactForces, ContactSolverError> {
+        let _ = accuracy;
         let solution = self.solve(system)?;
         Ok(ContactForces::of_solution(system, solution))
     }
