@@ -635,8 +635,8 @@ impl CholeskySolver {
         Ok(())
     }
 
-    /// The part of the factor that solves with a right-hand side on `unknowns` reach, for
-    /// [`CholeskySolver::solve_on_support`]: made once per set of unknowns (a contact
+    /// The part of the factor that a solve with its right-hand side on `unknowns` reaches,
+    /// for [`CholeskySolver::solve_on_support`]: made once per set of unknowns (a contact
     /// interface), used for every solve on it.
     ///
     /// # Errors

@@ -609,7 +609,7 @@ impl Factors {
                 }
             }
         }
-        self.solve_at_interface(&mut load, work)?;
+        self.solve_on_supports(&mut load, work)?;
         Ok(rows
             .iter()
             .map(|&(cols, values)| cols.iter().zip(values).map(|(&c, v)| v * load[c]).sum())
@@ -814,83 +814,80 @@ impl Factors {
         parts
     }
 
-    /// `(K_s^-1 x)` at the interface unknowns for an `x` that vanishes outside them, the
-    /// bodies in parallel, each by [`CholeskySolver::solve_on_support`] (the iterative
-    /// interface): the supernodes that the interface unknowns do not reach are not read.
-    /// Entries of `x` outside the interface unknowns are left as they were.
-    fn solve_at_interface(
+    /// `f(body, part)` on each body's part of `x`, the bodies in parallel (their blocks are
+    /// independent), counted as one triangular solve pair per body.
+    fn per_body(
         &self,
         x: &mut [f64],
         work: &mut WorkCounters,
+        f: impl Fn(&BodyFactor, &mut [f64]) -> Result<(), ContactSolverError> + Sync,
     ) -> Result<(), ContactSolverError> {
         let start = Instant::now();
         self.parts(x)
             .into_par_iter()
-            .map(|(body, part)| {
-                let Some(support) = &body.support else {
-                    return body
-                        .cholesky
-                        .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
-                        .map_err(backend);
-                };
-                let mut values: Vec<f64> = body.interface.iter().map(|&i| part[i]).collect();
-                body.cholesky
-                    .solve_on_support(support, &mut values)
-                    .map_err(backend)?;
-                for (&i, v) in body.interface.iter().zip(values) {
-                    part[i] = v;
-                }
-                Ok(())
-            })
+            .map(|(body, part)| f(body, part))
             .collect::<Result<Vec<()>, _>>()?;
         work.triangular_solves += self.bodies.len();
         work.times.solves += start.elapsed();
         Ok(())
     }
 
-    /// `K_s^-1 x`, the bodies in parallel (their blocks are independent).
+    /// `K_s^-1 x`.
     fn solve(&self, x: &mut [f64], work: &mut WorkCounters) -> Result<(), ContactSolverError> {
-        let start = Instant::now();
-        self.parts(x)
-            .into_par_iter()
-            .map(|(body, part)| {
-                body.cholesky
-                    .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
-                    .map_err(backend)
-            })
-            .collect::<Result<Vec<()>, _>>()?;
-        work.triangular_solves += self.bodies.len();
-        work.times.solves += start.elapsed();
-        Ok(())
+        self.per_body(x, work, |body, part| {
+            body.cholesky
+                .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                .map_err(backend)
+        })
     }
 
-    /// `K_s^-1 x` for an `x` that vanishes outside the interface unknowns, the bodies in
-    /// parallel: the forward substitution on the interface block (dense, with `L_GG`), then
-    /// the backward substitution of the body's factor
-    /// ([`CholeskySolver::solve_from_trailing`]), half a solve.
+    /// `(K_s^-1 x)` at the interface unknowns for an `x` that vanishes outside them, each body
+    /// by [`CholeskySolver::solve_on_support`] (the iterative interface: the supernodes the
+    /// interface unknowns do not reach are not read; a complete solve without a support).
+    /// Entries of `x` outside the interface unknowns are left as they were.
+    fn solve_on_supports(
+        &self,
+        x: &mut [f64],
+        work: &mut WorkCounters,
+    ) -> Result<(), ContactSolverError> {
+        self.per_body(x, work, |body, part| {
+            let Some(support) = &body.support else {
+                return body
+                    .cholesky
+                    .solve_in_place(MatMut::from_column_major_slice_mut(part, body.n, 1))
+                    .map_err(backend);
+            };
+            let mut values: Vec<f64> = body.interface.iter().map(|&i| part[i]).collect();
+            body.cholesky
+                .solve_on_support(support, &mut values)
+                .map_err(backend)?;
+            for (&i, v) in body.interface.iter().zip(values) {
+                part[i] = v;
+            }
+            Ok(())
+        })
+    }
+
+    /// `K_s^-1 x` for an `x` that vanishes outside the interface unknowns: the forward
+    /// substitution on the interface block (dense, with `L_GG`), then the backward
+    /// substitution of the body's factor ([`CholeskySolver::solve_from_trailing`]), half a
+    /// solve.
     fn solve_on_interface(
         &self,
         x: &mut [f64],
         work: &mut WorkCounters,
     ) -> Result<(), ContactSolverError> {
-        let start = Instant::now();
-        self.parts(x)
-            .into_par_iter()
-            .map(|(body, part)| {
-                if body.interface.is_empty() {
-                    part.fill(0.0);
-                    return Ok(());
-                }
-                let mut y =
-                    Mat::<f64>::from_fn(body.interface.len(), 1, |k, _| part[body.interface[k]]);
-                solve_lower_triangular_in_place(body.trailing.as_ref(), y.as_mut(), Par::Seq);
-                let y: Vec<f64> = (0..body.interface.len()).map(|k| y[(k, 0)]).collect();
-                body.cholesky.solve_from_trailing(&y, part).map_err(backend)
-            })
-            .collect::<Result<Vec<()>, _>>()?;
-        work.triangular_solves += self.bodies.len();
-        work.times.solves += start.elapsed();
-        Ok(())
+        self.per_body(x, work, |body, part| {
+            if body.interface.is_empty() {
+                part.fill(0.0);
+                return Ok(());
+            }
+            let mut y =
+                Mat::<f64>::from_fn(body.interface.len(), 1, |k, _| part[body.interface[k]]);
+            solve_lower_triangular_in_place(body.trailing.as_ref(), y.as_mut(), Par::Seq);
+            let y: Vec<f64> = (0..body.interface.len()).map(|k| y[(k, 0)]).collect();
+            body.cholesky.solve_from_trailing(&y, part).map_err(backend)
+        })
     }
 
     fn is_shifted(&self) -> bool {
