@@ -1754,7 +1754,7 @@ impl ContactSolver for CondensedSolver {
     /// The forces of the interface answer and `B u = [g; s] + d - H lambda` (the gap and the
     /// reference slip less the dual gradient), without the back substitution: interface work
     /// only once `u0` is known. The interface problem stops at `accuracy` where it is looser
-    /// than the settings' tolerance (at most [`LOOSEST_TOLERANCE`]).
+    /// than the settings' tolerance (at most `1e-3`).
     fn solve_forces(
         &mut self,
         system: &ContactSystem<'_>,
