@@ -41,7 +41,7 @@
 //! of triangular solves per body and product, warm-started like the dense QP;
 //! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size
 //! ([`ITERATIVE_FROM`] interface unknowns without friction, [`ITERATIVE_WITH_FRICTION_FROM`]
-//! with friction) or forced by the settings; a singular body makes the solver take the dense
+//! with friction in space, [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] in the plane) or forced by the settings; a singular body makes the solver take the dense
 //! interface.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
@@ -124,12 +124,10 @@ pub enum InterfaceMethod {
     /// of a solve.
     Iterative,
     /// [`InterfaceMethod::Iterative`] from [`ITERATIVE_FROM`] interface unknowns (summed
-    /// over the bodies) for frictionless problems and from [`ITERATIVE_WITH_FRICTION_FROM`]
-    /// with friction, [`InterfaceMethod::Dense`] below (with friction the iterative
-    /// interface's Newton systems, solved by conjugate gradients without a preconditioner,
-    /// cost more than the dense interface up to about 7 000 interface unknowns for Tresca and
-    /// up to about 40 000 for a Coulomb fixed point, whose later steps the dense interface
-    /// solves cheaply; measured in docs/contact-3d.md, section 7). The default.
+    /// over the bodies) for frictionless problems, from [`ITERATIVE_WITH_FRICTION_FROM`] with
+    /// friction in space and from [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] with friction
+    /// in the plane, [`InterfaceMethod::Dense`] below (measured in docs/contact-3d.md, section
+    /// 7). The default.
     #[default]
     Auto,
 }
@@ -140,13 +138,18 @@ pub enum InterfaceMethod {
 pub const ITERATIVE_FROM: usize = 4000;
 
 /// The number of interface unknowns from which [`InterfaceMethod::Auto`] chooses the
-/// iterative interface for problems with friction. Measured at 5 043 and 9 747 interface
-/// unknowns (docs/contact-3d.md, section 7), Tresca's crossover lies near 7 000 and a Coulomb
-/// fixed point's, extrapolated (the dense time growing like `m^2.5`, the iterative like
-/// `m^2`), near 40 000; between them the dense interface's `H` and trailing block take
-/// `16 m^2` bytes, 6.4 GB at 20 000, the point from which its memory outweighs the time
-/// Coulomb would lose (at most 1.5 times).
-pub const ITERATIVE_WITH_FRICTION_FROM: usize = 20_000;
+/// iterative interface for problems with friction in space (disks: projected Newton steps).
+/// Measured on a block pressed on a plane (docs/contact-3d.md, section 7): at 5 043 interface
+/// unknowns the iterative interface costs 4.24 elastic solves for Tresca against 5.28 dense,
+/// 9.24 for Coulomb against 8.66; at 9 747 Tresca 3.37 against 8.34, and the dense time grows
+/// like `m^2.5` (its `H` and trailing block take `16 m^2` bytes).
+pub const ITERATIVE_WITH_FRICTION_FROM: usize = 5_000;
+
+/// The number of interface unknowns from which [`InterfaceMethod::Auto`] chooses the
+/// iterative interface for problems with friction in the plane (boxes: MPGP). Not measured at
+/// such sizes; kept above the interfaces of the plane's benchmarks (about 5 700 interface
+/// unknowns at 8·10^6 unknowns), whose dense interface is cheap against the factorisation.
+pub const ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM: usize = 20_000;
 
 /// The loosest tolerance of the interface problem that [`ContactSolver::solve_forces`]
 /// accepts from a caller's `accuracy`.
@@ -451,12 +454,11 @@ impl Factors {
         let iterative = match settings.interface {
             InterfaceMethod::Dense => false,
             InterfaceMethod::Iterative => true,
-            // Friction: the iterative interface's Newton systems (conjugate gradients without a
-            // preconditioner) cost more than the dense interface up to larger interfaces.
             InterfaceMethod::Auto => {
                 let from = match system.friction() {
                     None => ITERATIVE_FROM,
-                    Some(_) => ITERATIVE_WITH_FRICTION_FROM,
+                    Some(friction) if friction.rows_per_node() == 2 => ITERATIVE_WITH_FRICTION_FROM,
+                    Some(_) => ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM,
                 };
                 unknowns >= from
             }

@@ -45,6 +45,7 @@ pub use active_set::{ActiveSetSettings, ActiveSetSettingsBuilder, ActiveSetSolve
 pub use condensed::{
     CondensedSettings, CondensedSettingsBuilder, CondensedSolver, InterfaceMethod,
     ITERATIONS_PER_STEP, ITERATIVE_FROM, ITERATIVE_WITH_FRICTION_FROM,
+    ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM,
 };
 pub use error::{ContactSolverError, SettingsError};
 #[cfg(feature = "clarabel")]
