@@ -785,10 +785,12 @@ pub struct SolveSupport {
 impl SolveSupport {
     fn new(analysis: &Arc<CholeskyAnalysis>, unknowns: &[usize]) -> Result<Self, SolveError> {
         let n = analysis.n;
-        let mut position = vec![0usize; n];
-        for (new, &old) in analysis.elimination_order().iter().enumerate() {
-            position[old] = new;
-        }
+        // Position `new` of the factor holds the original unknown `forward[new]`.
+        let (_, position) = analysis
+            .symbolic
+            .perm()
+            .expect("every analysis has an explicit permutation")
+            .arrays();
         let positions = unknowns
             .iter()
             .map(|&i| {

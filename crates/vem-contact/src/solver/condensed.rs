@@ -41,8 +41,8 @@
 //! of triangular solves per body and product, warm-started like the dense QP;
 //! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size
 //! ([`ITERATIVE_FROM`] interface unknowns without friction, [`ITERATIVE_WITH_FRICTION_FROM`]
-//! with friction in space, [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] in the plane) or forced by the settings; a singular body makes the solver take the dense
-//! interface.
+//! with friction in space, [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] in the plane) or
+//! forced by the settings; a singular body makes the solver take the dense interface.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
@@ -88,7 +88,7 @@ use super::report::{
     WorkCounters,
 };
 use super::shared::{self, BlockFactor, BlockKey, BlockOrder, FactorKey};
-use super::system::{ContactSystem, PatternId};
+use super::system::{matrix_entry, ContactSystem, PatternId};
 use super::{ContactForces, ContactSolution, ContactSolver};
 
 const NAME: &str = "condensed (interface Schur complement)";
@@ -1200,18 +1200,15 @@ fn lumped_scaling(
         let Some(block) = i.checked_sub(1).map(|i| &blocks[i]) else {
             return 0.0;
         };
-        let k = block.matrix();
+        let k = block.matrix().as_ref();
         let (a, Some(b)) = (a - block.offset(), b.checked_sub(block.offset())) else {
             return 0.0;
         };
         if a >= k.nrows() || b >= k.ncols() {
             return 0.0;
         }
-        let indices = k.row_idx_of_col_raw(b);
-        match indices.binary_search(&a) {
-            Ok(position) => k.val_of_col(b)[position],
-            Err(_) => 0.0,
-        }
+        let sorted = k.row_idx_of_col_raw(b).windows(2).all(|w| w[0] < w[1]);
+        matrix_entry(k, a, b, sorted)
     };
     let mut stiffness: Vec<f64> = rows
         .iter()

@@ -932,6 +932,28 @@ pub(crate) fn matrix_diagonal(k: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
         .collect()
 }
 
+/// The entry `(i, j)` of a sparse matrix (`0` outside its pattern), by bisection when its
+/// columns' rows are `sorted`, else by a scan that sums the copies unsorted storage may hold.
+pub(crate) fn matrix_entry(
+    k: SparseColMatRef<'_, usize, f64>,
+    i: usize,
+    j: usize,
+    sorted: bool,
+) -> f64 {
+    let range = k.col_range(j);
+    let (rows, values) = (&k.row_idx()[range.clone()], &k.val()[range]);
+    if sorted {
+        rows.binary_search(&i).map_or(0.0, |p| values[p])
+    } else {
+        // Unsorted storage may repeat an entry: sum the copies.
+        rows.iter()
+            .zip(values)
+            .filter(|(&r, _)| r == i)
+            .map(|(_, &v)| v)
+            .sum()
+    }
+}
+
 fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), ContactSystemError> {
     if expected == actual {
         Ok(())
@@ -962,21 +984,7 @@ fn check_stiffness(k: SparseColMatRef<'_, usize, f64>) -> Result<(), ContactSyst
     let tol = 1e-12 * scale;
     let sorted =
         (0..k.ncols()).all(|j| k.row_idx()[k.col_range(j)].windows(2).all(|w| w[0] < w[1]));
-    let entry = |i: usize, j: usize| -> f64 {
-        let range = k.col_range(j);
-        let rows = &k.row_idx()[range.clone()];
-        let vals = &k.val()[range];
-        if sorted {
-            rows.binary_search(&i).map_or(0.0, |p| vals[p])
-        } else {
-            // Unsorted storage may repeat an entry: sum the copies.
-            rows.iter()
-                .zip(vals)
-                .filter(|(&r, _)| r == i)
-                .map(|(_, &v)| v)
-                .sum()
-        }
-    };
+    let entry = |i: usize, j: usize| matrix_entry(k, i, j, sorted);
     for j in 0..k.ncols() {
         let range = k.col_range(j);
         for &i in &k.row_idx()[range] {
