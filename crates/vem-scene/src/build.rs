@@ -1065,6 +1065,9 @@ fn build_body(
         }
     }
     let mut builder = ElasticBody::builder(name.clone(), mesh, material, element);
+    if let Some(points) = spec.traction_points {
+        builder = builder.traction_points(points);
+    }
     for d in &spec.dirichlet {
         let component = match (&d.x, &d.y) {
             (Some(_), Some(_)) => Component::All,

@@ -690,6 +690,18 @@ fn check_body(scene: &Scene, body: &BodyDescription, path: &KeyPath) -> Result<(
             format!("body '{name}': give the material as `E` and `nu`, or as `lambda` and `mu`"),
         ));
     }
+    if let Some(points) = body.traction_points {
+        vem_space::quadrature::GaussLegendre::try_new(points).map_err(|_| {
+            SceneError::at(
+                path.at("traction_points"),
+                format!(
+                    "body '{name}': traction_points = {points}: give from 1 to {} Gauss-Legendre \
+                     points per edge",
+                    vem_space::quadrature::GaussLegendre::MAX_POINTS
+                ),
+            )
+        })?;
+    }
     for (k, t) in body.traction.iter().enumerate() {
         if t.value.is_some() == t.pressure.is_some() {
             return Err(SceneError::at(

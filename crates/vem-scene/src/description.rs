@@ -109,6 +109,12 @@ pub struct BodyDescription {
     /// Tractions by part (`[[body.traction]]`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub traction: Vec<TractionDescription>,
+    /// Gauss–Legendre points per boundary edge (in space: per direction of a face's
+    /// triangles) for its tractions, from 1 to
+    /// [`GaussLegendre::MAX_POINTS`](vem_space::quadrature::GaussLegendre::MAX_POINTS)
+    /// (default 2, exact for tractions quadratic along an edge).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traction_points: Option<usize>,
     /// A body force per unit area (per unit volume in 3D): `[fx, fy]` (`[fx, fy, fz]`),
     /// numbers or expressions.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -344,6 +344,9 @@ pub(crate) fn build_body(
     }
     let t = 1.0;
     let mut builder = ElasticBody::builder_polyhedral(name.clone(), mesh, material, element);
+    if let Some(points) = spec.traction_points {
+        builder = builder.traction_points(points);
+    }
     for d in &spec.dirichlet {
         let values = [d.x.clone(), d.y.clone(), d.z.clone()];
         let given: Vec<usize> = (0..3).filter(|&i| values[i].is_some()).collect();

@@ -58,6 +58,17 @@ pub enum VerifyError {
         #[source]
         source: Box<ElasticError>,
     },
+    /// The scene of the problem was refused when the model was built
+    /// ([`vem_scene::Model::build`]): an invalid material or setting, a side the mesh does not
+    /// name, inconsistent Dirichlet data, at the scene's key.
+    #[error("case {case}: the scene of the problem was refused")]
+    Scene {
+        /// The case's name.
+        case: String,
+        /// The scene's error, at its key.
+        #[source]
+        source: Box<vem_scene::SceneError>,
+    },
     /// Building or solving the contact problem failed.
     #[error("case {case}: the contact problem failed")]
     Contact {

@@ -1,14 +1,22 @@
 //! Discrete problems built from an exact solution, and their solution.
 //!
-//! For every body of an [`ExactSolution`]: a mesh of its domain, the material of
-//! [`ExactSolution::lame`] (plane strain), the exact displacement as Dirichlet data on the
-//! [`dirichlet_sides`](ExactSolution::dirichlet_sides), the exact traction `sigma nu` on the
-//! [`neumann_sides`](ExactSolution::neumann_sides) and the exact body force. A contact case
-//! (`ExactSolution::contact` is `Some`) becomes a [`ContactProblem`] between the bottom side
-//! of body one and the top side of body two ([`CONTACT_SIDES`]) with the case's law and its
-//! initial gap `h0(x)` as the imposed gap: the two sides coincide, so the geometric gap is zero
-//! and the total gap is `h0` (spec section 1). Bodies without an interface are solved one by
-//! one.
+//! The problem is a [`vem_scene::Scene`], built into a [`vem_scene::Model`] as the command line
+//! and the Python package build theirs. For every body of an [`ExactSolution`]: its mesh given
+//! inline, the material of [`ExactSolution::lame`] (`lambda`, `mu`, plane strain), the exact
+//! displacement as Dirichlet data on the [`dirichlet_sides`](ExactSolution::dirichlet_sides),
+//! the exact traction `sigma nu` on the [`neumann_sides`](ExactSolution::neumann_sides) with
+//! [`ProblemSettings::traction_points`] points per edge (the body's `traction_points`) and the
+//! exact body force, all three as functions ([`ScalarValue::function`],
+//! [`VectorValue::function`]). A contact case (`ExactSolution::contact` is `Some`) adds the
+//! pair between the bottom side of body one and the top side of body two ([`CONTACT_SIDES`])
+//! with the case's law (or [`ProblemSettings::law`]) and its initial gap `h0(x)` as the
+//! `imposed_gap`: the two sides coincide, so the geometric gap is zero and the total gap is `h0`
+//! (spec section 1). The element and the law are registered in the scene's registries under
+//! the names [`ELEMENT`] and [`LAW`] (the default element is the built-in `"vem1"`). Bodies
+//! without an interface are solved one by one.
+//!
+//! [`DiscreteProblem::scene`] shows the scene; its functions do not serialise, so it is looked
+//! at with `Debug` (they print as `<function>`) rather than written as a scene file.
 //!
 //! ```
 //! use std::sync::Arc;
@@ -23,6 +31,10 @@
 //! let solution = problem.solve(&mut ExactSolver::default())?;
 //! let errors = solution.errors(&**problem.exact())?;
 //! assert!(errors[0].grad < 1e-12 && errors[0].energy < 1e-12);
+//! // The problem is a scene: one body, its mesh inline, four traction points per edge.
+//! let body = &problem.scene().bodies[0];
+//! assert_eq!((body.name.as_str(), body.traction_points), ("PT0a-body-1", Some(4)));
+//! assert_eq!(body.mesh.polygons.as_ref().map(Vec::len), Some(9));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -33,9 +45,14 @@ use vem_contact::{
     BodyResult, ContactLaw, ContactProblem, ContactSolver, FixedPointReport, InterfaceNode,
     SolveReport, StageTimes, WorkCounters,
 };
-use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
-use vem_mesh::Mesh;
-use vem_space::{ElementSpace, LowestOrderVem};
+use vem_elastic::{CholeskySolver, ElasticBody};
+use vem_mesh::{Mesh, Point};
+use vem_scene::description::{
+    BodyDescription, ContactDescription, DirichletDescription, MaterialDescription,
+    PlaneDescription, TractionDescription,
+};
+use vem_scene::{BuildOptions, BuiltMesh, Model, Registries, ScalarValue, Scene, VectorValue};
+use vem_space::{Choice, ElementRegistry, ElementSpace, LowestOrderVem, RegistryError};
 
 use crate::exact::{BodyId, ExactSolution, CONTACT_SIDES};
 use crate::norms::{body_errors, ErrorNorms};
@@ -46,6 +63,8 @@ use crate::VerifyError;
 #[derive(Clone)]
 pub struct ProblemSettings {
     element: Arc<dyn ElementSpace>,
+    /// The element given by the user (registered under [`ELEMENT`]); `None`: the default.
+    given_element: Option<Arc<dyn ElementSpace>>,
     traction_points: usize,
     law: Option<Arc<dyn ContactLaw>>,
 }
@@ -87,7 +106,8 @@ impl ProblemSettings {
 
     /// The same settings with another element space.
     pub(crate) fn with_element(mut self, element: Arc<dyn ElementSpace>) -> Self {
-        self.element = element;
+        self.element = Arc::clone(&element);
+        self.given_element = Some(element);
         self
     }
 }
@@ -96,6 +116,7 @@ impl Default for ProblemSettings {
     fn default() -> Self {
         Self {
             element: Arc::new(LowestOrderVem::default()),
+            given_element: None,
             traction_points: Self::DEFAULT_TRACTION_POINTS,
             law: None,
         }
@@ -111,7 +132,7 @@ pub struct ProblemSettingsBuilder {
 impl ProblemSettingsBuilder {
     /// The element space of every body.
     pub fn element(mut self, element: Arc<dyn ElementSpace>) -> Self {
-        self.settings.element = element;
+        self.settings = self.settings.with_element(element);
         self
     }
 
@@ -158,55 +179,162 @@ impl std::fmt::Debug for ProblemSettings {
     }
 }
 
-/// The elastic body `body` of `exact` on `mesh` (see the module docs for the data).
-///
-/// # Errors
-/// An invalid material or setting, a side the mesh does not name, inconsistent Dirichlet data.
-pub fn elastic_body(
+/// The name under which a settings' element ([`ProblemSettingsBuilder::element`]) is
+/// registered in the element registry the scene is built with (the default element is the
+/// built-in `"vem1"`).
+pub const ELEMENT: &str = "verify-element";
+
+/// The name under which the problem's contact law (the case's own, or
+/// [`ProblemSettings::law`]) is registered in the law registry the scene is built with.
+pub const LAW: &str = "verify-law";
+
+/// The scene of `exact` with one mesh per body (see the module docs for the data), and the
+/// registries that give its element and law their names.
+fn scene_of(
     exact: &Arc<dyn ExactSolution>,
-    body: BodyId,
-    mesh: Mesh,
+    meshes: Vec<Mesh>,
     settings: &ProblemSettings,
-) -> Result<ElasticBody, VerifyError> {
-    let case = exact.name().to_string();
-    let lame = exact.lame();
-    let elastic = |source| VerifyError::Elastic {
-        case: case.clone(),
-        source: Box::new(source),
+) -> Result<(Scene, Registries), VerifyError> {
+    let ids = exact.bodies();
+    let law = exact
+        .contact()
+        .map(|contact| settings.law.clone().unwrap_or_else(|| contact.law()));
+    let registries =
+        registries_with(settings.given_element.clone(), law).map_err(|e| invalid(e.to_string()))?;
+    let element = match settings.given_element {
+        Some(_) => ELEMENT,
+        None => ElementRegistry::DEFAULT,
     };
-    let material = Material::from_lame(lame.lambda(), lame.mu(), Plane::Strain).map_err(elastic)?;
-    let mut builder = ElasticBody::builder(
-        format!("{case} body {}", body.index() + 1),
-        mesh,
-        material,
-        Arc::clone(&settings.element),
-    )
-    .traction_points(settings.traction_points);
-    for side in exact.dirichlet_sides(body) {
-        let exact = Arc::clone(exact);
-        builder = builder.dirichlet(Dirichlet::prescribed(
-            side.name(),
-            Component::All,
-            move |x| exact.displacement(body, x),
-        ));
+    let lame = exact.lame();
+    let names: Vec<String> = ids.iter().map(|&id| body_name(&**exact, id)).collect();
+    let mut scene = Scene {
+        title: Some(exact.name().to_string()),
+        ..Scene::default()
+    };
+    for ((&body, mesh), name) in ids.iter().zip(meshes).zip(&names) {
+        let mut spec = BodyDescription {
+            name: name.clone(),
+            mesh: BuiltMesh::Plane(mesh).to_inline(),
+            material: MaterialDescription {
+                lambda: Some(lame.lambda()),
+                mu: Some(lame.mu()),
+                plane: Some(PlaneDescription::Strain),
+                ..MaterialDescription::default()
+            },
+            element: Some(Choice::named(element)),
+            traction_points: Some(settings.traction_points),
+            ..BodyDescription::default()
+        };
+        for side in exact.dirichlet_sides(body) {
+            let component = |k: usize| {
+                let exact = Arc::clone(exact);
+                ScalarValue::function(move |x, _| exact.displacement(body, point(x))[k])
+            };
+            spec.dirichlet.push(DirichletDescription {
+                part: side.name().to_string(),
+                x: Some(component(0)),
+                y: Some(component(1)),
+                ..DirichletDescription::default()
+            });
+        }
+        for side in exact.neumann_sides(body) {
+            let exact = Arc::clone(exact);
+            spec.traction.push(TractionDescription {
+                part: side.name().to_string(),
+                value: Some(VectorValue::function(move |x, _| {
+                    let g = exact.traction(body, side, point(x));
+                    vec![g.x, g.y]
+                })),
+                ..TractionDescription::default()
+            });
+        }
+        let force = Arc::clone(exact);
+        spec.body_force = Some(VectorValue::function(move |x, _| {
+            let f = force.body_force(body, point(x));
+            vec![f.x, f.y]
+        }));
+        scene.bodies.push(spec);
     }
-    for side in exact.neumann_sides(body) {
-        let exact = Arc::clone(exact);
-        builder = builder.traction(side.name(), move |x| exact.traction(body, side, x));
+    if exact.contact().is_some() {
+        let [(_, side_a), (_, side_b)] = CONTACT_SIDES;
+        let gap = Arc::clone(exact);
+        scene.contacts.push(ContactDescription {
+            body: names[0].clone(),
+            part: side_a.name().to_string(),
+            other_body: Some(names[1].clone()),
+            other_part: Some(side_b.name().to_string()),
+            law: Some(Choice::named(LAW)),
+            imposed_gap: Some(ScalarValue::function(move |x, _| {
+                gap.contact().map_or(0.0, |c| c.initial_gap(x[0]))
+            })),
+            ..ContactDescription::default()
+        });
     }
-    let force = Arc::clone(exact);
-    builder
-        .body_force(move |x| force.body_force(body, x))
-        .build()
-        .map_err(elastic)
+    Ok((scene, registries))
 }
 
-/// A discrete problem: the bodies of an exact solution on given meshes, ready to solve.
+/// The built-in registries with `element`, if given, registered as [`ELEMENT`] and `law`, if
+/// given, as [`LAW`].
+pub(crate) fn registries_with(
+    element: Option<Arc<dyn ElementSpace>>,
+    law: Option<Arc<dyn ContactLaw>>,
+) -> Result<Registries, RegistryError> {
+    let mut registries = Registries::default();
+    if let Some(element) = element {
+        let summary = format!("the element of the study: {}", element.name());
+        registries
+            .elements
+            .register(ELEMENT, summary, move || Arc::clone(&element))?;
+    }
+    if let Some(law) = law {
+        let summary = format!("the law of the study: {}", law.describe());
+        registries.laws.register(LAW, summary, move |options| {
+            options.refuse_all(LAW)?;
+            Ok(Arc::clone(&law))
+        })?;
+    }
+    Ok(registries)
+}
+
+/// The point of the coordinates `x` of a scene's function.
+fn point(x: &[f64]) -> Point {
+    Point::new(x[0], x[1])
+}
+
+/// An invalid setting.
+fn invalid(reason: String) -> VerifyError {
+    VerifyError::InvalidSetting { reason }
+}
+
+/// The scene's name of the body `body` of `exact`: "M1-body-1".
+fn body_name(exact: &dyn ExactSolution, body: BodyId) -> String {
+    format!("{}-body-{}", scene_name(exact.name()), body.index() + 1)
+}
+
+/// `name` as a scene's body name: the characters a body name may not hold replaced by `-`, a
+/// leading `.` removed ("M1-3D body 1" gives "M1-3D-body-1").
+pub(crate) fn scene_name(name: &str) -> String {
+    let name: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    name.trim_start_matches('.').to_string()
+}
+
+/// A discrete problem: the scene of an exact solution on given meshes, built into a
+/// [`Model`], ready to solve.
 #[derive(Clone)]
 pub struct DiscreteProblem {
     exact: Arc<dyn ExactSolution>,
+    scene: Scene,
+    model: Model,
     bodies: Vec<ElasticBody>,
-    law: Option<Arc<dyn ContactLaw>>,
 }
 
 impl std::fmt::Debug for DiscreteProblem {
@@ -220,11 +348,13 @@ impl std::fmt::Debug for DiscreteProblem {
 
 impl DiscreteProblem {
     /// The problem of `exact` with one mesh per body (in the order of
-    /// [`ExactSolution::bodies`]).
+    /// [`ExactSolution::bodies`]): its scene ([`DiscreteProblem::scene`]) built by
+    /// [`Model::build`].
     ///
     /// # Errors
-    /// A wrong number of meshes, a contact case without two bodies, any error of
-    /// [`elastic_body`].
+    /// A wrong number of meshes, a contact case without two bodies, [`VerifyError::Scene`]
+    /// for a scene the model refuses (an invalid material or setting, a side the mesh does
+    /// not name, inconsistent Dirichlet data).
     pub fn try_new(
         exact: Arc<dyn ExactSolution>,
         meshes: Vec<Mesh>,
@@ -243,21 +373,42 @@ impl DiscreteProblem {
                 reason: "a contact solution must have the two bodies One and Two".to_string(),
             });
         }
-        let bodies = ids
-            .iter()
-            .zip(meshes)
-            .map(|(&id, mesh)| elastic_body(&exact, id, mesh, settings))
-            .collect::<Result<_, _>>()?;
+        let (scene, registries) = scene_of(&exact, meshes, settings)?;
+        let options = BuildOptions {
+            registries,
+            ..BuildOptions::default()
+        };
+        let model = Model::build(&scene, &options).map_err(|source| VerifyError::Scene {
+            case: exact.name().to_string(),
+            source: Box::new(source),
+        })?;
+        let bodies = model.bodies().iter().map(|b| b.body.clone()).collect();
         Ok(Self {
             exact,
+            scene,
+            model,
             bodies,
-            law: settings.law.clone(),
         })
     }
 
     /// The exact solution.
     pub fn exact(&self) -> &Arc<dyn ExactSolution> {
         &self.exact
+    }
+
+    /// The problem as a scene: one body per body of the exact solution with its mesh inline,
+    /// the material by `lambda` and `mu` in plane strain, the exact data as functions, the
+    /// element and law by the names [`ELEMENT`] (a settings' element, else `"vem1"`) and
+    /// [`LAW`] of the registries it was built with. The functions do not serialise: a scene
+    /// written with serde stops at the first one (its meshes and keys can be looked at with
+    /// `Debug`, which prints `<function>` for them).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The model the scene was built into (bodies, contact problem, registries).
+    pub fn model(&self) -> &Model {
+        &self.model
     }
 
     /// The bodies on their given meshes (before any interface node insertion).
@@ -275,21 +426,11 @@ impl DiscreteProblem {
 
     /// The contact problem of a contact case (`None` for elasticity cases): body one's bottom
     /// against body two's top, the case's law (or the settings' [`ProblemSettings::law`]),
-    /// `h0` as the imposed gap.
+    /// `h0` as the imposed gap; the model's ([`Model::contact_problem`]).
     pub fn contact_problem(&self) -> Option<ContactProblem> {
-        let contact = self.exact.contact()?;
-        let law = self.law.clone().unwrap_or_else(|| contact.law());
-        let [(_, side_a), (_, side_b)] = CONTACT_SIDES;
-        let exact = Arc::clone(&self.exact);
-        let problem = ContactProblem::two_bodies(
-            self.bodies[0].clone(),
-            side_a.name(),
-            self.bodies[1].clone(),
-            side_b.name(),
-            law,
-        )
-        .with_imposed_gap(move |x| exact.contact().map_or(0.0, |c| c.initial_gap(x.x)));
-        Some(problem)
+        self.model
+            .contact_problem()
+            .map(|(problem, _)| problem.clone())
     }
 
     /// Solves: the contact problem with `solver` for a contact case, otherwise every body

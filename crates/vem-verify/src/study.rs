@@ -3,6 +3,12 @@
 //! diagnostics and the time of each stage; rates fitted by least squares over the finest sizes
 //! and a verdict against the expected rates (`docs/manufactured.md`, section 8).
 //!
+//! Each size's problem is a [`vem_scene::Scene`] built into a [`vem_scene::Model`]
+//! ([`DiscreteProblem`]): [`Study::problem`] gives it, and its
+//! [`scene`](DiscreteProblem::scene) shows what is solved (the study's element and law
+//! registered under the names [`ELEMENT`](crate::problem::ELEMENT) and
+//! [`LAW`](crate::problem::LAW)); the contact solver is the study's own.
+//!
 //! ```
 //! use std::sync::Arc;
 //! use vem_mesh::generators::MeshFamily;
@@ -742,6 +748,30 @@ impl Study {
             });
         }
         Ok(())
+    }
+
+    /// The discrete problem of size `n`: the meshes of the pairing and the problem's scene
+    /// ([`DiscreteProblem::scene`]) built with the study's element and law, as
+    /// [`run_size`](Self::run_size) solves it.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use vem_mesh::generators::MeshFamily;
+    /// use vem_verify::exact::{case_by_name, Lame};
+    /// use vem_verify::study::{MeshPairing, Study};
+    /// let m1: Arc<_> = case_by_name("M1", Lame::default())?.into();
+    /// let study = Study::new(m1, "quads/quads*2".parse::<MeshPairing>()?);
+    /// let scene = study.problem(4)?.scene().clone();
+    /// assert_eq!(scene.bodies.len(), 2);
+    /// assert_eq!(scene.contacts[0].other_part.as_deref(), Some("top"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// Mesh generation failures, as [`DiscreteProblem::try_new`].
+    pub fn problem(&self, n: usize) -> Result<DiscreteProblem, VerifyError> {
+        let meshes = self.pairing.generate(&*self.exact, n, self.seed)?;
+        DiscreteProblem::try_new(Arc::clone(&self.exact), meshes, &self.settings)
     }
 
     /// Measures one size `n`.

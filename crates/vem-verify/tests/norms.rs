@@ -12,7 +12,7 @@ use vem_verify::norms::{
     energy_error, nodal_interpolant, projection_errors, quadrature_points, sub_triangles,
     ErrorNorms,
 };
-use vem_verify::problem::{elastic_body, ProblemSettings};
+use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 use vem_verify::VerifyError;
 
 fn case(name: &str) -> Arc<dyn ExactSolution> {
@@ -112,7 +112,10 @@ fn interpolant_of_a_linear_field_has_zero_projection_error() {
 fn energy_error_of_the_linear_patch_field() {
     let exact = case("PT0a");
     let mesh = mesh(&*exact, BodyId::One, MeshFamily::Voronoi, 7);
-    let body = elastic_body(&exact, BodyId::One, mesh, &ProblemSettings::default()).unwrap();
+    let problem =
+        DiscreteProblem::try_new(Arc::clone(&exact), vec![mesh], &ProblemSettings::default())
+            .unwrap();
+    let body = &problem.bodies()[0];
     let system = body.assemble().unwrap();
     let interpolant = nodal_interpolant(&*exact, BodyId::One, body.mesh());
     let at_interpolant =

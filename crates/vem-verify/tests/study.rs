@@ -345,3 +345,47 @@ fn law_override_fixed_point_tolerance_and_criteria_of_ones_own() {
     );
     assert_eq!(judged.criteria, ["error halves", "never"]);
 }
+
+/// A study's problem is a scene: the meshes inline, the exact data as functions, a user's
+/// element and law registered under `ELEMENT` and `LAW` and named by the scene; the contact
+/// problem solved is the model's.
+#[test]
+fn a_study_problem_is_a_scene_with_the_users_element_and_law() {
+    use vem_verify::problem::{ELEMENT, LAW};
+    let pairing = MeshPairing::pair(MeshFamily::Quads, 1, MeshFamily::Quads, 2);
+    let element = Arc::new(vem_space::LowestOrderVem::default());
+    let law = Arc::new(vem_contact::Tresca::try_new(0.0).unwrap());
+    let study = Study::new(case("M1"), pairing.clone())
+        .element(element)
+        .law(law);
+    let problem = study.problem(4).unwrap();
+    let scene = problem.scene();
+    assert_eq!(scene.bodies.len(), 2);
+    for (body, id) in scene.bodies.iter().zip(["M1-body-1", "M1-body-2"]) {
+        assert_eq!(body.name, id);
+        assert_eq!(
+            body.element.as_ref().map(|c| c.name.as_str()),
+            Some(ELEMENT)
+        );
+        assert_eq!(body.traction_points, Some(4));
+        assert!(body.mesh.vertices.is_some() && body.mesh.polygons.is_some());
+        assert_eq!(format!("{:?}", body.body_force), "Some(<function>)");
+    }
+    let contact = &scene.contacts[0];
+    assert_eq!(contact.law.as_ref().map(|c| c.name.as_str()), Some(LAW));
+    assert_eq!(
+        (contact.part.as_str(), contact.other_part.as_deref()),
+        ("bottom", Some("top"))
+    );
+    let registries = problem.model().registries();
+    assert!(registries.elements.contains(ELEMENT));
+    assert!(registries.laws.names().contains(&LAW));
+    // Functions do not serialise.
+    assert!(serde_json::to_string(scene).is_err());
+    // The default element is the built-in vem1, by name.
+    let default = Study::new(case("M1"), pairing).problem(4).unwrap();
+    let element = default.scene().bodies[0].element.clone().unwrap();
+    assert_eq!(element.name, "vem1");
+    let (contact, _) = default.model().contact_problem().unwrap();
+    assert_eq!(contact.bodies().len(), 2);
+}

@@ -10,10 +10,14 @@ use vem_contact::{
     ContactError, ContactLaw, ContactNode, ContactProblem, ContactResult, Frictionless, LawState,
     PenaltyParameter, SolverRegistry, Tresca,
 };
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
 use vem_mesh::generators::{MeshFamily, Rectangle};
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
-use vem_space::{ElementRegistry, ElementSpace, Options};
+use vem_scene::description::{
+    BodyDescription, ContactDescription, DirichletDescription, MaterialDescription,
+    PlaneDescription, TractionDescription,
+};
+use vem_scene::{BuildOptions, BuiltMesh, Model, ScalarValue, Scene, VectorValue};
+use vem_space::{Choice, ElementRegistry, ElementSpace, Options};
 
 use super::{
     chain, judge, locking_row, one_outcome, patch_tolerance, solve, Outcome, Row, Size, Verdict,
@@ -23,7 +27,7 @@ use crate::cases::{CaseRegistry, PATCH_TOLERANCE};
 use crate::exact::{BodyId, ExactContact, ExactSolution, Lame, Side};
 use crate::nalgebra::Matrix2;
 use crate::norms::ErrorNorms;
-use crate::problem::{DiscreteProblem, ProblemSettings};
+use crate::problem::{registries_with, DiscreteProblem, ProblemSettings, ELEMENT, LAW};
 
 // ---------------------------------------------------------------------------------------------
 // Two-body linear patch tests
@@ -349,42 +353,72 @@ impl Patch {
         self.pressure * self.length
     }
 
+    /// The problem as a scene: the two bodies with their meshes inline, the exact displacement
+    /// on the held sides and the constant tractions on the lateral sides, the pair with the
+    /// patch's law and constant imposed gap; the contact problem of its model.
     fn problem(&self, n: usize) -> Result<ContactProblem, String> {
         let fields = self.fields();
         let l = self.length;
-        let mut bodies = Vec::new();
+        let registries = registries_with(Some(Arc::clone(&self.element)), Some(self.law.clone()))
+            .map_err(|e| chain(&e))?;
+        let mut scene = Scene::default();
         for (k, field) in fields.iter().enumerate() {
             let across = if self.matching { n } else { n + k };
             let mesh = patch_mesh(self.cells, l, l, across, k == 1)?;
             let (lambda, mu) = self.lame[k];
-            let material = Material::from_lame(lambda, mu, Plane::Strain).map_err(|e| chain(&e))?;
             let field = *field;
-            let held = if k == 0 { "top" } else { "bottom" };
-            let body = ElasticBody::builder(
-                format!("patch body {}", k + 1),
-                mesh,
-                material,
-                Arc::clone(&self.element),
-            )
-            .dirichlet(Dirichlet::prescribed(held, Component::All, move |x| {
-                field.displacement(x)
-            }))
-            .traction("left", move |_| field.traction(Vector::new(-1.0, 0.0)))
-            .traction("right", move |_| field.traction(Vector::new(1.0, 0.0)))
-            .build()
-            .map_err(|e| chain(&e))?;
-            bodies.push(body);
+            let component = |i: usize| {
+                Some(ScalarValue::function(move |x, _| {
+                    field.displacement(Point::new(x[0], x[1]))[i]
+                }))
+            };
+            let traction = |part: &str, nx: f64| {
+                let g = field.traction(Vector::new(nx, 0.0));
+                TractionDescription {
+                    part: part.to_string(),
+                    value: Some(VectorValue::constant(&[g.x, g.y])),
+                    ..TractionDescription::default()
+                }
+            };
+            scene.bodies.push(BodyDescription {
+                name: format!("patch-body-{}", k + 1),
+                mesh: BuiltMesh::Plane(mesh).to_inline(),
+                material: MaterialDescription {
+                    lambda: Some(lambda),
+                    mu: Some(mu),
+                    plane: Some(PlaneDescription::Strain),
+                    ..MaterialDescription::default()
+                },
+                element: Some(Choice::named(ELEMENT)),
+                dirichlet: vec![DirichletDescription {
+                    part: if k == 0 { "top" } else { "bottom" }.to_string(),
+                    x: component(0),
+                    y: component(1),
+                    ..DirichletDescription::default()
+                }],
+                traction: vec![traction("left", -1.0), traction("right", 1.0)],
+                ..BodyDescription::default()
+            });
         }
-        let lower = bodies.pop().expect("two bodies");
-        let upper = bodies.pop().expect("two bodies");
         // [u]_nu = u_1 . (0, -1) + u_2 . (0, 1) on y = 0: constant (d_x u_y = 0).
         let origin = Point::new(0.0, 0.0);
         let jump = -fields[0].displacement(origin).y + fields[1].displacement(origin).y;
-        let gap = jump + self.opening * l;
-        Ok(
-            ContactProblem::two_bodies(upper, "bottom", lower, "top", self.law.clone())
-                .with_imposed_gap(move |_| gap),
-        )
+        scene.contacts.push(ContactDescription {
+            body: "patch-body-1".to_string(),
+            part: "bottom".to_string(),
+            other_body: Some("patch-body-2".to_string()),
+            other_part: Some("top".to_string()),
+            law: Some(Choice::named(LAW)),
+            imposed_gap: Some(ScalarValue::Constant(jump + self.opening * l)),
+            ..ContactDescription::default()
+        });
+        let options = BuildOptions {
+            registries,
+            ..BuildOptions::default()
+        };
+        let model = Model::build(&scene, &options).map_err(|e| chain(&e))?;
+        let (problem, _) = model.contact_problem().ok_or("no contact pair")?;
+        Ok(problem.clone())
     }
 
     /// Largest nodal displacement error relative to the body's largest exact displacement,
@@ -829,25 +863,16 @@ fn m1_problem(n: usize, law: Option<Arc<dyn ContactLaw>>) -> Result<ContactProbl
         .map(|&(body, cells)| MeshFamily::Quads.generate(&exact.domain(body), cells, 1))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| chain(&e))?;
-    let problem = DiscreteProblem::try_new(exact, meshes, &ProblemSettings::default())
-        .map_err(|e| chain(&e))?;
-    let contact = problem.contact_problem().ok_or("not a contact case")?;
-    let Some(law) = law else {
-        return Ok(contact);
-    };
-    let gap = contact.pairs()[0].imposed_gap().cloned();
-    let bodies = problem.bodies();
-    let mut posed = ContactProblem::two_bodies(
-        bodies[0].clone(),
-        Side::Bottom.name(),
-        bodies[1].clone(),
-        Side::Top.name(),
-        law,
-    );
-    if let Some(gap) = gap {
-        posed = posed.with_imposed_gap(move |x| gap(x));
+    let settings = match law {
+        Some(law) => ProblemSettings::builder().law(law),
+        None => ProblemSettings::builder(),
     }
-    Ok(posed)
+    .build()
+    .map_err(|e| chain(&e))?;
+    let problem = DiscreteProblem::try_new(exact, meshes, &settings).map_err(|e| chain(&e))?;
+    problem
+        .contact_problem()
+        .ok_or_else(|| "not a contact case".to_string())
 }
 
 fn penalty_m1_outcome(n: usize, factor: f64, tolerance: f64) -> Outcome {

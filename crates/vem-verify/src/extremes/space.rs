@@ -13,12 +13,16 @@ use std::sync::Arc;
 use super::{chain, judge, locking_row, patch_tolerance, solve, space_solvers, Outcome, Row, Size};
 use crate::exact::Lame;
 use crate::three_d::{solve_solid, DivergenceFreeSolid, SOLID_SEED};
-use vem_contact::{ContactProblem, ContactResult, Coulomb, Frictionless, Tresca};
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material};
+use vem_contact::{ContactProblem, ContactResult};
 use vem_mesh::generators::polyhedral::{
     hexahedra, perturbed_hexahedra, tetrahedra, voronoi_polyhedra, Cuboid, PolyhedralFamily,
 };
 use vem_mesh::{Point3, PolyhedralMesh, Vector3};
+use vem_scene::description::{
+    BodyDescription, ContactDescription, DirichletDescription, MaterialDescription,
+    TractionDescription,
+};
+use vem_scene::{BuildOptions, BuiltMesh, Model, ScalarValue, Scene, VectorValue};
 use vem_space::{Choice, ElementRegistry, Options, PolyhedralElement};
 
 /// Poisson's ratios of the locking rows in space, each against nu = 0.3.
@@ -170,44 +174,51 @@ impl Stack {
         Ok([a.map_err(|e| chain(&e))?, b.map_err(|e| chain(&e))?])
     }
 
+    /// The two blocks as bodies of a scene, "upper" and "lower": the meshes inline, the
+    /// material (`E`, `nu`) and the element by its registry name; no conditions.
+    fn bodies(&self, n: usize) -> Result<[BodyDescription; 2], String> {
+        let [upper, lower] = self.meshes(n)?;
+        let body = |name: &str, mesh: PolyhedralMesh, young: f64| BodyDescription {
+            name: name.to_string(),
+            mesh: BuiltMesh::Space(mesh).to_inline(),
+            material: MaterialDescription {
+                young: Some(young * self.modulus),
+                nu: Some(self.poisson),
+                ..MaterialDescription::default()
+            },
+            element: Some(Choice::named(self.element)),
+            ..BodyDescription::default()
+        };
+        Ok([
+            body("upper", upper, self.young[0]),
+            body("lower", lower, self.young[1]),
+        ])
+    }
+
+    /// The scene: rollers on the sides x = 0 and y = 0, the upper's top moved down by `s d`,
+    /// the lower's bottom held in z, frictionless contact.
     fn problem(&self, n: usize) -> Result<ContactProblem<3>, String> {
-        let element = ElementRegistry::builtin()
-            .make_polyhedral_choice(&Choice::named(self.element))
-            .map_err(|e| chain(&e))?;
-        let [upper_mesh, lower_mesh] = self.meshes(n)?;
-        let material =
-            |e: f64| Material::isotropic(e * self.modulus, self.poisson).map_err(|e| chain(&e));
-        let rollers = |b: vem_elastic::ElasticBodyBuilder<3>| {
-            b.dirichlet(Dirichlet::fixed("left", Component::X))
-                .dirichlet(Dirichlet::fixed("front", Component::Y))
+        let [mut upper, mut lower] = self.bodies(n)?;
+        let held = |part: &str, k: usize, value: f64| {
+            let mut d = DirichletDescription {
+                part: part.to_string(),
+                ..DirichletDescription::default()
+            };
+            *[&mut d.x, &mut d.y, &mut d.z][k] = Some(ScalarValue::Constant(value));
+            d
         };
         let d = INDENTATION * self.length;
-        let upper = rollers(
-            ElasticBody::builder_polyhedral(
-                "upper",
-                upper_mesh,
-                material(self.young[0])?,
-                Arc::clone(&element),
-            )
-            .dirichlet(Dirichlet::with_values("top", Component::Z, move |_| {
-                Vector3::new(0.0, 0.0, -d)
-            })),
-        )
-        .build()
-        .map_err(|e| chain(&e))?;
-        let lower = rollers(
-            ElasticBody::builder_polyhedral("lower", lower_mesh, material(self.young[1])?, element)
-                .dirichlet(Dirichlet::fixed("bottom", Component::Z)),
-        )
-        .build()
-        .map_err(|e| chain(&e))?;
-        Ok(ContactProblem::two_bodies(
-            upper,
-            "bottom",
-            lower,
-            "top",
-            Frictionless,
-        ))
+        upper.dirichlet = vec![
+            held("top", 2, -d),
+            held("left", 0, 0.0),
+            held("front", 1, 0.0),
+        ];
+        lower.dirichlet = vec![
+            held("bottom", 2, 0.0),
+            held("left", 0, 0.0),
+            held("front", 1, 0.0),
+        ];
+        stack_problem([upper, lower], Choice::named("frictionless"))
     }
 
     /// The largest nodal displacement error relative to the indentation, and the resultant's
@@ -251,6 +262,27 @@ impl Stack {
             )
         })
     }
+}
+
+/// The contact problem of the scene of the two blocks `bodies` ("upper" over "lower"), the
+/// upper's bottom against the lower's top with the law `law` (a registry name with its
+/// settings).
+fn stack_problem(bodies: [BodyDescription; 2], law: Choice) -> Result<ContactProblem<3>, String> {
+    let scene = Scene {
+        bodies: bodies.into(),
+        contacts: vec![ContactDescription {
+            body: "upper".to_string(),
+            part: "bottom".to_string(),
+            other_body: Some("lower".to_string()),
+            other_part: Some("top".to_string()),
+            law: Some(law),
+            ..ContactDescription::default()
+        }],
+        ..Scene::default()
+    };
+    let model = Model::build(&scene, &BuildOptions::default()).map_err(|e| chain(&e))?;
+    let (problem, _) = model.contact_problem_3d().ok_or("no contact pair")?;
+    Ok(problem.clone())
 }
 
 fn stack_row(name: String, stack: &Stack, size: &Size) -> Row {
@@ -409,45 +441,48 @@ impl ShearedStack {
         }
     }
 
+    /// The scene: the exact displacement on the upper's top and the lower's bottom, the
+    /// tractions `(0, 0, -+tau)` on the sides x = 0 and x = s, the friction law.
     fn problem(&self, n: usize) -> Result<ContactProblem<3>, String> {
-        let element = ElementRegistry::builtin()
-            .make_polyhedral_choice(&Choice::named(self.stack.element))
-            .map_err(|e| chain(&e))?;
-        let [upper_mesh, lower_mesh] = self.stack.meshes(n)?;
-        let nu = self.stack.poisson;
-        let material =
-            |e: f64| Material::isotropic(e * self.stack.modulus, nu).map_err(|e| chain(&e));
-        let (p, _, tau, _) = self.state();
-        let body = |k: usize, name: &str, mesh, young: f64, held: &str| {
-            let exact = self.clone();
-            ElasticBody::builder_polyhedral(name, mesh, material(young)?, Arc::clone(&element))
-                .dirichlet(Dirichlet::with_values(held, Component::All, move |x| {
-                    exact.exact(k, x)
-                }))
-                .traction("left", move |_| Vector3::new(0.0, 0.0, -tau))
-                .traction("right", move |_| Vector3::new(0.0, 0.0, tau))
-                .build()
-                .map_err(|e| chain(&e))
+        let (p, stick, tau, _) = self.state();
+        let bodies = self.stack.bodies(n)?;
+        let [upper, lower] = [(0, "top"), (1, "bottom")]
+            .into_iter()
+            .zip(bodies)
+            .map(|((k, held), mut body)| {
+                let component = |i: usize| {
+                    let exact = self.clone();
+                    Some(ScalarValue::function(move |x, _| {
+                        exact.exact(k, Point3::new(x[0], x[1], x[2]))[i]
+                    }))
+                };
+                body.dirichlet = vec![DirichletDescription {
+                    part: held.to_string(),
+                    x: component(0),
+                    y: component(1),
+                    z: component(2),
+                    ..DirichletDescription::default()
+                }];
+                let traction = |part: &str, gz: f64| TractionDescription {
+                    part: part.to_string(),
+                    value: Some(VectorValue::constant(&[0.0, 0.0, gz])),
+                    ..TractionDescription::default()
+                };
+                body.traction = vec![traction("left", -tau), traction("right", tau)];
+                body
+            })
+            .collect::<Vec<_>>()
+            .try_into()
+            .expect("two bodies");
+        let law = match self.law {
+            FrictionLaw::Tresca(f) => {
+                Choice::with_options("tresca", Options::new().with("friction_bound", f * stick))
+            }
+            FrictionLaw::Coulomb(f) => {
+                Choice::with_options("coulomb", Options::new().with("coefficient", f * stick / p))
+            }
         };
-        let upper = body(0, "upper", upper_mesh, self.stack.young[0], "top")?;
-        let lower = body(1, "lower", lower_mesh, self.stack.young[1], "bottom")?;
-        let (_, stick, ..) = self.state();
-        Ok(match self.law {
-            FrictionLaw::Tresca(f) => ContactProblem::two_bodies(
-                upper,
-                "bottom",
-                lower,
-                "top",
-                Tresca::<3>::try_new(f * stick).map_err(|e| chain(&e))?,
-            ),
-            FrictionLaw::Coulomb(f) => ContactProblem::two_bodies(
-                upper,
-                "bottom",
-                lower,
-                "top",
-                Coulomb::try_new(f * stick / p).map_err(|e| chain(&e))?,
-            ),
-        })
+        stack_problem([upper, lower], law)
     }
 
     /// The largest nodal displacement error relative to the press and the shift, and the

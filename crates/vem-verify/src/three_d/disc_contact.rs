@@ -21,8 +21,7 @@ use std::ops::{Add, Mul, Neg};
 use std::sync::Arc;
 
 use nalgebra::{Matrix2, Matrix3, Vector2};
-use vem_contact::{ContactProblem, Frictionless};
-use vem_elastic::ElasticBody;
+use vem_contact::{ContactLaw, Frictionless};
 use vem_mesh::generators::polyhedral::Cuboid;
 use vem_mesh::{Point3, Vector3};
 
@@ -200,9 +199,12 @@ pub trait StackedContact: Send + Sync {
     /// Body `body` as a solution of elasticity on its box (its contact side free).
     fn exact_body(&self, body: BodyId) -> Arc<dyn ExactSolution3d>;
 
-    /// The contact problem of the bodies `one` (on body one's box) and `two` (on body two's):
-    /// body one's bottom against body two's top with the case's law and imposed gap.
-    fn contact_problem(&self, one: ElasticBody<3>, two: ElasticBody<3>) -> ContactProblem<3>;
+    /// The contact law between body one's bottom and body two's top.
+    fn law(&self) -> Arc<dyn ContactLaw<3>>;
+
+    /// The gap imposed at `(x, y)` of the interface, as a function (the two sides coincide:
+    /// the geometric gap is zero).
+    fn imposed_gap(&self) -> Arc<dyn Fn(f64, f64) -> f64 + Send + Sync>;
 
     /// The exact values on the interface at `(x, y)`.
     fn interface_values(&self, x: f64, y: f64) -> InterfaceValues3d;
@@ -442,9 +444,12 @@ impl StackedContact for DiscContact {
         Arc::new(self.body(body))
     }
 
-    fn contact_problem(&self, one: ElasticBody<3>, two: ElasticBody<3>) -> ContactProblem<3> {
-        ContactProblem::two_bodies(one, "bottom", two, "top", Frictionless)
-            .with_imposed_gap(|x| DiscContact::initial_gap(x.x, x.y))
+    fn law(&self) -> Arc<dyn ContactLaw<3>> {
+        Arc::new(Frictionless)
+    }
+
+    fn imposed_gap(&self) -> Arc<dyn Fn(f64, f64) -> f64 + Send + Sync> {
+        Arc::new(DiscContact::initial_gap)
     }
 
     fn interface_values(&self, x: f64, y: f64) -> InterfaceValues3d {

@@ -48,7 +48,7 @@ pub use exact::{
 pub use norms::{body_errors_3d, energy_error_3d, nodal_interpolant_3d, projection_errors_3d};
 pub use stick_slip::{StickSlipBody, StickSlipContact};
 pub use study::{
-    disc_contact_problem, run_disc_contact, run_solid, solid_body, solid_markdown, solid_rates,
-    solve_disc_contact, solve_solid, three_d_convergence, SolidContact, SolidRates, SolidRun,
-    SOLID_SEED,
+    disc_contact_problem, disc_contact_scene, run_disc_contact, run_solid, solid_body,
+    solid_markdown, solid_rates, solid_scene, solve_disc_contact, solve_solid, three_d_convergence,
+    SolidContact, SolidRates, SolidRun, SOLID_SEED,
 };

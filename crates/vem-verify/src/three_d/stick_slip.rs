@@ -6,8 +6,7 @@
 use std::sync::Arc;
 
 use nalgebra::{Matrix3, Vector2};
-use vem_contact::{ContactProblem, Tresca};
-use vem_elastic::ElasticBody;
+use vem_contact::{ContactLaw, Tresca};
 use vem_mesh::generators::polyhedral::Cuboid;
 use vem_mesh::{Point3, Vector3};
 
@@ -203,10 +202,14 @@ impl StackedContact for StickSlipContact {
         Arc::new(self.body(body))
     }
 
-    fn contact_problem(&self, one: ElasticBody<3>, two: ElasticBody<3>) -> ContactProblem<3> {
-        let tresca = Tresca::<3>::with_field(|x| StickSlipContact::friction_bound(x.x, x.y));
-        ContactProblem::two_bodies(one, "bottom", two, "top", tresca)
-            .with_imposed_gap(|x| DiscContact::initial_gap(x.x, x.y))
+    fn law(&self) -> Arc<dyn ContactLaw<3>> {
+        Arc::new(Tresca::<3>::with_field(|x| {
+            StickSlipContact::friction_bound(x.x, x.y)
+        }))
+    }
+
+    fn imposed_gap(&self) -> Arc<dyn Fn(f64, f64) -> f64 + Send + Sync> {
+        Arc::new(DiscContact::initial_gap)
     }
 
     fn interface_values(&self, x: f64, y: f64) -> InterfaceValues3d {

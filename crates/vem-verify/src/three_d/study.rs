@@ -1,19 +1,29 @@
 //! Solves of the exact solutions in space on the polyhedral families, and convergence tables.
+//!
+//! Every problem is a [`vem_scene::Scene`] built into a [`vem_scene::Model`]
+//! ([`solid_scene`], [`disc_contact_scene`]): the meshes inline, the exact data as functions,
+//! the element and the contact law registered under the names [`ELEMENT`] and [`LAW`].
 
 use std::sync::Arc;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactProblem, ContactResult, ContactSolver, NodeStatus};
-use vem_elastic::{CholeskySolver, Component, Dirichlet, ElasticBody, Material, Plane};
+use vem_contact::{ContactLaw, ContactProblem, ContactResult, ContactSolver, NodeStatus};
+use vem_elastic::{CholeskySolver, ElasticBody};
 use vem_mesh::generators::polyhedral::PolyhedralFamily;
-use vem_mesh::{PolyhedralMesh, Vector3};
-use vem_space::PolyhedralElement;
+use vem_mesh::{Point3, PolyhedralMesh, Vector3};
+use vem_scene::description::{
+    BodyDescription, ContactDescription, DirichletDescription, MaterialDescription,
+    TractionDescription,
+};
+use vem_scene::{BuildOptions, BuiltMesh, Model, Registries, ScalarValue, Scene, VectorValue};
+use vem_space::{Choice, PolyhedralElement};
 
 use super::norms::{body_errors_3d, nodal_interpolant_3d};
 use super::{ExactSolution3d, StackedContact, CUBE_PARTS};
 use crate::exact::BodyId;
 use crate::norms::ErrorNorms;
+use crate::problem::{scene_name, ELEMENT, LAW};
 use crate::study::fitted_rate;
 use crate::VerifyError;
 
@@ -106,40 +116,142 @@ pub struct SolidFriction {
     pub exact_friction_resultant: [f64; 2],
 }
 
-/// The body of `exact` on `mesh` with `element`: the material of the case, the Dirichlet data
-/// `u` on every side of its box but the traction and contact sides, `sigma n` on the traction
-/// sides, nothing on the contact sides, the body force `f`.
+/// The scene's body `name` of `exact` on `mesh` with the element registered as [`ELEMENT`]:
+/// its mesh inline, the material of the case (`lambda`, `mu`), the Dirichlet data `u` on every
+/// side of its box but the traction and contact sides, `sigma n` on the traction sides, nothing
+/// on the contact sides, the body force `f`, all as functions.
+fn solid_description(exact: &Arc<dyn ExactSolution3d>, mesh: PolyhedralMesh) -> BodyDescription {
+    let lame = exact.lame();
+    let mut spec = BodyDescription {
+        name: scene_name(exact.name()),
+        mesh: BuiltMesh::Space(mesh).to_inline(),
+        material: MaterialDescription {
+            lambda: Some(lame.lambda()),
+            mu: Some(lame.mu()),
+            ..MaterialDescription::default()
+        },
+        element: Some(Choice::named(ELEMENT)),
+        ..BodyDescription::default()
+    };
+    for (part, normal) in CUBE_PARTS {
+        if exact.contact_sides().contains(&part) {
+            continue;
+        }
+        if exact.traction_sides().contains(&part) {
+            let normal = Vector3::from(normal);
+            let exact = Arc::clone(exact);
+            spec.traction.push(TractionDescription {
+                part: part.to_string(),
+                value: Some(VectorValue::function(move |x, _| {
+                    (exact.stress(point(x)) * normal).as_slice().to_vec()
+                })),
+                ..TractionDescription::default()
+            });
+        } else {
+            let component = |k: usize| {
+                let exact = Arc::clone(exact);
+                Some(ScalarValue::function(move |x, _| {
+                    exact.displacement(point(x))[k]
+                }))
+            };
+            spec.dirichlet.push(DirichletDescription {
+                part: part.to_string(),
+                x: component(0),
+                y: component(1),
+                z: component(2),
+                ..DirichletDescription::default()
+            });
+        }
+    }
+    let force = Arc::clone(exact);
+    spec.body_force = Some(VectorValue::function(move |x, _| {
+        force.body_force(point(x)).as_slice().to_vec()
+    }));
+    spec
+}
+
+/// The point of the coordinates `x` of a scene's function.
+fn point(x: &[f64]) -> Point3 {
+    Point3::new(x[0], x[1], x[2])
+}
+
+/// The registries of a scene in space with `element` registered as [`ELEMENT`] (and, for
+/// contact, `law` as [`LAW`]).
+fn registries_with(
+    element: Arc<dyn PolyhedralElement>,
+    law: Option<Arc<dyn ContactLaw<3>>>,
+) -> Result<Registries, VerifyError> {
+    let invalid = |what: &str, e: vem_space::RegistryError| VerifyError::InvalidSetting {
+        reason: format!("{what}: {e}"),
+    };
+    let mut registries = Registries::default();
+    let summary = format!("the element of the study: {}", element.name());
+    registries
+        .elements
+        .register_polyhedral(ELEMENT, summary, move |options, _| {
+            options.refuse_all(ELEMENT)?;
+            Ok(Arc::clone(&element))
+        })
+        .map_err(|e| invalid("element", e))?;
+    if let Some(law) = law {
+        let summary = format!("the law of the study: {}", law.describe());
+        registries
+            .laws_3d
+            .register(LAW, summary, move |options| {
+                options.refuse_all(LAW)?;
+                Ok(Arc::clone(&law))
+            })
+            .map_err(|e| invalid("law", e))?;
+    }
+    Ok(registries)
+}
+
+/// The model of `scene` built with `registries`; errors name `case`.
+fn build_model(scene: &Scene, registries: Registries, case: &str) -> Result<Model, VerifyError> {
+    let options = BuildOptions {
+        registries,
+        ..BuildOptions::default()
+    };
+    Model::build(scene, &options).map_err(|source| VerifyError::Scene {
+        case: case.to_string(),
+        source: Box::new(source),
+    })
+}
+
+/// The scene of `exact` on `mesh` with `element` (registered as [`ELEMENT`]): one body, see
+/// [`solid_body`]. Its functions do not serialise; look at it with `Debug`.
+///
+/// # Errors
+/// [`VerifyError::InvalidSetting`] if the element cannot be registered.
+pub fn solid_scene(
+    exact: &Arc<dyn ExactSolution3d>,
+    mesh: PolyhedralMesh,
+    element: Arc<dyn PolyhedralElement>,
+) -> Result<(Scene, Registries), VerifyError> {
+    let scene = Scene {
+        title: Some(exact.name().to_string()),
+        bodies: vec![solid_description(exact, mesh)],
+        ..Scene::default()
+    };
+    Ok((scene, registries_with(element, None)?))
+}
+
+/// The body of `exact` on `mesh` with `element`, built from its scene ([`solid_scene`]): the
+/// material of the case, the Dirichlet data `u` on every side of its box but the traction and
+/// contact sides, `sigma n` on the traction sides, nothing on the contact sides, the body
+/// force `f`.
+///
+/// # Errors
+/// [`VerifyError::Scene`] for a scene the model refuses (an invalid material, a side the mesh
+/// does not name).
 pub fn solid_body(
     exact: Arc<dyn ExactSolution3d>,
     mesh: PolyhedralMesh,
     element: Arc<dyn PolyhedralElement>,
 ) -> Result<ElasticBody<3>, VerifyError> {
-    let elastic = |source| VerifyError::Elastic {
-        case: exact.name().to_string(),
-        source: Box::new(source),
-    };
-    let lame = exact.lame();
-    let material = Material::from_lame(lame.lambda(), lame.mu(), Plane::Strain).map_err(elastic)?;
-    let mut builder = ElasticBody::builder_polyhedral(exact.name(), mesh, material, element);
-    for (part, normal) in CUBE_PARTS {
-        if exact.contact_sides().contains(&part) {
-            continue;
-        }
-        let normal = Vector3::from(normal);
-        let exact = Arc::clone(&exact);
-        builder = if exact.traction_sides().contains(&part) {
-            builder.traction(part, move |x| exact.stress(x) * normal)
-        } else {
-            builder.dirichlet(Dirichlet::with_values(part, Component::All, move |x| {
-                exact.displacement(x)
-            }))
-        };
-    }
-    let force = Arc::clone(&exact);
-    builder
-        .body_force(move |x| force.body_force(x))
-        .build()
-        .map_err(elastic)
+    let (scene, registries) = solid_scene(&exact, mesh, element)?;
+    let model = build_model(&scene, registries, exact.name())?;
+    Ok(model.bodies_3d()[0].body.clone())
 }
 
 /// Solves `exact` on `mesh` with `element` and measures the errors.
@@ -223,22 +335,57 @@ fn relative_nodal_error(interpolant: &[f64], displacement: &[f64]) -> f64 {
     }
 }
 
-/// The contact problem of `exact` on the meshes `upper` (of body one's box) and `lower` (of
-/// body two's box) with `element`: body one's bottom against body two's top, the case's law and
-/// imposed gap ([`StackedContact::contact_problem`]; the two sides coincide, the geometric gap
-/// is zero), each body's data by [`solid_body`].
+/// The scene of the contact case `exact` on the meshes `upper` (of body one's box) and `lower`
+/// (of body two's box) with `element`: each body's data as in [`solid_scene`], the pair body
+/// one's bottom against body two's top with the case's law (registered as [`LAW`]) and
+/// imposed gap (the two sides coincide, the geometric gap is zero).
 ///
 /// # Errors
-/// As [`solid_body`].
+/// [`VerifyError::InvalidSetting`] if the element or the law cannot be registered.
+pub fn disc_contact_scene(
+    exact: &dyn StackedContact,
+    upper: PolyhedralMesh,
+    lower: PolyhedralMesh,
+    element: Arc<dyn PolyhedralElement>,
+) -> Result<(Scene, Registries), VerifyError> {
+    let one = solid_description(&exact.exact_body(BodyId::One), upper);
+    let two = solid_description(&exact.exact_body(BodyId::Two), lower);
+    let gap = exact.imposed_gap();
+    let contact = ContactDescription {
+        body: one.name.clone(),
+        part: "bottom".to_string(),
+        other_body: Some(two.name.clone()),
+        other_part: Some("top".to_string()),
+        law: Some(Choice::named(LAW)),
+        imposed_gap: Some(ScalarValue::function(move |x, _| gap(x[0], x[1]))),
+        ..ContactDescription::default()
+    };
+    let scene = Scene {
+        title: Some(exact.name().to_string()),
+        bodies: vec![one, two],
+        contacts: vec![contact],
+        ..Scene::default()
+    };
+    Ok((scene, registries_with(element, Some(exact.law()))?))
+}
+
+/// The contact problem of `exact` on the meshes `upper` and `lower` with `element`, built from
+/// its scene ([`disc_contact_scene`]).
+///
+/// # Errors
+/// [`VerifyError::Scene`] for a scene the model refuses.
 pub fn disc_contact_problem(
     exact: &dyn StackedContact,
     upper: PolyhedralMesh,
     lower: PolyhedralMesh,
     element: Arc<dyn PolyhedralElement>,
 ) -> Result<ContactProblem<3>, VerifyError> {
-    let one = solid_body(exact.exact_body(BodyId::One), upper, Arc::clone(&element))?;
-    let two = solid_body(exact.exact_body(BodyId::Two), lower, element)?;
-    Ok(exact.contact_problem(one, two))
+    let (scene, registries) = disc_contact_scene(exact, upper, lower, element)?;
+    let model = build_model(&scene, registries, exact.name())?;
+    let (problem, _) = model
+        .contact_problem_3d()
+        .expect("the scene has a contact pair");
+    Ok(problem.clone())
 }
 
 /// Solves the contact problem of `exact` on `upper` and `lower` ([`disc_contact_problem`]) with
