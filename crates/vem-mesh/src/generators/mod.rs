@@ -39,6 +39,7 @@ mod hexagons;
 mod nonconvex;
 mod perturbed;
 pub mod polygon;
+mod polygon_voronoi;
 pub mod polyhedral;
 mod structured;
 mod voronoi;
@@ -49,6 +50,7 @@ pub use hexagons::hexagons;
 pub use nonconvex::{nonconvex, CHEVRON_RISE};
 pub use perturbed::perturbed_quads;
 pub use polygon::{cut_to_polygon, polygon_mesh, PolygonDomain, MERGE_AREA_RATIO, SNAP_RATIO};
+pub use polygon_voronoi::{polygon_voronoi, PolygonVoronoi, REFLECTION_RATIO};
 pub use structured::{structured_quads, structured_triangles};
 pub use voronoi::{voronoi, LLOYD_ITERATIONS, MAX_VORONOI_CELLS, SHORT_EDGE_RATIO};
 
