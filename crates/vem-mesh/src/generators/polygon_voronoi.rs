@@ -45,7 +45,7 @@ use super::voronoi::{
     clip_half_plane, collapse_short_edges, conforming, voronoi_cells, voronoi_cells_of,
     voronoi_counts, Place, SiteGrid, LLOYD_ITERATIONS,
 };
-use super::Rectangle;
+use super::{voronoi, Rectangle};
 use crate::quality::element_quality;
 use crate::{geometry, Mesh, MeshError, Point, Vector};
 
@@ -77,6 +77,11 @@ pub struct PolygonVoronoi {
     /// The seed spacing: `sqrt(area of the bounding rectangle / sites of the Voronoi family
     /// on it)`.
     pub spacing: f64,
+    /// False when the cells of the sites did not make a valid mesh (sites too close to one
+    /// another, seen only with a handful of seeds) and the mesh is the Voronoi mesh of the
+    /// bounding rectangle cut by the polygon ([`cut_to_polygon`]); the seeds are then not
+    /// its cells' seeds.
+    pub by_reflection: bool,
 }
 
 /// The centroidal Voronoi mesh of size `n` of the polygon `domain` by reflected seeds (the
@@ -153,7 +158,17 @@ pub fn polygon_voronoi(
     let cells = voronoi_cells(&grid, &sites);
     let (vertices, polygons) = conforming(&bounds, &cells, 1e-9 * spacing);
     let (vertices, polygons) = used(&vertices, polygons.into_iter().filter(|p| p.len() >= 3));
-    let background = Mesh::from_polygons(vertices, &polygons, Vec::new())?;
+    let Ok(background) = Mesh::from_polygons(vertices, &polygons, Vec::new()) else {
+        // Sites so close that their cells disagree (seen only with a handful of seeds, each
+        // mirrored across most edges): the Voronoi mesh of the rectangle, cut.
+        return Ok(PolygonVoronoi {
+            mesh: cut_to_polygon(&voronoi(&rect, n, seed)?, domain)?,
+            seeds,
+            reflections,
+            spacing,
+            by_reflection: false,
+        });
+    };
     let cut = cut_to_polygon(&background, domain)?;
     let mesh = collapsed(domain, &cut, &seeds, spacing).unwrap_or(cut);
     Ok(PolygonVoronoi {
@@ -161,6 +176,7 @@ pub fn polygon_voronoi(
         seeds,
         reflections,
         spacing,
+        by_reflection: true,
     })
 }
 
