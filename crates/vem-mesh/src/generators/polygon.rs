@@ -1,7 +1,21 @@
 //! Meshes of a simple polygon, of any family: the family's mesh of the polygon's bounding
-//! rectangle, cut by the polygon.
+//! rectangle, cut by the polygon; for the Voronoi family, a centroidal Voronoi mesh of the
+//! polygon by reflected seeds.
 //!
-//! # Method
+//! # Which family uses which method
+//!
+//! | family | method of [`polygon_mesh`] |
+//! | --- | --- |
+//! | voronoi | reflected seeds ([`polygon_voronoi`], PolyMesher's method): seeds drawn in the polygon, mirrored across the edges they are near, Lloyd iterations; the cells of the seeds end on the polygon's edges, and the cut below only clips what reflection leaves open (around reflex corners, where an image was dropped) |
+//! | quads, triangles, hexagons, perturbed, nonconvex, hanging | the family's mesh of the bounding rectangle cut by the polygon (below) |
+//!
+//! The Voronoi mesh of the rectangle cut by the polygon is still [`cut_to_polygon`] of
+//! [`super::voronoi`]'s mesh; it leaves cut cells along the whole boundary (smallest star ratio
+//! 0.050 to 0.15, shortest edges down to 0.018 of their cells on the polygons of
+//! `tests/polygon_domains.rs`, n = 10 to 40), where the reflected seeds give 0.13 to 0.30
+//! and at least 0.10.
+//!
+//! # Method of the cut
 //!
 //! 1. The family generates its mesh of size `n` on the bounding rectangle of the polygon
 //!    (the same cells as on that rectangle: `n` cells across its width).

@@ -29,10 +29,22 @@
 //!    round-off only), a cell of a seed poking out of the polygon is clipped, and the pieces of
 //!    mirror images' cells reaching into the polygon around a reflex corner are merged into
 //!    their neighbours (or split) by the cut's rules. The cut is what makes the result robust
-//!    where reflection alone is not: the cells tile the polygon exactly, every corner of the
-//!    polygon is a vertex, and the boundary parts are named after the polygon's edges.
-//! 5. Edges shorter than [`SHORT_EDGE_RATIO`](super::SHORT_EDGE_RATIO) times the diameter of their cells are collapsed
-//!    as on a rectangle, the polygon's corners fixed and its edges' vertices kept on them.
+//!    where reflection alone is not (PolyMesher's cells near a reflex corner do not close on
+//!    the boundary; it relies on the distance function there): the cells tile the polygon
+//!    exactly, every corner of the polygon is a vertex, and the boundary parts are named after
+//!    the polygon's edges.
+//! 5. A cell holding no seed (a piece of an image's cell the cut kept) joins the neighbouring
+//!    seed's cell along whose edges their union is the most star-shaped, when that union is
+//!    more star-shaped than the piece: the smallest star ratio never falls, and the cells are
+//!    the seeds'.
+//! 6. Edges shorter than [`SHORT_EDGE_RATIO`](super::SHORT_EDGE_RATIO) times the diameter of
+//!    their cells are collapsed as on a rectangle, the polygon's corners fixed and its edges'
+//!    vertices kept on them; a triangle with such an edge (a sliver the cut left at a corner)
+//!    vanishes, its neighbours sharing the edge it leaves.
+//!
+//! Should the cells of the sites not make a valid mesh (sites so close that their computed
+//! cells disagree; seen only with a handful of seeds, the L-shape at n = 2), the mesh is the
+//! rectangle's Voronoi mesh cut by the polygon ([`PolygonVoronoi::by_reflection`] false).
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
