@@ -370,10 +370,10 @@ fn most_cells_are_untouched_voronoi_cells_of_their_seeds() {
                 .collect();
             let (mut inner, mut inner_exact, mut outer, mut outer_exact) = (0, 0, 0, 0);
             let (mut inner_near, mut outer_near) = (0, 0);
-            for p in 0..mesh.n_polygons() {
+            for (p, &on_boundary) in on_boundary.iter().enumerate() {
                 let exact = is_voronoi_cell(&voronoi, &domain, &seed_of, p, 1e-9);
                 let near = is_voronoi_cell(&voronoi, &domain, &seed_of, p, 0.1);
-                if on_boundary[p] {
+                if on_boundary {
                     outer += 1;
                     outer_exact += usize::from(exact);
                     outer_near += usize::from(near);
@@ -425,7 +425,7 @@ fn reflected_voronoi_is_centroidal() {
             assert_eq!(voronoi.seeds.len(), expected as usize, "{shape} n = {n}");
             let seed_of = seed_of_each_cell(&voronoi);
             let mut worst: f64 = 0.0;
-            for p in 0..mesh.n_polygons() {
+            for (p, seed) in seed_of.iter().enumerate() {
                 let inner = mesh
                     .polygon_edges(p)
                     .iter()
@@ -435,7 +435,7 @@ fn reflected_voronoi_is_centroidal() {
                 }
                 // A piece of an image's cell at a reflex corner that no join improved holds
                 // no seed.
-                let Some(k) = seed_of[p] else { continue };
+                let Some(k) = *seed else { continue };
                 let seed = voronoi.seeds[k];
                 let centroid = geometry::centroid(&mesh.polygon_points(p));
                 worst = worst.max((centroid - seed).norm() / voronoi.spacing);
@@ -459,7 +459,7 @@ fn reflected_voronoi_of_a_rectangle() {
     let area: f64 = (0..mesh.n_polygons()).map(|p| mesh.area(p)).sum();
     assert!((area - 2.0).abs() <= 1e-12 * 2.0, "{area}");
     for &corner in domain.vertices() {
-        assert!(mesh.vertices().iter().any(|&v| v == corner), "{corner}");
+        assert!(mesh.vertices().contains(&corner), "{corner}");
     }
     for (k, expected) in [2.0, 1.0, 2.0, 1.0].into_iter().enumerate() {
         let length = part_length(mesh, &format!("edge{k}"));

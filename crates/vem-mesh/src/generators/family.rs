@@ -48,7 +48,7 @@ pub enum MeshFamily {
     /// A clipped honeycomb, n hexagons across ([`hexagons`]).
     Hexagons,
     /// Centroidal Voronoi cells, n x round(n height / width) sites ([`voronoi`]; uses the seed);
-    /// on a polygon, seeds reflected across its edges ([`super::polygon_voronoi`]).
+    /// on a polygon, seeds reflected across its edges ([`super::polygon_voronoi()`]).
     Voronoi,
     /// Rectangles with randomly moved nodes ([`perturbed_quads`]; uses the seed).
     PerturbedQuads {

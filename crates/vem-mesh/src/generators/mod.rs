@@ -19,7 +19,7 @@
 //! Any family also meshes a simple polygon ([`PolygonDomain`], [`polygon_mesh`]): its mesh of
 //! the polygon's bounding rectangle, cut by the polygon, boundary parts named after the
 //! polygon's edges; the Voronoi family there makes a centroidal Voronoi mesh of the polygon by
-//! reflected seeds instead ([`polygon_voronoi`], PolyMesher's method), whose cells end on the
+//! reflected seeds instead ([`polygon_voronoi()`], PolyMesher's method), whose cells end on the
 //! polygon's edges without being cut.
 //!
 //! [`MeshFamily`] names them all for command lines and convergence studies:
@@ -41,7 +41,7 @@ mod hexagons;
 mod nonconvex;
 mod perturbed;
 pub mod polygon;
-mod polygon_voronoi;
+pub mod polygon_voronoi;
 pub mod polyhedral;
 mod structured;
 mod voronoi;

@@ -6,7 +6,7 @@
 //!
 //! | family | method of [`polygon_mesh`] |
 //! | --- | --- |
-//! | voronoi | reflected seeds ([`polygon_voronoi`], PolyMesher's method): seeds drawn in the polygon, mirrored across the edges they are near, Lloyd iterations; the cells of the seeds end on the polygon's edges, and the cut below only clips what reflection leaves open (around reflex corners, where an image was dropped) |
+//! | voronoi | reflected seeds ([`polygon_voronoi()`], PolyMesher's method): seeds drawn in the polygon, mirrored across the edges they are near, Lloyd iterations; the cells of the seeds end on the polygon's edges, and the cut below only clips what reflection leaves open (around reflex corners, where an image was dropped) |
 //! | quads, triangles, hexagons, perturbed, nonconvex, hanging | the family's mesh of the bounding rectangle cut by the polygon (below) |
 //!
 //! The Voronoi mesh of the rectangle cut by the polygon is still [`cut_to_polygon`] of
@@ -294,11 +294,11 @@ fn cross(a: Vector, b: Vector) -> f64 {
 
 /// The mesh of size `n` of `family` on the polygon `domain` (`seed` for the random families):
 /// for [`MeshFamily::Voronoi`] the centroidal Voronoi mesh of the polygon by reflected seeds
-/// ([`polygon_voronoi`]), for the other families their mesh of the bounding rectangle cut by
+/// ([`polygon_voronoi()`]), for the other families their mesh of the bounding rectangle cut by
 /// the polygon ([`cut_to_polygon`]).
 ///
 /// # Errors
-/// The family's errors for its size; [`cut_to_polygon`]'s; [`polygon_voronoi`]'s.
+/// The family's errors for its size; [`cut_to_polygon`]'s; [`polygon_voronoi()`]'s.
 pub fn polygon_mesh(
     domain: &PolygonDomain,
     family: MeshFamily,

@@ -77,7 +77,7 @@ const CLOSEST_IMAGE: f64 = 1e-3;
 /// Filler sites lie at least this many reflection distances outside the polygon.
 const FILLER_DISTANCE: f64 = 3.0;
 
-/// A centroidal Voronoi mesh of a polygon ([`polygon_voronoi`]) with its seeds.
+/// A centroidal Voronoi mesh of a polygon ([`polygon_voronoi()`]) with its seeds.
 #[derive(Debug, Clone)]
 pub struct PolygonVoronoi {
     /// The mesh, boundary parts named after the polygon's edges.
