@@ -70,17 +70,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 ),
             ] {
                 let q = summarise(&mesh);
-                if std::env::var("WORST").is_ok() {
-                    let qs = vem_mesh::quality::element_qualities(&mesh);
-                    let worst = (0..qs.len())
-                        .min_by(|&a, &b| qs[a].star_ratio.total_cmp(&qs[b].star_ratio))
-                        .unwrap();
-                    let pts: Vec<(f64, f64)> = mesh
-                        .polygon_points(worst)
-                        .iter()
-                        .map(|p| (p.x, p.y))
-                        .collect();
-                    println!("worst {worst}: {pts:?}");
+                println!("worst {worst}: {pts:?}");
                 }
                 println!(
                     "{name:<8} {method:<9} {n:>3} {:>6} {:>9.3} {:>18.3}",
