@@ -70,8 +70,6 @@ fn main() -> Result<(), Box<dyn Error>> {
                 ),
             ] {
                 let q = summarise(&mesh);
-                println!("worst {worst}: {pts:?}");
-                }
                 println!(
                     "{name:<8} {method:<9} {n:>3} {:>6} {:>9.3} {:>18.3}",
                     q.elements, q.star_ratio.min, q.shortest_edge_ratio.min
