@@ -47,7 +47,8 @@ pub enum MeshFamily {
     Triangles,
     /// A clipped honeycomb, n hexagons across ([`hexagons`]).
     Hexagons,
-    /// Centroidal Voronoi cells, n x round(n height / width) sites ([`voronoi`]; uses the seed).
+    /// Centroidal Voronoi cells, n x round(n height / width) sites ([`voronoi`]; uses the seed);
+    /// on a polygon, seeds reflected across its edges ([`super::polygon_voronoi()`]).
     Voronoi,
     /// Rectangles with randomly moved nodes ([`perturbed_quads`]; uses the seed).
     PerturbedQuads {

@@ -18,7 +18,9 @@
 //!
 //! Any family also meshes a simple polygon ([`PolygonDomain`], [`polygon_mesh`]): its mesh of
 //! the polygon's bounding rectangle, cut by the polygon, boundary parts named after the
-//! polygon's edges.
+//! polygon's edges; the Voronoi family there makes a centroidal Voronoi mesh of the polygon by
+//! reflected seeds instead ([`polygon_voronoi()`], PolyMesher's method), whose cells end on the
+//! polygon's edges without being cut.
 //!
 //! [`MeshFamily`] names them all for command lines and convergence studies:
 //!
@@ -39,6 +41,7 @@ mod hexagons;
 mod nonconvex;
 mod perturbed;
 pub mod polygon;
+pub mod polygon_voronoi;
 pub mod polyhedral;
 mod structured;
 mod voronoi;
@@ -49,6 +52,7 @@ pub use hexagons::hexagons;
 pub use nonconvex::{nonconvex, CHEVRON_RISE};
 pub use perturbed::perturbed_quads;
 pub use polygon::{cut_to_polygon, polygon_mesh, PolygonDomain, MERGE_AREA_RATIO, SNAP_RATIO};
+pub use polygon_voronoi::{polygon_voronoi, PolygonVoronoi, REFLECTION_RATIO};
 pub use structured::{structured_quads, structured_triangles};
 pub use voronoi::{voronoi, LLOYD_ITERATIONS, MAX_VORONOI_CELLS, SHORT_EDGE_RATIO};
 

@@ -88,19 +88,19 @@ pub fn voronoi(rect: &Rectangle, n: usize, seed: u64) -> Result<Mesh, MeshError>
     let cells = voronoi_cells(&grid, &sites);
     let spacing = (rect.width() * rect.height() / sites.len() as f64).sqrt();
     let (vertices, polygons) = conforming(rect, &cells, 1e-9 * spacing);
-    let (vertices, polygons) = collapse_short_edges(rect, vertices, polygons);
+    let (vertices, polygons) = collapse_short_edges_in(rect, vertices, polygons);
     mesh_with_sides(rect, vertices, &polygons)
 }
 
 /// The rectangle cut into nx x ny equal cells, to bucket the sites.
-struct SiteGrid {
+pub(super) struct SiteGrid {
     rect: Rectangle,
     nx: usize,
     ny: usize,
 }
 
 impl SiteGrid {
-    fn new(rect: &Rectangle, nx: usize, ny: usize) -> Self {
+    pub(super) fn new(rect: &Rectangle, nx: usize, ny: usize) -> Self {
         Self {
             rect: *rect,
             nx,
@@ -157,13 +157,23 @@ impl SiteGrid {
 /// parallel. Each cell depends only on the sites (it is clipped by the same sites in the same
 /// order whatever the order the cells are computed in), so the result is the same bit for bit
 /// whatever the number of threads.
-fn voronoi_cells(grid: &SiteGrid, sites: &[Point]) -> Vec<Vec<Point>> {
+pub(super) fn voronoi_cells(grid: &SiteGrid, sites: &[Point]) -> Vec<Vec<Point>> {
+    voronoi_cells_of(grid, sites, sites.len())
+}
+
+/// The Voronoi cells of the first `wanted` sites among all `sites` ([`voronoi_cells`]); the
+/// cells of the other sites are left empty.
+pub(super) fn voronoi_cells_of(grid: &SiteGrid, sites: &[Point], wanted: usize) -> Vec<Vec<Point>> {
     let (start, items) = grid.bucket(sites);
     let bucketed: Vec<Point> = items.iter().map(|&s| sites[s]).collect();
     let computed: Vec<Vec<Point>> = (0..items.len())
         .into_par_iter()
         .map_init(Vec::new, |scratch, k| {
-            voronoi_cell(grid, &start, &items, &bucketed, k, scratch)
+            if items[k] < wanted {
+                voronoi_cell(grid, &start, &items, &bucketed, k, scratch)
+            } else {
+                Vec::new()
+            }
         })
         .collect();
     let mut cells = vec![Vec::new(); sites.len()];
@@ -256,13 +266,20 @@ fn ring_cells(
 /// Clips the convex polygon `cell` to the half-plane of points closer to `site` than to
 /// `other`, into `out`.
 fn clip_bisector(cell: &[Point], site: Point, other: Point, out: &mut Vec<Point>) {
-    out.clear();
     let normal: Vector = other - site;
+    clip_half_plane(cell, site + 0.5 * normal, normal, out);
+}
+
+/// Clips the polygon `cell` to the half-plane {x : (x - middle) . normal <= 0}, into `out`
+/// (Sutherland-Hodgman: a non-convex polygon cut in several pieces comes out as one loop whose
+/// pieces are joined along the line by edges of zero area, so its area and centroid are
+/// those of the pieces); a zero `normal` keeps the polygon.
+pub(super) fn clip_half_plane(cell: &[Point], middle: Point, normal: Vector, out: &mut Vec<Point>) {
+    out.clear();
     if normal == Vector::zeros() {
         out.extend_from_slice(cell);
         return;
     }
-    let middle = site + 0.5 * normal;
     let count = cell.len();
     for k in 0..count {
         let (a, b) = (cell[k], cell[(k + 1) % count]);
@@ -279,7 +296,7 @@ fn clip_bisector(cell: &[Point], site: Point, other: Point, out: &mut Vec<Point>
 /// Identifies cell vertices closer than `tolerance` (union of all such pairs) and returns the
 /// shared vertices (first member's position, snapped onto the rectangle's sides) and the
 /// cells as loops of vertex indices without repeats.
-fn conforming(
+pub(super) fn conforming(
     rect: &Rectangle,
     cells: &[Vec<Point>],
     tolerance: f64,
@@ -370,21 +387,82 @@ fn without_repeats(mut polygon: Vec<usize>) -> Vec<usize> {
     polygon
 }
 
-/// Where a vertex lies relative to the rectangle: bit 0 left, 1 right, 2 bottom, 3 top.
-fn sides(rect: &Rectangle, p: Point) -> u8 {
-    u8::from(p.x == rect.min.x)
-        | u8::from(p.x == rect.max.x) << 1
-        | u8::from(p.y == rect.min.y) << 2
-        | u8::from(p.y == rect.max.y) << 3
+/// Where a vertex lies on the boundary of the domain being meshed, for
+/// [`collapse_short_edges`]: inside, on one side (straight), or at a corner where two sides
+/// meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Place {
+    Inside,
+    Side(usize),
+    Corner(usize, usize),
+}
+
+impl Place {
+    pub(super) fn on(self, side: usize) -> bool {
+        match self {
+            Place::Inside => false,
+            Place::Side(k) => k == side,
+            Place::Corner(k, l) => k == side || l == side,
+        }
+    }
+}
+
+/// Where a vertex lies relative to the rectangle: sides 0 left, 1 right, 2 bottom, 3 top.
+fn rectangle_place(rect: &Rectangle, p: Point) -> Place {
+    let on = [
+        p.x == rect.min.x,
+        p.x == rect.max.x,
+        p.y == rect.min.y,
+        p.y == rect.max.y,
+    ];
+    let mut sides = (0..4).filter(|&k| on[k]);
+    match (sides.next(), sides.next()) {
+        (None, _) => Place::Inside,
+        (Some(k), None) => Place::Side(k),
+        (Some(k), Some(l)) => Place::Corner(k, l),
+    }
+}
+
+/// The point `p` (near side `side` of the rectangle) moved onto that side.
+fn onto_rectangle_side(rect: &Rectangle, side: usize, mut p: Point) -> Point {
+    match side {
+        0 => p.x = rect.min.x,
+        1 => p.x = rect.max.x,
+        2 => p.y = rect.min.y,
+        _ => p.y = rect.max.y,
+    }
+    p
+}
+
+/// Collapses the short edges ([`collapse_short_edges`]) of a partition of `rect`: its
+/// corners never move, its sides' vertices stay on them.
+fn collapse_short_edges_in(
+    rect: &Rectangle,
+    vertices: Vec<Point>,
+    polygons: Vec<Vec<usize>>,
+) -> (Vec<Point>, Vec<Vec<usize>>) {
+    collapse_short_edges(
+        |p| rectangle_place(rect, p),
+        |side, p| onto_rectangle_side(rect, side, p),
+        false,
+        vertices,
+        polygons,
+    )
 }
 
 /// Collapses edges shorter than [`SHORT_EDGE_RATIO`] times the largest diameter of the cells
 /// sharing them, in passes; each pass collapses the shortest such edges first and leaves the
 /// vertices it moved alone until the next pass. An edge is kept when collapsing it would leave
 /// a cell with fewer than three vertices, join two vertices a cell does not visit one after
-/// the other, or move a corner or a vertex off its side of the rectangle.
-fn collapse_short_edges(
-    rect: &Rectangle,
+/// the other, or move a corner or a vertex off its side of the domain (`place` tells where a
+/// vertex lies, `onto(side, p)` moves a point near a side onto it: the midpoint of two
+/// vertices of one side). With `drop_triangles`, a short edge of a triangle is collapsed too
+/// when the cells across the triangle's two other edges differ: the triangle vanishes and they
+/// share the edge it leaves (a sliver the cut of a polygon left at a corner).
+pub(super) fn collapse_short_edges(
+    place: impl Fn(Point) -> Place,
+    onto: impl Fn(usize, Point) -> Point,
+    drop_triangles: bool,
     mut vertices: Vec<Point>,
     mut polygons: Vec<Vec<usize>>,
 ) -> (Vec<Point>, Vec<Vec<usize>>) {
@@ -446,7 +524,7 @@ fn collapse_short_edges(
                 .copied()
                 .filter(|p| around[start[b]..start[b + 1]].contains(p))
                 .collect();
-            let consecutive = |p: usize| {
+            let has_edge = |p: usize, a: usize, b: usize| {
                 let loop_ = &polygons[p];
                 let m = loop_.len();
                 (0..m).any(|k| {
@@ -454,28 +532,44 @@ fn collapse_short_edges(
                     (x, y) == (a, b) || (x, y) == (b, a)
                 })
             };
-            if shared.iter().any(|&p| sizes[p] <= 3 || !consecutive(p)) {
+            // A triangle may vanish (when `drop_triangles`) if the cells across its two other
+            // edges differ: they then share the edge it leaves.
+            let vanishes = |p: usize| {
+                let Some(c) = polygons[p].iter().copied().find(|&v| v != a && v != b) else {
+                    return false;
+                };
+                let across = |x: usize| {
+                    around[start[c]..start[c + 1]]
+                        .iter()
+                        .copied()
+                        .find(|&q| q != p && has_edge(q, x, c))
+                };
+                drop_triangles
+                    && sizes[p] == 3
+                    && polygons[p].len() == 3
+                    && match (across(a), across(b)) {
+                        (Some(qa), Some(qb)) => qa != qb,
+                        _ => true,
+                    }
+            };
+            let triangles = shared.iter().filter(|&&p| sizes[p] <= 3).count();
+            if shared
+                .iter()
+                .any(|&p| !has_edge(p, a, b) || (sizes[p] <= 3 && !vanishes(p)))
+                || triangles > 1
+            {
                 continue;
             }
             let (pa, pb) = (vertices[a], vertices[b]);
-            let (sa, sb) = (sides(rect, pa), sides(rect, pb));
-            let corner = |s: u8| s.count_ones() >= 2;
-            let position = match (sa, sb) {
-                (0, 0) => Some(Point::from((pa.coords + pb.coords) * 0.5)),
-                (_, 0) => Some(pa),
-                (0, _) => Some(pb),
-                _ if corner(sa) && !corner(sb) && sa & sb != 0 => Some(pa),
-                _ if corner(sb) && !corner(sa) && sa & sb != 0 => Some(pb),
-                _ if sa == sb && !corner(sa) => {
-                    // Both on one side: the midpoint stays on it exactly.
-                    let mut m = Point::from((pa.coords + pb.coords) * 0.5);
-                    if sa & 0b0011 != 0 {
-                        m.x = pa.x;
-                    } else {
-                        m.y = pa.y;
-                    }
-                    Some(m)
-                }
+            let middle = Point::from((pa.coords + pb.coords) * 0.5);
+            let position = match (place(pa), place(pb)) {
+                (Place::Inside, Place::Inside) => Some(middle),
+                (_, Place::Inside) => Some(pa),
+                (Place::Inside, _) => Some(pb),
+                (corner @ Place::Corner(..), Place::Side(k)) if corner.on(k) => Some(pa),
+                (Place::Side(k), corner @ Place::Corner(..)) if corner.on(k) => Some(pb),
+                // Both on one side: the midpoint stays on it.
+                (Place::Side(k), Place::Side(l)) if k == l => Some(onto(k, middle)),
                 _ => None,
             };
             let Some(position) = position else { continue };
@@ -495,6 +589,7 @@ fn collapse_short_edges(
             let relabelled: Vec<usize> = loop_.iter().map(|&v| target[v]).collect();
             *loop_ = without_repeats(relabelled);
         }
+        polygons.retain(|loop_| loop_.len() >= 3);
     }
     // Drop the vertices no polygon uses any more, keeping the order of the others.
     let mut number = vec![usize::MAX; vertices.len()];
@@ -543,7 +638,7 @@ mod tests {
             Point::new(0.0, 1.0),
         ];
         let polygons = vec![vec![0, 1, 2, 5, 6], vec![2, 3, 4, 5]];
-        let (vertices, polygons) = collapse_short_edges(&rect, vertices, polygons);
+        let (vertices, polygons) = collapse_short_edges_in(&rect, vertices, polygons);
         assert_eq!(vertices.len(), 6);
         assert_eq!(polygons, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
         assert_eq!(vertices[1], Point::new(0.5005, 0.0));
