@@ -1,7 +1,8 @@
 //! Meshes generated on a polygon (vem-mesh `polygon_mesh`: a family's mesh of the bounding
-//! rectangle cut by the polygon) carry the element's guarantees: the linear patch test PT0a is
-//! exact on the L-shaped domain for every family, and the energy error of the manufactured
-//! solution E1 restricted to the L-shape falls like h (docs/meshes.md, "Meshes of a polygon").
+//! rectangle cut by the polygon, or for Voronoi the seeds' cells with reflected seeds) carry the
+//! element's guarantees: the linear patch test PT0a is exact on the L-shaped domain for every
+//! family, and the energy error of the manufactured solution E1 restricted to the L-shape falls
+//! like h (docs/scenes.md, section 3, "Mesh": a generated mesh on a polygon).
 
 mod common;
 
