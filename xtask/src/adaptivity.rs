@@ -635,7 +635,7 @@ fn write_report(
 ) -> Result<bool, Box<dyn std::error::Error>> {
     let folder = folder_of(out);
     std::fs::create_dir_all(&folder)?;
-    let (doc, plots, ok) = report(stored)?;
+    let Report { doc, plots, ok } = report(stored)?;
     for (name, svg) in &plots {
         write_text(folder.join(name), svg)?;
     }
@@ -646,11 +646,16 @@ fn write_report(
     Ok(ok)
 }
 
-/// The report of a stored run: the Markdown, the convergence plots (file name, SVG) and
-/// whether every study passes its check.
-fn report(
-    stored: &Stored,
-) -> Result<(String, Vec<(String, String)>, bool), Box<dyn std::error::Error>> {
+/// A stored run's report: the Markdown, the convergence plots (file name, SVG) and whether
+/// every study passes its check.
+struct Report {
+    doc: String,
+    plots: Vec<(String, String)>,
+    ok: bool,
+}
+
+/// The report of a stored run.
+fn report(stored: &Stored) -> Result<Report, Box<dyn std::error::Error>> {
     let mut sections = String::new();
     let mut plots = Vec::new();
     let mut ok = true;
@@ -672,7 +677,7 @@ fn report(
             ("studies", sections),
         ],
     )?;
-    Ok((doc, plots, ok))
+    Ok(Report { doc, plots, ok })
 }
 
 fn errors(records: &[Row]) -> Vec<(f64, f64)> {
@@ -861,7 +866,7 @@ mod tests {
         let folder = docs().join("adaptivity");
         let (stored, pictures) = read_stored(&folder).expect("the committed rows");
         assert!(!stored.quick, "the committed rows are those of a full run");
-        let (doc, plots, _) = report(&stored).expect("the report renders");
+        let Report { doc, plots, .. } = report(&stored).expect("the report renders");
         assert!(
             doc == read(&docs().join("adaptivity.md")),
             "docs/adaptivity.md is not the rendered report"
