@@ -10,23 +10,24 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
-use vem_contact::{law::Frictionless, CondensedSettings, CondensedSolver, ContactProblem};
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+use vem_contact::{CondensedSettings, CondensedSolver};
 use vem_mesh::generators::{structured_quads, Rectangle};
-use vem_mesh::interface::InterfaceOptions;
-use vem_mesh::io::{read_gmsh, write_svg_layers, SvgLayer, SvgOptions};
-use vem_mesh::{Mesh, Point, Vector};
-use vem_space::{ElementSpace, LowestOrderVem};
+use vem_mesh::io::{write_svg_layers, SvgLayer, SvgOptions};
+use vem_mesh::{Mesh, PartSpec, Point};
+use vem_scene::{body_mesh, BuildOptions, BuiltMesh, MeshDescription, Model, Scene};
+use vem_space::LowestOrderVem;
 use vem_verify::adaptive::{
-    case_model, run as adapt, slope_in_unknowns, AdaptiveRun, AdaptiveSettings, CycleRecord, Model,
+    case_model, run as adapt, AdaptiveRun, AdaptiveSettings, CycleRecord, Model as AdaptiveModel,
     Reference,
 };
 use vem_verify::exact::{case_by_name, Lame};
-use vem_verify::problem::ProblemSettings;
-use vem_verify::report::write_text;
-use vem_verify::VerifyError;
-
 use vem_verify::plot::{loglog_svg, LogLogPlot};
+use vem_verify::problem::ProblemSettings;
+use vem_verify::report::{write_json, write_text};
+use vem_verify::study::fitted_rate;
+use vem_verify::VerifyError;
 
 /// Options of `cargo xtask adaptivity`.
 #[derive(Debug, Args)]
@@ -37,178 +38,185 @@ pub struct AdaptivityArgs {
     /// A quick run for CI (fewer cycles, a smaller reference), written under target/.
     #[arg(long)]
     quick: bool,
+    /// Rewrite the report and its figures from `adaptivity/adaptivity.json` and
+    /// `adaptivity/meshes.json` beside it, without solving.
+    #[arg(long)]
+    report_only: bool,
 }
 
-/// Young's modulus and Poisson's ratio of both bodies of the punch (plane strain).
+/// Young's modulus and Poisson's ratio of both bodies of the problems without an exact
+/// solution (plane strain).
 const YOUNG: f64 = 100.0;
 const POISSON: f64 = 0.3;
-/// The punch's top moves down by this.
+/// The punch's and the L-shape's top moves down by this.
 const INDENTATION: f64 = 0.01;
 /// Dorfler's bulk fraction.
 const THETA: f64 = 0.5;
 
-/// The flat punch on given meshes: `meshes[0]` the punch [-0.25, 0.25] x [0, 0.5] (top moved
-/// down by [`INDENTATION`]), `meshes[1]` the foundation [-1, 1] x [-1, 0] (bottom clamped),
-/// the punch's bottom against the foundation's top, frictionless.
-fn punch_model(meshes: Vec<Mesh>) -> Result<Model, VerifyError> {
-    let element: Arc<dyn ElementSpace> = Arc::new(LowestOrderVem::default());
-    let elastic = |source| VerifyError::Elastic {
-        case: "flat punch".to_string(),
-        source: Box::new(source),
-    };
-    let material = Material::from_young_poisson(YOUNG, POISSON, Plane::Strain).map_err(elastic)?;
-    let mut meshes = meshes.into_iter();
-    let (punch, foundation) = (meshes.next(), meshes.next());
-    let (Some(punch), Some(foundation)) = (punch, foundation) else {
-        return Err(VerifyError::InvalidSetting {
-            reason: "the flat punch has two bodies".to_string(),
-        });
-    };
-    let punch = ElasticBody::builder("punch", punch, material, Arc::clone(&element))
-        .dirichlet(Dirichlet::prescribed("top", Component::All, |_| {
-            Vector::new(0.0, -INDENTATION)
-        }))
-        .build()
-        .map_err(elastic)?;
-    let foundation = ElasticBody::builder("foundation", foundation, material, element)
-        .clamp("bottom")
-        .build()
-        .map_err(elastic)?;
-    Ok(Model::Contact(ContactProblem::two_bodies(
-        punch,
-        "bottom",
-        foundation,
-        "top",
-        Frictionless,
-    )))
+/// A problem of the study given as a scene: the initial meshes are the scene's (generated, or
+/// read from files relative to `base`); after a refinement the same scene is built again with
+/// the refined meshes given inline ([`BuiltMesh::to_inline`]).
+struct SceneProblem {
+    name: &'static str,
+    scene: Scene,
+    base: PathBuf,
 }
 
-fn punch_meshes() -> Result<Vec<Mesh>, Box<dyn std::error::Error>> {
-    let punch = Rectangle::new(Point::new(-0.25, 0.0), Point::new(0.25, 0.5));
-    let foundation = Rectangle::new(Point::new(-1.0, -1.0), Point::new(1.0, 0.0));
-    Ok(vec![
-        structured_quads(&punch, 3, 3)?,
-        structured_quads(&foundation, 8, 4)?,
-    ])
-}
-
-/// The L-shaped body `[0, 1]^2` without `(1/2, 1] x (1/2, 1]` on `n x n` squares (`n` even),
-/// with the parts "bottom" (y = 0) and "top" (y = 1).
-fn l_shape(n: usize) -> Result<Mesh, Box<dyn std::error::Error>> {
-    let square = structured_quads(&Rectangle::unit_square(), n, n)?;
-    let kept: Vec<usize> = (0..square.n_polygons())
-        .filter(|&p| {
-            let c = square.centroid(p);
-            !(c.x > 0.5 && c.y > 0.5)
+impl SceneProblem {
+    /// The scene of `value` (its keys as in a scene file), its files relative to `base`.
+    fn new(
+        name: &'static str,
+        value: serde_json::Value,
+        base: &str,
+    ) -> Result<Self, Box<dyn std::error::Error>> {
+        Ok(Self {
+            name,
+            scene: Scene::from_value(value)?,
+            base: PathBuf::from(base),
         })
-        .collect();
-    let mut renumber = vec![usize::MAX; square.n_vertices()];
-    let mut vertices = Vec::new();
-    let mut polygons = Vec::with_capacity(kept.len());
-    for &p in &kept {
-        let polygon: Vec<usize> = square
-            .polygon(p)
-            .iter()
-            .map(|&v| {
-                if renumber[v] == usize::MAX {
-                    renumber[v] = vertices.len();
-                    vertices.push(square.vertex(v));
-                }
-                renumber[v]
-            })
-            .collect();
-        polygons.push(polygon);
     }
-    Ok(Mesh::from_polygons(vertices, &polygons, vec![])?
-        .with_part_where("bottom", |a, b| a.y == 0.0 && b.y == 0.0)?
-        .with_part_where("top", |a, b| a.y == 1.0 && b.y == 1.0)?)
+
+    /// The initial meshes, as `Model::build` makes them.
+    fn meshes(&self) -> Result<Vec<Mesh>, Box<dyn std::error::Error>> {
+        (0..self.scene.bodies.len())
+            .map(|i| match body_mesh(&self.scene, i, &self.base)?.0 {
+                BuiltMesh::Plane(mesh) => Ok(mesh),
+                BuiltMesh::Space(_) => Err(format!("{}: a body in space", self.name).into()),
+            })
+            .collect()
+    }
+
+    /// The model of the scene on `meshes` (one per body, in the scene's order).
+    fn model(&self, meshes: Vec<Mesh>) -> Result<AdaptiveModel, VerifyError> {
+        let invalid = |reason: String| VerifyError::InvalidSetting {
+            reason: format!("{}: {reason}", self.name),
+        };
+        let mut scene = self.scene.clone();
+        if meshes.len() != scene.bodies.len() {
+            return Err(invalid(format!(
+                "{} meshes for {} bodies",
+                meshes.len(),
+                scene.bodies.len()
+            )));
+        }
+        for (body, mesh) in scene.bodies.iter_mut().zip(meshes) {
+            body.mesh = BuiltMesh::Plane(mesh).to_inline();
+        }
+        let options = BuildOptions {
+            base: self.base.clone(),
+            ..BuildOptions::default()
+        };
+        let model = Model::build(&scene, &options).map_err(|e| invalid(e.to_string()))?;
+        let (problem, _) = model
+            .contact_problem()
+            .ok_or_else(|| invalid("no contact pair".to_string()))?;
+        Ok(AdaptiveModel::Contact(problem.clone()))
+    }
 }
 
-/// The L-shaped body (top moved down by [`INDENTATION`]) pressed on a block
-/// `[-0.5, 1.5] x [-1, 0]` (bottom clamped), frictionless: singular at the re-entrant corner
-/// and at the ends of the contact.
-fn l_model(meshes: Vec<Mesh>) -> Result<Model, VerifyError> {
-    let element: Arc<dyn ElementSpace> = Arc::new(LowestOrderVem::default());
-    let elastic = |source| VerifyError::Elastic {
-        case: "L-shape".to_string(),
-        source: Box::new(source),
-    };
-    let material = Material::from_young_poisson(YOUNG, POISSON, Plane::Strain).map_err(elastic)?;
-    let mut meshes = meshes.into_iter();
-    let (Some(l), Some(block)) = (meshes.next(), meshes.next()) else {
-        return Err(VerifyError::InvalidSetting {
-            reason: "the L-shape problem has two bodies".to_string(),
-        });
-    };
-    let l = ElasticBody::builder("L", l, material, Arc::clone(&element))
-        .dirichlet(Dirichlet::prescribed("top", Component::All, |_| {
-            Vector::new(0.0, -INDENTATION)
-        }))
-        .build()
-        .map_err(elastic)?;
-    let block = ElasticBody::builder("block", block, material, element)
-        .clamp("bottom")
-        .build()
-        .map_err(elastic)?;
-    Ok(Model::Contact(ContactProblem::two_bodies(
-        l,
-        "bottom",
-        block,
-        "top",
-        Frictionless,
-    )))
+/// The material of the problems without an exact solution.
+fn material() -> serde_json::Value {
+    json!({ "E": YOUNG, "nu": POISSON, "plane": "strain" })
 }
 
-fn l_meshes() -> Result<Vec<Mesh>, Box<dyn std::error::Error>> {
-    let block = Rectangle::new(Point::new(-0.5, -1.0), Point::new(1.5, 0.0));
-    Ok(vec![l_shape(4)?, structured_quads(&block, 6, 3)?])
+/// The flat punch: the punch [-0.25, 0.25] x [0, 0.5] (3 x 3 quads, top moved down by
+/// [`INDENTATION`]) on the foundation [-1, 1] x [-1, 0] (8 x 4 quads, bottom clamped), the
+/// punch's bottom against the foundation's top, frictionless.
+fn punch() -> Result<SceneProblem, Box<dyn std::error::Error>> {
+    SceneProblem::new(
+        "flat punch",
+        json!({
+            "title": "flat punch",
+            "body": [
+                {
+                    "name": "punch",
+                    "mesh": { "family": "quads", "rectangle": [[-0.25, 0.0], [0.25, 0.5]], "n": 3 },
+                    "material": material(),
+                    "dirichlet": [{ "part": "top", "x": 0.0, "y": -INDENTATION }],
+                },
+                {
+                    "name": "foundation",
+                    "mesh": { "family": "quads", "rectangle": [[-1.0, -1.0], [1.0, 0.0]], "n": 8 },
+                    "material": material(),
+                    "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }],
+                },
+            ],
+            "contact": [{
+                "body": "punch", "part": "bottom", "other_body": "foundation",
+                "other_part": "top", "law": "frictionless",
+            }],
+        }),
+        ".",
+    )
+}
+
+/// The L-shaped body `[0, 1]^2` without `(1/2, 1] x (1/2, 1]` (the quads of 4 x 4 cut by the
+/// polygon; parts "bottom" at y = 0 and "top" at y = 1), top moved down by [`INDENTATION`],
+/// pressed on a block `[-0.5, 1.5] x [-1, 0]` (6 x 3 quads, bottom clamped), frictionless:
+/// singular at the re-entrant corner and at the ends of the contact.
+fn l_shape() -> Result<SceneProblem, Box<dyn std::error::Error>> {
+    SceneProblem::new(
+        "L-shape",
+        json!({
+            "title": "L-shape",
+            "body": [
+                {
+                    "name": "L",
+                    "mesh": {
+                        "family": "quads",
+                        "polygon": [[0.0, 0.0], [1.0, 0.0], [1.0, 0.5], [0.5, 0.5], [0.5, 1.0], [0.0, 1.0]],
+                        "edge_names": ["bottom", "free", "free", "free", "top", "free"],
+                        "n": 4,
+                    },
+                    "material": material(),
+                    "dirichlet": [{ "part": "top", "x": 0.0, "y": -INDENTATION }],
+                },
+                {
+                    "name": "block",
+                    "mesh": { "family": "quads", "rectangle": [[-0.5, -1.0], [1.5, 0.0]], "n": 6 },
+                    "material": material(),
+                    "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }],
+                },
+            ],
+            "contact": [{
+                "body": "L", "part": "bottom", "other_body": "block", "other_part": "top",
+                "law": "frictionless",
+            }],
+        }),
+        ".",
+    )
 }
 
 /// The Hertz half-disc of `docs/hertz.md` (radius 1, top moved down by 0.02) on the block
 /// (bottom clamped), frictionless, from the meshes of `xtask/data/hertz` at `h_c = 0.08`.
 /// The refinement cuts the disc's arc at chord midpoints: the geometry stays the initial
 /// polygon, and the reference is that polygon's solution.
-fn hertz_model(meshes: Vec<Mesh>) -> Result<Model, VerifyError> {
-    let element: Arc<dyn ElementSpace> = Arc::new(LowestOrderVem::default());
-    let elastic = |source| VerifyError::Elastic {
-        case: "Hertz".to_string(),
-        source: Box::new(source),
-    };
-    let material = Material::from_young_poisson(YOUNG, POISSON, Plane::Strain).map_err(elastic)?;
-    let mut meshes = meshes.into_iter();
-    let (Some(disc), Some(block)) = (meshes.next(), meshes.next()) else {
-        return Err(VerifyError::InvalidSetting {
-            reason: "the Hertz problem has two bodies".to_string(),
-        });
-    };
-    let disc = ElasticBody::builder("disc", disc, material, Arc::clone(&element))
-        .dirichlet(Dirichlet::prescribed("top", Component::All, |_| {
-            Vector::new(0.0, -0.02)
-        }))
-        .build()
-        .map_err(elastic)?;
-    let block = ElasticBody::builder("block", block, material, element)
-        .clamp("bottom")
-        .build()
-        .map_err(elastic)?;
-    let options = InterfaceOptions::builder()
-        .max_distance(0.05)
-        .build()
-        .map_err(|e| VerifyError::InvalidSetting {
-            reason: e.to_string(),
-        })?;
-    Ok(Model::Contact(
-        ContactProblem::two_bodies(disc, "arc", block, "top", Frictionless)
-            .with_interface_options(options),
-    ))
-}
-
-fn hertz_meshes() -> Result<Vec<Mesh>, Box<dyn std::error::Error>> {
-    let folder = Path::new("xtask/data/hertz");
-    Ok(vec![
-        read_gmsh(folder.join("disc_hc0.08.msh"))?,
-        read_gmsh(folder.join("block_hc0.08.msh"))?,
-    ])
+fn hertz() -> Result<SceneProblem, Box<dyn std::error::Error>> {
+    SceneProblem::new(
+        "Hertz",
+        json!({
+            "title": "Hertz",
+            "body": [
+                {
+                    "name": "disc",
+                    "mesh": { "file": "disc_hc0.08.msh" },
+                    "material": material(),
+                    "dirichlet": [{ "part": "top", "x": 0.0, "y": -0.02 }],
+                },
+                {
+                    "name": "block",
+                    "mesh": { "file": "block_hc0.08.msh" },
+                    "material": material(),
+                    "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }],
+                },
+            ],
+            "contact": [{
+                "body": "disc", "part": "arc", "other_body": "block", "other_part": "top",
+                "law": "frictionless", "max_distance": 0.05,
+            }],
+        }),
+        "xtask/data/hertz",
+    )
 }
 
 fn m1_meshes() -> Result<Vec<Mesh>, Box<dyn std::error::Error>> {
@@ -242,7 +250,7 @@ const PICTURE_UNKNOWNS: usize = 3000;
 /// A short adaptive run of `model` for the picture.
 fn picture_run(
     name: &str,
-    model: &dyn Fn(Vec<Mesh>) -> Result<Model, VerifyError>,
+    model: &dyn Fn(Vec<Mesh>) -> Result<AdaptiveModel, VerifyError>,
     meshes: Vec<Mesh>,
 ) -> Result<AdaptiveRun, VerifyError> {
     adapt(
@@ -261,6 +269,17 @@ fn picture_run(
     )
 }
 
+/// The report's folder of figures and data beside `out`.
+fn folder_of(out: &Path) -> PathBuf {
+    out.parent().unwrap_or(Path::new(".")).join("adaptivity")
+}
+
+/// The rows of the studies, in `adaptivity/adaptivity.json` beside the report.
+const JSON: &str = "adaptivity.json";
+/// The pictured meshes with their indicators (inline scene meshes), in
+/// `adaptivity/meshes.json` beside the report.
+const MESHES_JSON: &str = "meshes.json";
+
 pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let start = Instant::now();
     let out = if args.quick && args.out == Path::new("docs/adaptivity.md") {
@@ -268,7 +287,17 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     } else {
         args.out.clone()
     };
-    let folder = out.parent().unwrap_or(Path::new(".")).join("adaptivity");
+    let folder = folder_of(&out);
+    if args.report_only {
+        let stored = read_stored(&folder)?;
+        let ok = write_report(&out, &stored)?;
+        println!(
+            "rewrote {} from {}",
+            out.display(),
+            folder.join(JSON).display()
+        );
+        return Ok(ok);
+    }
     std::fs::create_dir_all(&folder)?;
     let element = LowestOrderVem::default();
     let (cycles, uniform_cycles, reference_cycles) =
@@ -281,7 +310,7 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     };
     let mut studies = Vec::new();
 
-    // M1 (frictionless) and M2 (Tresca): exact solutions.
+    // M1 (frictionless) and M2 (Tresca): exact solutions, their data from vem-verify.
     for (name, title, slug) in [
         ("M1", "M1 (frictionless, smooth; exact solution)", "m1"),
         (
@@ -325,54 +354,43 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
     }
 
     studies.push(energy_study(
-        "flat punch",
         "Flat punch (frictionless; corner singularities)",
         "punch",
-        &punch_model,
-        punch_meshes,
+        &punch()?,
         reference_cycles,
         uniform_cycles,
     )?);
     studies.push(energy_study(
-        "L-shape",
         "L-shaped body on a block (frictionless; re-entrant corner, contact ends)",
         "l-shape",
-        &l_model,
-        l_meshes,
+        &l_shape()?,
         reference_cycles,
         uniform_cycles,
     )?);
     if !args.quick {
         studies.push(energy_study(
-            "Hertz",
             "Hertz half-disc on a block (frictionless; polygonal arc of h_c = 0.08)",
             "hertz",
-            &hertz_model,
-            hertz_meshes,
+            &hertz()?,
             reference_cycles,
             uniform_cycles,
         )?);
     }
 
-    let mut sections = String::new();
-    let mut ok = true;
-    for study in &studies {
-        ok &= write_study(&mut sections, &folder, study)?;
-    }
-    let doc = crate::common::render(
-        "xtask/templates/adaptivity.md",
-        include_str!("../templates/adaptivity.md"),
-        &[
-            (
-                "options",
-                if args.quick { " --quick" } else { "" }.to_string(),
-            ),
-            ("seconds", format!("{:.0}", start.elapsed().as_secs_f64())),
-            ("theta", THETA.to_string()),
-            ("studies", sections),
-        ],
+    let stored = Stored {
+        quick: args.quick,
+        seconds: start.elapsed().as_secs_f64(),
+        theta: THETA,
+        studies: studies.iter().map(StoredStudy::of).collect(),
+    };
+    let pictures: Vec<StoredPicture> = studies.iter().map(StoredPicture::of).collect();
+    write_json(folder.join(JSON), &stored)?;
+    write_text(
+        folder.join(MESHES_JSON),
+        &(serde_json::to_string(&pictures)? + "\n"),
     )?;
-    write_text(&out, &doc)?;
+    // The report of what was stored, as `--report-only` makes it.
+    let ok = write_report(&out, &read_stored(&folder)?)?;
     println!("wrote {}", out.display());
     Ok(ok)
 }
@@ -382,15 +400,15 @@ pub fn run(args: &AdaptivityArgs) -> Result<bool, Box<dyn std::error::Error>> {
 /// [`REFERENCE_MARGIN`]^-1 of its unknowns are compared with `E_en = (2 |W_h - W_ref|)^(1/2)`,
 /// and a uniform series up to as many unknowns.
 fn energy_study(
-    name: &'static str,
     title: &'static str,
     slug: &'static str,
-    model: &dyn Fn(Vec<Mesh>) -> Result<Model, VerifyError>,
-    meshes: fn() -> Result<Vec<Mesh>, Box<dyn std::error::Error>>,
+    problem: &SceneProblem,
     reference_cycles: usize,
     uniform_cycles: usize,
 ) -> Result<Study, Box<dyn std::error::Error>> {
     let t = Instant::now();
+    let name = problem.name;
+    let model = |meshes| problem.model(meshes);
     let element = LowestOrderVem::default();
     let settings = |uniform: bool, cycles: usize, max_unknowns: usize| AdaptiveSettings {
         theta: THETA,
@@ -400,8 +418,8 @@ fn energy_study(
     };
     let mut adaptive = adapt(
         name,
-        model,
-        meshes()?,
+        &model,
+        problem.meshes()?,
         &element,
         &Reference::None,
         &settings(false, reference_cycles, 400_000),
@@ -421,8 +439,8 @@ fn energy_study(
     }
     let uniform = adapt(
         name,
-        model,
-        meshes()?,
+        &model,
+        problem.meshes()?,
         &element,
         &Reference::Energy(finest.strain_energy),
         &settings(true, uniform_cycles, limit / 4),
@@ -435,7 +453,7 @@ fn energy_study(
         reference: Some((finest.unknowns, finest.strain_energy)),
         adaptive,
         uniform,
-        picture: picture_run(name, model, meshes()?)?,
+        picture: picture_run(name, &model, problem.meshes()?)?,
         seconds: t.elapsed().as_secs_f64(),
     })
 }
@@ -443,18 +461,247 @@ fn energy_study(
 /// The reference solve has at least this many times the unknowns of the compared ones.
 const REFERENCE_MARGIN: usize = 8;
 
-fn errors(records: &[CycleRecord]) -> Vec<(f64, f64)> {
+/// What a run stores in `adaptivity/adaptivity.json`: everything the report and its
+/// convergence plots are made of.
+#[derive(Debug, Serialize, Deserialize)]
+struct Stored {
+    quick: bool,
+    /// The whole run, seconds.
+    seconds: f64,
+    /// Dorfler's bulk fraction.
+    theta: f64,
+    studies: Vec<StoredStudy>,
+}
+
+/// One problem's series as stored.
+#[derive(Debug, Serialize, Deserialize)]
+struct StoredStudy {
+    title: String,
+    slug: String,
+    error_name: String,
+    /// The reference solve (unknowns, strain energy), without an exact solution.
+    reference: Option<(usize, f64)>,
+    /// Both series, seconds.
+    seconds: f64,
+    adaptive: Vec<Row>,
+    uniform: Vec<Row>,
+}
+
+impl StoredStudy {
+    fn of(study: &Study) -> Self {
+        Self {
+            title: study.title.to_string(),
+            slug: study.slug.to_string(),
+            error_name: study.error_name.to_string(),
+            reference: study.reference,
+            seconds: study.seconds,
+            adaptive: study.adaptive.records.iter().map(Row::of).collect(),
+            uniform: study.uniform.records.iter().map(Row::of).collect(),
+        }
+    }
+}
+
+/// One cycle as stored: the figures of [`CycleRecord`] the report prints or fits.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct Row {
+    cycle: usize,
+    unknowns: usize,
+    cells: usize,
+    estimate: f64,
+    energy_error: Option<f64>,
+    effectivity: Option<f64>,
+    grad_error: Option<f64>,
+    /// The squared parts of the estimate summed over all cells.
+    residual: f64,
+    jump: f64,
+    boundary: f64,
+    stabilisation: f64,
+    contact: f64,
+    active_nodes: usize,
+    min_star_ratio: f64,
+    max_cell_vertices: usize,
+}
+
+impl Row {
+    fn of(r: &CycleRecord) -> Self {
+        Self {
+            cycle: r.cycle,
+            unknowns: r.unknowns,
+            cells: r.cells,
+            estimate: r.estimate,
+            energy_error: r.energy_error,
+            effectivity: r.effectivity,
+            grad_error: r.grad_error,
+            residual: r.parts.residual,
+            jump: r.parts.jump,
+            boundary: r.parts.boundary,
+            stabilisation: r.parts.stabilisation,
+            contact: r.parts.contact,
+            active_nodes: r.active_nodes,
+            min_star_ratio: r.min_star_ratio,
+            max_cell_vertices: r.max_cell_vertices,
+        }
+    }
+}
+
+/// The pictured meshes of one problem as stored: each body's mesh (inline, as a scene gives
+/// it) with `log10 eta_E` per cell.
+#[derive(Debug, Serialize, Deserialize)]
+struct StoredPicture {
+    slug: String,
+    title: String,
+    bodies: Vec<PicturedBody>,
+}
+
+#[derive(Debug, Serialize, Deserialize)]
+struct PicturedBody {
+    name: String,
+    mesh: MeshDescription,
+    /// The names of the mesh's parts in its order (the inline form keeps them by name), which
+    /// the picture draws and colours in this order.
+    parts: Vec<String>,
+    log_indicator: Vec<f64>,
+}
+
+impl PicturedBody {
+    /// The pictured mesh: the inline mesh with its parts in their order.
+    fn mesh(&self) -> Result<Mesh, Box<dyn std::error::Error>> {
+        let (Some(vertices), Some(polygons)) = (&self.mesh.vertices, &self.mesh.polygons) else {
+            return Err(format!("{}: not an inline mesh in the plane", self.name).into());
+        };
+        let vertices = vertices.iter().map(|p| Point::new(p[0], p[1])).collect();
+        let parts = self
+            .parts
+            .iter()
+            .map(|name| PartSpec {
+                name: name.clone(),
+                edges: self.mesh.part_edges.get(name).cloned().unwrap_or_default(),
+            })
+            .collect();
+        Ok(Mesh::from_polygons(vertices, polygons, parts)?)
+    }
+}
+
+impl StoredPicture {
+    fn of(study: &Study) -> Self {
+        let last = &study.picture.last;
+        let bodies = last
+            .bodies
+            .iter()
+            .zip(last.cell_indicators())
+            .map(|(b, values)| PicturedBody {
+                name: b.body.name().to_string(),
+                mesh: BuiltMesh::Plane(b.body.mesh().clone()).to_inline(),
+                parts: b
+                    .body
+                    .mesh()
+                    .part_specs()
+                    .into_iter()
+                    .map(|p| p.name)
+                    .collect(),
+                log_indicator: values.iter().map(|e| e.max(1e-300).log10()).collect(),
+            })
+            .collect();
+        Self {
+            slug: study.slug.to_string(),
+            title: study.title.to_string(),
+            bodies,
+        }
+    }
+}
+
+/// The stored rows and pictures in `folder`.
+fn read_stored(folder: &Path) -> Result<(Stored, Vec<StoredPicture>), Box<dyn std::error::Error>> {
+    let read = |name: &str| {
+        let path = folder.join(name);
+        std::fs::read_to_string(&path)
+            .map(|text| (path.clone(), text))
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+    };
+    let (path, text) = read(JSON)?;
+    let stored: Stored =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let (path, text) = read(MESHES_JSON)?;
+    let pictures: Vec<StoredPicture> =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((stored, pictures))
+}
+
+/// The report `out` and its figures (in [`folder_of`] `out`) from the stored run; `Ok(true)`
+/// when every study passes its check.
+fn write_report(
+    out: &Path,
+    (stored, pictures): &(Stored, Vec<StoredPicture>),
+) -> Result<bool, Box<dyn std::error::Error>> {
+    let folder = folder_of(out);
+    std::fs::create_dir_all(&folder)?;
+    let Report { doc, plots, ok } = report(stored)?;
+    for (name, svg) in &plots {
+        write_text(folder.join(name), svg)?;
+    }
+    for picture in pictures {
+        write_picture(&folder, picture)?;
+    }
+    write_text(out, &doc)?;
+    Ok(ok)
+}
+
+/// A stored run's report: the Markdown, the convergence plots (file name, SVG) and whether
+/// every study passes its check.
+struct Report {
+    doc: String,
+    plots: Vec<(String, String)>,
+    ok: bool,
+}
+
+/// The report of a stored run.
+fn report(stored: &Stored) -> Result<Report, Box<dyn std::error::Error>> {
+    let mut sections = String::new();
+    let mut plots = Vec::new();
+    let mut ok = true;
+    for study in &stored.studies {
+        let (passed, plot) = write_study(&mut sections, study)?;
+        ok &= passed;
+        plots.push(plot);
+    }
+    let doc = crate::common::render(
+        "xtask/templates/adaptivity.md",
+        include_str!("../templates/adaptivity.md"),
+        &[
+            (
+                "options",
+                if stored.quick { " --quick" } else { "" }.to_string(),
+            ),
+            ("seconds", format!("{:.0}", stored.seconds)),
+            ("theta", stored.theta.to_string()),
+            ("studies", sections),
+        ],
+    )?;
+    Ok(Report { doc, plots, ok })
+}
+
+fn errors(records: &[Row]) -> Vec<(f64, f64)> {
     records
         .iter()
         .filter_map(|r| r.energy_error.map(|e| (r.unknowns as f64, e)))
         .collect()
 }
 
+/// The least-squares slope of `log error` against `log N` over `rows`.
+fn slope(rows: &[Row], error: impl Fn(&Row) -> Option<f64>) -> Option<f64> {
+    let (n, e): (Vec<f64>, Vec<f64>) = rows
+        .iter()
+        .filter_map(|r| error(r).map(|e| (r.unknowns as f64, e)))
+        .unzip();
+    fitted_rate(&n, &e)
+}
+
+/// The section of `study` appended to `doc`; whether it passes its check, and its convergence
+/// plot (file name, SVG).
 fn write_study(
     doc: &mut String,
-    folder: &Path,
-    study: &Study,
-) -> Result<bool, Box<dyn std::error::Error>> {
+    study: &StoredStudy,
+) -> Result<(bool, (String, String)), Box<dyn std::error::Error>> {
     writeln!(doc, "## {}\n", study.title)?;
     writeln!(doc, "Both series in {:.1} s.\n", study.seconds)?;
     if let Some((unknowns, energy)) = study.reference {
@@ -465,18 +712,18 @@ fn write_study(
              unknowns.\n"
         )?;
     }
-    let adaptive = &study.adaptive.records;
-    let uniform = &study.uniform.records;
+    let adaptive = &study.adaptive;
+    let uniform = &study.uniform;
     // The first cycles are pre-asymptotic.
-    let fitted_adaptive: &[CycleRecord] = if adaptive.len() > 2 {
+    let fitted_adaptive: &[Row] = if adaptive.len() > 2 {
         &adaptive[2..]
     } else {
         adaptive
     };
-    let slope_a = slope_in_unknowns(fitted_adaptive, |r| r.energy_error);
-    let slope_u = slope_in_unknowns(uniform, |r| r.energy_error);
-    let slope_eta_a = slope_in_unknowns(fitted_adaptive, |r| Some(r.estimate));
-    let slope_eta_u = slope_in_unknowns(uniform, |r| Some(r.estimate));
+    let slope_a = slope(fitted_adaptive, |r| r.energy_error);
+    let slope_u = slope(uniform, |r| r.energy_error);
+    let slope_eta_a = slope(fitted_adaptive, |r| Some(r.estimate));
+    let slope_eta_u = slope(uniform, |r| Some(r.estimate));
     let fmt = |s: Option<f64>| s.map_or("-".to_string(), |s| format!("{s:.3}"));
     writeln!(
         doc,
@@ -509,11 +756,11 @@ fn write_study(
                 o(r.energy_error, 3),
                 r.effectivity.map_or("-".to_string(), |e| format!("{e:.2}")),
                 o(r.grad_error, 3),
-                r.parts.residual.sqrt(),
-                r.parts.jump.sqrt(),
-                r.parts.boundary.sqrt(),
-                r.parts.stabilisation.sqrt(),
-                r.parts.contact.sqrt(),
+                r.residual.sqrt(),
+                r.jump.sqrt(),
+                r.boundary.sqrt(),
+                r.stabilisation.sqrt(),
+                r.contact.sqrt(),
                 r.active_nodes,
                 r.min_star_ratio,
                 r.max_cell_vertices,
@@ -523,7 +770,7 @@ fn write_study(
     }
     // Convergence plot.
     let plot = LogLogPlot {
-        caption: study.title,
+        caption: &study.title,
         x_desc: "unknowns N",
         y_desc: "error / estimate",
         x_format: |x| format!("{x:.0e}"),
@@ -549,41 +796,12 @@ fn write_study(
     ];
     let svg = loglog_svg(&plot, &series, None)?;
     let plot_name = format!("{}-convergence.svg", study.slug);
-    write_text(folder.join(&plot_name), &svg)?;
     writeln!(doc, "![convergence](adaptivity/{plot_name})\n")?;
-    // The adapted meshes with their indicators.
-    let last = &study.picture.last;
-    let indicators = last.cell_indicators();
-    let logs: Vec<Vec<f64>> = indicators
-        .iter()
-        .map(|v| v.iter().map(|e| e.max(1e-300).log10()).collect())
-        .collect();
-    let layers: Vec<SvgLayer> = last
-        .bodies
-        .iter()
-        .zip(&logs)
-        .map(|(b, values)| {
-            SvgLayer::new(b.body.mesh())
-                .with_label(b.body.name())
-                .with_cell_values(values)
-        })
-        .collect();
-    let options = SvgOptions {
-        title: Some(format!(
-            "{}: adapted meshes ({} cells)",
-            study.title,
-            last.bodies
-                .iter()
-                .map(|b| b.body.mesh().n_polygons())
-                .sum::<usize>()
-        )),
-        value_label: "log10 eta_E".to_string(),
-        width: 900.0,
-        ..SvgOptions::default()
-    };
-    let mesh_name = format!("{}-mesh.svg", study.slug);
-    write_svg_layers(folder.join(&mesh_name), &layers, &options)?;
-    writeln!(doc, "![adapted meshes](adaptivity/{mesh_name})\n")?;
+    writeln!(
+        doc,
+        "![adapted meshes](adaptivity/{}-mesh.svg)\n",
+        study.slug
+    )?;
     let ok = match (slope_a, slope_u) {
         (Some(a), Some(u)) => a < -0.4 && a <= u + 0.05,
         _ => false,
@@ -593,5 +811,82 @@ fn write_study(
         "Check (adaptive slope below -0.4 and not worse than uniform): {}\n",
         if ok { "pass" } else { "FAIL" }
     )?;
-    Ok(ok)
+    Ok((ok, (plot_name, svg)))
+}
+
+/// `folder/<slug>-mesh.svg`: the adapted meshes of a study with their indicators.
+fn write_picture(folder: &Path, picture: &StoredPicture) -> Result<(), Box<dyn std::error::Error>> {
+    let meshes: Vec<Mesh> = picture
+        .bodies
+        .iter()
+        .map(PicturedBody::mesh)
+        .collect::<Result<_, _>>()?;
+    let cells: usize = meshes.iter().map(Mesh::n_polygons).sum();
+    let title = format!("{}: adapted meshes ({cells} cells)", picture.title);
+    let layers: Vec<SvgLayer> = picture
+        .bodies
+        .iter()
+        .zip(&meshes)
+        .map(|(b, mesh)| {
+            SvgLayer::new(mesh)
+                .with_label(&b.name)
+                .with_cell_values(&b.log_indicator)
+        })
+        .collect();
+    let options = SvgOptions {
+        title: Some(title),
+        value_label: "log10 eta_E".to_string(),
+        width: 900.0,
+        ..SvgOptions::default()
+    };
+    write_svg_layers(
+        folder.join(format!("{}-mesh.svg", picture.slug)),
+        &layers,
+        &options,
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn docs() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs")
+    }
+
+    fn read(path: &Path) -> String {
+        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    }
+
+    /// What `--report-only` makes of the committed rows and meshes is docs/adaptivity.md and
+    /// its figures, byte for byte.
+    #[test]
+    fn the_report_of_the_committed_rows_is_docs_adaptivity_md() {
+        let folder = docs().join("adaptivity");
+        let (stored, pictures) = read_stored(&folder).expect("the committed rows");
+        assert!(!stored.quick, "the committed rows are those of a full run");
+        let Report { doc, plots, .. } = report(&stored).expect("the report renders");
+        assert!(
+            doc == read(&docs().join("adaptivity.md")),
+            "docs/adaptivity.md is not the rendered report"
+        );
+        for (name, svg) in &plots {
+            assert!(
+                svg == &read(&folder.join(name)),
+                "{name} is not the rendered plot"
+            );
+        }
+        let scratch = std::env::temp_dir().join(format!("xtask-adaptivity-{}", std::process::id()));
+        std::fs::create_dir_all(&scratch).expect("a scratch folder");
+        for picture in &pictures {
+            write_picture(&scratch, picture).expect("the picture renders");
+            let name = format!("{}-mesh.svg", picture.slug);
+            assert!(
+                read(&scratch.join(&name)) == read(&folder.join(&name)),
+                "{name} is not the rendered picture"
+            );
+        }
+        std::fs::remove_dir_all(&scratch).ok();
+    }
 }

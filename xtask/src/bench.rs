@@ -3,9 +3,14 @@
 //! Every measurement (one case, one size, one solver) runs in a child process (`cargo xtask
 //! bench-one`, the same binary re-invoked) so that the peak memory the OS reports (`VmHWM` of
 //! `/proc/self/status`, a process high-water mark) belongs to that measurement alone. The child
-//! builds the meshes, discretises (interface insertion, assembly, constraint rows), solves the
-//! contact problem, then assembles, analyses, factorises and solves every body alone with its
-//! Dirichlet data (the elastic reference) and prints one JSON line.
+//! builds the model (the Hertz-like cases from their [`Scene`] by `Model::build`: generated
+//! meshes, bodies, contact pair, law and solver by registry name; M1 and M2 from vem-verify's
+//! manufactured solutions), discretises (interface insertion, assembly, constraint rows),
+//! solves the contact problem, then assembles, analyses, factorises and solves every body alone
+//! with its Dirichlet data (the elastic reference) and prints one JSON line.
+//!
+//! The run writes its rows to `bench.json` and makes `bench.md` and `bench.svg` from that file;
+//! `--report-only` makes them again from it without measuring.
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -19,15 +24,14 @@ use crate::common::{chain, machine, peak_memory, render, seconds};
 use crate::whole_run::{self, WholeRun};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use vem_contact::{ContactLaw, ContactProblem, Coulomb, Frictionless, SolverRegistry};
-use vem_elastic::{
-    CholeskySettings, CholeskySolver, Component, Dirichlet, ElasticBody, LinearSolver, Material,
-    Plane,
-};
-use vem_mesh::generators::polyhedral::{hexahedra, voronoi_polyhedra, Cuboid};
-use vem_mesh::generators::{structured_quads, voronoi, MeshFamily, Rectangle};
-use vem_mesh::{Mesh, Point, Point3, Vector, Vector3};
-use vem_space::{LowestOrderVem, Options, PolyhedralVem};
+use serde_json::json;
+use vem_contact::{ContactProblem, ContactSolver, SolverRegistry};
+use vem_elastic::{CholeskySettings, CholeskySolver, ElasticBody, LinearSolver};
+use vem_mesh::generators::MeshFamily;
+use vem_mesh::Mesh;
+use vem_scene::resources::{LimitOrigin, MemoryLimit};
+use vem_scene::{BuildOptions, Model, Scene};
+use vem_space::Choice;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::plot::{loglog_svg, LogLogPlot};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
@@ -189,6 +193,9 @@ pub struct BenchArgs {
     /// Only the whole runs (no contact solver rows).
     #[arg(long)]
     whole_run_only: bool,
+    /// Rewrite bench.md and bench.svg in `--out` from its bench.json, without measuring.
+    #[arg(long)]
+    report_only: bool,
 }
 
 /// Sizes of the whole runs: the default ones (8e6 only when `--whole-run` asks for it: the
@@ -276,94 +283,131 @@ impl Measurement {
     }
 }
 
-/// The contact problem of `case` at size `n`.
-pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
-    match case {
+/// The scene of a Hertz-like case at size `n` with the contact solver `solver`: the two
+/// meshes by the scene's generators (the indenter's Voronoi cells, seed 1; the block's quads
+/// 1.25 n across), the law and the solver by registry name, the gap an expression.
+pub(crate) fn scene(
+    case: Case,
+    n: usize,
+    solver: &str,
+) -> Result<Scene, Box<dyn std::error::Error>> {
+    let m = ((1.25 * n as f64).round() as usize).max(1);
+    let value = match case {
         Case::Hertz | Case::Coulomb => {
-            let material = Material::from_young_poisson(100.0, 0.3, Plane::Strain)?;
-            let element = Arc::new(LowestOrderVem::default());
-            let upper = Rectangle::new(Point::new(0.0, 0.0), Point::new(1.0, 1.0));
-            let lower = Rectangle::new(Point::new(0.0, -1.0), Point::new(1.0, 0.0));
-            let m = ((1.25 * n as f64).round() as usize).max(1);
-            let shift = if case == Case::Coulomb { 0.006 } else { 0.0 };
-            let indenter = ElasticBody::builder(
-                "indenter",
-                voronoi(&upper, n, 1)?,
-                material,
-                element.clone(),
-            )
-            .dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
-                Vector::new(shift, -0.02)
-            }))
-            .build()?;
-            let block =
-                ElasticBody::builder("block", structured_quads(&lower, m, m)?, material, element)
-                    .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
-                        Vector::zeros()
-                    }))
-                    .build()?;
-            let law: std::sync::Arc<dyn ContactLaw> = if case == Case::Coulomb {
-                std::sync::Arc::new(Coulomb::try_new(0.3)?)
+            let (shift, law) = if case == Case::Coulomb {
+                (0.006, json!({ "name": "coulomb", "coefficient": 0.3 }))
             } else {
-                std::sync::Arc::new(Frictionless)
+                (0.0, json!("frictionless"))
             };
-            // A parabolic indenter of radius 1 over x = 1/2.
-            Ok(
-                ContactProblem::two_bodies(indenter, "bottom", block, "top", law)
-                    .with_imposed_gap(|x| 0.5 * (x.x - 0.5) * (x.x - 0.5)),
-            )
-        }
-        Case::M1 | Case::M2 => {
-            let exact: Arc<dyn ExactSolution> =
-                Arc::from(case_by_name(case.name(), Lame::default())?);
-            let meshes: Vec<Mesh> = exact
-                .bodies()
-                .iter()
-                .map(|&b| MeshFamily::Quads.generate(&exact.domain(b), n, 1))
-                .collect::<Result<_, _>>()?;
-            let discrete =
-                DiscreteProblem::try_new(Arc::clone(&exact), meshes, &ProblemSettings::default())?;
-            discrete
-                .contact_problem()
-                .ok_or_else(|| format!("{} is not a contact case", case.name()).into())
+            let material = json!({ "E": 100.0, "nu": 0.3, "plane": "strain" });
+            json!({
+                "title": case.describe(),
+                "solver": solver,
+                "body": [
+                    {
+                        "name": "indenter",
+                        "mesh": { "family": "voronoi", "rectangle": [[0.0, 0.0], [1.0, 1.0]], "n": n, "seed": 1 },
+                        "material": material,
+                        "dirichlet": [{ "part": "top", "x": shift, "y": -0.02 }],
+                    },
+                    {
+                        "name": "block",
+                        "mesh": { "family": "quads", "rectangle": [[0.0, -1.0], [1.0, 0.0]], "n": m },
+                        "material": material,
+                        "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }],
+                    },
+                ],
+                // A parabolic indenter of radius 1 over x = 1/2.
+                "contact": [{
+                    "body": "indenter", "part": "bottom", "other_body": "block", "other_part": "top",
+                    "law": law, "imposed_gap": "0.5 * (x - 0.5) * (x - 0.5)",
+                }],
+            })
         }
         Case::Hertz3d | Case::Hertz3dHex => {
-            Err(format!("{} is a problem in space", case.name()).into())
+            let family = if case == Case::Hertz3dHex {
+                "hexahedra"
+            } else {
+                "voronoi"
+            };
+            let material = json!({ "E": 100.0, "nu": 0.3 });
+            json!({
+                "title": case.describe(),
+                "solver": solver,
+                "body": [
+                    {
+                        "name": "indenter",
+                        "mesh": { "family": family, "box": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "n": n, "seed": 1 },
+                        "material": material,
+                        "dirichlet": [{ "part": "top", "x": 0.0, "y": 0.0, "z": -0.02 }],
+                    },
+                    {
+                        "name": "block",
+                        "mesh": { "family": "hexahedra", "box": [[0.0, 0.0, -1.0], [1.0, 1.0, 0.0]], "n": m },
+                        "material": material,
+                        "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0, "z": 0.0 }],
+                    },
+                ],
+                // A paraboloid indenter of radius 1 over (1/2, 1/2).
+                "contact": [{
+                    "body": "indenter", "part": "bottom", "other_body": "block", "other_part": "top",
+                    "law": "frictionless",
+                    "imposed_gap": "0.5 * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5))",
+                }],
+            })
+        }
+        Case::M1 | Case::M2 => {
+            return Err(format!("{} is built by vem-verify, not by a scene", case.name()).into())
+        }
+    };
+    Ok(Scene::from_value(value)?)
+}
+
+/// The options of the bench's builds: the built-in registries, no memory check (the bench
+/// measures the memory itself, up to sizes the scene's plan refuses on a smaller machine).
+fn build_options() -> Result<BuildOptions, Box<dyn std::error::Error>> {
+    Ok(BuildOptions {
+        memory_limit: Some(MemoryLimit::try_from_gib(1e9, LimitOrigin::CommandLine)?),
+        ..BuildOptions::default()
+    })
+}
+
+/// The manufactured case `case` (M1, M2) at size `n`: quads on both bodies, the exact
+/// solution's data (vem-verify's `DiscreteProblem`).
+fn manufactured(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
+    let exact: Arc<dyn ExactSolution> = Arc::from(case_by_name(case.name(), Lame::default())?);
+    let meshes: Vec<Mesh> = exact
+        .bodies()
+        .iter()
+        .map(|&b| MeshFamily::Quads.generate(&exact.domain(b), n, 1))
+        .collect::<Result<_, _>>()?;
+    let discrete =
+        DiscreteProblem::try_new(Arc::clone(&exact), meshes, &ProblemSettings::default())?;
+    discrete
+        .contact_problem()
+        .ok_or_else(|| format!("{} is not a contact case", case.name()).into())
+}
+
+/// The contact problem of `case` at size `n` in the plane: the scene's model for the
+/// Hertz-like cases, vem-verify's for M1 and M2.
+pub(crate) fn problem(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::error::Error>> {
+    match case {
+        Case::M1 | Case::M2 => manufactured(case, n),
+        _ => {
+            let model = Model::build(&scene(case, n, SolverRegistry::DEFAULT)?, &build_options()?)?;
+            let (problem, _) = model
+                .contact_problem()
+                .ok_or_else(|| format!("{} is a problem in space", case.name()))?;
+            Ok(problem.clone())
         }
     }
 }
 
-/// The problem of a case in space at size `n`: [`Case::Hertz3d`], [`Case::Hertz3dHex`].
-fn problem_in_space(case: Case, n: usize) -> Result<ContactProblem<3>, Box<dyn std::error::Error>> {
-    let material = Material::isotropic(100.0, 0.3)?;
-    let element = Arc::new(PolyhedralVem::default());
-    let upper = Cuboid::new(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
-    let lower = Cuboid::new(Point3::new(0.0, 0.0, -1.0), Point3::new(1.0, 1.0, 0.0));
-    let m = ((1.25 * n as f64).round() as usize).max(1);
-    let indenter_mesh = if case == Case::Hertz3dHex {
-        hexahedra(&upper, n, n, n)?
-    } else {
-        voronoi_polyhedra(&upper, n, 1)?
-    };
-    let indenter =
-        ElasticBody::builder_polyhedral("indenter", indenter_mesh, material, element.clone())
-            .dirichlet(Dirichlet::with_values("top", Component::All, |_| {
-                Vector3::new(0.0, 0.0, -0.02)
-            }))
-            .build()?;
-    let block =
-        ElasticBody::builder_polyhedral("block", hexahedra(&lower, m, m, m)?, material, element)
-            .dirichlet(Dirichlet::fixed("bottom", Component::All))
-            .build()?;
-    // A paraboloid indenter of radius 1 over (1/2, 1/2).
-    Ok(
-        ContactProblem::two_bodies(indenter, "bottom", block, "top", Frictionless)
-            .with_imposed_gap(|x| 0.5 * ((x.x - 0.5).powi(2) + (x.y - 0.5).powi(2))),
-    )
-}
-
 /// `cargo xtask bench-one`: measures and prints one JSON line; a failing solve is a line with
-/// `error` set.
+/// `error` set. The model is built (the scene's `Model::build`: meshes, bodies, contact pairs;
+/// vem-verify's for M1, M2) and the solver made in the stage `mesh_generation`; the model's
+/// copy of the contact problem is taken and the model dropped before the discretisation, so
+/// that the stages after it measure what they measured when the problem was built by hand.
 pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> {
     let n = args.case.size_for(args.unknowns);
     let m = Measurement {
@@ -374,12 +418,32 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
         ..Measurement::default()
     };
     let start = Instant::now();
-    if args.case.in_space() {
-        let problem = problem_in_space(args.case, n)?;
-        measure_problem(problem, args, m, start)
-    } else {
-        let problem = problem(args.case, n)?;
-        measure_problem(problem, args, m, start)
+    let solver_choice = Choice::named(args.solver.clone());
+    match args.case {
+        Case::M1 | Case::M2 => {
+            let problem = manufactured(args.case, n)?;
+            let solver = SolverRegistry::builtin().make_choice(&solver_choice)?;
+            measure_problem(problem, solver, args, m, start)
+        }
+        case => {
+            let model = Model::build(&scene(case, n, &args.solver)?, &build_options()?)?;
+            let solver = model.registries().solvers.make_choice(model.solver())?;
+            if case.in_space() {
+                let (problem, _) = model
+                    .contact_problem_3d()
+                    .ok_or("the scene has no contact pair")?;
+                let problem = problem.clone();
+                drop(model);
+                measure_problem(problem, solver, args, m, start)
+            } else {
+                let (problem, _) = model
+                    .contact_problem()
+                    .ok_or("the scene has no contact pair")?;
+                let problem = problem.clone();
+                drop(model);
+                measure_problem(problem, solver, args, m, start)
+            }
+        }
     }
 }
 
@@ -387,11 +451,11 @@ pub fn run_one(args: &BenchOneArgs) -> Result<bool, Box<dyn std::error::Error>> 
 /// elastic reference; prints one JSON line.
 fn measure_problem<const D: usize>(
     problem: ContactProblem<D>,
+    mut solver: Box<dyn ContactSolver>,
     args: &BenchOneArgs,
     mut m: Measurement,
     start: Instant,
 ) -> Result<bool, Box<dyn std::error::Error>> {
-    let mut solver = SolverRegistry::builtin().make(&args.solver, &Options::new())?;
     m.mesh_generation = seconds(start.elapsed());
     m.peak_meshes = peak_memory();
     // By value: the original meshes are dropped before the assembly.
@@ -588,6 +652,20 @@ fn measure(p: &Planned, parallelism: Parallelism) -> Result<Measurement, String>
 
 /// `cargo xtask bench`.
 pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    if args.report_only {
+        let path = args.out.join("bench.json");
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let stored: JsonReport =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_report(&args.out, &stored)?;
+        eprintln!(
+            "rewrote {0}/bench.md and {0}/bench.svg from {1}",
+            args.out.display(),
+            path.display()
+        );
+        return Ok(true);
+    }
     let started = Instant::now();
     let planned = plan(args)?;
     std::fs::create_dir_all(&args.out)
@@ -614,21 +692,20 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
     }
     bar.finish_with_message("done");
     let whole_runs = whole_runs(args)?;
-    let seconds = started.elapsed().as_secs_f64();
-    let markdown = markdown(&rows, &whole_runs, args, seconds)?;
+    let stored = JsonReport {
+        quick: args.quick,
+        options: options(args),
+        repeat: args.repeat,
+        seconds: started.elapsed().as_secs_f64(),
+        machine: machine(),
+        measurements: rows,
+        whole_runs,
+    };
+    write_json(args.out.join("bench.json"), &stored)?;
+    // The report of what was stored, as `--report-only` makes it.
+    let text = std::fs::read_to_string(args.out.join("bench.json"))?;
+    let markdown = write_report(&args.out, &serde_json::from_str(&text)?)?;
     println!("{markdown}");
-    write_text(args.out.join("bench.md"), &markdown)?;
-    write_json(
-        args.out.join("bench.json"),
-        &JsonReport {
-            quick: args.quick,
-            seconds,
-            machine: machine(),
-            measurements: &rows,
-            whole_runs: &whole_runs,
-        },
-    )?;
-    write_text(args.out.join("bench.svg"), &plot_svg(&rows)?)?;
     eprintln!(
         "wrote {0}/bench.md, {0}/bench.json and {0}/bench.svg",
         args.out.display()
@@ -636,14 +713,36 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
     Ok(true)
 }
 
-/// The JSON form of a run.
-#[derive(Serialize)]
-struct JsonReport<'a> {
+/// Writes bench.md and bench.svg of `stored` into `out`; returns the Markdown.
+fn write_report(
+    out: &std::path::Path,
+    stored: &JsonReport,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let markdown = markdown(stored)?;
+    write_text(out.join("bench.md"), &markdown)?;
+    write_text(out.join("bench.svg"), &plot_svg(&stored.measurements)?)?;
+    Ok(markdown)
+}
+
+/// The JSON form of a run: everything its report and plot are made of.
+#[derive(Serialize, Deserialize)]
+struct JsonReport {
     quick: bool,
+    /// The options of the run, as the report prints them (` --quick`).
+    #[serde(default)]
+    options: String,
+    /// Repetitions of every whole run.
+    #[serde(default = "default_repeat")]
+    repeat: usize,
     seconds: f64,
     machine: String,
-    measurements: &'a [Measurement],
-    whole_runs: &'a [WholeRun],
+    measurements: Vec<Measurement>,
+    whole_runs: Vec<WholeRun>,
+}
+
+/// The default of `--repeat`.
+fn default_repeat() -> usize {
+    3
 }
 
 /// The sizes of the whole runs `args` ask for.
@@ -696,7 +795,7 @@ fn whole_runs(args: &BenchArgs) -> Result<Vec<WholeRun>, Box<dyn std::error::Err
 
 /// The section of the whole runs: its template (`xtask/templates/bench-whole-runs.md`) and
 /// table.
-fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> Result<String, String> {
+fn whole_run_markdown(runs: &[WholeRun], repeat: usize) -> Result<String, String> {
     let mut table = whole_run::TABLE_HEADER.to_string();
     for run in runs {
         table.push_str(&whole_run::row(run));
@@ -707,7 +806,7 @@ fn whole_run_markdown(runs: &[WholeRun], args: &BenchArgs) -> Result<String, Str
     render(
         "xtask/templates/bench-whole-runs.md",
         include_str!("../templates/bench-whole-runs.md"),
-        &[("repeat", args.repeat.to_string()), ("table", table)],
+        &[("repeat", repeat.to_string()), ("table", table)],
     )
 }
 
@@ -781,12 +880,9 @@ fn row_line(m: &Measurement, exact: Option<f64>) -> String {
 
 /// The Markdown report: its template (`xtask/templates/bench.md`) filled with the run, the
 /// cases, the table of the measurements and the section of the whole runs (if any).
-fn markdown(
-    rows: &[Measurement],
-    whole_runs: &[WholeRun],
-    args: &BenchArgs,
-    seconds: f64,
-) -> Result<String, String> {
+fn markdown(stored: &JsonReport) -> Result<String, String> {
+    let rows = &stored.measurements;
+    let whole_runs = &stored.whole_runs;
     let mut table = String::new();
     for m in rows {
         table.push_str(&row_line(m, exact_time(rows, m)));
@@ -795,16 +891,16 @@ fn markdown(
     let whole_runs = if whole_runs.is_empty() {
         String::new()
     } else {
-        whole_run_markdown(whole_runs, args)?
+        whole_run_markdown(whole_runs, stored.repeat)?
     };
     render(
         "xtask/templates/bench.md",
         include_str!("../templates/bench.md"),
         &[
-            ("options", options(args)),
+            ("options", stored.options.clone()),
             ("measurement_count", rows.len().to_string()),
-            ("seconds", format!("{seconds:.0}")),
-            ("machine", machine()),
+            ("seconds", format!("{:.0}", stored.seconds)),
+            ("machine", stored.machine.clone()),
             (
                 "cases",
                 Case::ALL
@@ -891,4 +987,30 @@ fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> 
         &series,
         None,
     )?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What `--report-only --out docs/benchmarks` makes of the committed rows is
+    /// docs/benchmarks/bench.md and bench.svg, byte for byte.
+    #[test]
+    fn the_report_of_the_committed_rows_is_docs_benchmarks_bench_md() {
+        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/benchmarks");
+        let read = |name: &str| {
+            std::fs::read_to_string(folder.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+        };
+        let stored: JsonReport = serde_json::from_str(&read("bench.json")).expect("bench.json");
+        let markdown = markdown(&stored).expect("the report renders");
+        assert!(
+            markdown == read("bench.md"),
+            "bench.md is not the rendered report"
+        );
+        let svg = plot_svg(&stored.measurements).expect("the plot renders");
+        assert!(
+            svg == read("bench.svg"),
+            "bench.svg is not the rendered plot"
+        );
+    }
 }

@@ -49,7 +49,8 @@ enum Task {
     /// Contact solves against one elastic solve of the same meshes (Hertz-like frictionless
     /// and Coulomb, M1, M2), every registered solver, stages, counters and peak memory; each
     /// measurement in a child process; whole runs of a scene (mesh files in, every output
-    /// written) against one Cholesky. Writes bench.md, bench.json and bench.svg.
+    /// written) against one Cholesky. Writes bench.json, then bench.md and bench.svg from it
+    /// (`--report-only`: from the bench.json in `--out`, without measuring).
     Bench(bench::BenchArgs),
     /// The Hertz half-disc on a block at h_c = 0.08, 0.04, 0.02 with each contact normal
     /// choice (peak, profile, half-width, resultants) and Coulomb friction (Q/P at full slip,
@@ -80,8 +81,9 @@ enum Task {
     /// Adaptive against uniform refinement in the plane: M1 (exact solution) and the flat
     /// punch (corner singularities), frictionless; the estimator's effectivity, fitted slopes
     /// in the unknowns and pictures of the adapted meshes. Writes docs/adaptivity.md (or
-    /// `--out`; `--quick` writes target/adaptivity/); exits with status 1 when an adaptive
-    /// slope is above -0.4 or worse than the uniform one.
+    /// `--out`; `--quick` writes target/adaptivity/) with its rows and pictured meshes in
+    /// adaptivity/*.json (`--report-only`: the report from them, without solving); exits with
+    /// status 1 when an adaptive slope is above -0.4 or worse than the uniform one.
     Adaptivity(adaptivity::AdaptivityArgs),
     /// One group of `tradeoff`, one JSON line per setting (run by `tradeoff` in a child
     /// process).
