@@ -140,6 +140,12 @@ pub(crate) fn check_storage(
 }
 
 /// Checks a mesh whose storage and edges are consistent (steps 2–6 of the module docs).
+///
+/// Steps 4 and 6 run in their boundary form ([`check_boundary_conformity`],
+/// [`check_covering`]); when a check of steps 4–6 fails, [`exhaustive_from_step_4`] runs the
+/// checks of every edge pair, the corners and the nesting of components, so that the error
+/// reported (its kind, the polygons and edges it names) is the one the exhaustive checks find
+/// first.
 pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
     // An extent that overflows leaves the coincidence tests to the area check below.
     let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
@@ -152,24 +158,53 @@ pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
         }
         Ok(())
     };
+    let steps_4_to_6 = || {
+        check_boundary_conformity(mesh, tolerance)
+            .and_then(|()| check_corners(mesh))
+            .and_then(|()| check_covering(mesh))
+    };
     if mesh.n_edges() < PARALLEL_EDGES {
         check_duplicate_vertices(mesh, tolerance)?;
         polygons()?;
-        check_conformity(mesh, tolerance)?;
-        check_corners(mesh)?;
-        return check_nesting(mesh);
+        return steps_4_to_6().or_else(|fast| exhaustive_from_step_4(mesh, tolerance, fast));
     }
-    // Step 4, the costliest, on a second thread beside the others; the first failure in the
-    // order of the steps is returned, as when they run one after the other.
+    // Steps 4–6 on a second thread beside steps 2 and 3; the first failure in the order of
+    // the steps is returned, as when they run one after the other.
     std::thread::scope(|scope| {
-        let conformity = scope.spawn(|| check_conformity(mesh, tolerance));
+        let after = scope.spawn(steps_4_to_6);
         let before = check_duplicate_vertices(mesh, tolerance).and_then(|()| polygons());
-        let after = check_corners(mesh).and_then(|()| check_nesting(mesh));
-        let conformity = conformity
+        let after = after
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        before.and(conformity).and(after)
+        before.and_then(|()| after.or_else(|fast| exhaustive_from_step_4(mesh, tolerance, fast)))
     })
+}
+
+/// Steps 4–6 in their exhaustive form, after the boundary form failed with `fast`: every
+/// edge pair ([`check_conformity`]), the corners, the nesting of components. Returns the
+/// first error these find, else `fast` (which names the loop that failed).
+fn exhaustive_from_step_4(mesh: &Mesh, tolerance: f64, fast: MeshError) -> Result<(), MeshError> {
+    check_conformity(mesh, tolerance)?;
+    check_corners(mesh)?;
+    check_nesting(mesh)?;
+    Err(fast)
+}
+
+/// Steps 4–6 as they were before their boundary form: every edge pair, the corners, the
+/// nesting of components (for tests that compare the two).
+#[cfg(test)]
+fn validate_exhaustive(mesh: &Mesh) -> Result<(), MeshError> {
+    let tolerance = coincidence_tolerance(mesh).min(f64::MAX);
+    check_duplicate_vertices(mesh, tolerance)?;
+    let mut points = Vec::new();
+    for p in 0..mesh.n_polygons() {
+        points.clear();
+        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+        check_polygon(p, &points, tolerance)?;
+    }
+    check_conformity(mesh, tolerance)?;
+    check_corners(mesh)?;
+    check_nesting(mesh)
 }
 
 /// Checks a mesh made from a valid mesh by changes at the vertices `changed` only (vertices
@@ -543,13 +578,65 @@ fn is_convex_loop(points: &[Point]) -> bool {
 
 /// Step 4: edges of different polygons neither cross nor touch away from shared vertices.
 fn check_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
+    conflict_error(mesh, first_conflict(mesh, None, tolerance))
+}
+
+/// Step 4 on the boundary edges only: they neither cross nor touch away from shared vertices
+/// (condition (d) of the module docs). A conflict found here is one of
+/// [`check_conformity`]'s too (the same test on a subset of the pairs).
+fn check_boundary_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
+    let boundary: Vec<usize> = (0..mesh.n_edges())
+        .filter(|&e| mesh.edges()[e].right.is_none())
+        .collect();
+    conflict_error(mesh, first_conflict(mesh, Some(&boundary), tolerance))
+}
+
+/// The error for the conflict `found` (the edge pair and how its edges meet), if any.
+fn conflict_error(mesh: &Mesh, found: Option<((usize, usize), Conflict)>) -> Result<(), MeshError> {
     let edges = mesh.edges();
+    match found {
+        None => Ok(()),
+        Some(((e, f), conflict)) => {
+            let (ea, eb) = (&edges[e], &edges[f]);
+            Err(match conflict {
+                Conflict::Cross => MeshError::Overlapping {
+                    a: ea.left,
+                    b: eb.left,
+                },
+                _ => MeshError::NonConforming {
+                    polygon_a: ea.left,
+                    a0: ea.vertices[0],
+                    a1: ea.vertices[1],
+                    polygon_b: eb.left,
+                    b0: eb.vertices[0],
+                    b1: eb.vertices[1],
+                },
+            })
+        }
+    }
+}
+
+/// The smallest pair of edges (among `subset`, every edge for `None`) of different polygons
+/// that cross or touch away from shared vertices, and how they meet.
+fn first_conflict(
+    mesh: &Mesh,
+    subset: Option<&[usize]>,
+    tolerance: f64,
+) -> Option<((usize, usize), Conflict)> {
+    let edges = mesh.edges();
+    let midpoint = |e: usize| {
+        let [a, b] = edges[e].vertices.map(|v| mesh.vertex(v));
+        Point::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y))
+    };
     // The edges in the order of a space-filling curve through their midpoints, so that edges
     // close in the plane are close in memory (a mesh's own numbering need not be).
-    let order = spatial_order(edges.iter().map(|e| {
-        let [a, b] = e.vertices.map(|v| mesh.vertex(v));
-        Point::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y))
-    }));
+    let order: Vec<usize> = match subset {
+        None => spatial_order((0..edges.len()).map(midpoint)),
+        Some(ids) => spatial_order(ids.iter().map(|&e| midpoint(e)))
+            .into_iter()
+            .map(|i| ids[i])
+            .collect(),
+    };
     let segments: Vec<[Point; 2]> = order
         .iter()
         .map(|&e| edges[e].vertices.map(|v| mesh.vertex(v)))
@@ -608,26 +695,7 @@ fn check_conformity(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
             Grid::new(&boxes).for_each_pair(&boxes, test);
         }
     }
-    match found {
-        None => Ok(()),
-        Some(((e, f), conflict)) => {
-            let (ea, eb) = (&edges[e], &edges[f]);
-            Err(match conflict {
-                Conflict::Cross => MeshError::Overlapping {
-                    a: ea.left,
-                    b: eb.left,
-                },
-                _ => MeshError::NonConforming {
-                    polygon_a: ea.left,
-                    a0: ea.vertices[0],
-                    a1: ea.vertices[1],
-                    polygon_b: eb.left,
-                    b0: eb.vertices[0],
-                    b1: eb.vertices[1],
-                },
-            })
-        }
-    }
+    found
 }
 
 /// Step 5: around each vertex, the polygon corners (angular sectors from the outgoing edge
@@ -793,6 +861,268 @@ fn check_nesting(mesh: &Mesh) -> Result<(), MeshError> {
         }
     }
     Ok(())
+}
+
+/// Step 6 in its boundary form (condition (e) of the module docs): just to the right of
+/// every boundary loop, no polygon covers the plane.
+///
+/// The boundary edges are chained into loops ([`boundary_loops`]). For each loop, the edge
+/// with the largest rise is cut at half its height y0, and the polygons covering a point just
+/// to the right of that cut are counted as the winding number there of all boundary edges
+/// (the interior edges cancel, see the module docs): the signed crossings of a horizontal ray
+/// from the cut away from the mesh, with the loops whose boxes meet the edge's box. Whether
+/// another edge crosses the line y = y0 beyond the cut is decided by the side of an end point
+/// of one edge with respect to the other (the two do not meet, by step 4 on the boundary), not
+/// by computing the crossings.
+fn check_covering(mesh: &Mesh) -> Result<(), MeshError> {
+    let (loop_start, loop_edges) = boundary_loops(mesh)?;
+    let loops = loop_start.len() - 1;
+    if loops == 0 {
+        // No boundary: the polygons' windings cancel everywhere, impossible for
+        // counter-clockwise polygons that do not overlap.
+        return Err(MeshError::Overlapping { a: 0, b: 0 });
+    }
+    let edges = mesh.edges();
+    let segment = |e: usize| -> ([usize; 2], [Point; 2]) {
+        let vertices = edges[e].vertices;
+        (vertices, vertices.map(|v| mesh.vertex(v)))
+    };
+    let boxes: Vec<Aabb> = (0..loops)
+        .map(|l| {
+            Aabb::of_points(
+                loop_edges[loop_start[l]..loop_start[l + 1]]
+                    .iter()
+                    .map(|&e| mesh.vertex(edges[e].vertices[0])),
+            )
+        })
+        .collect();
+    // Few loops (a mesh in one piece, a few holes): every loop's box is looked at.
+    let grid = (loops > 16).then(|| Grid::new(&boxes));
+    let mut seen = vec![usize::MAX; loops];
+    for l in 0..loops {
+        let own = &loop_edges[loop_start[l]..loop_start[l + 1]];
+        let rise = |e: usize| {
+            let (_, [a, b]) = segment(e);
+            (b.y - a.y).abs()
+        };
+        let cut = own.iter().copied().fold(
+            own[0],
+            |best, e| if rise(e) > rise(best) { e } else { best },
+        );
+        let (ie, pe) = segment(cut);
+        let y0 = pe[0].y + 0.5 * (pe[1].y - pe[0].y);
+        if !(y0 > pe[0].y.min(pe[1].y) && y0 < pe[0].y.max(pe[1].y)) {
+            // A loop flat to the last bit: its polygons failed the area check already.
+            return Err(covering_error(mesh, cut, y0));
+        }
+        let reach = Aabb::of_points(pe.into_iter());
+        let mut count = 0i64;
+        let mut visit = |m: usize| {
+            if seen[m] == l || !boxes[m].intersects(&reach) {
+                return;
+            }
+            seen[m] = l;
+            for &f in &loop_edges[loop_start[m]..loop_start[m + 1]] {
+                if f != cut {
+                    let (jf, pf) = segment(f);
+                    count += i64::from(ray_crossing(ie, pe, jf, pf, y0));
+                }
+            }
+        };
+        match &grid {
+            Some(grid) => grid.for_each_in(&reach, &mut visit),
+            None => (0..loops).for_each(&mut visit),
+        }
+        if count != 0 {
+            return Err(covering_error(mesh, cut, y0));
+        }
+    }
+    Ok(())
+}
+
+/// The signed crossing of the directed segment `f` (vertices `jf`, points `pf`) with the
+/// horizontal ray at height `y0` that starts on the directed segment `e` (`ie`, `pe`, which
+/// crosses y0 strictly) and runs to the right of `e` (towards +x if `e` rises, -x if it
+/// falls): +1 if `f` crosses it in the direction of `e`, -1 in the opposite one, 0 if it does
+/// not cross it. `f` counts as crossing the line y = y0 when its ends lie on either side of it
+/// with an end exactly on it counted above (the usual half-open rule).
+///
+/// `e` and `f` are taken not to meet except at a shared end vertex (step 4 on the boundary),
+/// so their order in x is the same at every height both span: it is read off at an end point
+/// of one that lies in the other's span, as that end point's side of the other segment.
+fn ray_crossing(ie: [usize; 2], pe: [Point; 2], jf: [usize; 2], pf: [Point; 2], y0: f64) -> i32 {
+    if (pf[0].y > y0) == (pf[1].y > y0) {
+        return 0;
+    }
+    let (e_rises, f_rises) = (pe[1].y > pe[0].y, pf[1].y > pf[0].y);
+    // Lower and upper ends (index, point).
+    let ends = |i: [usize; 2], p: [Point; 2], rises: bool| {
+        if rises {
+            ((i[0], p[0]), (i[1], p[1]))
+        } else {
+            ((i[1], p[1]), (i[0], p[0]))
+        }
+    };
+    let ((e_lo, pe_lo), (e_hi, pe_hi)) = ends(ie, pe, e_rises);
+    let ((f_lo, pf_lo), (f_hi, pf_hi)) = ends(jf, pf, f_rises);
+    // Side of `p` with respect to the upward segment lo -> hi: > 0 on its left (smaller x).
+    let side = |p: Point, lo: Point, hi: Point| cross(hi - lo, p - lo);
+    // +1 when f lies at larger x than e, -1 at smaller x, 0 undecided (an end point on the
+    // other segment's line: not counted).
+    let sign = |value: f64| -> i32 {
+        if value > 0.0 {
+            1
+        } else if value < 0.0 {
+            -1
+        } else {
+            0
+        }
+    };
+    let order = if f_lo == e_lo {
+        if f_hi == e_hi {
+            return 0;
+        }
+        if pf_hi.y <= pe_hi.y {
+            -sign(side(pf_hi, pe_lo, pe_hi))
+        } else {
+            sign(side(pe_hi, pf_lo, pf_hi))
+        }
+    } else if pf_lo.y >= pe_lo.y {
+        -sign(side(pf_lo, pe_lo, pe_hi))
+    } else {
+        sign(side(pe_lo, pf_lo, pf_hi))
+    };
+    let ray = if e_rises { 1 } else { -1 };
+    if order != ray {
+        0
+    } else if f_rises == e_rises {
+        1
+    } else {
+        -1
+    }
+}
+
+/// The error of [`check_covering`] for the loop cut at height `y0` on boundary edge `cut`:
+/// the polygon of `cut` and one that covers the plane just to the right of the cut (found by
+/// the winding number of each polygon's loop there), or the polygon of `cut` twice when none
+/// does.
+fn covering_error(mesh: &Mesh, cut: usize, y0: f64) -> MeshError {
+    let edge = mesh.edges()[cut];
+    let (ie, pe) = (edge.vertices, edge.vertices.map(|v| mesh.vertex(v)));
+    let covering = (0..mesh.n_polygons()).find(|&q| {
+        let loop_ = mesh.polygon(q);
+        let m = loop_.len();
+        q != edge.left
+            && pe[0].y.min(pe[1].y) < y0
+            && pe[0].y.max(pe[1].y) > y0
+            && (0..m)
+                .map(|k| {
+                    let jf = [loop_[k], loop_[(k + 1) % m]];
+                    ray_crossing(ie, pe, jf, jf.map(|v| mesh.vertex(v)), y0)
+                })
+                .sum::<i32>()
+                != 0
+    });
+    let other = covering.unwrap_or(edge.left);
+    MeshError::Overlapping {
+        a: edge.left.min(other),
+        b: edge.left.max(other),
+    }
+}
+
+/// The boundary edges (those with one polygon) chained into closed loops, in compressed
+/// storage: loop l is `edges[start[l]..start[l + 1]]`, each edge followed by the next along
+/// the boundary with the mesh on the left.
+///
+/// Where a vertex has one outgoing boundary edge, that edge follows. Where several loops meet
+/// at a vertex (polygons that share only the vertex, around an uncovered sector), the edge
+/// that follows an incoming one is the first outgoing boundary edge counter-clockwise from it
+/// (reversed): the loop turns around the uncovered sector on its right, so that no other
+/// boundary edge enters the sector, and the strip just to the right of a loop meets no other
+/// loop. An error names two polygons whose boundary edges do not chain so (each vertex has as
+/// many incoming as outgoing boundary edges, and corners that do not overlap pair them up).
+fn boundary_loops(mesh: &Mesh) -> Result<(Vec<usize>, Vec<usize>), MeshError> {
+    use std::f64::consts::TAU;
+    let edges = mesh.edges();
+    let n = mesh.n_vertices();
+    let mut out_start = vec![0usize; n + 1];
+    let mut balance = vec![0i64; n];
+    let mut count = 0;
+    for edge in edges.iter().filter(|e| e.right.is_none()) {
+        out_start[edge.vertices[0] + 1] += 1;
+        balance[edge.vertices[0]] += 1;
+        balance[edge.vertices[1]] -= 1;
+        count += 1;
+    }
+    if let Some(v) = balance.iter().position(|&b| b != 0) {
+        // Not a cycle: impossible for edges derived from closed loops, kept as a guard.
+        let p = (0..mesh.n_polygons())
+            .find(|&p| mesh.polygon(p).contains(&v))
+            .unwrap_or(0);
+        return Err(MeshError::Overlapping { a: p, b: p });
+    }
+    for v in 0..n {
+        out_start[v + 1] += out_start[v];
+    }
+    let mut fill = out_start.clone();
+    let mut outgoing = vec![0usize; count];
+    for (e, edge) in edges.iter().enumerate() {
+        if edge.right.is_none() {
+            outgoing[fill[edge.vertices[0]]] = e;
+            fill[edge.vertices[0]] += 1;
+        }
+    }
+    let angle = |from: usize, to: usize| {
+        let d = mesh.vertex(to) - mesh.vertex(from);
+        d.y.atan2(d.x)
+    };
+    let next = |e: usize| -> usize {
+        let [from, v] = edges[e].vertices;
+        let out = &outgoing[out_start[v]..out_start[v + 1]];
+        if out.len() == 1 {
+            return out[0];
+        }
+        let back = angle(v, from);
+        let turn = |o: usize| {
+            let t = (angle(v, edges[o].vertices[1]) - back).rem_euclid(TAU);
+            if t > 0.0 {
+                t
+            } else {
+                TAU
+            }
+        };
+        out.iter().copied().fold(
+            out[0],
+            |best, o| if turn(o) < turn(best) { o } else { best },
+        )
+    };
+    let mut chained = vec![false; edges.len()];
+    let mut start = vec![0];
+    let mut loop_edges = Vec::with_capacity(count);
+    for first in 0..edges.len() {
+        if edges[first].right.is_some() || chained[first] {
+            continue;
+        }
+        let mut e = first;
+        loop {
+            chained[e] = true;
+            loop_edges.push(e);
+            let following = next(e);
+            if following == first {
+                break;
+            }
+            if chained[following] {
+                let (p, q) = (edges[e].left, edges[following].left);
+                return Err(MeshError::Overlapping {
+                    a: p.min(q),
+                    b: p.max(q),
+                });
+            }
+            e = following;
+        }
+        start.push(loop_edges.len());
+    }
+    Ok((start, loop_edges))
 }
 
 /// The indices of `points` in the order of a Morton (Z-order) curve through their bounding
