@@ -158,15 +158,23 @@ pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
         }
         Ok(())
     };
-    let steps_4_to_6 = || {
-        check_boundary_conformity(mesh, tolerance)
-            .and_then(|()| check_corners(mesh))
-            .and_then(|()| check_covering(mesh))
+    // Ok(true): passed, but with edges next to each other around a vertex within the
+    // tolerance (see `check_corners_at`), for the exhaustive edge-pair check to judge.
+    let steps_4_to_6 = || -> Result<bool, MeshError> {
+        check_boundary_conformity(mesh, tolerance)?;
+        let near = check_corners_at(mesh, None, Some(tolerance))?;
+        check_covering(mesh)?;
+        Ok(near)
+    };
+    let judge = |result: Result<bool, MeshError>| match result {
+        Ok(false) => Ok(()),
+        Ok(true) => check_conformity(mesh, tolerance),
+        Err(fast) => exhaustive_from_step_4(mesh, tolerance, fast),
     };
     if mesh.n_edges() < PARALLEL_EDGES {
         check_duplicate_vertices(mesh, tolerance)?;
         polygons()?;
-        return steps_4_to_6().or_else(|fast| exhaustive_from_step_4(mesh, tolerance, fast));
+        return judge(steps_4_to_6());
     }
     // Steps 4–6 on a second thread beside steps 2 and 3; the first failure in the order of
     // the steps is returned, as when they run one after the other.
@@ -176,7 +184,7 @@ pub(crate) fn validate(mesh: &Mesh) -> Result<(), MeshError> {
         let after = after
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        before.and_then(|()| after.or_else(|fast| exhaustive_from_step_4(mesh, tolerance, fast)))
+        before.and_then(|()| judge(after))
     })
 }
 
@@ -279,7 +287,7 @@ pub(crate) fn validate_changed(mesh: &Mesh, changed: &[usize]) -> Result<(), Mes
             around[v] = true;
         }
     }
-    check_corners_at(mesh, Some(&around))?;
+    check_corners_at(mesh, Some(&around), None)?;
     check_nesting(mesh)
 }
 
@@ -706,15 +714,28 @@ fn first_conflict(
 /// edge see the same angle bit for bit. The corners are computed polygon by polygon and filed
 /// under their vertex in compressed storage, then sorted by angle around each vertex.
 fn check_corners(mesh: &Mesh) -> Result<(), MeshError> {
-    check_corners_at(mesh, None)
+    check_corners_at(mesh, None, None).map(|_| ())
 }
 
 /// [`check_corners`] around the vertices `v` with `only[v]` (every vertex for `None`).
-fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError> {
-    use std::f64::consts::{PI, TAU};
+///
+/// With a `tolerance`, also tells whether two edges next to each other around a vertex (the
+/// two edges of a corner, or the edges on either side of a gap between corners) come so
+/// close that the far end of one lies within the tolerance of the other's interior: a
+/// configuration that the exhaustive edge-pair check may reject as non-conforming (through an
+/// edge of another polygon at that far end) although no polygons overlap, which the boundary
+/// form of steps 4 and 6 does not see. The edges' angles filter the pairs: the shorter edge's
+/// length times the sine of the angle between them must be at most the tolerance.
+fn check_corners_at(
+    mesh: &Mesh,
+    only: Option<&[bool]>,
+    tolerance: Option<f64>,
+) -> Result<bool, MeshError> {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
     let n = mesh.n_vertices();
     let wanted = |v: usize| only.is_none_or(|only| only[v]);
     let indices = mesh.polygon_vertex_indices();
+    let offsets = mesh.polygon_offsets();
     let mut start = vec![0usize; n + 1];
     for &v in indices {
         if wanted(v) {
@@ -728,6 +749,10 @@ fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError>
         let edge = &mesh.edges()[e];
         let d = mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0]);
         d.y.atan2(d.x)
+    };
+    let length_of = |e: usize| {
+        let edge = &mesh.edges()[e];
+        (mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0])).norm()
     };
     // Every edge's direction once (the whole mesh), or on demand around a few vertices.
     let direction: Vec<f64> = if only.is_none() {
@@ -754,7 +779,27 @@ fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError>
             }
         }
     };
-    // (start angle, opening angle, polygon), filed by vertex.
+    // Whether edges `e` and `f` at a common vertex, `angle` apart, come within the tolerance.
+    let close = |e: usize, f: usize, angle: f64| -> bool {
+        let Some(tolerance) = tolerance else {
+            return false;
+        };
+        if e == f || angle.abs() >= FRAC_PI_2 {
+            return false;
+        }
+        let (le, lf) = (length_of(e), length_of(f));
+        if le.min(lf) * angle.sin().abs() > tolerance {
+            return false;
+        }
+        let edges = mesh.edges();
+        let segment = |e: usize| edges[e].vertices.map(|v| mesh.vertex(v));
+        let (ve, vf) = (edges[e].vertices, edges[f].vertices);
+        segments_conflict_with_lengths(ve, segment(e), le, vf, segment(f), lf, tolerance)
+            != Conflict::None
+    };
+    let mut near = false;
+    // (start angle, end angle, slot of the corner in the polygons' vertex lists), filed by
+    // vertex.
     let mut fill = start.clone();
     let mut sectors = vec![(0.0f64, 0.0f64, 0usize); start[n]];
     for p in 0..mesh.n_polygons() {
@@ -762,15 +807,34 @@ fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError>
         let loop_edges = mesh.polygon_edges(p);
         let m = loop_.len();
         for (k, &v) in loop_.iter().enumerate() {
-            if !wanted(v) || start[v + 1] - start[v] < 2 {
+            if !wanted(v) {
                 continue;
             }
-            let from = ray(loop_edges[k], v);
-            let to = ray(loop_edges[(k + m - 1) % m], v);
-            sectors[fill[v]] = (from, (to - from).rem_euclid(TAU), p);
-            fill[v] += 1;
+            let (out, into) = (loop_edges[k], loop_edges[(k + m - 1) % m]);
+            let single = start[v + 1] - start[v] < 2;
+            if single && tolerance.is_none() {
+                continue;
+            }
+            let from = ray(out, v);
+            let to = ray(into, v);
+            let opening = (to - from).rem_euclid(TAU);
+            if !near && (opening < FRAC_PI_2 || opening > TAU - FRAC_PI_2) {
+                near = close(out, into, opening.min(TAU - opening));
+            }
+            if !single {
+                sectors[fill[v]] = (from, to, offsets[p] + k);
+                fill[v] += 1;
+            }
         }
     }
+    let polygon_of = |slot: usize| offsets.partition_point(|&o| o <= slot) - 1;
+    // The edges that leave and enter the corner at `slot`.
+    let corner_edges = |slot: usize| {
+        let p = polygon_of(slot);
+        let (k, m) = (slot - offsets[p], offsets[p + 1] - offsets[p]);
+        let loop_edges = mesh.polygon_edges(p);
+        (loop_edges[k], loop_edges[(k + m - 1) % m])
+    };
     for v in 0..n {
         let around = &mut sectors[start[v]..start[v + 1]];
         let count = around.len();
@@ -779,22 +843,32 @@ fn check_corners_at(mesh: &Mesh, only: Option<&[bool]>) -> Result<(), MeshError>
         }
         around.sort_by(|a, b| a.0.total_cmp(&b.0));
         for i in 0..count {
-            let (from, opening, p) = around[i];
-            let (next_from, _, q) = around[(i + 1) % count];
+            let (from, to, slot) = around[i];
+            let opening = (to - from).rem_euclid(TAU);
+            let (next_start, _, next_slot) = around[(i + 1) % count];
             let next_from = if i + 1 == count {
-                next_from + TAU
+                next_start + TAU
             } else {
-                next_from
+                next_start
             };
             if from + opening > next_from + ANGLE_TOLERANCE {
+                let (p, q) = (polygon_of(slot), polygon_of(next_slot));
                 return Err(MeshError::Overlapping {
                     a: p.min(q),
                     b: p.max(q),
                 });
             }
+            // Corners that meet along an edge see its angle bit for bit: a gap between
+            // different edges otherwise.
+            if !near && tolerance.is_some() && next_start != to {
+                let gap = next_from - (from + opening);
+                if gap < FRAC_PI_2 {
+                    near = close(corner_edges(slot).1, corner_edges(next_slot).0, gap);
+                }
+            }
         }
     }
-    Ok(())
+    Ok(near)
 }
 
 /// Step 6: no connected component (polygons linked through shared vertices) has a vertex
@@ -1987,6 +2061,271 @@ mod tests {
             assert_eq!(kind(&near), expected, "{moves:?}: {near:?}");
             assert_eq!(kind(&whole), expected, "{moves:?}: {whole:?}");
         }
+    }
+
+    /// The mesh of `polygons` over `vertices`, unvalidated (edges derived), or the error of
+    /// the edge derivation.
+    fn unvalidated(vertices: Vec<Point>, polygons: &[Vec<usize>]) -> Result<Mesh, MeshError> {
+        let mut offsets = vec![0];
+        let mut indices = Vec::new();
+        for p in polygons {
+            indices.extend_from_slice(p);
+            offsets.push(indices.len());
+        }
+        Mesh::unvalidated(vertices, offsets, indices)
+    }
+
+    /// The validation's verdict on `polygons`, after checking that the exhaustive checks
+    /// (all edge pairs, corners, nesting of components) give the same.
+    fn verdict(vertices: Vec<Point>, polygons: &[Vec<usize>]) -> Result<(), MeshError> {
+        let mesh = unvalidated(vertices, polygons)?;
+        let fast = validate(&mesh);
+        assert_eq!(fast, validate_exhaustive(&mesh), "{polygons:?}");
+        fast
+    }
+
+    /// An nx x ny grid of unit squares without the cells `holes` (by (i, j)); vertices
+    /// numbered j * (nx + 1) + i, unused ones left in place.
+    fn grid_with_holes(
+        nx: usize,
+        ny: usize,
+        holes: &[(usize, usize)],
+    ) -> (Vec<Point>, Vec<Vec<usize>>) {
+        let id = |i: usize, j: usize| j * (nx + 1) + i;
+        let mut vertices = Vec::new();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                vertices.push(Point::new(i as f64, j as f64));
+            }
+        }
+        let mut polygons = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                if !holes.contains(&(i, j)) {
+                    polygons.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+        }
+        (vertices, polygons)
+    }
+
+    /// Appends a square of side `size` at `corner` as a new component.
+    fn add_square(
+        vertices: &mut Vec<Point>,
+        polygons: &mut Vec<Vec<usize>>,
+        corner: Point,
+        size: f64,
+    ) {
+        let n = vertices.len();
+        for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            vertices.push(Point::new(corner.x + dx * size, corner.y + dy * size));
+        }
+        polygons.push(vec![n, n + 1, n + 2, n + 3]);
+    }
+
+    #[test]
+    fn multiply_connected_meshes_and_islands_in_holes_are_accepted() {
+        // A square with two holes (one cell each, and a 2 x 1 one).
+        let (vertices, polygons) = grid_with_holes(6, 5, &[(1, 1), (3, 2), (4, 2)]);
+        assert_eq!(verdict(vertices.clone(), &polygons), Ok(()));
+        // An island in each hole; and holes touching at a corner (a vertex where two
+        // uncovered sectors meet).
+        let (mut with_islands, mut polygons_islands) = (vertices, polygons);
+        add_square(
+            &mut with_islands,
+            &mut polygons_islands,
+            Point::new(1.25, 1.25),
+            0.5,
+        );
+        add_square(
+            &mut with_islands,
+            &mut polygons_islands,
+            Point::new(3.5, 2.25),
+            0.5,
+        );
+        assert_eq!(verdict(with_islands, &polygons_islands), Ok(()));
+        let (vertices, polygons) = grid_with_holes(5, 5, &[(1, 1), (2, 2), (3, 1)]);
+        assert_eq!(verdict(vertices, &polygons), Ok(()));
+        // Two squares meeting at one vertex only, and a ring of four cells around a hole
+        // whose corners meet it at vertices only.
+        let (vertices, polygons) = grid_with_holes(2, 2, &[(1, 0), (0, 1)]);
+        assert_eq!(verdict(vertices, &polygons), Ok(()));
+        let (vertices, polygons) = grid_with_holes(3, 3, &[(1, 1), (0, 0), (2, 0), (0, 2), (2, 2)]);
+        assert_eq!(verdict(vertices, &polygons), Ok(()));
+    }
+
+    #[test]
+    fn nested_components_are_rejected() {
+        // A square on the mesh (inside a cell, and across interior edges), and a frame over
+        // a frame's hole with its own hole.
+        for (corner, size) in [(Point::new(1.2, 1.2), 0.5), (Point::new(0.5, 0.5), 2.0)] {
+            let (mut vertices, mut polygons) = grid_with_holes(4, 4, &[]);
+            add_square(&mut vertices, &mut polygons, corner, size);
+            assert!(matches!(
+                verdict(vertices, &polygons),
+                Err(MeshError::Overlapping { .. })
+            ));
+        }
+        let (mut vertices, mut polygons) = grid_with_holes(3, 3, &[(1, 1)]);
+        let (inner, inner_polygons) = grid_with_holes(3, 3, &[(1, 1)]);
+        let n = vertices.len();
+        vertices.extend(
+            inner
+                .iter()
+                .map(|p| Point::new(0.9 + p.x / 3.0, 0.9 + p.y / 3.0)),
+        );
+        polygons.extend(
+            inner_polygons
+                .iter()
+                .map(|p| p.iter().map(|v| v + n).collect()),
+        );
+        assert!(matches!(
+            verdict(vertices, &polygons),
+            Err(MeshError::Overlapping { .. })
+        ));
+    }
+
+    #[test]
+    fn hanging_nodes_and_holes_the_wrong_way_round_are_rejected() {
+        // A hanging node: two cells on top of one, the middle vertex not in the lower cell.
+        let vertices = vec![
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(2.0, 1.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+            Point::new(0.0, 2.0),
+            Point::new(1.0, 2.0),
+            Point::new(2.0, 2.0),
+        ];
+        let polygons = vec![vec![0, 1, 2, 4], vec![4, 3, 6, 5], vec![3, 2, 7, 6]];
+        assert!(matches!(
+            verdict(vertices, &polygons),
+            Err(MeshError::NonConforming { .. })
+        ));
+        // A frame whose inner ring of cells is listed the wrong way round (a hole bounded
+        // counter-clockwise): clockwise cells, or edges used twice in one direction.
+        let (vertices, mut polygons) = grid_with_holes(3, 3, &[(1, 1)]);
+        polygons[4].reverse();
+        assert!(verdict(vertices, &polygons).is_err());
+    }
+
+    /// The annulus 1 <= r <= 2 wound twice: 2n + 1 quadrilaterals over 4 pi, all
+    /// counter-clockwise, no two vertices in the same place.
+    fn annulus_wound_twice(n: usize) -> (Vec<Point>, Vec<Vec<usize>>) {
+        let m = 2 * n + 1;
+        let mut vertices = Vec::new();
+        for j in 0..m {
+            let t = 2.0 * std::f64::consts::TAU * j as f64 / m as f64;
+            vertices.push(Point::new(t.cos(), t.sin()));
+            vertices.push(Point::new(2.0 * t.cos(), 2.0 * t.sin()));
+        }
+        let polygons = (0..m)
+            .map(|j| {
+                let k = (j + 1) % m;
+                vec![2 * j, 2 * j + 1, 2 * k + 1, 2 * k]
+            })
+            .collect();
+        (vertices, polygons)
+    }
+
+    #[test]
+    fn folded_meshes_are_rejected() {
+        let (vertices, polygons) = annulus_wound_twice(20);
+        assert!(matches!(
+            verdict(vertices, &polygons),
+            Err(MeshError::Overlapping { .. })
+        ));
+        // A pleat: a strip of three cells whose middle one is folded back, so that the
+        // middle covers its region with the opposite orientation (counts +1, -1, +1). Listed
+        // as the strip runs, the middle cell is clockwise; listed counter-clockwise, it uses
+        // its shared edges in the same direction as its neighbours: a fold cannot have all
+        // cells counter-clockwise and every interior edge used in opposite directions.
+        let x = [0.0, 2.0, 1.0, 3.0];
+        let vertices: Vec<Point> = (0..8)
+            .map(|k| Point::new(x[k % 4], (k / 4) as f64 + 0.1 * (k % 4) as f64))
+            .collect();
+        let mut polygons = vec![vec![0, 1, 5, 4], vec![1, 2, 6, 5], vec![2, 3, 7, 6]];
+        assert!(matches!(
+            verdict(vertices.clone(), &polygons),
+            Err(MeshError::Clockwise { polygon: 1, .. })
+        ));
+        polygons[1].reverse();
+        assert!(matches!(
+            unvalidated(vertices, &polygons),
+            Err(MeshError::OverusedEdge { .. })
+        ));
+    }
+
+    /// Vertices moved (far, near other vertices and edges, within a few tolerances of an
+    /// edge) in meshes with holes, islands and pinched corners: the boundary form of steps 4
+    /// and 6 gives the exhaustive checks' verdict, error for error.
+    #[test]
+    fn the_boundary_form_agrees_with_the_exhaustive_checks() {
+        let mut state = 17u64;
+        let mut uniform = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut meshes = Vec::new();
+        meshes.push(grid_with_holes(6, 5, &[(1, 1), (3, 2), (4, 2)]));
+        meshes.push(grid_with_holes(5, 5, &[(1, 1), (2, 2), (3, 1), (0, 4)]));
+        let (mut vertices, mut polygons) = grid_with_holes(4, 4, &[(1, 1)]);
+        add_square(&mut vertices, &mut polygons, Point::new(1.25, 1.25), 0.5);
+        add_square(&mut vertices, &mut polygons, Point::new(5.0, 0.0), 1.0);
+        meshes.push((vertices, polygons));
+        let jittered = jittered_grid(5);
+        meshes.push((
+            jittered.vertices().to_vec(),
+            jittered.polygons().map(<[usize]>::to_vec).collect(),
+        ));
+        let (mut accepted, mut rejected) = (0, 0);
+        for trial in 0..3000 {
+            let (vertices, polygons) = &meshes[trial % meshes.len()];
+            let mut moved = vertices.clone();
+            let n = moved.len();
+            for _ in 0..1 + trial % 3 {
+                let v = (uniform() * n as f64) as usize;
+                let to = match trial % 4 {
+                    // Anywhere near.
+                    0 => moved[v] + Vector::new(3.0 * (uniform() - 0.5), 3.0 * (uniform() - 0.5)),
+                    // A little.
+                    1 => moved[v] + Vector::new(0.4 * (uniform() - 0.5), 0.4 * (uniform() - 0.5)),
+                    // Onto another vertex, give or take a few tolerances.
+                    2 => {
+                        let w = (uniform() * n as f64) as usize;
+                        moved[w] + 1e-10 * Vector::new(4.0 * uniform() - 2.0, 4.0 * uniform() - 2.0)
+                    }
+                    // Onto a point of another polygon's edge, give or take a few tolerances.
+                    _ => {
+                        let p = &polygons[(uniform() * polygons.len() as f64) as usize];
+                        let k = (uniform() * p.len() as f64) as usize;
+                        let (a, b) = (moved[p[k]], moved[p[(k + 1) % p.len()]]);
+                        let t = uniform();
+                        a + t * (b - a)
+                            + 1e-10 * Vector::new(4.0 * uniform() - 2.0, 4.0 * uniform() - 2.0)
+                    }
+                };
+                moved[v] = to;
+            }
+            let Ok(mesh) = unvalidated(moved, polygons) else {
+                continue;
+            };
+            let fast = validate(&mesh);
+            let old = validate_exhaustive(&mesh);
+            assert_eq!(fast, old, "trial {trial}");
+            if fast.is_ok() {
+                accepted += 1;
+            } else {
+                rejected += 1;
+            }
+        }
+        assert!(
+            accepted > 500 && rejected > 500,
+            "{accepted} accepted, {rejected} rejected"
+        );
     }
 
     #[test]
