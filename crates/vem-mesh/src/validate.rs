@@ -802,7 +802,7 @@ fn check_corners_at(
     // vertex.
     let mut fill = start.clone();
     let mut sectors = vec![(0.0f64, 0.0f64, 0usize); start[n]];
-    for p in 0..mesh.n_polygons() {
+    for (p, &offset) in offsets[..mesh.n_polygons()].iter().enumerate() {
         let loop_ = mesh.polygon(p);
         let loop_edges = mesh.polygon_edges(p);
         let m = loop_.len();
@@ -818,11 +818,11 @@ fn check_corners_at(
             let from = ray(out, v);
             let to = ray(into, v);
             let opening = (to - from).rem_euclid(TAU);
-            if !near && (opening < FRAC_PI_2 || opening > TAU - FRAC_PI_2) {
+            if !near && !(FRAC_PI_2..=TAU - FRAC_PI_2).contains(&opening) {
                 near = close(out, into, opening.min(TAU - opening));
             }
             if !single {
-                sectors[fill[v]] = (from, to, offsets[p] + k);
+                sectors[fill[v]] = (from, to, offset + k);
                 fill[v] += 1;
             }
         }
