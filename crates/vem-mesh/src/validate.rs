@@ -724,8 +724,9 @@ fn check_corners(mesh: &Mesh) -> Result<(), MeshError> {
 /// close that the far end of one lies within the tolerance of the other's interior: a
 /// configuration that the exhaustive edge-pair check may reject as non-conforming (through an
 /// edge of another polygon at that far end) although no polygons overlap, which the boundary
-/// form of steps 4 and 6 does not see. The edges' angles filter the pairs: the shorter edge's
-/// length times the sine of the angle between them must be at most the tolerance.
+/// form of steps 4 and 6 does not see. The pairs are filtered by their angle, which must be
+/// below pi/2 times the tolerance over the shortest edge of the mesh (a few multiplications per
+/// corner; the lengths are computed only for the pairs that pass).
 fn check_corners_at(
     mesh: &Mesh,
     only: Option<&[bool]>,
@@ -760,6 +761,20 @@ fn check_corners_at(
     } else {
         Vec::new()
     };
+    // Two edges at a vertex whose far ends come within the tolerance of each other's
+    // interior are less than `bound` apart in angle: sin(angle) >= 2 angle / pi below a
+    // right angle, and the shorter edge is at least the shortest of the mesh.
+    let bound = tolerance.map_or(0.0, |tolerance| {
+        let shortest = mesh
+            .edges()
+            .iter()
+            .map(|edge| {
+                (mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0])).norm_squared()
+            })
+            .fold(f64::INFINITY, f64::min)
+            .sqrt();
+        (FRAC_PI_2 * tolerance / shortest).min(FRAC_PI_2)
+    });
     // The angle of the ray from vertex `v` along edge `e`, in (-pi, pi].
     let ray = |e: usize, v: usize| -> f64 {
         let edge = &mesh.edges()[e];
@@ -784,7 +799,7 @@ fn check_corners_at(
         let Some(tolerance) = tolerance else {
             return false;
         };
-        if e == f || angle.abs() >= FRAC_PI_2 {
+        if e == f || !(angle.abs() <= bound) {
             return false;
         }
         let (le, lf) = (length_of(e), length_of(f));
@@ -818,7 +833,7 @@ fn check_corners_at(
             let from = ray(out, v);
             let to = ray(into, v);
             let opening = (to - from).rem_euclid(TAU);
-            if !near && !(FRAC_PI_2..=TAU - FRAC_PI_2).contains(&opening) {
+            if !near && !(bound..=TAU - bound).contains(&opening) {
                 near = close(out, into, opening.min(TAU - opening));
             }
             if !single {
@@ -862,7 +877,7 @@ fn check_corners_at(
             // different edges otherwise.
             if !near && tolerance.is_some() && next_start != to {
                 let gap = next_from - (from + opening);
-                if gap < FRAC_PI_2 {
+                if gap <= bound {
                     near = close(corner_edges(slot).1, corner_edges(next_slot).0, gap);
                 }
             }
