@@ -861,7 +861,7 @@ fn check_corners_at(
         let Some(tolerance) = tolerance else {
             return false;
         };
-        if e == f || !(angle.abs() <= bound) {
+        if e == f || angle.abs() > bound {
             return false;
         }
         let (le, lf) = (length_of(e), length_of(f));
