@@ -128,6 +128,26 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// The mesh of compact storage with its edges and parts but without the checks of
+    /// `validate` (for tests that run those checks themselves).
+    #[cfg(test)]
+    pub(crate) fn unvalidated(
+        vertices: Vec<Point>,
+        polygon_offsets: Vec<usize>,
+        polygon_vertices: Vec<usize>,
+    ) -> Result<Self, MeshError> {
+        validate::check_storage(&vertices, &polygon_offsets, &polygon_vertices)?;
+        let (edges, polygon_edges) = derive_edges(&polygon_offsets, &polygon_vertices)?;
+        Ok(Mesh {
+            vertices,
+            polygon_offsets,
+            polygon_vertices,
+            polygon_edges,
+            edges,
+            parts: Vec::new(),
+        })
+    }
+
     /// [`Mesh::from_compact`] for a mesh made from a valid mesh by changes at the vertices
     /// `changed` only (moved, or inserted into edges): the polygons near the change are
     /// validated, not the whole mesh again (see `validate::validate_changed`).
