@@ -44,8 +44,7 @@
 //! [`report`] (`report::plot_svg`, `report::write_plot`), and with them the `plotters`
 //! dependency; `extremes` adds the module
 //! `extremes` (the rows of the study of stability at the extremes) and with it the `vem-scene`
-//! dependency; `fretting` (on by default) the module `fretting` (the flat blocks of the
-//! Cattaneo-Mindlin studies, a scene), also with `vem-scene`; everything else needs no feature.
+//! dependency; everything else needs no feature.
 #![deny(missing_docs)]
 
 pub mod adaptive;
@@ -55,7 +54,6 @@ mod error;
 pub mod exact;
 #[cfg(feature = "extremes")]
 pub mod extremes;
-#[cfg(feature = "fretting")]
 pub mod fretting;
 pub mod norms;
 pub mod plan;
