@@ -14,15 +14,15 @@
 //! reaches the same answer by every path.
 
 use vem_contact::{
-    CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless, LoadCurve,
-    LoadCurves, LoadFactors, LoadHistory, NodeStatus,
+    CondensedSolver, ContactProblem, ContactResult, LoadCurve, LoadCurves, LoadFactors,
+    LoadHistory, NodeStatus,
 };
 use vem_mesh::io::read_gmsh;
-use vem_mesh::Mesh;
+use vem_space::Choice;
 use vem_verify::exact::HertzContact;
 use vem_verify::fretting::{
-    friction_traction as traction, largest_spacing_within as spacing_in, plate_translation,
-    zone_half_width as zone, Drive, FlatBlocks,
+    friction_traction as traction, largest_spacing_within as spacing_in, mesh_file,
+    plate_translation, zone_half_width as zone, Drive, FlatBlocks,
 };
 
 const F: f64 = 0.3;
@@ -39,15 +39,16 @@ const SETUP: FlatBlocks = FlatBlocks {
 const FIRST: vem_contact::LoadCondition = FlatBlocks::PRESS;
 const SECOND: vem_contact::LoadCondition = FlatBlocks::SHEAR;
 
-fn mesh(path: &str) -> Mesh {
-    read_gmsh(format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+fn path(file: &str) -> String {
+    format!("{}/../{file}", env!("CARGO_MANIFEST_DIR"))
 }
 
 /// The upper block `[-2, 2] x [0, 2]` (the mirror image of the h_c = 0.01 block) on the lower
-/// block `[-2, 2] x [-2, 0]` (h_c = 0.005) clamped at its bottom, with the gap of a cylinder.
-fn blocks(drive: Drive, law: impl ContactLaw + 'static) -> ContactProblem {
-    let upper = mesh("crates/vem-cli/scenes/hertz_block.msh");
-    let lower = mesh("xtask/data/hertz/block_hc0.005.msh");
+/// block `[-2, 2] x [-2, 0]` (h_c = 0.005, its mesh file) clamped at its bottom, with the gap
+/// of a cylinder: the contact problem of the scene `FlatBlocks::scene`, the law by name.
+fn blocks(drive: Drive, law: Choice) -> ContactProblem {
+    let upper = read_gmsh(path("crates/vem-cli/scenes/hertz_block.msh")).unwrap();
+    let lower = mesh_file(path("xtask/data/hertz/block_hc0.005.msh"));
     SETUP.problem(&upper, lower, drive, law).unwrap()
 }
 
@@ -68,7 +69,7 @@ fn plate_x(result: &ContactResult) -> f64 {
 
 #[test]
 fn loading_unloading_and_reloading_follow_cattaneo_mindlin_and_the_loop_closes() {
-    let d = blocks(Drive::Force, Coulomb::try_new(F).unwrap())
+    let d = blocks(Drive::Force, SETUP.coulomb())
         .into_discretisation()
         .unwrap();
     // Pushed during t in [0, 1]; sheared to Q* at t = 2, back to -Q* at t = 4, to Q* at 6.
@@ -168,7 +169,7 @@ fn loading_unloading_and_reloading_follow_cattaneo_mindlin_and_the_loop_closes()
 
 #[test]
 fn pressed_and_sheared_together_the_interface_sticks_with_q_proportional_to_p() {
-    let d = blocks(Drive::Force, Coulomb::try_new(F).unwrap())
+    let d = blocks(Drive::Force, SETUP.coulomb())
         .into_discretisation()
         .unwrap();
     let ratio = 0.5;
@@ -265,7 +266,7 @@ fn pressed_and_sheared_together_the_interface_sticks_with_q_proportional_to_p() 
 #[test]
 fn without_friction_every_path_reaches_the_same_answer() {
     let (dx, dy) = (0.004, 0.012);
-    let d = blocks(Drive::Displacement(dx, dy), Frictionless)
+    let d = blocks(Drive::Displacement(dx, dy), Choice::named("frictionless"))
         .into_discretisation()
         .unwrap();
     let path = |factors: &[(f64, f64)]| {
@@ -303,7 +304,7 @@ fn without_friction_every_path_reaches_the_same_answer() {
         }
     }
     // With Coulomb friction the same three paths end in three different states.
-    let d = blocks(Drive::Displacement(dx, dy), Coulomb::try_new(F).unwrap())
+    let d = blocks(Drive::Displacement(dx, dy), SETUP.coulomb())
         .into_discretisation()
         .unwrap();
     let path = |factors: &[(f64, f64)]| {

@@ -5,32 +5,35 @@
 //! (the `fretting` section: loading, unloading, reloading, path dependence); Cattaneo-Mindlin
 //! in space (the `mindlin_3d` section: the stick disc of two blocks with a spherical gap). See
 //! `docs/hertz.md`.
+//!
+//! Every problem is a `vem_scene::Scene` built by `vem_scene::Model::build` (the disc and the
+//! block by their Gmsh files, [`disc_scene`]; the flat blocks by `vem_verify::fretting`; the
+//! blocks in space given inline), solved with the model's contact problem and solver. Each
+//! section writes its rows and the curves of its plots to JSON and renders its Markdown and
+//! plots from that JSON, so `--report-only` rewrites them from the JSON without solving.
 
 mod fretting;
 mod mindlin_3d;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::time::Instant;
 
 use clap::Args;
-use serde::Serialize;
+use serde::{Deserialize, Deserializer, Serialize};
 use vem_contact::{
-    CondensedSolver, ContactLaw, ContactNormal, ContactProblem, ContactResult, Coulomb,
-    InterfaceNode, NodeStatus,
+    ContactNormal, ContactProblem, ContactResult, ContactSolver, InterfaceNode, NodeStatus,
 };
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
-use vem_mesh::interface::InterfaceOptions;
-use vem_mesh::io::read_gmsh;
-use vem_mesh::Vector;
-use vem_space::LowestOrderVem;
+use vem_scene::{BuildOptions, Model, Scene};
+use vem_space::{Choice, Options};
 use vem_verify::exact::HertzContact;
-use vem_verify::fretting::zone_half_width;
+use vem_verify::fretting::{mesh_file, zone_half_width};
 use vem_verify::plot::{
     chart_svg, Axis, Chart, Color, Glyph, Layer, Palette, Palette99, Pen, BLACK, CAPTION_SIZE,
 };
 use vem_verify::report::write_text;
+
+type Failure = Box<dyn std::error::Error>;
 
 /// Options of `cargo xtask hertz`.
 #[derive(Debug, Args)]
@@ -53,6 +56,11 @@ pub struct HertzArgs {
     /// The section in space at the coarser node spacing a/4 instead of a/6.
     #[arg(long)]
     quick: bool,
+    /// Rewrite the Markdown and the plots of the sections asked for (all three, or the one of
+    /// `--friction-only`, `--space-only`) from their JSON in `--out` (`results.json`,
+    /// `fretting.json`, `mindlin-3d.json`), without solving.
+    #[arg(long)]
+    report_only: bool,
 }
 
 /// Young's modulus and Poisson's ratio of both bodies (plane strain).
@@ -71,10 +79,10 @@ const PARTIAL_SHIFT: f64 = 0.004;
 const PROFILE_FRACTION: f64 = 0.8;
 
 /// One frictionless run.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 struct Frictionless {
     h_c: String,
-    normal: &'static str,
+    normal: String,
     load: f64,
     hertz_half_width: f64,
     hertz_peak: f64,
@@ -90,16 +98,15 @@ struct Frictionless {
     profile_consistent: f64,
     /// The smallest consistent pressure over p0 (>= 0: it respects the sign).
     min_consistent: f64,
-    /// (x / a, p / p0) raw and consistent, for the plots.
-    #[serde(skip)]
+    /// (x / a, p / p0) raw and consistent at every interface node, for the plots.
     curve: Vec<(f64, f64, f64)>,
 }
 
 /// One Coulomb run (full slip and partial slip).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 struct Friction {
     h_c: String,
-    normal: &'static str,
+    normal: String,
     /// Q / P at full slip.
     full_slip_ratio: f64,
     /// Stick nodes at full slip.
@@ -112,19 +119,82 @@ struct Friction {
     stick_half_width_hertz: f64,
     stick_half_width_computed_a: f64,
     spacing: f64,
-    /// Slip nodes with no tangential load (the frictionless answer's tangential forces).
-    #[serde(skip)]
+    /// P of the partial shift: Hertz's solution for it is the one of the traction plot.
+    partial_load: f64,
+    /// (x / a, |q| / (F p0)) raw and consistent of the partial shift at every interface node.
     curve: Vec<(f64, f64, f64)>,
-    #[serde(skip)]
-    hertz: Option<HertzContact>,
 }
 
-/// Runs the study and writes `hertz.md`, `hertz.json` and the plots.
-pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
-    let start = Instant::now();
+impl Friction {
+    /// Hertz's solution for the partial shift's load.
+    fn hertz(&self) -> Result<HertzContact, Failure> {
+        hertz_for(self.partial_load)
+    }
+}
+
+/// `results.json`: the rows and curves of the section in the plane.
+#[derive(Debug, Serialize, Deserialize)]
+struct Results {
+    /// Wall-clock seconds of the section.
+    seconds: f64,
+    frictionless: Vec<Frictionless>,
+    coulomb: Vec<Friction>,
+}
+
+/// A number that JSON holds as `null` when it is not finite (`serde_json` writes NaN and the
+/// infinities so): read back as `missing`.
+fn number_or<'de, D: Deserializer<'de>>(d: D, missing: f64) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(missing))
+}
+
+/// [`number_or`] NaN.
+fn number_or_nan<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    number_or(d, f64::NAN)
+}
+
+/// [`number_or`] infinity.
+fn number_or_infinity<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    number_or(d, f64::INFINITY)
+}
+
+/// Writes `value` as `out/name` and reads it back: the report is rendered from what the JSON
+/// holds, as `--report-only` renders it.
+fn stored<T: Serialize + serde::de::DeserializeOwned>(
+    out: &Path,
+    name: &str,
+    value: &T,
+) -> Result<T, Failure> {
+    let text = serde_json::to_string_pretty(value)?;
+    write_text(out.join(name), &text)?;
+    Ok(serde_json::from_str(&text)?)
+}
+
+/// Reads `out/name`.
+fn read_json<T: serde::de::DeserializeOwned>(out: &Path, name: &str) -> Result<T, Failure> {
+    let path = out.join(name);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    Ok(serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?)
+}
+
+/// Writes the files `(name, text)` into `out`.
+fn write_all(out: &Path, files: &[(String, String)]) -> Result<(), Failure> {
+    for (name, text) in files {
+        write_text(out.join(name), text)?;
+    }
+    Ok(())
+}
+
+/// Runs the study and writes `results.md`, `results.json`, the friction section, the section in
+/// space and the plots (or, with `--report-only`, rewrites them from the JSON).
+pub fn run(args: &HertzArgs) -> Result<bool, Failure> {
     std::fs::create_dir_all(&args.out)?;
+    if args.report_only {
+        return report_only(args);
+    }
     if args.friction_only {
-        fretting::run(args)?;
+        let section: fretting::Section = stored(&args.out, "fretting.json", &fretting::run(args)?)?;
+        write_all(&args.out, &fretting::report(&section)?)?;
         println!(
             "wrote {0}/fretting.md, fretting.json and its SVG plots",
             args.out.display()
@@ -134,8 +204,9 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
     if args.space_only {
         return space(args);
     }
+    let start = Instant::now();
     let mut frictionless = Vec::new();
-    let mut friction = Vec::new();
+    let mut coulomb = Vec::new();
     for h in &args.sizes {
         for normal in ContactNormal::ALL {
             let f = frictionless_run(&args.meshes, h, normal)?;
@@ -161,36 +232,18 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
                 c.stick_half_width_computed_a,
                 c.spacing
             );
-            friction.push(c);
+            coulomb.push(c);
         }
     }
-    let md = markdown(
-        &frictionless,
-        &friction,
-        args,
-        start.elapsed().as_secs_f64(),
-    )?;
-    write_text(args.out.join("results.md"), &md)?;
-    let json = serde_json::json!({ "frictionless": frictionless, "coulomb": friction });
-    write_text(
-        args.out.join("results.json"),
-        &serde_json::to_string_pretty(&json)?,
-    )?;
-    for h in &args.sizes {
-        let runs: Vec<&Frictionless> = frictionless.iter().filter(|f| &f.h_c == h).collect();
-        write_text(
-            args.out.join(format!("pressure_hc{h}.svg")),
-            &pressure_svg(h, &runs)?,
-        )?;
-    }
-    if let Some(c) = friction
-        .iter()
-        .rev()
-        .find(|c| c.normal == ContactNormal::default().name())
-    {
-        write_text(args.out.join("cattaneo_mindlin.svg"), &traction_svg(c)?)?;
-    }
-    fretting::run(args)?;
+    let results = Results {
+        seconds: start.elapsed().as_secs_f64(),
+        frictionless,
+        coulomb,
+    };
+    let results: Results = stored(&args.out, "results.json", &results)?;
+    write_all(&args.out, &report(&results, &args.out)?)?;
+    let section: fretting::Section = stored(&args.out, "fretting.json", &fretting::run(args)?)?;
+    write_all(&args.out, &fretting::report(&section)?)?;
     println!(
         "wrote {0}/results.md, results.json, fretting.md, fretting.json and the SVG plots",
         args.out.display()
@@ -198,90 +251,165 @@ pub fn run(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
     space(args)
 }
 
+/// `--report-only`: the sections asked for rewritten from their JSON in `args.out`; false when
+/// the section in space stored there falls short.
+fn report_only(args: &HertzArgs) -> Result<bool, Failure> {
+    let all = !args.friction_only && !args.space_only;
+    let mut passed = true;
+    let mut files = Vec::new();
+    if all {
+        let results: Results = read_json(&args.out, "results.json")?;
+        files.extend(report(&results, &args.out)?);
+    }
+    if all || args.friction_only {
+        let section: fretting::Section = read_json(&args.out, "fretting.json")?;
+        files.extend(fretting::report(&section)?);
+    }
+    if all || args.space_only {
+        let section: mindlin_3d::Section = read_json(&args.out, "mindlin-3d.json")?;
+        passed = section.study.shortfalls().is_empty();
+        files.extend(mindlin_3d::report(&section)?);
+    }
+    write_all(&args.out, &files)?;
+    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
+    eprintln!(
+        "rewrote {} in {} from its JSON",
+        names.join(", "),
+        args.out.display()
+    );
+    Ok(passed)
+}
+
 /// The section in space: Cattaneo-Mindlin in 3D at the node spacing a/6 (`--quick`: a/4),
 /// written to `mindlin-3d.md` and `mindlin-3d.json`; false when it falls short.
-fn space(args: &HertzArgs) -> Result<bool, Box<dyn std::error::Error>> {
+fn space(args: &HertzArgs) -> Result<bool, Failure> {
     let start = Instant::now();
     let a = mindlin_3d::hertz()?.contact_radius();
     let study = mindlin_3d::study(a / if args.quick { 4.0 } else { 6.0 })?;
-    let shortfalls = study.shortfalls();
-    let md = crate::common::render(
-        "xtask/templates/mindlin-3d.md",
-        include_str!("../templates/mindlin-3d.md"),
-        &[
-            (
-                "options",
-                if args.quick { " --quick" } else { "" }.to_string(),
-            ),
-            ("seconds", format!("{:.0}", start.elapsed().as_secs_f64())),
-            ("study", study.markdown()),
-            (
-                "verdict",
-                if shortfalls.is_empty() {
-                    "pass (every stick radius within one node spacing of Mindlin's, the load \
-                     carried to 1e-8, the refusal beyond the capacity)."
-                        .to_string()
-                } else {
-                    format!("FAIL\n\n- {}", shortfalls.join("\n- "))
-                },
-            ),
-        ],
-    )?;
     print!("{}", study.markdown());
-    write_text(args.out.join("mindlin-3d.md"), &md)?;
-    write_text(
-        args.out.join("mindlin-3d.json"),
-        &serde_json::to_string_pretty(&study)?,
-    )?;
+    let section = mindlin_3d::Section {
+        options: if args.quick { " --quick" } else { "" }.to_string(),
+        seconds: start.elapsed().as_secs_f64(),
+        study,
+    };
+    let section: mindlin_3d::Section = stored(&args.out, "mindlin-3d.json", &section)?;
+    write_all(&args.out, &mindlin_3d::report(&section)?)?;
     println!(
         "wrote {}/mindlin-3d.md and mindlin-3d.json",
         args.out.display()
     );
-    Ok(shortfalls.is_empty())
+    Ok(section.study.shortfalls().is_empty())
 }
 
-/// The problem: the half-disc (top moved by `(shift, -INDENTATION)`) on the block.
-fn problem(
+/// How the disc's top is driven.
+#[derive(Debug, Clone, Copy)]
+enum Top {
+    /// Moved by `(shift, -INDENTATION)` (displacement control).
+    Moved(f64),
+    /// A rigid plate pushed with `push` along -y and sheared with `shear` along +x (force
+    /// control): two conditions, the push then the shear.
+    Plate { push: f64, shear: f64 },
+}
+
+/// The scene of the half-disc (the mesh file `disc`, its contact part "arc") on the block (the
+/// mesh file `block`, clamped at its "bottom", its contact part "top"), both of E = YOUNG,
+/// nu = POISSON in plane strain, the disc's "top" driven by `top`, the contact law `law` by
+/// registry name, the contact normal `normal`, the two sides paired within 0.05.
+fn disc_scene(
+    disc: &Path,
+    block: &Path,
+    top: Top,
+    law: Choice,
+    normal: ContactNormal,
+) -> Result<Scene, Failure> {
+    let material = serde_json::json!({ "E": YOUNG, "nu": POISSON, "plane": "strain" });
+    let (dirichlet, rigid_plate) = match top {
+        Top::Moved(shift) => (
+            serde_json::json!([{ "part": "top", "x": shift, "y": -INDENTATION }]),
+            serde_json::json!([]),
+        ),
+        Top::Plate { push, shear } => (
+            serde_json::json!([]),
+            serde_json::json!([
+                { "part": "top", "resultant_y": -push },
+                { "part": "top", "resultant_x": shear },
+            ]),
+        ),
+    };
+    let mut scene = Scene::from_value(serde_json::json!({
+        "title": "The Hertz half-disc on a block",
+        "body": [
+            { "name": "disc", "mesh": {}, "material": material,
+              "dirichlet": dirichlet, "rigid_plate": rigid_plate },
+            { "name": "block", "mesh": {}, "material": material,
+              "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }] },
+        ],
+        "contact": [{
+            "body": "disc", "part": "arc", "other_body": "block", "other_part": "top",
+            "max_distance": 0.05, "normal": normal.name(),
+        }],
+    }))?;
+    scene.bodies[0].mesh = mesh_file(disc.display().to_string());
+    scene.bodies[1].mesh = mesh_file(block.display().to_string());
+    scene.contacts[0].law = Some(law);
+    Ok(scene)
+}
+
+/// Coulomb's law at [`COEFFICIENT`] by its registry name.
+fn coulomb() -> Choice {
+    Choice::with_options("coulomb", Options::new().with("coefficient", COEFFICIENT))
+}
+
+/// The model of `scene` ([`Model::build`], files relative to the current folder) and the
+/// scene's contact solver made by the model's registry.
+fn model(scene: &Scene) -> Result<(Model, Box<dyn ContactSolver>), Failure> {
+    let model = Model::build(scene, &BuildOptions::default())?;
+    let solver = model.registries().solvers.make_choice(model.solver())?;
+    Ok((model, solver))
+}
+
+/// The contact problem of the model of `scene` in the plane, and the scene's solver.
+fn model_problem(scene: &Scene) -> Result<(ContactProblem, Box<dyn ContactSolver>), Failure> {
+    let (model, solver) = model(scene)?;
+    let (problem, _) = model
+        .contact_problem()
+        .ok_or("the scene has no contact pair")?;
+    Ok((problem.clone(), solver))
+}
+
+/// The half-disc at h_c = `h` (its top moved by `(shift, -INDENTATION)`) on the block, solved.
+fn disc_solve(
     meshes: &Path,
     h: &str,
     normal: ContactNormal,
-    law: impl ContactLaw + 'static,
+    law: Choice,
     shift: f64,
-) -> Result<ContactProblem, Box<dyn std::error::Error>> {
-    let material = Material::from_young_poisson(YOUNG, POISSON, Plane::Strain)?;
-    let element = Arc::new(LowestOrderVem::default());
-    let disc = read_gmsh(meshes.join(format!("disc_hc{h}.msh")))?;
-    let block = read_gmsh(meshes.join(format!("block_hc{h}.msh")))?;
-    let disc = ElasticBody::builder("disc", disc, material, element.clone())
-        .dirichlet(Dirichlet::prescribed("top", Component::All, move |_| {
-            Vector::new(shift, -INDENTATION)
-        }))
-        .build()?;
-    let block = ElasticBody::builder("block", block, material, element)
-        .dirichlet(Dirichlet::prescribed("bottom", Component::All, |_| {
-            Vector::zeros()
-        }))
-        .build()?;
-    Ok(ContactProblem::two_bodies(disc, "arc", block, "top", law)
-        .with_interface_options(InterfaceOptions::builder().max_distance(0.05).build()?)
-        .with_normal(normal))
+) -> Result<ContactResult, Failure> {
+    let scene = disc_scene(
+        &meshes.join(format!("disc_hc{h}.msh")),
+        &meshes.join(format!("block_hc{h}.msh")),
+        Top::Moved(shift),
+        law,
+        normal,
+    )?;
+    let (problem, mut solver) = model_problem(&scene)?;
+    Ok(problem.solve(solver.as_mut())?)
 }
 
-/// P (the vertical force on the disc) and Hertz's solution for it.
-fn hertz_for(result: &ContactResult) -> Result<(f64, HertzContact), Box<dyn std::error::Error>> {
-    let load = result.force_on_body_a().y;
+/// Hertz's solution for the load P (the vertical force on the disc).
+fn hertz_for(load: f64) -> Result<HertzContact, Failure> {
     let e_star = HertzContact::plane_strain_modulus(YOUNG, POISSON, YOUNG, POISSON);
-    Ok((load, HertzContact::try_new(RADIUS, e_star, load)?))
+    Ok(HertzContact::try_new(RADIUS, e_star, load)?)
 }
 
 fn frictionless_run(
     meshes: &Path,
     h: &str,
     normal: ContactNormal,
-) -> Result<Frictionless, Box<dyn std::error::Error>> {
-    let result = problem(meshes, h, normal, vem_contact::Frictionless, 0.0)?
-        .solve(&mut CondensedSolver::default())?;
-    let (load, hertz) = hertz_for(&result)?;
+) -> Result<Frictionless, Failure> {
+    let result = disc_solve(meshes, h, normal, Choice::named("frictionless"), 0.0)?;
+    let load = result.force_on_body_a().y;
+    let hertz = hertz_for(load)?;
     let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
     let nodes = &result.nodes;
     let peak = |value: fn(&InterfaceNode) -> f64| nodes.iter().map(value).fold(0.0, f64::max);
@@ -295,7 +423,7 @@ fn frictionless_run(
     let (zone, _) = zone_half_width(nodes, |n| n.status != NodeStatus::Open);
     Ok(Frictionless {
         h_c: h.to_string(),
-        normal: normal.name(),
+        normal: normal.name().to_string(),
         load,
         hertz_half_width: a,
         hertz_peak: p0,
@@ -324,27 +452,21 @@ fn frictionless_run(
     })
 }
 
-fn friction_run(
-    meshes: &Path,
-    h: &str,
-    normal: ContactNormal,
-) -> Result<Friction, Box<dyn std::error::Error>> {
-    let law = Coulomb::try_new(COEFFICIENT)?;
-    let mut solver = CondensedSolver::default();
-    let full = problem(meshes, h, normal, law, FULL_SLIP_SHIFT)?.solve(&mut solver)?;
+fn friction_run(meshes: &Path, h: &str, normal: ContactNormal) -> Result<Friction, Failure> {
+    let full = disc_solve(meshes, h, normal, coulomb(), FULL_SLIP_SHIFT)?;
     let force = full.force_on_body_a();
     let full_slip_ratio = force.x.abs() / force.y;
     let full_slip_stick_nodes = full.status_counts().stick;
-    let partial = problem(meshes, h, normal, law, PARTIAL_SHIFT)?.solve(&mut solver)?;
+    let partial = disc_solve(meshes, h, normal, coulomb(), PARTIAL_SHIFT)?;
     let force = partial.force_on_body_a();
     let partial_ratio = force.x.abs() / (COEFFICIENT * force.y);
-    let (_, hertz) = hertz_for(&partial)?;
+    let hertz = hertz_for(force.y)?;
     let (zone, _) = zone_half_width(&partial.nodes, |n| n.status != NodeStatus::Open);
     let (stick, spacing) = zone_half_width(&partial.nodes, |n| n.status == NodeStatus::Stick);
     let (a, p0) = (hertz.half_width(), hertz.peak_pressure());
     Ok(Friction {
         h_c: h.to_string(),
-        normal: normal.name(),
+        normal: normal.name().to_string(),
         full_slip_ratio,
         full_slip_stick_nodes,
         partial_ratio,
@@ -352,6 +474,7 @@ fn friction_run(
         stick_half_width_hertz: hertz.stick_half_width(partial_ratio),
         stick_half_width_computed_a: zone * (1.0 - partial_ratio.clamp(0.0, 1.0)).sqrt(),
         spacing,
+        partial_load: force.y,
         curve: partial
             .nodes
             .iter()
@@ -363,20 +486,39 @@ fn friction_run(
                 )
             })
             .collect(),
-        hertz: Some(hertz),
     })
+}
+
+/// The files of the section in the plane rendered from its JSON: `results.md`, the pressure
+/// plot of every h_c, the Cattaneo-Mindlin traction of the finest default normal.
+fn report(results: &Results, out: &Path) -> Result<Vec<(String, String)>, Failure> {
+    let mut files = vec![("results.md".to_string(), markdown(results, out)?)];
+    let mut sizes: Vec<&str> = Vec::new();
+    for f in &results.frictionless {
+        if !sizes.contains(&f.h_c.as_str()) {
+            sizes.push(&f.h_c);
+        }
+    }
+    for h in sizes {
+        let runs: Vec<&Frictionless> = results.frictionless.iter().filter(|f| f.h_c == h).collect();
+        files.push((format!("pressure_hc{h}.svg"), pressure_svg(h, &runs)?));
+    }
+    if let Some(c) = results
+        .coulomb
+        .iter()
+        .rev()
+        .find(|c| c.normal == ContactNormal::default().name())
+    {
+        files.push(("cattaneo_mindlin.svg".to_string(), traction_svg(c)?));
+    }
+    Ok(files)
 }
 
 /// The report of the runs: its template (`xtask/templates/hertz.md`) filled with the setup and
 /// the tables of the frictionless and the Coulomb runs.
-fn markdown(
-    f: &[Frictionless],
-    c: &[Friction],
-    args: &HertzArgs,
-    seconds: f64,
-) -> Result<String, String> {
+fn markdown(results: &Results, out: &Path) -> Result<String, String> {
     let mut frictionless = String::new();
-    for r in f {
+    for r in &results.frictionless {
         let _ = writeln!(
             frictionless,
             "| {} | {} | {:+.1e} | {:+.1e} | {:+.1}% | {:+.2}% | {:+.2}% | {:.2}% | {:.2}% | {:+.2}% |",
@@ -393,7 +535,7 @@ fn markdown(
         );
     }
     let mut coulomb = String::new();
-    for r in c {
+    for r in &results.coulomb {
         let _ = writeln!(
             coulomb,
             "| {} | {} | {:.6} | {} | {:.3} | {:.4} | {:.4} | {:.4} | {:.4} |",
@@ -414,8 +556,8 @@ fn markdown(
         "xtask/templates/hertz.md",
         include_str!("../templates/hertz.md"),
         &[
-            ("out", args.out.display().to_string()),
-            ("seconds", format!("{seconds:.0}")),
+            ("out", out.display().to_string()),
+            ("seconds", format!("{:.0}", results.seconds)),
             ("radius", RADIUS.to_string()),
             ("indentation", INDENTATION.to_string()),
             ("young", YOUNG.to_string()),
@@ -430,7 +572,7 @@ fn markdown(
     )
 }
 
-type Plot = Result<String, Box<dyn std::error::Error>>;
+type Plot = Result<String, Failure>;
 
 /// p / p0 against x / a: Hertz, raw dots and consistent lines of each normal choice.
 fn pressure_svg(h: &str, runs: &[&Frictionless]) -> Plot {
@@ -456,7 +598,7 @@ fn pressure_svg(h: &str, runs: &[&Frictionless]) -> Plot {
 
 /// q / (F p0) against x / a: Cattaneo-Mindlin, raw dots and the consistent line.
 fn traction_svg(c: &Friction) -> Plot {
-    let hertz = c.hertz.ok_or("no Hertz solution")?;
+    let hertz = c.hertz()?;
     let a = hertz.half_width();
     let p0 = hertz.peak_pressure();
     let exact: Vec<(f64, f64)> = (0..=400)
@@ -517,4 +659,31 @@ fn chart(
     .frame(15, (40, 55))
     .light_grid();
     Ok(chart_svg((900, 600), &chart, &layers)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--report-only` from the committed JSON of `docs/hertz` rewrites every committed report
+    /// and plot of the three sections byte for byte.
+    #[test]
+    fn the_committed_hertz_reports_are_rendered_from_their_json() {
+        let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/hertz");
+        let out = Path::new("docs/hertz");
+        let mut files = report(&read_json(&docs, "results.json").unwrap(), out).unwrap();
+        files.extend(fretting::report(&read_json(&docs, "fretting.json").unwrap()).unwrap());
+        files.extend(mindlin_3d::report(&read_json(&docs, "mindlin-3d.json").unwrap()).unwrap());
+        // results.md, four pressure plots, the traction plot; fretting.md and its three plots;
+        // mindlin-3d.md.
+        assert_eq!(files.len(), 11);
+        for (name, text) in &files {
+            let committed = std::fs::read_to_string(docs.join(name))
+                .unwrap_or_else(|e| panic!("docs/hertz/{name}: {e}"));
+            assert!(
+                *text == committed,
+                "docs/hertz/{name} is not the report rendered from its JSON"
+            );
+        }
+    }
 }

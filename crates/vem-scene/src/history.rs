@@ -252,3 +252,29 @@ pub(crate) fn final_factor(scene: &Scene, k: usize) -> Result<f64, SceneError> {
         None => Ok(ramp),
     }
 }
+
+impl crate::Model {
+    /// The scene's load history as [`Model::solve`](crate::Model::solve) follows it: the
+    /// contact library's history, its conditions numbered over the bodies of
+    /// [`Model::contact_problem`](crate::Model::contact_problem) (in space
+    /// [`Model::contact_problem_3d`](crate::Model::contact_problem_3d)) as their builders
+    /// received them; the static problem (one step of factor 1) without `[history]`. For a
+    /// study that drives the steps itself (`vem_contact::LoadPath`) on the model's contact
+    /// problem.
+    ///
+    /// # Errors
+    /// A [`SceneError`] at the history's key (not for a scene the model was built from).
+    pub fn load_history(&self) -> Result<LoadHistory, SceneError> {
+        let indices = self
+            .problem
+            .as_ref()
+            .map(|(_, indices)| indices.as_slice())
+            .or_else(|| {
+                self.problem_3d
+                    .as_ref()
+                    .map(|(_, indices)| indices.as_slice())
+            })
+            .unwrap_or(&[]);
+        load_history(self.scene(), indices)
+    }
+}

@@ -2,19 +2,22 @@
 //! `cargo xtask hertz` and the workspace's fretting tests share, and the measures of a contact
 //! zone along the interface that they compare with [`HertzContact`]'s analytic answers.
 //!
-//! The upper block is the mirror image `(x, y) -> (x, -y)` of a block mesh (so that its "bottom"
-//! part lies at its top), the lower block is clamped at its bottom, both of one material; the
-//! gap `x^2 / (2R)` of a cylinder of radius R on a flat is imposed on the interface y = 0, as
-//! in Cattaneo-Mindlin's half-planes (Johnson, Contact Mechanics, 7.5-7.6). The upper block's
-//! top is driven by a rigid plate with the resultant `(F P, -P)` ([`Drive::Force`]) or by
-//! prescribed displacements ([`Drive::Displacement`]); its two conditions are
-//! [`FlatBlocks::PRESS`] and [`FlatBlocks::SHEAR`], which a load history scales separately.
+//! The setup is a [`Scene`] ([`FlatBlocks::scene`]), built by [`Model::build`]
+//! ([`FlatBlocks::problem`]): the upper block is the mirror image `(x, y) -> (x, -y)` of a block
+//! mesh (so that its "bottom" part lies at its top), given inline; the lower block, any mesh
+//! description (a file, a generator, inline), is clamped at its bottom; both of one material;
+//! the gap `x^2 / (2R)` of a cylinder of radius R on a flat is imposed on the interface y = 0,
+//! as in Cattaneo-Mindlin's half-planes (Johnson, Contact Mechanics, 7.5-7.6). The upper
+//! block's top is driven by a rigid plate with the resultant `(F P, -P)` ([`Drive::Force`]) or
+//! by prescribed displacements ([`Drive::Displacement`]); its two conditions are
+//! [`FlatBlocks::PRESS`] and [`FlatBlocks::SHEAR`], which a load history (the scene's
+//! `history` with the conditions' `curve`s, or the contact library's own) scales separately.
 //!
 //! ```
-//! use vem_contact::{CondensedSolver, Coulomb, LoadFactors, NodeStatus};
+//! use vem_contact::{CondensedSolver, LoadFactors, NodeStatus};
 //! use vem_mesh::generators::{structured_quads, Rectangle};
 //! use vem_mesh::Point;
-//! use vem_verify::fretting::{zone_half_width, Drive, FlatBlocks};
+//! use vem_verify::fretting::{lower_block, zone_half_width, Drive, FlatBlocks};
 //!
 //! let setup = FlatBlocks { young: 100.0, poisson: 0.3, radius: 1.0, coefficient: 0.3, push: 0.5 };
 //! let block = |n| {
@@ -24,7 +27,8 @@
 //! // Pressed with P and sheared with Q = F P / 2 at once from rest: a proportional load, under
 //! // which most of the contact zone sticks (q = (Q/P) p stays below F p), unlike
 //! // Cattaneo-Mindlin's press-then-shear; the contact carries the plate's resultant.
-//! let problem = setup.problem(&block(40)?, block(48)?, Drive::Force, Coulomb::try_new(0.3)?)?;
+//! let lower = lower_block(&block(48)?);
+//! let problem = setup.problem(&block(40)?, lower, Drive::Force, setup.coulomb())?;
 //! let factors = LoadFactors::uniform(1.0).with(FlatBlocks::SHEAR, 0.5);
 //! let result = problem.into_discretisation()?.solve_at(&mut CondensedSolver::default(), &factors)?;
 //! let force = result.force_on_body_a();
@@ -35,13 +39,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use std::sync::Arc;
-
-use vem_contact::{ContactLaw, ContactProblem, ContactResult, InterfaceNode, LoadCondition};
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material, Plane};
-use vem_mesh::interface::InterfaceOptions;
-use vem_mesh::{Mesh, Point, Vector};
-use vem_space::LowestOrderVem;
+use vem_contact::{ContactProblem, ContactResult, InterfaceNode, LoadCondition};
+use vem_mesh::{Mesh, Point};
+use vem_scene::description::MeshDescription;
+use vem_scene::{BuildOptions, BuiltMesh, Model, ScalarValue, Scene};
+use vem_space::{Choice, Options};
 
 use crate::exact::HertzContact;
 use crate::VerifyError;
@@ -82,16 +84,6 @@ impl FlatBlocks {
     /// The second condition of the upper block: the shear (or the shift).
     pub const SHEAR: LoadCondition = LoadCondition::Dirichlet { body: 0, index: 1 };
 
-    /// The blocks' material (plane strain).
-    pub fn material(&self) -> Result<Material, VerifyError> {
-        Material::from_young_poisson(self.young, self.poisson, Plane::Strain).map_err(|e| {
-            VerifyError::Elastic {
-                case: CASE.to_string(),
-                source: Box::new(e),
-            }
-        })
-    }
-
     /// Hertz's answer for a cylinder of radius R pressed with P on a half-plane of the same
     /// material (plane strain): the contact half-width, the pressure, and Cattaneo-Mindlin's
     /// tangential tractions.
@@ -101,59 +93,123 @@ impl FlatBlocks {
         Ok(HertzContact::try_new(self.radius, e_star, self.push)?)
     }
 
-    /// The contact problem: the mirror image of `upper` above `lower` (clamped at its
-    /// "bottom"), the interface their "top" parts, paired within 0.05, with the cylinder's gap.
+    /// Coulomb's law at the coefficient F, by its registry name: `law = { name = "coulomb",
+    /// coefficient = F }`.
+    pub fn coulomb(&self) -> Choice {
+        Choice::with_options(
+            "coulomb",
+            Options::new().with("coefficient", self.coefficient),
+        )
+    }
+
+    /// The scene: the mirror image of `upper` (given inline, its "bottom" part at its top)
+    /// above the block `lower` (any mesh description: a file, a generator, inline; clamped at
+    /// its "bottom"), both of the blocks' material in plane strain, the upper block's top
+    /// driven by `drive` (its two conditions [`FlatBlocks::PRESS`] and [`FlatBlocks::SHEAR`],
+    /// in this order), the contact of their "top" parts with the law `law` (by registry name),
+    /// paired within 0.05, with the cylinder's gap `x^2 / (2R)` imposed.
+    ///
+    /// # Errors
+    /// [`VerifyError::Case`] when the mirror image is not a mesh or the scene's keys are
+    /// refused.
+    pub fn scene(
+        &self,
+        upper: &Mesh,
+        lower: MeshDescription,
+        drive: Drive,
+        law: Choice,
+    ) -> Result<Scene, VerifyError> {
+        let material =
+            serde_json::json!({ "E": self.young, "nu": self.poisson, "plane": "strain" });
+        // The mirrored block's "bottom" is its top side.
+        let (rigid_plate, dirichlet) = match drive {
+            Drive::Force => (
+                serde_json::json!([
+                    { "part": "bottom", "resultant_y": -self.push },
+                    { "part": "bottom", "resultant_x": self.coefficient * self.push },
+                ]),
+                serde_json::json!([]),
+            ),
+            Drive::Displacement(dx, dy) => (
+                serde_json::json!([]),
+                serde_json::json!([
+                    { "part": "bottom", "y": -dy },
+                    { "part": "bottom", "x": dx },
+                ]),
+            ),
+        };
+        let mut scene = Scene::from_value(serde_json::json!({
+            "title": "Cattaneo-Mindlin: two flat blocks under a cylinder's gap",
+            "body": [
+                { "name": "upper", "mesh": {}, "material": material,
+                  "dirichlet": dirichlet, "rigid_plate": rigid_plate },
+                { "name": "lower", "mesh": {}, "material": material,
+                  "dirichlet": [{ "part": "bottom", "x": 0.0, "y": 0.0 }] },
+            ],
+            "contact": [{
+                "body": "upper", "part": "top", "other_body": "lower", "other_part": "top",
+                "max_distance": 0.05,
+            }],
+        }))
+        .map_err(|e| case(e.to_string()))?;
+        scene.bodies[0].mesh = BuiltMesh::Plane(mirror_image(upper)?).to_inline();
+        scene.bodies[1].mesh = lower;
+        let radius = self.radius;
+        let contact = &mut scene.contacts[0];
+        contact.law = Some(law);
+        contact.imposed_gap = Some(ScalarValue::function(move |x, _| {
+            x[0] * x[0] / (2.0 * radius)
+        }));
+        Ok(scene)
+    }
+
+    /// The contact problem of [`FlatBlocks::scene`] as [`Model::build`] makes it.
+    ///
+    /// # Errors
+    /// Those of [`FlatBlocks::scene`], and the scene's refusal when it is built.
     pub fn problem(
         &self,
         upper: &Mesh,
-        lower: Mesh,
+        lower: MeshDescription,
         drive: Drive,
-        law: impl ContactLaw + 'static,
+        law: Choice,
     ) -> Result<ContactProblem, VerifyError> {
-        let elastic = |e| VerifyError::Elastic {
-            case: CASE.to_string(),
-            source: Box::new(e),
-        };
-        let material = self.material()?;
-        let element = Arc::new(LowestOrderVem::default());
-        let upper = ElasticBody::builder("upper", mirror_image(upper)?, material, element.clone());
-        // The mirrored block's "bottom" is its top side.
-        let upper = match drive {
-            Drive::Force => upper
-                .dirichlet(Dirichlet::rigid_plate(
-                    "bottom",
-                    Component::Y,
-                    Vector::new(0.0, -self.push),
-                ))
-                .dirichlet(Dirichlet::rigid_plate(
-                    "bottom",
-                    Component::X,
-                    Vector::new(self.coefficient * self.push, 0.0),
-                )),
-            Drive::Displacement(dx, dy) => upper
-                .dirichlet(Dirichlet::prescribed("bottom", Component::Y, move |_| {
-                    Vector::new(0.0, -dy)
-                }))
-                .dirichlet(Dirichlet::prescribed("bottom", Component::X, move |_| {
-                    Vector::new(dx, 0.0)
-                })),
-        }
-        .build()
-        .map_err(elastic)?;
-        let lower = ElasticBody::builder("lower", lower, material, element)
-            .clamp("bottom")
-            .build()
-            .map_err(elastic)?;
-        let interface = InterfaceOptions::builder()
-            .max_distance(0.05)
-            .build()
-            .map_err(|e| VerifyError::InvalidSetting {
-                reason: e.to_string(),
-            })?;
-        let radius = self.radius;
-        Ok(ContactProblem::two_bodies(upper, "top", lower, "top", law)
-            .with_imposed_gap(move |x| x.x * x.x / (2.0 * radius))
-            .with_interface_options(interface))
+        let scene = self.scene(upper, lower, drive, law)?;
+        contact_problem(&scene)
+    }
+}
+
+/// The contact problem of a scene in the plane with contact, as [`Model::build`] makes it
+/// (files relative to the current folder).
+///
+/// # Errors
+/// [`VerifyError::Case`] with the scene's refusal, or when the scene has no contact pair.
+pub fn contact_problem(scene: &Scene) -> Result<ContactProblem, VerifyError> {
+    let model = Model::build(scene, &BuildOptions::default()).map_err(|e| case(e.to_string()))?;
+    model
+        .contact_problem()
+        .map(|(problem, _)| problem.clone())
+        .ok_or_else(|| case("the scene has no contact pair".to_string()))
+}
+
+/// The lower block of [`FlatBlocks::scene`] given inline: the keys of `mesh`
+/// ([`BuiltMesh::to_inline`]).
+pub fn lower_block(mesh: &Mesh) -> MeshDescription {
+    BuiltMesh::Plane(mesh.clone()).to_inline()
+}
+
+/// A mesh file as the scene's `mesh = { file = ".." }` (relative to the current folder).
+pub fn mesh_file(path: impl Into<String>) -> MeshDescription {
+    MeshDescription {
+        file: Some(path.into()),
+        ..MeshDescription::default()
+    }
+}
+
+fn case(reason: String) -> VerifyError {
+    VerifyError::Case {
+        case: CASE.to_string(),
+        reason,
     }
 }
 

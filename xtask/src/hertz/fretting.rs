@@ -17,30 +17,26 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::sync::Arc;
 use std::time::Instant;
 
-use serde::Serialize;
-use vem_contact::{
-    CondensedSolver, ContactLaw, ContactProblem, ContactResult, Coulomb, Frictionless,
-    LoadCondition, LoadCurve, LoadCurves, LoadFactors, LoadHistory, NodeStatus,
-};
-use vem_elastic::{Component, Dirichlet, ElasticBody};
-use vem_mesh::interface::InterfaceOptions;
+use serde::{Deserialize, Serialize};
+use vem_contact::{ContactDiscretisation, ContactResult, HistoryStep, NodeStatus};
 use vem_mesh::io::read_gmsh;
-use vem_mesh::Vector;
-use vem_space::LowestOrderVem;
+use vem_scene::description::LoadHistory;
+use vem_scene::Scene;
+use vem_space::Choice;
 use vem_verify::exact::HertzContact;
 use vem_verify::fretting::{
-    self, friction_traction as traction, largest_spacing_within as spacing_in, plate_translation,
-    zone_half_width as zone, Drive, FlatBlocks,
+    self, friction_traction as traction, largest_spacing_within as spacing_in, mesh_file,
+    plate_translation, zone_half_width as zone, Drive, FlatBlocks,
 };
 use vem_verify::plot::{
     chart_svg, Axis, Chart, Glyph, Layer, LegendPosition, Pen, RGBColor, CAPTION_SIZE,
 };
-use vem_verify::report::write_text;
 
-use super::{HertzArgs, COEFFICIENT as F, POISSON, RADIUS, YOUNG};
+use super::{
+    disc_scene, model, number_or_nan, HertzArgs, Top, COEFFICIENT as F, POISSON, RADIUS, YOUNG,
+};
 
 /// The push P of the force-controlled problems.
 const PUSH: f64 = 0.5;
@@ -52,8 +48,6 @@ const SETUP: FlatBlocks = FlatBlocks {
     coefficient: F,
     push: PUSH,
 };
-const FIRST: LoadCondition = FlatBlocks::PRESS;
-const SECOND: LoadCondition = FlatBlocks::SHEAR;
 /// The peak of the tangential cycle, `Q* / (F P)`.
 const PEAK: f64 = 0.8;
 /// The scene meshes (h_c = 0.01).
@@ -64,24 +58,29 @@ type Failure = Box<dyn std::error::Error>;
 type Profile = (String, Vec<(f64, f64)>, Vec<(f64, f64)>);
 
 /// One ratio of the disc under force control.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct DiscRow {
     ratio: f64,
     /// `Q` and `P` carried by the contact, relative to the plate's.
+    #[serde(deserialize_with = "number_or_nan")]
     shear_error: f64,
+    #[serde(deserialize_with = "number_or_nan")]
     push_error: f64,
+    #[serde(deserialize_with = "number_or_nan")]
     stick_half_width: f64,
+    #[serde(deserialize_with = "number_or_nan")]
     cattaneo_mindlin: f64,
+    #[serde(deserialize_with = "number_or_nan")]
     spacing: f64,
     /// The refusal beyond the capacity.
     refusal: Option<String>,
 }
 
 /// One step of a cycle.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct CycleRow {
     time: f64,
-    branch: &'static str,
+    branch: String,
     ratio: f64,
     stick_half_width: f64,
     analytic: f64,
@@ -93,7 +92,7 @@ struct CycleRow {
 }
 
 /// A cycle on one mesh pair.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct Cycle {
     meshes: String,
     unknowns: usize,
@@ -108,14 +107,14 @@ struct Cycle {
     closure_traction: f64,
     /// Largest `|x_down(Q) + x_up(-Q)| / x(Q*)` (Masing).
     masing: f64,
-    #[serde(skip)]
+    /// The tractions at t = 2, 3, 4, 5 (`fretting_tractions.svg` of the finest cycle).
     profiles: Vec<Profile>,
-    #[serde(skip)]
+    /// `(plate x, Q / (F P))` of every step after the push (`fretting_loop.svg`).
     loop_curve: Vec<(f64, f64)>,
 }
 
 /// The path-dependence study.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 struct Paths {
     /// rms of `q - (Q/P) p` (proportional) and of `q - q_CM` (pushed then sheared) inside
     /// 0.9 a, in `F p0`, and the largest difference between the two paths.
@@ -125,12 +124,23 @@ struct Paths {
     /// Frictionless: the largest difference of the normal forces between three paths and the
     /// static answer, relative.
     frictionless_difference: f64,
-    #[serde(skip)]
+    /// The two paths' tractions (`fretting_paths.svg`).
     profiles: Vec<Profile>,
 }
 
-/// Runs the section and writes its files into `args.out`; returns the markdown.
-pub(super) fn run(args: &HertzArgs) -> Result<String, Failure> {
+/// `fretting.json`: the rows of the section and the curves of its plots.
+#[derive(Debug, Serialize, Deserialize)]
+pub(super) struct Section {
+    /// Wall-clock seconds of the section.
+    seconds: f64,
+    disc: Vec<DiscRow>,
+    cycles: Vec<Cycle>,
+    paths: Paths,
+    pushing_alone: Vec<(String, f64)>,
+}
+
+/// Runs the section.
+pub(super) fn run(args: &HertzArgs) -> Result<Section, Failure> {
     let start = Instant::now();
     let hertz = SETUP.hertz()?;
     let disc = disc_rows(args, &hertz)?;
@@ -157,89 +167,105 @@ pub(super) fn run(args: &HertzArgs) -> Result<String, Failure> {
     }
     let lower = args.meshes.join("block_hc0.005.msh").display().to_string();
     let paths = paths(&format!("{SCENES}/hertz_block.msh"), &lower, &hertz)?;
-    let pushing = pushing_alone(args, &hertz)?;
-    let md = markdown(
-        &disc,
-        &cycles,
-        &paths,
-        &pushing,
-        start.elapsed().as_secs_f64(),
-    )?;
-    write_text(args.out.join("fretting.md"), &md)?;
-    let json = serde_json::json!({
-        "disc": disc, "cycles": cycles, "paths": paths, "pushing_alone": pushing,
+    let pushing_alone = pushing_alone(args, &hertz)?;
+    Ok(Section {
+        seconds: start.elapsed().as_secs_f64(),
+        disc,
+        cycles,
+        paths,
+        pushing_alone,
+    })
+}
+
+/// The files of the section rendered from its JSON: `fretting.md` and its three plots.
+pub(super) fn report(section: &Section) -> Result<Vec<(String, String)>, Failure> {
+    let finest = section.cycles.last().ok_or("no cycle")?;
+    Ok(vec![
+        ("fretting.md".to_string(), markdown(section)?),
+        (
+            "fretting_tractions.svg".to_string(),
+            profile_svg(
+                &format!(
+                    "Cattaneo-Mindlin cycle, {}: friction traction",
+                    finest.meshes
+                ),
+                &finest.profiles,
+                -1.75..1.15,
+            )?,
+        ),
+        ("fretting_loop.svg".to_string(), loop_svg(&section.cycles)?),
+        (
+            "fretting_paths.svg".to_string(),
+            profile_svg(
+                "Two paths to Q = 0.5 F P: friction traction",
+                &section.paths.profiles,
+                -0.1..1.0,
+            )?,
+        ),
+    ])
+}
+
+/// `scene` followed along the pseudo-times `times`, its upper body's first two conditions
+/// (the push and the shear: the disc's and the flat blocks' rigid plates, or the flat blocks'
+/// prescribed displacements) scaled by the load curves `press` and `shear`.
+fn along(mut scene: Scene, times: Vec<f64>, press: &[(f64, f64)], shear: &[(f64, f64)]) -> Scene {
+    let curve = |points: &[(f64, f64)]| Some(points.iter().map(|&(t, s)| [t, s]).collect());
+    let body = &mut scene.bodies[0];
+    if body.rigid_plate.len() == 2 {
+        body.rigid_plate[0].curve = curve(press);
+        body.rigid_plate[1].curve = curve(shear);
+    } else {
+        body.dirichlet[0].curve = curve(press);
+        body.dirichlet[1].curve = curve(shear);
+    }
+    scene.history = Some(LoadHistory {
+        times: Some(times),
+        ..LoadHistory::default()
     });
-    write_text(
-        args.out.join("fretting.json"),
-        &serde_json::to_string_pretty(&json)?,
-    )?;
-    let finest = cycles.last().ok_or("no cycle")?;
-    write_text(
-        args.out.join("fretting_tractions.svg"),
-        &profile_svg(
-            &format!(
-                "Cattaneo-Mindlin cycle, {}: friction traction",
-                finest.meshes
-            ),
-            &finest.profiles,
-            -1.75..1.15,
-        )?,
-    )?;
-    write_text(args.out.join("fretting_loop.svg"), &loop_svg(&cycles)?)?;
-    write_text(
-        args.out.join("fretting_paths.svg"),
-        &profile_svg(
-            "Two paths to Q = 0.5 F P: friction traction",
-            &paths.profiles,
-            -0.1..1.0,
-        )?,
-    )?;
-    Ok(md)
+    scene
 }
 
-fn interface() -> Result<InterfaceOptions, Failure> {
-    Ok(InterfaceOptions::builder().max_distance(0.05).build()?)
+/// The steps of the load history of `scene`, solved on its model's contact problem with its
+/// solver.
+fn steps(scene: &Scene) -> Result<Vec<HistoryStep>, Failure> {
+    let (model, mut solver) = model(scene)?;
+    let (problem, _) = model.contact_problem().ok_or("no contact pair")?;
+    Ok(problem
+        .discretise()?
+        .solve_history(solver.as_mut(), &model.load_history()?)?)
 }
 
-/// The half-disc and the block of the study at h_c = `h`, the disc's top a rigid plate with
-/// the resultant `(shear, -push)` (one condition, or two when `split`: push then shear).
-fn disc_problem(
-    disc: &Path,
-    block: &Path,
-    push: f64,
-    shear: f64,
-) -> Result<ContactProblem, Failure> {
-    let element = Arc::new(LowestOrderVem::default());
-    let disc = ElasticBody::builder("disc", read_gmsh(disc)?, SETUP.material()?, element.clone())
-        .dirichlet(Dirichlet::rigid_plate(
-            "top",
-            Component::Y,
-            Vector::new(0.0, -push),
-        ))
-        .dirichlet(Dirichlet::rigid_plate(
-            "top",
-            Component::X,
-            Vector::new(shear, 0.0),
-        ))
-        .build()?;
-    let block = ElasticBody::builder("block", read_gmsh(block)?, SETUP.material()?, element)
-        .clamp("bottom")
-        .build()?;
-    Ok(
-        ContactProblem::two_bodies(disc, "arc", block, "top", Coulomb::try_new(F)?)
-            .with_interface_options(interface()?),
+/// The last step of the load history of `scene`.
+fn last_step(scene: &Scene) -> Result<ContactResult, Failure> {
+    Ok(steps(scene)?.pop().ok_or("no step")?.result)
+}
+
+/// The half-disc (the mesh file `disc`) on the block (`block`), the disc's top a rigid plate
+/// with the resultant `(shear, -push)` (two conditions: the push, then the shear), Coulomb
+/// friction.
+fn disc(disc: &Path, block: &Path, push: f64, shear: f64) -> Result<Scene, Failure> {
+    disc_scene(
+        disc,
+        block,
+        Top::Plate { push, shear },
+        SETUP.coulomb(),
+        Default::default(),
     )
 }
 
 fn disc_rows(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<DiscRow>, Failure> {
-    let (disc, block) = (
-        args.meshes.join("disc_hc0.02.msh"),
-        args.meshes.join("block_hc0.02.msh"),
-    );
     let mut rows = Vec::new();
     for ratio in [0.01, 0.2, 0.5, 0.8, 0.99, 1.01] {
         let shear = ratio * F * PUSH;
-        match disc_problem(&disc, &block, PUSH, shear)?.solve(&mut CondensedSolver::default()) {
+        let scene = disc(
+            &args.meshes.join("disc_hc0.02.msh"),
+            &args.meshes.join("block_hc0.02.msh"),
+            PUSH,
+            shear,
+        )?;
+        let (model, mut solver) = model(&scene)?;
+        let (problem, _) = model.contact_problem().ok_or("no contact pair")?;
+        match problem.solve(solver.as_mut()) {
             Ok(result) => {
                 let force = result.force_on_body_a();
                 let (c, spacing) = zone(&result.nodes, |n| n.status == NodeStatus::Stick);
@@ -267,14 +293,9 @@ fn disc_rows(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<DiscRow>, Fai
     Ok(rows)
 }
 
-/// The two flat blocks: the mirror image of the mesh file `upper` on `lower`.
-fn blocks(
-    upper: &str,
-    lower: &str,
-    drive: Drive,
-    law: impl ContactLaw + 'static,
-) -> Result<ContactProblem, Failure> {
-    Ok(SETUP.problem(&read_gmsh(upper)?, read_gmsh(lower)?, drive, law)?)
+/// The two flat blocks: the mirror image of the mesh file `upper` on the mesh file `lower`.
+fn blocks(upper: &str, lower: &str, drive: Drive, law: Choice) -> Result<Scene, Failure> {
+    Ok(SETUP.scene(&read_gmsh(upper)?, mesh_file(lower), drive, law)?)
 }
 
 fn traction_error(
@@ -319,26 +340,31 @@ fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failur
             .file_name()
             .map_or(p.to_string(), |f| f.to_string_lossy().to_string())
     };
-    let d = blocks(upper, lower, Drive::Force, Coulomb::try_new(F)?)?.into_discretisation()?;
-    let curves = LoadCurves::default()
-        .with(FIRST, LoadCurve::try_new(vec![(0.0, 0.0), (1.0, 1.0)])?)
-        .with(
-            SECOND,
-            LoadCurve::try_new(vec![(1.0, 0.0), (2.0, PEAK), (4.0, -PEAK), (6.0, PEAK)])?,
-        );
+    // Pushed during t in [0, 1]; sheared to Q* at t = 2, back to -Q* at t = 4, to Q* at 6.
     let mut times = vec![0.5, 1.0];
     times.extend((1..=40).map(|k| 1.0 + 0.125 * k as f64));
-    let history = LoadHistory::from_curves(times, &curves)?;
+    let scene = along(
+        blocks(upper, lower, Drive::Force, SETUP.coulomb())?,
+        times,
+        &[(0.0, 0.0), (1.0, 1.0)],
+        &[(1.0, 0.0), (2.0, PEAK), (4.0, -PEAK), (6.0, PEAK)],
+    );
+    let (model, mut solver) = model(&scene)?;
+    let history = model.load_history()?;
+    let d: ContactDiscretisation = model
+        .contact_problem()
+        .ok_or("no contact pair")?
+        .0
+        .discretise()?;
     let mut path = vem_contact::LoadPath::new(&d)?;
-    let mut solver = CondensedSolver::default();
     let c_peak = hertz.stick_half_width(PEAK);
     let (mut rows, mut profiles, mut loop_curve) = (Vec::new(), Vec::new(), Vec::new());
     let (mut at_peak, mut last) = (None, None);
     for step in history.steps() {
         let t0 = Instant::now();
-        let result = path.advance(&mut solver, step.time, &step.factors)?;
+        let result = path.advance(solver.as_mut(), step.time, &step.factors)?;
         let seconds = t0.elapsed().as_secs_f64();
-        let (t, r) = (step.time, step.factors.factor(SECOND));
+        let (t, r) = (step.time, step.factors.factor(FlatBlocks::SHEAR));
         if t <= 1.0 {
             continue;
         }
@@ -373,7 +399,7 @@ fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failur
         }
         rows.push(CycleRow {
             time: t,
-            branch,
+            branch: branch.to_string(),
             ratio: r,
             stick_half_width: c,
             analytic,
@@ -423,36 +449,27 @@ fn cycle(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Cycle, Failur
     })
 }
 
+/// The pseudo-times `1/n, 2/n, ..., m/n`.
+fn times(m: usize, n: usize) -> Vec<f64> {
+    (1..=m).map(|k| k as f64 / n as f64).collect()
+}
+
 fn paths(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Paths, Failure> {
-    let d = blocks(upper, lower, Drive::Force, Coulomb::try_new(F)?)?.into_discretisation()?;
     let ratio = 0.5;
-    let together = LoadHistory::from_steps(
-        (1..=32)
-            .map(|k| {
-                let s = k as f64 / 32.0;
-                LoadFactors::uniform(1.0)
-                    .with(FIRST, s)
-                    .with(SECOND, ratio * s)
-            })
-            .collect(),
-    );
-    let mut sequential: Vec<LoadFactors> = (1..=4)
-        .map(|k| {
-            LoadFactors::uniform(1.0)
-                .with(FIRST, k as f64 / 4.0)
-                .with(SECOND, 0.0)
-        })
-        .collect();
-    sequential
-        .extend((1..=4).map(|k| LoadFactors::uniform(1.0).with(SECOND, ratio * k as f64 / 4.0)));
-    let last = |history: &LoadHistory| -> Result<ContactResult, Failure> {
-        Ok(d.solve_history(&mut CondensedSolver::default(), history)?
-            .pop()
-            .ok_or("no step")?
-            .result)
-    };
-    let proportional = last(&together)?;
-    let sequential = last(&LoadHistory::from_steps(sequential))?;
+    let scene = blocks(upper, lower, Drive::Force, SETUP.coulomb())?;
+    // Pushed and sheared together in 32 steps; pushed in 4 steps, then sheared in 4.
+    let proportional = last_step(&along(
+        scene.clone(),
+        times(32, 32),
+        &[(0.0, 0.0), (1.0, 1.0)],
+        &[(0.0, 0.0), (1.0, ratio)],
+    ))?;
+    let sequential = last_step(&along(
+        scene,
+        times(8, 4),
+        &[(0.0, 0.0), (1.0, 1.0)],
+        &[(1.0, 0.0), (2.0, ratio)],
+    ))?;
     let proportional_exact = |x: f64| F * ratio * hertz.pressure(x);
     let sequential_exact = |x: f64| hertz.tangential_traction(x, F, ratio);
     let a = hertz.half_width();
@@ -467,31 +484,41 @@ fn paths(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Paths, Failur
     let (p_computed, p_analytic) = profile(&proportional, hertz, proportional_exact);
     let (s_computed, s_analytic) = profile(&sequential, hertz, sequential_exact);
     // Frictionless: three paths of the displacement-driven problem and the static answer.
-    let d = blocks(
+    let scene = blocks(
         upper,
         lower,
         Drive::Displacement(0.004, 0.012),
-        Frictionless,
-    )?
-    .into_discretisation()?;
-    let statically = d.solve(&mut CondensedSolver::default())?;
+        Choice::named("frictionless"),
+    )?;
+    let (model, mut solver) = model(&scene)?;
+    let statically = model
+        .contact_problem()
+        .ok_or("no contact pair")?
+        .0
+        .solve(solver.as_mut())?;
     let scale = statically
         .nodes
         .iter()
         .fold(0.0f64, |m, n| m.max(n.normal_force));
     let mut frictionless_difference = 0.0f64;
-    for steps in [
+    for path in [
         vec![(0.5, 0.5), (1.0, 1.0)],
         vec![(1.0, 0.0), (1.0, 1.0)],
         vec![(1.0, 0.0), (1.0, 2.0), (1.0, -1.0), (1.0, 1.0)],
     ] {
-        let history = LoadHistory::from_steps(
-            steps
-                .iter()
-                .map(|&(a, b)| LoadFactors::uniform(1.0).with(FIRST, a).with(SECOND, b))
-                .collect(),
-        );
-        let answer = last_of(&d, &history)?;
+        // Step k at t = k with the factors (press, shift) of `path`.
+        let at = |f: fn(&(f64, f64)) -> f64| -> Vec<(f64, f64)> {
+            path.iter()
+                .enumerate()
+                .map(|(k, p)| ((k + 1) as f64, f(p)))
+                .collect()
+        };
+        let answer = last_step(&along(
+            scene.clone(),
+            times(path.len(), 1),
+            &at(|p| p.0),
+            &at(|p| p.1),
+        ))?;
         for (x, y) in answer.nodes.iter().zip(&statically.nodes) {
             frictionless_difference =
                 frictionless_difference.max((x.normal_force - y.normal_force).abs() / scale);
@@ -517,33 +544,22 @@ fn paths(upper: &str, lower: &str, hertz: &HertzContact) -> Result<Paths, Failur
     })
 }
 
-fn last_of(
-    d: &vem_contact::ContactDiscretisation,
-    history: &LoadHistory,
-) -> Result<ContactResult, Failure> {
-    Ok(d.solve_history(&mut CondensedSolver::default(), history)?
-        .pop()
-        .ok_or("no step")?
-        .result)
-}
-
 /// Pushing alone (4 steps to P, no shear): the largest consistent friction traction it
 /// leaves, in `F p0`, on the curved disc and on the flat blocks.
 fn pushing_alone(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<(String, f64)>, Failure> {
-    let history = LoadHistory::from_steps(
-        (1..=4)
-            .map(|k| {
-                LoadFactors::uniform(1.0)
-                    .with(FIRST, k as f64 / 4.0)
-                    .with(SECOND, 0.0)
-            })
-            .collect(),
-    );
+    let push = |scene: Scene| {
+        along(
+            scene,
+            times(4, 4),
+            &[(0.0, 0.0), (1.0, 1.0)],
+            &[(0.0, 0.0), (1.0, 0.0)],
+        )
+    };
     let p0 = hertz.peak_pressure();
     let largest =
         |r: &ContactResult| r.nodes.iter().fold(0.0f64, |m, n| m.max(traction(n).abs())) / (F * p0);
     let mut rows = Vec::new();
-    for (label, disc, block) in [
+    for (label, disc_mesh, block_mesh) in [
         (
             "half-disc on the block, h_c = 0.02",
             args.meshes.join("disc_hc0.02.msh"),
@@ -555,33 +571,33 @@ fn pushing_alone(args: &HertzArgs, hertz: &HertzContact) -> Result<Vec<(String, 
             Path::new(SCENES).join("hertz_block.msh"),
         ),
     ] {
-        let d = disc_problem(&disc, &block, PUSH, F * PUSH)?.into_discretisation()?;
-        rows.push((label.to_string(), largest(&last_of(&d, &history)?)));
+        let scene = disc(&disc_mesh, &block_mesh, PUSH, F * PUSH)?;
+        rows.push((label.to_string(), largest(&last_step(&push(scene))?)));
     }
     let lower = args.meshes.join("block_hc0.005.msh").display().to_string();
-    let d = blocks(
+    let scene = blocks(
         &format!("{SCENES}/hertz_block.msh"),
         &lower,
         Drive::Force,
-        Coulomb::try_new(F)?,
-    )?
-    .into_discretisation()?;
+        SETUP.coulomb(),
+    )?;
     rows.push((
         "flat blocks, h_c = 0.01 over 0.005".to_string(),
-        largest(&last_of(&d, &history)?),
+        largest(&last_step(&push(scene))?),
     ));
     Ok(rows)
 }
 
 /// The section's report: its template (`xtask/templates/fretting.md`) filled with the setup,
 /// the tables and the values of the path study.
-fn markdown(
-    disc: &[DiscRow],
-    cycles: &[Cycle],
-    paths: &Paths,
-    pushing: &[(String, f64)],
-    seconds: f64,
-) -> Result<String, String> {
+fn markdown(section: &Section) -> Result<String, String> {
+    let Section {
+        seconds,
+        disc,
+        cycles,
+        paths,
+        pushing_alone: pushing,
+    } = section;
     let mut disc_table = String::new();
     for r in disc {
         match &r.refusal {

@@ -12,18 +12,13 @@
 //! problem (the theory allows it; the section in the plane does the same for the disc).
 
 use std::fmt::Write as _;
-use std::sync::Arc;
 use std::time::Instant;
 
-use serde::Serialize;
-use vem_contact::{
-    CondensedSolver, ContactError, ContactProblem, ContactResult, Coulomb, InterfaceNode,
-    NodeStatus,
-};
-use vem_elastic::{Component, Dirichlet, ElasticBody, Material};
+use serde::{Deserialize, Serialize};
+use vem_contact::{ContactError, ContactProblem, ContactResult, InterfaceNode, NodeStatus};
 use vem_mesh::generators::polyhedral::{hexahedra, Cuboid};
-use vem_mesh::{Point3, PolyhedralMesh, Vector3};
-use vem_space::PolyhedralVem;
+use vem_mesh::{Point3, PolyhedralMesh};
+use vem_scene::{BuiltMesh, ScalarValue, Scene};
 use vem_verify::exact::HertzSphere;
 
 type Failure = Box<dyn std::error::Error>;
@@ -96,12 +91,12 @@ fn lattice(xs: &[f64], ys: &[f64], zs: &[f64]) -> Result<PolyhedralMesh, Failure
     )?)
 }
 
-/// The two blocks at the node spacing `h` on the contact zone: the upper block
+/// The scene of the two blocks at the node spacing `h` on the contact zone: the upper block
 /// `[-L, L] x [0, L] x [0, L]` and its mirror image below `z = 0`, graded away from the axis
-/// and from the interface; the upper block's top a rigid plate pushed with `P/2` and sheared
-/// with `Q/2` along x (half of the load: the plane y = 0 is a plane of symmetry, rollers there),
-/// the lower block's bottom clamped, the gap `r^2 / (2 R)`, Coulomb friction.
-pub fn problem(h: f64, push: f64, shear: f64) -> Result<ContactProblem<3>, Failure> {
+/// and from the interface (given inline); the upper block's top a rigid plate pushed with `P/2`
+/// and sheared with `Q/2` along x (half of the load: the plane y = 0 is a plane of symmetry,
+/// rollers there), the lower block's bottom clamped, the gap `r^2 / (2 R)`, Coulomb friction.
+pub fn scene(h: f64, push: f64, shear: f64) -> Result<Scene, Failure> {
     let half = graded(h, FINE * CONTACT_RADIUS, HALF_WIDTH);
     let xs: Vec<f64> = half
         .iter()
@@ -111,39 +106,47 @@ pub fn problem(h: f64, push: f64, shear: f64) -> Result<ContactProblem<3>, Failu
         .collect();
     let up = graded(h, FINE * CONTACT_RADIUS, HALF_WIDTH);
     let down: Vec<f64> = up.iter().rev().map(|z| -z).collect();
-    let material = Material::isotropic(YOUNG, POISSON)?;
-    let element = Arc::new(PolyhedralVem::default());
-    let upper = ElasticBody::builder_polyhedral(
-        "upper",
-        lattice(&xs, &half, &up)?,
-        material,
-        element.clone(),
-    )
-    .dirichlet(Dirichlet::fixed("front", Component::Y))
-    .dirichlet(Dirichlet::rigid_plate(
-        "top",
-        Component::Z,
-        Vector3::new(0.0, 0.0, -0.5 * push),
-    ))
-    .dirichlet(Dirichlet::rigid_plate(
-        "top",
-        Component::X,
-        Vector3::new(0.5 * shear, 0.0, 0.0),
-    ))
-    .build()?;
-    let lower =
-        ElasticBody::builder_polyhedral("lower", lattice(&xs, &half, &down)?, material, element)
-            .dirichlet(Dirichlet::fixed("front", Component::Y))
-            .clamp("bottom")
-            .build()?;
-    Ok(ContactProblem::two_bodies(
-        upper,
-        "bottom",
-        lower,
-        "top",
-        Coulomb::try_new(COEFFICIENT)?,
-    )
-    .with_imposed_gap(|x| (x.x * x.x + x.y * x.y) / (2.0 * RADIUS)))
+    let material = serde_json::json!({ "E": YOUNG, "nu": POISSON });
+    let mut scene = Scene::from_value(serde_json::json!({
+        "title": "Cattaneo-Mindlin in space: two blocks under a spherical gap",
+        "body": [
+            { "name": "upper", "mesh": {}, "material": material,
+              "dirichlet": [{ "part": "front", "y": 0.0 }],
+              "rigid_plate": [
+                  { "part": "top", "resultant_z": -0.5 * push },
+                  { "part": "top", "resultant_x": 0.5 * shear },
+              ] },
+            { "name": "lower", "mesh": {}, "material": material,
+              "dirichlet": [
+                  { "part": "front", "y": 0.0 },
+                  { "part": "bottom", "x": 0.0, "y": 0.0, "z": 0.0 },
+              ] },
+        ],
+        "contact": [{
+            "body": "upper", "part": "bottom", "other_body": "lower", "other_part": "top",
+            "law": { "name": "coulomb", "coefficient": COEFFICIENT },
+        }],
+    }))?;
+    scene.bodies[0].mesh = BuiltMesh::Space(lattice(&xs, &half, &up)?).to_inline();
+    scene.bodies[1].mesh = BuiltMesh::Space(lattice(&xs, &half, &down)?).to_inline();
+    scene.contacts[0].imposed_gap = Some(ScalarValue::function(|x, _| {
+        (x[0] * x[0] + x[1] * x[1]) / (2.0 * RADIUS)
+    }));
+    Ok(scene)
+}
+
+/// The contact problem of [`scene`] as `vem_scene::Model::build` makes it, and the scene's
+/// solver.
+pub fn problem(
+    h: f64,
+    push: f64,
+    shear: f64,
+) -> Result<(ContactProblem<3>, Box<dyn vem_contact::ContactSolver>), Failure> {
+    let (model, solver) = super::model(&scene(h, push, shear)?)?;
+    let (problem, _) = model
+        .contact_problem_3d()
+        .ok_or("the scene has no contact pair in space")?;
+    Ok((problem.clone(), solver))
 }
 
 /// The distance of a node to the axis.
@@ -152,13 +155,15 @@ fn radius(n: &InterfaceNode<3>) -> f64 {
 }
 
 /// One ratio `Q/(F P)`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct MindlinRow {
     /// `Q/(F P)`.
     pub ratio: f64,
     /// The largest distance to the axis of a node that sticks.
     pub stick_radius: f64,
-    /// The smallest distance to the axis of a node in contact that slips.
+    /// The smallest distance to the axis of a node in contact that slips (infinite, `null` in
+    /// JSON, when none slips).
+    #[serde(deserialize_with = "super::number_or_infinity")]
     pub innermost_slip: f64,
     /// Cattaneo-Mindlin's `c = a (1 - Q/(F P))^(1/3)`.
     pub mindlin: f64,
@@ -179,7 +184,7 @@ pub struct MindlinRow {
 }
 
 /// The study at the node spacing `h`: every ratio of [`RATIOS`], then [`BEYOND`].
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Mindlin {
     /// The node spacing on the contact zone.
     pub h: f64,
@@ -232,8 +237,8 @@ pub fn study(h: f64) -> Result<Mindlin, Failure> {
     let mut unknowns = 0;
     for ratio in RATIOS {
         let start = Instant::now();
-        let problem = problem(h, push, ratio * COEFFICIENT * push)?;
-        let result = problem.solve(&mut CondensedSolver::default())?;
+        let (problem, mut solver) = problem(h, push, ratio * COEFFICIENT * push)?;
+        let result = problem.solve(solver.as_mut())?;
         unknowns = result
             .bodies
             .iter()
@@ -241,8 +246,8 @@ pub fn study(h: f64) -> Result<Mindlin, Failure> {
             .sum();
         rows.push(row(&result, ratio, &hertz, start.elapsed().as_secs_f64()));
     }
-    let beyond =
-        problem(h, push, BEYOND * COEFFICIENT * push)?.solve(&mut CondensedSolver::default());
+    let (problem, mut solver) = problem(h, push, BEYOND * COEFFICIENT * push)?;
+    let beyond = problem.solve(solver.as_mut());
     let refused = matches!(beyond, Err(ContactError::FrictionCapacityExceeded { .. }));
     let beyond = match beyond {
         Ok(result) => format!(
@@ -332,6 +337,43 @@ impl Mindlin {
         let _ = writeln!(out, "\nQ/(F P) = {BEYOND}: {}", self.beyond);
         out
     }
+}
+
+/// `mindlin-3d.json`: the study and how it was run.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct Section {
+    /// The options of the run: `" --quick"` or nothing.
+    pub options: String,
+    /// Wall-clock seconds of the section.
+    pub seconds: f64,
+    /// The study.
+    pub study: Mindlin,
+}
+
+/// The files of the section rendered from its JSON: `mindlin-3d.md`, its template
+/// (`xtask/templates/mindlin-3d.md`) filled with the study's table and verdict.
+pub fn report(section: &Section) -> Result<Vec<(String, String)>, Failure> {
+    let shortfalls = section.study.shortfalls();
+    let md = crate::common::render(
+        "xtask/templates/mindlin-3d.md",
+        include_str!("../../templates/mindlin-3d.md"),
+        &[
+            ("options", section.options.clone()),
+            ("seconds", format!("{:.0}", section.seconds)),
+            ("study", section.study.markdown()),
+            (
+                "verdict",
+                if shortfalls.is_empty() {
+                    "pass (every stick radius within one node spacing of Mindlin's, the load \
+                     carried to 1e-8, the refusal beyond the capacity)."
+                        .to_string()
+                } else {
+                    format!("FAIL\n\n- {}", shortfalls.join("\n- "))
+                },
+            ),
+        ],
+    )?;
+    Ok(vec![("mindlin-3d.md".to_string(), md)])
 }
 
 #[cfg(test)]
