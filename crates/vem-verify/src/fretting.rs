@@ -183,9 +183,14 @@ impl FlatBlocks {
 /// (files relative to the current folder).
 ///
 /// # Errors
-/// [`VerifyError::Case`] with the scene's refusal, or when the scene has no contact pair.
+/// [`VerifyError::Scene`] with the scene's refusal at its key; [`VerifyError::Case`] when the
+/// scene has no contact pair.
 pub fn contact_problem(scene: &Scene) -> Result<ContactProblem, VerifyError> {
-    let model = Model::build(scene, &BuildOptions::default()).map_err(|e| case(e.to_string()))?;
+    let model =
+        Model::build(scene, &BuildOptions::default()).map_err(|source| VerifyError::Scene {
+            case: CASE.to_string(),
+            source: Box::new(source),
+        })?;
     model
         .contact_problem()
         .map(|(problem, _)| problem.clone())
