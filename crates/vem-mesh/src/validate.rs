@@ -463,26 +463,7 @@ fn check_changed_conformity(
             }
         });
     }
-    match found {
-        None => Ok(()),
-        Some(((e, f), conflict)) => {
-            let (ea, eb) = (&edges[e], &edges[f]);
-            Err(match conflict {
-                Conflict::Cross => MeshError::Overlapping {
-                    a: ea.left,
-                    b: eb.left,
-                },
-                _ => MeshError::NonConforming {
-                    polygon_a: ea.left,
-                    a0: ea.vertices[0],
-                    a1: ea.vertices[1],
-                    polygon_b: eb.left,
-                    b0: eb.vertices[0],
-                    b1: eb.vertices[1],
-                },
-            })
-        }
-    }
+    conflict_error(mesh, found)
 }
 
 /// The coincidence tolerance of `mesh`: [`COINCIDENCE_RATIO`] times the mean bounding-box
