@@ -1,16 +1,18 @@
 //! `cargo xtask extremes`: numerical stability at the extremes. Every row (Poisson ratio up to
 //! 0.49999, stiffness contrasts, units, degenerate cells, penalty factors, gaps, friction
 //! bounds; in the plane and in space) is solved by every registered solver and judged against
-//! an independent expected answer; the report goes to `target/extremes/extremes.md`
-//! (`--out docs/extremes.md` for the tracked one). The rows themselves, with their expected
-//! answers, are in `vem_verify::extremes`, shared with the workspace test
-//! `tests/tests/extremes.rs`.
+//! an independent expected answer; the rows go to `extremes.json` and the report rendered from
+//! it to `target/extremes/extremes.md` beside it (`--out docs/extremes.md` for the tracked
+//! one; `--report-only` rewrites the report from the JSON without solving). The rows
+//! themselves, with their expected answers, are in `vem_verify::extremes`, shared with the
+//! workspace test `tests/tests/extremes.rs`.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
+use serde::{Deserialize, Serialize};
 use vem_verify::report::write_text;
 
 use vem_verify::extremes::{self as rows, Row, Size, Verdict};
@@ -21,28 +23,144 @@ pub struct ExtremesArgs {
     /// Smaller meshes and fewer mesh families in the locking study (under a minute, for CI).
     #[arg(long)]
     quick: bool,
-    /// The Markdown report (`--out docs/extremes.md` regenerates the tracked one).
+    /// The Markdown report (`--out docs/extremes.md` regenerates the tracked one); the rows
+    /// go to `extremes.json` beside it.
     #[arg(long, default_value = "target/extremes/extremes.md")]
     out: PathBuf,
     /// Only the solvers named (registry names: condensed, exact, penalty, active-set);
     /// repeatable. Default: every registered solver.
     #[arg(long = "solver", value_name = "SOLVER")]
     solvers: Vec<String>,
+    /// Rewrite the Markdown report `--out` from `extremes.json` beside it, without solving.
+    #[arg(long)]
+    report_only: bool,
 }
 
-/// Runs the rows, writes the report; `Ok(false)` when an answer was wrong without an error or
-/// a warning (a wrong "converged").
+/// `extremes.json`: a run's options, sizes and time, and every group's rows as the report
+/// prints them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Stored {
+    /// `--quick`.
+    quick: bool,
+    /// The sizes of the run.
+    size: StoredSize,
+    /// Wall-clock seconds of the rows.
+    seconds: f64,
+    /// The groups, in the order of the report.
+    groups: Vec<StoredGroup>,
+}
+
+/// The [`Size`] of a run, as the report names it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct StoredSize {
+    patch: usize,
+    manufactured: usize,
+    locking: usize,
+    /// Mesh family names of the locking study.
+    locking_families: Vec<String>,
+    /// Contact solvers (registry names).
+    solvers: Vec<String>,
+    hertz_blocks: Vec<String>,
+    solid: usize,
+    solid_patch: usize,
+}
+
+impl StoredSize {
+    fn new(size: &Size) -> Self {
+        Self {
+            patch: size.patch,
+            manufactured: size.manufactured,
+            locking: size.locking,
+            locking_families: size
+                .locking_families
+                .iter()
+                .map(|f| f.name().to_string())
+                .collect(),
+            solvers: size.solvers.clone(),
+            hertz_blocks: size.hertz_blocks.iter().map(|b| b.to_string()).collect(),
+            solid: size.solid,
+            solid_patch: size.solid_patch,
+        }
+    }
+}
+
+/// One group of rows: its title and rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct StoredGroup {
+    title: String,
+    rows: Vec<Row>,
+}
+
+/// `extremes.json` beside the report `out`.
+fn json_path(out: &Path) -> PathBuf {
+    out.with_file_name("extremes.json")
+}
+
+/// Reads `extremes.json` beside the report `out`.
+fn read_stored(out: &Path) -> Result<Stored, String> {
+    let path = json_path(out);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Runs the rows, writes `extremes.json` and the report rendered from it (with
+/// `--report-only`, only the report from the JSON there); `Ok(false)` when an answer was
+/// wrong without an error or a warning (a wrong "converged").
 pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    }
+    let stored = if args.report_only {
+        read_stored(&args.out)?
+    } else {
+        let stored = solve(args)?;
+        // The report is rendered from what the JSON holds, as `--report-only` renders it.
+        let text = serde_json::to_string_pretty(&stored)?;
+        write_text(json_path(&args.out), &text)?;
+        serde_json::from_str(&text)?
+    };
+    write_text(&args.out, &report(&stored)?)?;
+    let count = |f: &dyn Fn(&Verdict) -> bool| {
+        stored
+            .groups
+            .iter()
+            .flat_map(|g| g.rows.iter().flat_map(|r| &r.outcomes))
+            .filter(|o| f(&o.verdict))
+            .count()
+    };
+    let wrong = count(&|v| matches!(v, Verdict::Wrong));
+    eprintln!(
+        "{} outcomes: {} pass, {} refused, {} warned, {wrong} wrong without a warning; \
+         {:.1} s; {} {} from {}",
+        count(&|_| true),
+        count(&|v| matches!(v, Verdict::Pass)),
+        count(&|v| matches!(v, Verdict::Refused(_))),
+        count(&|v| matches!(v, Verdict::Warned(_))),
+        stored.seconds,
+        if args.report_only { "rewrote" } else { "wrote" },
+        args.out.display(),
+        json_path(&args.out).display()
+    );
+    Ok(wrong == 0)
+}
+
+/// Solves every group's rows at the run's size.
+fn solve(args: &ExtremesArgs) -> Result<Stored, String> {
     let mut size = Size::new(args.quick);
     if !args.solvers.is_empty() {
         let known = rows::solver_names();
         if let Some(unknown) = args.solvers.iter().find(|s| !known.contains(s)) {
-            return Err(format!("unknown solver '{unknown}'; known: {}", known.join(", ")).into());
+            return Err(format!(
+                "unknown solver '{unknown}'; known: {}",
+                known.join(", ")
+            ));
         }
         size.solvers = args.solvers.clone();
     }
     let start = Instant::now();
-    let mut all = Vec::new();
+    let mut groups = Vec::new();
     let friction: (&str, rows::Group) =
         ("In space: friction at the extremes", rows::solid_friction);
     for (title, group) in rows::groups().into_iter().chain([friction]) {
@@ -53,32 +171,17 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
             rows.len(),
             t.elapsed().as_secs_f64()
         );
-        all.push((title, rows));
+        groups.push(StoredGroup {
+            title: title.to_string(),
+            rows,
+        });
     }
-    let elapsed = start.elapsed().as_secs_f64();
-    let markdown = report(&all, &size, args.quick, elapsed)?;
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    }
-    write_text(&args.out, &markdown)?;
-    let count = |f: &dyn Fn(&Verdict) -> bool| {
-        all.iter()
-            .flat_map(|(_, rows)| rows.iter().flat_map(|r| &r.outcomes))
-            .filter(|o| f(&o.verdict))
-            .count()
-    };
-    let wrong = count(&|v| matches!(v, Verdict::Wrong));
-    eprintln!(
-        "{} outcomes: {} pass, {} refused, {} warned, {wrong} wrong without a warning; \
-         {elapsed:.1} s; report: {}",
-        count(&|_| true),
-        count(&|v| matches!(v, Verdict::Pass)),
-        count(&|v| matches!(v, Verdict::Refused(_))),
-        count(&|v| matches!(v, Verdict::Warned(_))),
-        args.out.display()
-    );
-    Ok(wrong == 0)
+    Ok(Stored {
+        quick: args.quick,
+        size: StoredSize::new(&size),
+        seconds: start.elapsed().as_secs_f64(),
+        groups,
+    })
 }
 
 /// The report's text around its tables (`xtask/templates/extremes.md`).
@@ -86,19 +189,15 @@ const TEMPLATE: &str = include_str!("../templates/extremes.md");
 
 /// The report: its template filled with the run's sizes and solvers, the summary, the rows
 /// that fail and every group's table.
-fn report(
-    groups: &[(&str, Vec<Row>)],
-    size: &Size,
-    quick: bool,
-    elapsed: f64,
-) -> Result<String, String> {
+fn report(stored: &Stored) -> Result<String, String> {
+    let (size, quick, elapsed) = (&stored.size, stored.quick, stored.seconds);
     let mut summary = String::new();
     let _ = writeln!(
         summary,
         "| group | rows | outcomes | pass | refused | warned | wrong |"
     );
     let _ = writeln!(summary, "|---|---:|---:|---:|---:|---:|---:|");
-    for (title, rows) in groups {
+    for StoredGroup { title, rows } in &stored.groups {
         let outcomes: Vec<&Verdict> = rows
             .iter()
             .flat_map(|r| r.outcomes.iter().map(|o| &o.verdict))
@@ -115,9 +214,10 @@ fn report(
             n(|v| matches!(v, Verdict::Wrong)),
         );
     }
-    let failing: Vec<(&Row, &rows::Outcome)> = groups
+    let failing: Vec<(&Row, &rows::Outcome)> = stored
+        .groups
         .iter()
-        .flat_map(|(_, rows)| rows)
+        .flat_map(|g| &g.rows)
         .flat_map(|r| r.outcomes.iter().map(move |o| (r, o)))
         .filter(|(_, o)| o.verdict != Verdict::Pass)
         .collect();
@@ -138,7 +238,7 @@ fn report(
         }
     }
     let mut tables = String::new();
-    for (title, rows) in groups {
+    for StoredGroup { title, rows } in &stored.groups {
         let _ = writeln!(tables, "\n## {title}\n");
         let _ = writeln!(tables, "| row | expected | solver | measured | verdict |");
         let _ = writeln!(tables, "|---|---|---|---|---|");
@@ -173,14 +273,7 @@ fn report(
                 (size.manufactured + size.manufactured / 2).to_string(),
             ),
             ("locking", size.locking.to_string()),
-            (
-                "locking_families",
-                size.locking_families
-                    .iter()
-                    .map(|f| f.name())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            ),
+            ("locking_families", size.locking_families.join(", ")),
             ("solvers", size.solvers.join(", ")),
             ("seconds", format!("{elapsed:.0}")),
             ("table_summary", summary),
@@ -198,5 +291,24 @@ fn cell(text: &str) -> String {
         format!("{cut} ...")
     } else {
         flat
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--report-only` from the committed `docs/extremes.json` rewrites the committed
+    /// `docs/extremes.md` byte for byte.
+    #[test]
+    fn the_committed_extremes_report_is_rendered_from_its_json() {
+        let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs");
+        let stored = read_stored(&docs.join("extremes.md")).unwrap();
+        assert!(!stored.quick, "docs/extremes.json is of a --quick run");
+        let committed = std::fs::read_to_string(docs.join("extremes.md")).unwrap();
+        assert!(
+            report(&stored).unwrap() == committed,
+            "docs/extremes.md is not the report rendered from docs/extremes.json"
+        );
     }
 }

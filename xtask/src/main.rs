@@ -8,7 +8,8 @@
 //! - `hertz`: the Hertz half-disc with each contact normal, the consistent pressure and
 //!   Cattaneo-Mindlin's stick zone (see `docs/hertz.md`).
 //! - `extremes`: stability at the extremes, every solver against independent answers (see
-//!   `target/extremes/extremes.md`; `--out docs/extremes.md` regenerates the tracked report).
+//!   `target/extremes/extremes.md` and `extremes.json`; `--out docs/extremes.md` regenerates the
+//!   tracked report, `--report-only` rewrites it from its JSON).
 //! - `fuzz`: mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and
 //!   interface insertion (see `docs/fuzzing.md`).
 //! - `adaptivity`: adaptive against uniform refinement for 2D contact, the estimator's
@@ -58,9 +59,9 @@ enum Task {
     Hertz(hertz::HertzArgs),
     /// Stability at the extremes: Poisson ratio up to 0.49999 for every element, stiffness
     /// contrasts, units scaled, degenerate cells, penalty factors, gaps, friction bounds; every
-    /// solver against an independent expected answer. Writes target/extremes/extremes.md (or
-    /// `--out`); exits with
-    /// status 1 when a wrong answer came without an error or a warning.
+    /// solver against an independent expected answer. Writes target/extremes/extremes.json and
+    /// extremes.md rendered from it (or `--out`; `--report-only` rewrites the Markdown from the
+    /// JSON); exits with status 1 when a wrong answer came without an error or a warning.
     Extremes(extremes::ExtremesArgs),
     /// Mutation fuzzing of the scene parser, the Gmsh reader, mesh validation and interface
     /// insertion: `--minutes N` or `--seconds N` in all, `--target NAME` for one. Failing

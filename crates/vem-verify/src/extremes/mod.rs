@@ -42,6 +42,7 @@ pub mod space;
 
 use std::path::PathBuf;
 
+use serde::{Deserialize, Serialize};
 use vem_contact::{ContactError, ContactProblem, ContactResult, SolverRegistry};
 use vem_mesh::generators::MeshFamily;
 use vem_space::Options;
@@ -66,8 +67,9 @@ pub const LOCKING_RATIO: f64 = 2.0;
 /// Poisson ratios of the locking sweep.
 pub const POISSON_RATIOS: [f64; 6] = [0.3, 0.4, 0.49, 0.499, 0.4999, 0.49999];
 
-/// How a row came out for one solver.
-#[derive(Debug, Clone, PartialEq)]
+/// How a row came out for one solver (in JSON: `"Pass"`, `"Wrong"`, or `{"Refused": message}`,
+/// `{"Warned": message}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Verdict {
     /// The expected answer, within the row's tolerance.
     Pass,
@@ -97,7 +99,7 @@ impl Verdict {
 }
 
 /// One solver's outcome of a row.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     /// Solver name (registry name), or the linear solver for elasticity rows.
     pub solver: String,
@@ -108,7 +110,7 @@ pub struct Outcome {
 }
 
 /// One extreme: what is expected and what each solver gave.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     /// The extreme, e.g. "nu = 0.49999, vem1".
     pub name: String,
