@@ -612,19 +612,10 @@ impl StoredPicture {
 
 /// The stored rows and pictures in `folder`.
 fn read_stored(folder: &Path) -> Result<(Stored, Vec<StoredPicture>), Box<dyn std::error::Error>> {
-    let read = |name: &str| {
-        let path = folder.join(name);
-        std::fs::read_to_string(&path)
-            .map(|text| (path.clone(), text))
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))
-    };
-    let (path, text) = read(JSON)?;
-    let stored: Stored =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let (path, text) = read(MESHES_JSON)?;
-    let pictures: Vec<StoredPicture> =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok((stored, pictures))
+    Ok((
+        crate::common::read_json(folder.join(JSON))?,
+        crate::common::read_json(folder.join(MESHES_JSON))?,
+    ))
 }
 
 /// The report `out` and its figures (in [`folder_of`] `out`) from the stored run; `Ok(true)`

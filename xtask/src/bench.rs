@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 
-use crate::common::{chain, machine, peak_memory, render, seconds};
+use crate::common::{chain, machine, peak_memory, read_json, render, seconds, store_json};
 use crate::whole_run::{self, WholeRun};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
@@ -35,7 +35,7 @@ use vem_space::Choice;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
 use vem_verify::plot::{loglog_svg, LogLogPlot};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
-use vem_verify::report::{write_json, write_text};
+use vem_verify::report::write_text;
 
 /// The cases of the benchmark.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
@@ -654,11 +654,7 @@ fn measure(p: &Planned, parallelism: Parallelism) -> Result<Measurement, String>
 pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
     if args.report_only {
         let path = args.out.join("bench.json");
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let stored: JsonReport =
-            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-        write_report(&args.out, &stored)?;
+        write_report(&args.out, &read_json(&path)?)?;
         eprintln!(
             "rewrote {0}/bench.md and {0}/bench.svg from {1}",
             args.out.display(),
@@ -701,10 +697,8 @@ pub fn run(args: &BenchArgs) -> Result<bool, Box<dyn std::error::Error>> {
         measurements: rows,
         whole_runs,
     };
-    write_json(args.out.join("bench.json"), &stored)?;
-    // The report of what was stored, as `--report-only` makes it.
-    let text = std::fs::read_to_string(args.out.join("bench.json"))?;
-    let markdown = write_report(&args.out, &serde_json::from_str(&text)?)?;
+    let stored = store_json(args.out.join("bench.json"), &stored)?;
+    let markdown = write_report(&args.out, &stored)?;
     println!("{markdown}");
     eprintln!(
         "wrote {0}/bench.md, {0}/bench.json and {0}/bench.svg",

@@ -1,9 +1,14 @@
 //! Helpers shared by the measuring tasks (`bench`, `tradeoff`): peak memory and CPU time of
-//! this process, the machine, an error chain on one line, Markdown templates. The plots are
-//! drawn by `vem_verify::plot`.
+//! this process, the machine, an error chain on one line, Markdown templates, a study's JSON
+//! written and read back. The plots are drawn by `vem_verify::plot`.
 
+use std::path::Path;
 use std::process::Command;
 use std::time::Duration;
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use vem_verify::report::write_json;
 
 /// `VmHWM` of this process in bytes (0 where /proc is not available).
 pub fn peak_memory() -> u64 {
@@ -130,6 +135,26 @@ pub fn render(name: &str, template: &str, values: &[(&str, String)]) -> Result<S
         ));
     }
     Ok(out)
+}
+
+/// Writes `value` as JSON to `path` (`vem_verify::report::write_json`) and reads it back: a
+/// study renders its report from what the file holds, as `--report-only` renders it.
+pub fn store_json<T: Serialize + DeserializeOwned>(
+    path: impl AsRef<Path>,
+    value: &T,
+) -> Result<T, Box<dyn std::error::Error>> {
+    write_json(path.as_ref(), value)?;
+    read_json(path)
+}
+
+/// Reads the JSON file `path` (what `--report-only` renders), naming the file in an error.
+pub fn read_json<T: DeserializeOwned>(
+    path: impl AsRef<Path>,
+) -> Result<T, Box<dyn std::error::Error>> {
+    let path = path.as_ref();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    Ok(serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?)
 }
 
 #[cfg(test)]

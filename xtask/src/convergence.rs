@@ -264,10 +264,7 @@ fn run_studies(
 /// `out/convergence.json`; `Ok(true)` when every study stored there passed.
 fn report_only(out: &Path) -> Result<bool, Box<dyn std::error::Error>> {
     let path = out.join("convergence.json");
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let report: JsonReport =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let report: JsonReport = crate::common::read_json(&path)?;
     let plots = out.join("convergence");
     std::fs::create_dir_all(&plots)
         .map_err(|e| format!("cannot create {}: {e}", plots.display()))?;

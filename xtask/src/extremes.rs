@@ -15,6 +15,8 @@ use clap::Args;
 use serde::{Deserialize, Serialize};
 use vem_verify::report::write_text;
 
+use crate::common::{read_json, store_json};
+
 use vem_verify::extremes::{self as rows, Row, Size, Verdict};
 
 /// Options of `cargo xtask extremes`.
@@ -96,14 +98,6 @@ fn json_path(out: &Path) -> PathBuf {
     out.with_file_name("extremes.json")
 }
 
-/// Reads `extremes.json` beside the report `out`.
-fn read_stored(out: &Path) -> Result<Stored, String> {
-    let path = json_path(out);
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
-}
-
 /// Runs the rows, writes `extremes.json` and the report rendered from it (with
 /// `--report-only`, only the report from the JSON there); `Ok(false)` when an answer was
 /// wrong without an error or a warning (a wrong "converged").
@@ -113,13 +107,9 @@ pub fn run(args: &ExtremesArgs) -> Result<bool, Box<dyn std::error::Error>> {
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
     let stored = if args.report_only {
-        read_stored(&args.out)?
+        read_json(json_path(&args.out))?
     } else {
-        let stored = solve(args)?;
-        // The report is rendered from what the JSON holds, as `--report-only` renders it.
-        let text = serde_json::to_string_pretty(&stored)?;
-        write_text(json_path(&args.out), &text)?;
-        serde_json::from_str(&text)?
+        store_json(json_path(&args.out), &solve(args)?)?
     };
     write_text(&args.out, &report(&stored)?)?;
     let count = |f: &dyn Fn(&Verdict) -> bool| {
@@ -303,7 +293,7 @@ mod tests {
     #[test]
     fn the_committed_extremes_report_is_rendered_from_its_json() {
         let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs");
-        let stored = read_stored(&docs.join("extremes.md")).unwrap();
+        let stored: Stored = read_json(docs.join("extremes.json")).unwrap();
         assert!(!stored.quick, "docs/extremes.json is of a --quick run");
         let committed = std::fs::read_to_string(docs.join("extremes.md")).unwrap();
         assert!(

@@ -19,6 +19,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::common::{read_json, store_json};
 use clap::Args;
 use serde::{Deserialize, Deserializer, Serialize};
 use vem_contact::{
@@ -157,26 +158,6 @@ fn number_or_infinity<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> 
     number_or(d, f64::INFINITY)
 }
 
-/// Writes `value` as `out/name` and reads it back: the report is rendered from what the JSON
-/// holds, as `--report-only` renders it.
-fn stored<T: Serialize + serde::de::DeserializeOwned>(
-    out: &Path,
-    name: &str,
-    value: &T,
-) -> Result<T, Failure> {
-    let text = serde_json::to_string_pretty(value)?;
-    write_text(out.join(name), &text)?;
-    Ok(serde_json::from_str(&text)?)
-}
-
-/// Reads `out/name`.
-fn read_json<T: serde::de::DeserializeOwned>(out: &Path, name: &str) -> Result<T, Failure> {
-    let path = out.join(name);
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    Ok(serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?)
-}
-
 /// Writes the files `(name, text)` into `out`.
 fn write_all(out: &Path, files: &[(String, String)]) -> Result<(), Failure> {
     for (name, text) in files {
@@ -193,7 +174,8 @@ pub fn run(args: &HertzArgs) -> Result<bool, Failure> {
         return report_only(args);
     }
     if args.friction_only {
-        let section: fretting::Section = stored(&args.out, "fretting.json", &fretting::run(args)?)?;
+        let section: fretting::Section =
+            store_json(args.out.join("fretting.json"), &fretting::run(args)?)?;
         write_all(&args.out, &fretting::report(&section)?)?;
         println!(
             "wrote {0}/fretting.md, fretting.json and its SVG plots",
@@ -240,9 +222,10 @@ pub fn run(args: &HertzArgs) -> Result<bool, Failure> {
         frictionless,
         coulomb,
     };
-    let results: Results = stored(&args.out, "results.json", &results)?;
+    let results: Results = store_json(args.out.join("results.json"), &results)?;
     write_all(&args.out, &report(&results, &args.out)?)?;
-    let section: fretting::Section = stored(&args.out, "fretting.json", &fretting::run(args)?)?;
+    let section: fretting::Section =
+        store_json(args.out.join("fretting.json"), &fretting::run(args)?)?;
     write_all(&args.out, &fretting::report(&section)?)?;
     println!(
         "wrote {0}/results.md, results.json, fretting.md, fretting.json and the SVG plots",
@@ -258,15 +241,15 @@ fn report_only(args: &HertzArgs) -> Result<bool, Failure> {
     let mut passed = true;
     let mut files = Vec::new();
     if all {
-        let results: Results = read_json(&args.out, "results.json")?;
+        let results: Results = read_json(args.out.join("results.json"))?;
         files.extend(report(&results, &args.out)?);
     }
     if all || args.friction_only {
-        let section: fretting::Section = read_json(&args.out, "fretting.json")?;
+        let section: fretting::Section = read_json(args.out.join("fretting.json"))?;
         files.extend(fretting::report(&section)?);
     }
     if all || args.space_only {
-        let section: mindlin_3d::Section = read_json(&args.out, "mindlin-3d.json")?;
+        let section: mindlin_3d::Section = read_json(args.out.join("mindlin-3d.json"))?;
         passed = section.study.shortfalls().is_empty();
         files.extend(mindlin_3d::report(&section)?);
     }
@@ -292,7 +275,7 @@ fn space(args: &HertzArgs) -> Result<bool, Failure> {
         seconds: start.elapsed().as_secs_f64(),
         study,
     };
-    let section: mindlin_3d::Section = stored(&args.out, "mindlin-3d.json", &section)?;
+    let section: mindlin_3d::Section = store_json(args.out.join("mindlin-3d.json"), &section)?;
     write_all(&args.out, &mindlin_3d::report(&section)?)?;
     println!(
         "wrote {}/mindlin-3d.md and mindlin-3d.json",
@@ -671,9 +654,10 @@ mod tests {
     fn the_committed_hertz_reports_are_rendered_from_their_json() {
         let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/hertz");
         let out = Path::new("docs/hertz");
-        let mut files = report(&read_json(&docs, "results.json").unwrap(), out).unwrap();
-        files.extend(fretting::report(&read_json(&docs, "fretting.json").unwrap()).unwrap());
-        files.extend(mindlin_3d::report(&read_json(&docs, "mindlin-3d.json").unwrap()).unwrap());
+        let mut files = report(&read_json(docs.join("results.json")).unwrap(), out).unwrap();
+        files.extend(fretting::report(&read_json(docs.join("fretting.json")).unwrap()).unwrap());
+        files
+            .extend(mindlin_3d::report(&read_json(docs.join("mindlin-3d.json")).unwrap()).unwrap());
         // results.md, four pressure plots, the traction plot; fretting.md and its three plots;
         // mindlin-3d.md.
         assert_eq!(files.len(), 11);

@@ -17,6 +17,20 @@ pub fn signed_area(vertices: &[Point]) -> f64 {
     0.5 * twice_area
 }
 
+/// True when `p` lies inside the polygon `vertices` (crossing number; a point on the boundary
+/// may go either way).
+pub(crate) fn contains(vertices: &[Point], p: Point) -> bool {
+    let m = vertices.len();
+    let mut inside = false;
+    for k in 0..m {
+        let (a, b) = (vertices[k], vertices[(k + 1) % m]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
 /// Centroid (centre of mass of the polygon's area), exact for any simple polygon.
 ///
 /// Coordinates are taken relative to the first vertex to avoid cancellation far from the

@@ -113,24 +113,15 @@ impl Mesh {
         polygon_vertices: Vec<usize>,
         parts: Vec<PartSpec>,
     ) -> Result<Self, MeshError> {
-        validate::check_storage(&vertices, &polygon_offsets, &polygon_vertices)?;
-        let (edges, polygon_edges) = derive_edges(&polygon_offsets, &polygon_vertices)?;
-        let mut mesh = Mesh {
-            vertices,
-            polygon_offsets,
-            polygon_vertices,
-            polygon_edges,
-            edges,
-            parts: Vec::new(),
-        };
+        let mut mesh = Self::unvalidated(vertices, polygon_offsets, polygon_vertices)?;
         mesh.parts = resolve_parts(&mesh, parts)?;
         validate::validate(&mesh)?;
         Ok(mesh)
     }
 
-    /// The mesh of compact storage with its edges and parts but without the checks of
-    /// `validate` (for tests that run those checks themselves).
-    #[cfg(test)]
+    /// The mesh of compact storage with its edges (storage checked, edges derived), without
+    /// parts and without the checks of `validate` (which [`Mesh::from_compact`] runs next, and
+    /// tests run themselves).
     pub(crate) fn unvalidated(
         vertices: Vec<Point>,
         polygon_offsets: Vec<usize>,

@@ -236,18 +236,7 @@ impl PolygonDomain {
     /// True when `p` lies inside the polygon (crossing number; a point on the boundary may
     /// go either way).
     pub fn contains(&self, p: Point) -> bool {
-        let m = self.vertices.len();
-        let mut inside = false;
-        for k in 0..m {
-            let (a, b) = (self.vertices[k], self.vertices[(k + 1) % m]);
-            if (a.y > p.y) != (b.y > p.y) {
-                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-                if p.x < x {
-                    inside = !inside;
-                }
-            }
-        }
-        inside
+        geometry::contains(&self.vertices, p)
     }
 
     /// The distance from `p` to the boundary, with the edge and the closest point.

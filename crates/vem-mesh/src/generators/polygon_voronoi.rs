@@ -438,7 +438,7 @@ fn join_orphans(
             (i0..=i1).any(|i| {
                 buckets[j * nx + i]
                     .iter()
-                    .any(|&k| inside(&polygon, seeds[k]))
+                    .any(|&k| geometry::contains(&polygon, seeds[k]))
             })
         })
     };
@@ -493,19 +493,6 @@ fn join_orphans(
         .zip(alive)
         .filter_map(|(loop_, alive)| alive.then_some(loop_))
         .collect()
-}
-
-/// True when `p` lies inside the polygon (crossing number).
-fn inside(polygon: &[Point], p: Point) -> bool {
-    let m = polygon.len();
-    let mut crossings = false;
-    for k in 0..m {
-        let (a, b) = (polygon[k], polygon[(k + 1) % m]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            crossings = !crossings;
-        }
-    }
-    crossings
 }
 
 /// The union of two counter-clockwise cells sharing one connected run of edges and no other
