@@ -33,7 +33,9 @@ use vem_scene::resources::{LimitOrigin, MemoryLimit};
 use vem_scene::{BuildOptions, Model, Scene};
 use vem_space::Choice;
 use vem_verify::exact::{case_by_name, ExactSolution, Lame};
-use vem_verify::plot::{loglog_svg, LogLogPlot};
+use vem_verify::plot::{
+    loglog_styled_svg, LogLogPlot, Marker, Point, StyledSeries, SERIES_COLOURS,
+};
 use vem_verify::problem::{DiscreteProblem, ProblemSettings};
 use vem_verify::report::write_text;
 
@@ -61,6 +63,15 @@ pub enum Case {
     /// polyhedra fill the factor 2.4 times as much as hexahedra).
     #[value(name = "hertz-3d-hex")]
     Hertz3dHex,
+    /// [`Case::Hertz3dHex`] with the indenter's top also moved 0.006 sideways (x) and Tresca
+    /// friction, the bound `g_F` = 0.1 on the whole contact face
+    /// (`TRESCA_3D_BOUND`): stick and slip.
+    #[value(name = "tresca-3d-hex")]
+    Tresca3dHex,
+    /// [`Case::Hertz3dHex`] with the indenter's top also moved 0.006 sideways (x) and Coulomb
+    /// friction F = 0.3: the fixed point of Tresca problems.
+    #[value(name = "coulomb-3d-hex")]
+    Coulomb3dHex,
 }
 
 impl Case {
@@ -89,6 +100,8 @@ impl Case {
             Case::M2 => "M2",
             Case::Hertz3d => "hertz-3d",
             Case::Hertz3dHex => "hertz-3d-hex",
+            Case::Tresca3dHex => "tresca-3d-hex",
+            Case::Coulomb3dHex => "coulomb-3d-hex",
         }
     }
 
@@ -100,6 +113,10 @@ impl Case {
             Case::M2 => "M2 Tresca (quads / quads)",
             Case::Hertz3d => "Hertz-like in space, frictionless (voronoi polyhedra / hexahedra)",
             Case::Hertz3dHex => "Hertz-like in space, frictionless (hexahedra / hexahedra)",
+            Case::Tresca3dHex => "Hertz-like in space, sheared, Tresca (hexahedra / hexahedra)",
+            Case::Coulomb3dHex => {
+                "Hertz-like in space, sheared, Coulomb F = 0.3 (hexahedra / hexahedra)"
+            }
         }
     }
 
@@ -115,7 +132,7 @@ impl Case {
                 let per_n3 = 3.0 * (4.9 + 1.25f64.powi(3));
                 return ((unknowns as f64 / per_n3).cbrt().round() as usize).max(2);
             }
-            Case::Hertz3dHex => {
+            Case::Hertz3dHex | Case::Tresca3dHex | Case::Coulomb3dHex => {
                 // Hexahedra: n^3 and (1.25 n)^3 vertices.
                 let per_n3 = 3.0 * (1.0 + 1.25f64.powi(3));
                 return ((unknowns as f64 / per_n3).cbrt().round() as usize).max(2);
@@ -126,7 +143,10 @@ impl Case {
 
     /// True for the cases in space.
     fn in_space(self) -> bool {
-        matches!(self, Case::Hertz3d | Case::Hertz3dHex)
+        matches!(
+            self,
+            Case::Hertz3d | Case::Hertz3dHex | Case::Tresca3dHex | Case::Coulomb3dHex
+        )
     }
 }
 
@@ -283,6 +303,11 @@ impl Measurement {
     }
 }
 
+/// The friction bound `g_F` of [`Case::Tresca3dHex`] (a force per area), on the whole face as in
+/// Tresca's problem (also where the gap is open): at n = 16, 926 of the face's 1089 nodes stick
+/// and 163 slip, the tangential load 0.044 against the face's capacity 0.1.
+const TRESCA_3D_BOUND: f64 = 0.1;
+
 /// The scene of a Hertz-like case at size `n` with the contact solver `solver`: the two
 /// meshes by the scene's generators (the indenter's Voronoi cells, seed 1; the block's quads
 /// 1.25 n across), the law and the solver by registry name, the gap an expression.
@@ -324,11 +349,19 @@ pub(crate) fn scene(
                 }],
             })
         }
-        Case::Hertz3d | Case::Hertz3dHex => {
-            let family = if case == Case::Hertz3dHex {
-                "hexahedra"
-            } else {
+        Case::Hertz3d | Case::Hertz3dHex | Case::Tresca3dHex | Case::Coulomb3dHex => {
+            let family = if case == Case::Hertz3d {
                 "voronoi"
+            } else {
+                "hexahedra"
+            };
+            let (shift, law) = match case {
+                Case::Tresca3dHex => (
+                    0.006,
+                    json!({ "name": "tresca", "friction_bound": TRESCA_3D_BOUND }),
+                ),
+                Case::Coulomb3dHex => (0.006, json!({ "name": "coulomb", "coefficient": 0.3 })),
+                _ => (0.0, json!("frictionless")),
             };
             let material = json!({ "E": 100.0, "nu": 0.3 });
             json!({
@@ -339,7 +372,7 @@ pub(crate) fn scene(
                         "name": "indenter",
                         "mesh": { "family": family, "box": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "n": n, "seed": 1 },
                         "material": material,
-                        "dirichlet": [{ "part": "top", "x": 0.0, "y": 0.0, "z": -0.02 }],
+                        "dirichlet": [{ "part": "top", "x": shift, "y": 0.0, "z": -0.02 }],
                     },
                     {
                         "name": "block",
@@ -351,7 +384,7 @@ pub(crate) fn scene(
                 // A paraboloid indenter of radius 1 over (1/2, 1/2).
                 "contact": [{
                     "body": "indenter", "part": "bottom", "other_body": "block", "other_part": "top",
-                    "law": "frictionless",
+                    "law": law,
                     "imposed_gap": "0.5 * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5))",
                 }],
             })
@@ -956,21 +989,44 @@ fn options(args: &BenchArgs) -> String {
 }
 
 /// Log-log plot of contact solve / elastic solve against unknowns, one series per case and
-/// solver.
+/// solver: the colour tells the solver, the marker the case.
 fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> {
-    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    // (case, solver, points) in the order of first appearance.
+    let mut series: Vec<(&str, &str, Vec<Point>)> = Vec::new();
     for m in rows {
         let Some(r) = m.ratio().filter(|&r| r > 0.0 && m.unknowns > 0) else {
             continue;
         };
-        let label = format!("{} {}", m.case, m.solver);
         let point = (m.unknowns as f64, r);
-        match series.iter_mut().find(|(l, _)| *l == label) {
-            Some((_, p)) => p.push(point),
-            None => series.push((label, vec![point])),
+        match series
+            .iter_mut()
+            .find(|(case, solver, _)| *case == m.case && *solver == m.solver)
+        {
+            Some((.., p)) => p.push(point),
+            None => series.push((&m.case, &m.solver, vec![point])),
         }
     }
-    Ok(loglog_svg(
+    let labels: Vec<String> = series.iter().map(|(c, s, _)| format!("{c} {s}")).collect();
+    let index_of = |names: &mut Vec<String>, name: &str| match names.iter().position(|n| n == name)
+    {
+        Some(k) => k,
+        None => {
+            names.push(name.to_string());
+            names.len() - 1
+        }
+    };
+    let (mut solvers, mut cases) = (Vec::new(), Vec::new());
+    let styled: Vec<StyledSeries<'_>> = series
+        .iter()
+        .zip(&labels)
+        .map(|((case, solver, points), label)| StyledSeries {
+            label,
+            points,
+            colour: SERIES_COLOURS[index_of(&mut solvers, solver) % SERIES_COLOURS.len()],
+            marker: Some(Marker::ALL[index_of(&mut cases, case) % Marker::ALL.len()]),
+        })
+        .collect();
+    Ok(loglog_styled_svg(
         &LogLogPlot {
             caption: "contact solve / one elastic solve",
             x_desc: "unknowns",
@@ -978,7 +1034,7 @@ fn plot_svg(rows: &[Measurement]) -> Result<String, Box<dyn std::error::Error>> 
             x_format: |x| format!("{x:.0e}"),
             y_format: |y| format!("{y:.2}"),
         },
-        &series,
+        &styled,
         None,
     )?)
 }

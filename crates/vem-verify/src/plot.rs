@@ -264,6 +264,100 @@ pub enum Mark {
     Dots(Vec<Point>, u32, RGBAColor),
     /// A filled square of the half side (pixels) at each point.
     Squares(Vec<Point>, i32, RGBAColor),
+    /// A filled [`Marker`] of the radius (pixels) at each point.
+    Markers(Vec<Point>, Marker, u32, RGBAColor),
+}
+
+/// The shape of a point marker: series of one colour told apart by their shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Marker {
+    /// A disc.
+    Circle,
+    /// A square on its side.
+    Square,
+    /// A triangle, tip up.
+    Triangle,
+    /// A square on its corner.
+    Diamond,
+    /// A triangle, tip down.
+    InvertedTriangle,
+    /// A regular pentagon.
+    Pentagon,
+    /// A six-pointed star.
+    Star,
+    /// A plus sign as a filled cross.
+    Plus,
+}
+
+impl Marker {
+    /// Every shape, in the order series take them.
+    pub const ALL: [Marker; 8] = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Diamond,
+        Marker::InvertedTriangle,
+        Marker::Pentagon,
+        Marker::Star,
+        Marker::Plus,
+    ];
+
+    /// The outline of the shape of radius `radius` pixels about the origin (y down, as on
+    /// the page), as a closed polygon: shapes of one radius look about equally heavy.
+    fn outline(self, radius: u32) -> Vec<(i32, i32)> {
+        let r = f64::from(radius);
+        let round = |points: Vec<(f64, f64)>| -> Vec<(i32, i32)> {
+            points
+                .into_iter()
+                .map(|(x, y)| (x.round() as i32, y.round() as i32))
+                .collect()
+        };
+        // `n` points at radius `r`, the first at the angle `start` (radians from up).
+        let regular = |n: usize, r: f64, start: f64| -> Vec<(f64, f64)> {
+            (0..n)
+                .map(|k| {
+                    let angle = start + std::f64::consts::TAU * k as f64 / n as f64;
+                    (r * angle.sin(), -r * angle.cos())
+                })
+                .collect()
+        };
+        match self {
+            Marker::Circle => round(regular(16, r, 0.0)),
+            Marker::Square => round(regular(4, 1.35 * r, std::f64::consts::FRAC_PI_4)),
+            Marker::Triangle => round(regular(3, 1.3 * r, 0.0)),
+            Marker::Diamond => round(regular(4, 1.3 * r, 0.0)),
+            Marker::InvertedTriangle => round(regular(3, 1.3 * r, std::f64::consts::PI)),
+            Marker::Pentagon => round(regular(5, 1.15 * r, 0.0)),
+            Marker::Star => {
+                let outer = regular(6, 1.4 * r, 0.0);
+                let inner = regular(6, 0.7 * r, std::f64::consts::PI / 6.0);
+                round(
+                    outer
+                        .into_iter()
+                        .zip(inner)
+                        .flat_map(|(o, i)| [o, i])
+                        .collect(),
+                )
+            }
+            Marker::Plus => {
+                let (a, b) = (1.3 * r, 0.45 * r);
+                round(vec![
+                    (-b, -a),
+                    (b, -a),
+                    (b, -b),
+                    (a, -b),
+                    (a, b),
+                    (b, b),
+                    (b, a),
+                    (-b, a),
+                    (-b, b),
+                    (-a, b),
+                    (-a, -b),
+                    (-b, -b),
+                ])
+            }
+        }
+    }
 }
 
 /// The sample of a layer in the legend.
@@ -273,6 +367,8 @@ pub enum Glyph {
     Line(Pen),
     /// A filled circle of the radius (pixels).
     Dot(u32, RGBAColor),
+    /// A short line of the pen with a filled [`Marker`] of the radius (pixels) on it.
+    LineMarker(Pen, Marker, u32),
 }
 
 /// One layer of a plot: a [`Mark`] and its legend entry, if any.
@@ -319,6 +415,11 @@ impl Layer {
         Self::of(Mark::Squares(points, half, colour.to_rgba()))
     }
 
+    /// A filled `marker` of `radius` pixels at each point.
+    pub fn markers(points: Vec<Point>, marker: Marker, radius: u32, colour: impl Color) -> Self {
+        Self::of(Mark::Markers(points, marker, radius, colour.to_rgba()))
+    }
+
     /// In the legend as `label`, with a sample as drawn (a line with its pen, a dot).
     #[must_use]
     pub fn labelled(self, label: impl Into<String>) -> Self {
@@ -328,6 +429,9 @@ impl Layer {
             }
             Mark::Dots(_, radius, colour) => Glyph::Dot(*radius, *colour),
             Mark::Squares(_, half, colour) => Glyph::Line(Pen::new(*colour, 2 * *half as u32)),
+            Mark::Markers(_, marker, radius, colour) => {
+                Glyph::LineMarker(Pen::new(*colour, 0), *marker, *radius)
+            }
         };
         self.legend(label, glyph)
     }
@@ -463,6 +567,12 @@ where
                         + Rectangle::new([(-half, -half), (half, half)], colour.filled())
                 }))?
             }
+            Mark::Markers(points, marker, radius, colour) => {
+                let outline = marker.outline(*radius);
+                context.draw_series(points.iter().map(|&p| {
+                    EmptyElement::at(p) + Polygon::new(outline.clone(), colour.filled())
+                }))?
+            }
         };
         if let Some((label, glyph)) = &layer.legend {
             annotation.label(label.as_str());
@@ -473,6 +583,18 @@ where
                 Glyph::Dot(radius, colour) => annotation.legend(move |(x, y)| {
                     Circle::new((x + LEGEND_SAMPLE / 2, y), radius, colour.filled())
                 }),
+                Glyph::LineMarker(pen, marker, radius) => {
+                    let outline: Vec<(i32, i32)> = marker
+                        .outline(radius)
+                        .into_iter()
+                        .map(|(dx, dy)| (dx + LEGEND_SAMPLE / 2, dy))
+                        .collect();
+                    annotation.legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (LEGEND_SAMPLE, 0)], pen.style())
+                            + Polygon::new(outline.clone(), pen.colour.filled())
+                    })
+                }
             };
         }
     }
@@ -566,18 +688,58 @@ pub fn loglog_svg(
     series: &[(String, Vec<Point>)],
     overlay: Option<Overlay<'_>>,
 ) -> Result<String, PlotError> {
+    let styled: Vec<StyledSeries<'_>> = series
+        .iter()
+        .enumerate()
+        .map(|(k, (label, points))| StyledSeries {
+            label,
+            points,
+            colour: SERIES_COLOURS[k % SERIES_COLOURS.len()],
+            marker: None,
+        })
+        .collect();
+    loglog_styled_svg(plot, &styled, overlay)
+}
+
+/// A series of a [`loglog_styled_svg`] plot: its label, points, colour and marker.
+#[derive(Debug, Clone, Copy)]
+pub struct StyledSeries<'a> {
+    /// The legend's label.
+    pub label: &'a str,
+    /// The points (non-positive ones are left out).
+    pub points: &'a [Point],
+    /// The colour of its line and markers.
+    pub colour: RGBColor,
+    /// The marker at its points; `None`: a dot.
+    pub marker: Option<Marker>,
+}
+
+/// [`loglog_svg`] with the colour and the marker of every series chosen by the caller: many
+/// series told apart by two properties (e.g. the colour for a solver, the marker for a case).
+///
+/// # Errors
+/// A drawing failure.
+pub fn loglog_styled_svg(
+    plot: &LogLogPlot<'_>,
+    series: &[StyledSeries<'_>],
+    overlay: Option<Overlay<'_>>,
+) -> Result<String, PlotError> {
     let overlaid = overlay.map(|o| match o {
         Overlay::Front(label, p) | Overlay::Reference(label, p) => (label, sorted_positive(p)),
     });
     let mut layers = Vec::new();
-    for (k, (label, points)) in series.iter().enumerate() {
-        let points = sorted_positive(points);
-        let colour = SERIES_COLOURS[k % SERIES_COLOURS.len()];
-        layers.push(
-            Layer::line(points.clone(), Pen::new(colour, 2))
-                .legend(label.clone(), Glyph::Line(Pen::new(colour, 1))),
-        );
-        layers.push(Layer::dots(points, 3, colour));
+    for s in series {
+        let points = sorted_positive(s.points);
+        let (colour, pen) = (s.colour, Pen::new(s.colour, 1));
+        let (glyph, marks) = match s.marker {
+            None => (Glyph::Line(pen), Layer::dots(points.clone(), 3, colour)),
+            Some(marker) => (
+                Glyph::LineMarker(pen, marker, 4),
+                Layer::markers(points.clone(), marker, 4, colour),
+            ),
+        };
+        layers.push(Layer::line(points, Pen::new(colour, 2)).legend(s.label, glyph));
+        layers.push(marks);
     }
     match (overlay, overlaid) {
         (Some(Overlay::Front(..)), Some((label, points))) => {
@@ -621,4 +783,48 @@ fn sorted_positive(points: &[Point]) -> Vec<Point> {
     let mut points: Vec<Point> = points.iter().filter(|p| positive(p)).copied().collect();
     points.sort_by(|a, b| a.0.total_cmp(&b.0));
     points
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Marker;
+
+    /// The signed area (shoelace, y down) and the centroid of a closed polygon.
+    fn area_and_centroid(outline: &[(i32, i32)]) -> (f64, (f64, f64)) {
+        let (mut area, mut cx, mut cy) = (0.0, 0.0, 0.0);
+        for (k, &(x0, y0)) in outline.iter().enumerate() {
+            let (x1, y1) = outline[(k + 1) % outline.len()];
+            let cross = f64::from(x0 * y1 - x1 * y0);
+            area += cross / 2.0;
+            cx += f64::from(x0 + x1) * cross / 6.0;
+            cy += f64::from(y0 + y1) * cross / 6.0;
+        }
+        (area, (cx / area, cy / area))
+    }
+
+    /// Every marker is a polygon centred on its point (centroid within a pixel), turning one
+    /// way, about as heavy as the disc of its radius (0.5 to 1.3 of its area), and the shapes
+    /// are all different.
+    #[test]
+    fn markers_are_centred_and_about_equally_heavy() {
+        let radius = 8;
+        let disc = std::f64::consts::PI * f64::from(radius * radius);
+        for marker in Marker::ALL {
+            let outline = marker.outline(radius);
+            let (area, (cx, cy)) = area_and_centroid(&outline);
+            assert!(
+                (0.5..1.3).contains(&(area.abs() / disc)),
+                "{marker:?}: area {area} against the disc's {disc}"
+            );
+            assert!(
+                cx.abs() < 1.0 && cy.abs() < 1.0,
+                "{marker:?}: centroid ({cx}, {cy})"
+            );
+        }
+        for (i, a) in Marker::ALL.iter().enumerate() {
+            for b in &Marker::ALL[i + 1..] {
+                assert_ne!(a.outline(radius), b.outline(radius), "{a:?} and {b:?}");
+            }
+        }
+    }
 }
