@@ -377,6 +377,7 @@ impl Mprgp<'_> {
     /// Stops as [`Mprgp::solve`] does (`|g^P|_inf <= tolerance`, confirmed with a fresh
     /// gradient), after `max_steps` Newton steps, or when the products exceed `max_products`.
     /// `iterations` of the outcome counts the Newton steps.
+    #[allow(clippy::too_many_arguments)]
     pub fn solve_by_newton<E>(
         &self,
         start: &[f64],
