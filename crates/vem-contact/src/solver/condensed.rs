@@ -37,8 +37,9 @@
 //! (`|G|^3 / 3` for the trailing block, `W`, `H`) loses against an iteration on the operator
 //! `lambda -> B K^-1 B' lambda`: each body is factorised in its best order (no trailing block)
 //! and the QP is solved by MPGP (`mprgp`; with friction in space by projected Newton steps
-//! along the rims whose Newton systems are solved by conjugate gradients, `mprgp`), one pair
-//! of triangular solves per body and product, warm-started like the dense QP;
+//! along the rims whose Newton systems are solved by conjugate gradients, `mprgp`,
+//! preconditioned by the Ritz pairs of the products kept per structure, `kept_products`), one
+//! pair of triangular solves per body and product, warm-started like the dense QP;
 //! `B u = [g; s] + d - H lambda` comes from the last product. It is chosen by size
 //! ([`ITERATIVE_FROM`] interface unknowns without friction, [`ITERATIVE_WITH_FRICTION_FROM`]
 //! with friction in space, [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] in the plane) or
@@ -82,6 +83,7 @@ use super::active_set::ActiveSetSolver;
 use super::box_qp::{BoxQp, BoxQpOutcome, ReducedFactor};
 use super::disk_qp::{Disk, DiskQp};
 use super::error::{ContactSolverError, SettingsError};
+use super::kept_products::KeptProducts;
 use super::mprgp::{self, Mprgp};
 use super::report::{
     certify, inf_norm as inf, unloaded, unloaded_solution, KktResiduals, SolveReport, SolveStatus,
@@ -587,6 +589,7 @@ impl Factors {
             iterative: Some(IterativeState {
                 norm: None,
                 scaling: None,
+                kept: KeptProducts::new(),
             }),
             unconstrained: None,
             spans: Vec::new(),
@@ -626,6 +629,10 @@ struct IterativeState {
     norm: Option<f64>,
     /// The scaling `S` of the multipliers ([`lumped_scaling`], made at the first solve).
     scaling: Option<Vec<f64>>,
+    /// The products of `S H S` kept across the Newton systems and the solves of the
+    /// structure (a Coulomb fixed point's steps share `H`): the spectral preconditioner of
+    /// the Newton systems (`kept_products`).
+    kept: KeptProducts,
 }
 
 /// Power iterations for the estimate of `|S H S|_2` of the iterative interface (from the
@@ -1134,6 +1141,13 @@ fn iterative_interface(
         })
         .collect();
     let weights: Vec<f64> = scale.iter().map(|s| 1.0 / s).collect();
+    // The products kept from the earlier solves of the structure (the same `S H S`), and the
+    // ones of this solve added to them: the preconditioner of the Newton systems.
+    let mut kept = factors
+        .iterative
+        .as_mut()
+        .map(|state| std::mem::take(&mut state.kept))
+        .unwrap_or_default();
     let (this, n): (&Factors, _) = (factors, system.n_dofs());
     let mut apply = |y: &[f64]| -> Result<Vec<f64>, ContactSolverError> {
         let hx = this.apply_operator(rows, n, &unit(y, times), work)?;
@@ -1141,7 +1155,11 @@ fn iterative_interface(
     };
     let norm = match this.iterative.as_ref().and_then(|s| s.norm) {
         Some(norm) => norm,
-        None => mprgp::norm_estimate(d.len(), NORM_ITERATIONS, &mut apply)?,
+        None => mprgp::norm_estimate(d.len(), NORM_ITERATIONS, |v| {
+            let hv = apply(v)?;
+            kept.add(v, &hv);
+            Ok(hv)
+        })?,
     };
     let qp = Mprgp {
         linear: &scaled_d,
@@ -1163,6 +1181,7 @@ fn iterative_interface(
             settings.max_iterations,
             budget,
             norm,
+            &mut kept,
             &mut apply,
         )?
     };
@@ -1171,6 +1190,7 @@ fn iterative_interface(
     if let Some(state) = factors.iterative.as_mut() {
         state.norm = Some(norm);
         state.scaling = Some(scale);
+        state.kept = kept;
     }
     Ok(Interface {
         lambda,

@@ -34,6 +34,7 @@ mod disk_qp;
 mod error;
 #[cfg(feature = "clarabel")]
 mod exact;
+mod kept_products;
 mod mprgp;
 mod newton_matrix;
 mod penalty;

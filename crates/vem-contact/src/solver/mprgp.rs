@@ -41,9 +41,11 @@
 //! (`disk_qp`: a binding rim's tangent with the rim's curvature `mu / r` in the Newton
 //! subspace, an Armijo search along the projection arc), its Newton systems
 //! `(Z'HZ + C) y = -Z'g` solved inexactly by conjugate gradients on the products `x -> Hx`,
-//! with Eisenstat and Walker's forcing terms.
+//! with Eisenstat and Walker's forcing terms, preconditioned by the Ritz pairs of the products
+//! kept from the earlier systems and solves (`kept_products`).
 
 use super::disk_qp::{armijo_on_arc, newton_subspace, project, Disk};
+use super::kept_products::KeptProducts;
 
 /// The action `x -> H x` of the problem's matrix (with the error of the caller's products).
 type Product<'f, E> = dyn FnMut(&[f64]) -> Result<Vec<f64>, E> + 'f;
@@ -364,9 +366,18 @@ impl Mprgp<'_> {
     /// with the scaling `1 / |H|` (`norm`, an estimate of `|H|_2`; the diagonal of `H` is not
     /// at hand), and a binding bound moves along `-g / |H|`.
     ///
+    /// The conjugate gradients are preconditioned by the spectral preconditioner of `kept`
+    /// (`kept_products`: the Ritz pairs of the largest eigenvalues of `H` from the products
+    /// kept so far, mapped down to the next Ritz value), and every product of the solve is
+    /// added to `kept`: a caller that solves again with the same `H` (the steps of a Coulomb
+    /// fixed point) passes the same store (`KeptProducts::disabled` gives plain conjugate
+    /// gradients). The preconditioner is symmetric positive definite, so the Newton systems and
+    /// the answer are those of the unpreconditioned method; only the products differ.
+    ///
     /// Stops as [`Mprgp::solve`] does (`|g^P|_inf <= tolerance`, confirmed with a fresh
     /// gradient), after `max_steps` Newton steps, or when the products exceed `max_products`.
     /// `iterations` of the outcome counts the Newton steps.
+    #[allow(clippy::too_many_arguments)]
     pub fn solve_by_newton<E>(
         &self,
         start: &[f64],
@@ -374,16 +385,20 @@ impl Mprgp<'_> {
         max_steps: usize,
         max_products: usize,
         norm: f64,
+        kept: &mut KeptProducts,
         mut apply: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
     ) -> Result<MprgpOutcome, E> {
         let m = self.linear.len();
         let in_disk = self.in_disk();
         let scaling = vec![if norm > 0.0 { 1.0 / norm } else { 1.0 }; m];
         let mut products = 0usize;
-        let mut counted = |x: &[f64], products: &mut usize| {
+        // Every product is kept for the preconditioner of the later Newton systems.
+        let mut counted = |x: &[f64], products: &mut usize, kept: &mut KeptProducts| {
             product_at(x, |x| {
                 *products += 1;
-                apply(x)
+                let hx = apply(x)?;
+                kept.add(x, &hx);
+                Ok(hx)
             })
         };
         let mut x = start.to_vec();
@@ -394,7 +409,7 @@ impl Mprgp<'_> {
                 .map(|(h, d)| h - d)
                 .collect()
         };
-        let mut g = gradient_at(counted(&x, &mut products)?);
+        let mut g = gradient_at(counted(&x, &mut products, kept)?);
         let mut iterations = 0;
         let mut converged = false;
         let (mut previous, mut eta) = (f64::NAN, ETA_MAX);
@@ -403,7 +418,7 @@ impl Mprgp<'_> {
             let pg = self.projected_gradient(&phi, &beta);
             if pg <= tolerance {
                 // Confirmed with the gradient computed afresh (the updates drift).
-                g = gradient_at(counted(&x, &mut products)?);
+                g = gradient_at(counted(&x, &mut products, kept)?);
                 let (phi, beta) = self.split(&x, &g, &in_disk);
                 if self.projected_gradient(&phi, &beta) <= tolerance {
                     converged = true;
@@ -436,19 +451,23 @@ impl Mprgp<'_> {
                 .min(ETA_MAX);
             }
             previous = pg;
-            // Conjugate gradients on (Z'HZ + C) y = -Z'g from y = 0.
+            // Conjugate gradients on (Z'HZ + C) y = -Z'g from y = 0, preconditioned by the
+            // spectral preconditioner of the kept products (`kept_products`; the identity
+            // until it has Ritz pairs); the stopping test on the unpreconditioned residual.
             let k = subspace.basis.len();
+            let preconditioner = kept.preconditioner(&subspace);
             let mut y = vec![0.0; k];
             let mut r: Vec<f64> = subspace.restrict(&g).iter().map(|v| -v).collect();
             let target = eta * dot(&r, &r).sqrt();
-            let mut p = r.clone();
-            let mut rr = dot(&r, &r);
+            let mut z = preconditioner.apply(&r);
+            let mut p = z.clone();
+            let mut rz = dot(&r, &z);
             while k > 0 && products < max_products {
                 let r_inf = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-                if rr.sqrt() <= target || r_inf <= 0.25 * tolerance {
+                if dot(&r, &r).sqrt() <= target || r_inf <= 0.25 * tolerance {
                     break;
                 }
-                let hv = counted(&subspace.expand(&p, m), &mut products)?;
+                let hv = counted(&subspace.expand(&p, m), &mut products, kept)?;
                 let mut ap = subspace.restrict(&hv);
                 for ((a, c), pa) in ap.iter_mut().zip(&subspace.curvature).zip(&p) {
                     *a += c * pa;
@@ -457,16 +476,17 @@ impl Mprgp<'_> {
                 if curvature.is_nan() || curvature <= 0.0 {
                     break;
                 }
-                let step = rr / curvature;
+                let step = rz / curvature;
                 for a in 0..k {
                     y[a] += step * p[a];
                     r[a] -= step * ap[a];
                 }
-                let rr_next = dot(&r, &r);
-                let ratio = rr_next / rr;
-                rr = rr_next;
+                z = preconditioner.apply(&r);
+                let rz_next = dot(&r, &z);
+                let ratio = rz_next / rz;
+                rz = rz_next;
                 for a in 0..k {
-                    p[a] = r[a] + ratio * p[a];
+                    p[a] = z[a] + ratio * p[a];
                 }
             }
             subspace.set_newton_step(&y);
@@ -477,7 +497,7 @@ impl Mprgp<'_> {
                 &x,
                 &g,
                 &subspace.step,
-                |v| counted(v, &mut products),
+                |v| counted(v, &mut products, kept),
             )?;
             let Some((trial, h_step)) = trial else {
                 // No decrease representable in floating point.
@@ -601,7 +621,15 @@ mod tests {
                 .solve(&vec![0.0; n], 1e-13, 20_000, norm, product(&h))
                 .unwrap();
             let newton = qp
-                .solve_by_newton(&vec![0.0; n], 1e-13, 200, 20_000, norm, product(&h))
+                .solve_by_newton(
+                    &vec![0.0; n],
+                    1e-13,
+                    200,
+                    20_000,
+                    norm,
+                    &mut KeptProducts::new(),
+                    product(&h),
+                )
                 .unwrap();
             let scale = reference.x.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             for (name, out) in [("MPGP", mpgp), ("Newton", newton)] {
@@ -623,6 +651,145 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A Tresca problem on a grid of `N x N` nodes (a normal row and a disk of two tangential
+    /// rows per node) whose `H = C^-1 (x) A^-1` is a compliance: `A` the five-point Laplacian
+    /// plus `0.05 I` (a few large eigenvalues, the smooth modes, and a cluster of small ones),
+    /// `C` a coupling of the three rows of a node. The projected Newton method with the kept
+    /// products (the spectral preconditioner) finds the dense projected Newton method's
+    /// minimiser as the unpreconditioned one does, in fewer products (counted: 275 against
+    /// 398 when written).
+    #[test]
+    fn kept_products_save_products_and_keep_the_minimiser() {
+        use faer::linalg::solvers::DenseSolveCore;
+        let side = 12;
+        let nodes = side * side;
+        let n = 3 * nodes;
+        let coupling = [[1.0, 0.2, 0.1], [0.2, 1.0, 0.1], [0.1, 0.1, 1.0]];
+        // Rows: the normal rows of the nodes, then two tangential rows per node.
+        let row = |node: usize, c: usize| {
+            if c == 0 {
+                node
+            } else {
+                nodes + 2 * node + c - 1
+            }
+        };
+        let laplacian = |a: usize, b: usize| -> f64 {
+            let (ia, ja, ib, jb) = (a / side, a % side, b / side, b % side);
+            if a == b {
+                4.05
+            } else if ia.abs_diff(ib) + ja.abs_diff(jb) == 1 {
+                -1.0
+            } else {
+                0.0
+            }
+        };
+        let mut stiffness = Mat::<f64>::zeros(n, n);
+        for a in 0..nodes {
+            for b in 0..nodes {
+                for (c, coupling) in coupling.iter().enumerate() {
+                    for (e, k) in coupling.iter().enumerate() {
+                        stiffness[(row(a, c), row(b, e))] = k * laplacian(a, b);
+                    }
+                }
+            }
+        }
+        let h = stiffness.llt(faer::Side::Lower).unwrap().inverse();
+        // Pressed with a bump, sheared obliquely; the bounds from 0.3 to 1.7 times the
+        // friction force without bounds (`H^-1 d`) across the grid: slip, then stick.
+        let mut d = vec![0.0; n];
+        for node in 0..nodes {
+            let (i, j) = ((node / side) as f64, (node % side) as f64);
+            d[row(node, 0)] = 1.0 + 0.3 * (0.7 * i).sin() * (0.5 * j).cos();
+            d[row(node, 1)] = 0.6;
+            d[row(node, 2)] = 0.4 - 0.02 * i;
+        }
+        let free = product(&stiffness)(&d).unwrap();
+        let disks: Vec<Disk> = (0..nodes)
+            .map(|node| {
+                let (i, j) = ((node / side) as f64, (node % side) as f64);
+                let (a, b) = (row(node, 1), row(node, 2));
+                Disk {
+                    first: a,
+                    radius: free[a].hypot(free[b]) * (0.3 + 0.7 * (i + j) / (side - 1) as f64),
+                }
+            })
+            .collect();
+        let mut lower = vec![f64::NEG_INFINITY; n];
+        lower[..nodes].fill(0.0);
+        let upper = vec![f64::INFINITY; n];
+        // The radii of the steps of a fixed point (a Coulomb iteration changes only them),
+        // each step warm-started from the last.
+        let factors = [1.0, 0.9, 0.96, 0.93, 0.945, 0.94];
+        let radii = |factor: f64| -> Vec<Disk> {
+            disks
+                .iter()
+                .map(|disk| Disk {
+                    first: disk.first,
+                    radius: factor * disk.radius,
+                })
+                .collect()
+        };
+        let references: Vec<Vec<f64>> = factors
+            .iter()
+            .map(|&factor| {
+                let reference = DiskQp {
+                    hessian: h.as_ref(),
+                    linear: &d,
+                    lower: &lower,
+                    upper: &upper,
+                    disks: &radii(factor),
+                }
+                .solve(&vec![0.0; n], 1e-13, 200);
+                assert!(reference.converged);
+                reference.x
+            })
+            .collect();
+        // Stick and slip nodes both.
+        let on_rim = disks
+            .iter()
+            .filter(|disk| {
+                let x = &references[0];
+                x[disk.first].hypot(x[disk.first + 1]) >= disk.radius * (1.0 - 1e-9)
+            })
+            .count();
+        assert!(on_rim > 0 && on_rim < nodes, "{on_rim} of {nodes} slip");
+        let norm = norm_estimate(n, 3, product(&h)).unwrap();
+        let mut counts = Vec::new();
+        for mut kept in [KeptProducts::disabled(), KeptProducts::new()] {
+            let mut products = 0usize;
+            let mut apply = product(&h);
+            let mut x = vec![0.0; n];
+            for (&factor, reference) in factors.iter().zip(&references) {
+                let disks = radii(factor);
+                let qp = Mprgp {
+                    linear: &d,
+                    lower: &lower,
+                    upper: &upper,
+                    disks: &disks,
+                    weights: &[],
+                };
+                let out = qp
+                    .solve_by_newton(&x, 1e-12, 200, 100_000, norm, &mut kept, |v: &[f64]| {
+                        products += 1;
+                        apply(v)
+                    })
+                    .unwrap();
+                assert!(out.converged, "{} Newton steps", out.iterations);
+                let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in out.x.iter().zip(reference) {
+                    assert!((x - y).abs() <= 1e-9 * scale, "{x} against {y}");
+                }
+                x = out.x;
+            }
+            println!(
+                "{products} products, {} Ritz pairs at the end",
+                kept.ritz_pairs()
+            );
+            counts.push(products);
+        }
+        assert!(counts[1] < counts[0], "{counts:?}");
     }
 
     /// Without active constraints MPGP is conjugate gradients: at most `n` iterations on an
