@@ -1120,6 +1120,10 @@ fn backend(reason: impl std::fmt::Display) -> SolveError {
     }
 }
 
+/// Factor values (32 MiB) from which a factorisation first returns the freed memory to the
+/// system ([`crate::release_free_memory`]).
+const RELEASE_BEFORE_FACTOR_VALUES: usize = 1 << 22;
+
 /// Factorises `matrix` on `symbolic` into `values` (reallocated to the factor's size), with
 /// the permuted triangle faer reads made and dropped around the factorisation.
 fn numeric_factor<I: Index>(
@@ -1128,6 +1132,12 @@ fn numeric_factor<I: Index>(
     par: Par,
     values: &mut Vec<f64>,
 ) -> Result<(), SolveError> {
+    // Before a large factor (above glibc's largest mapping threshold), the memory freed since
+    // the last phase (the assembly's work) goes back to the system rather than staying
+    // resident beside the factor.
+    if symbolic.len_val() >= RELEASE_BEFORE_FACTOR_VALUES {
+        crate::release_free_memory();
+    }
     let (col_ptr, row_idx, permuted) = permuted_triangle(symbolic, matrix);
     let n = symbolic.nrows();
     let a = SparseColMatRef::new(
