@@ -190,6 +190,9 @@ impl<const D: usize> ContactDiscretisation<D> {
             });
         }
         drop(pairs);
+        // The original meshes and the insertion's work are freed: their pages go back to the
+        // system before the stiffness is allocated beside the enlarged meshes.
+        vem_elastic::release_free_memory();
         work.times.insertion = start.elapsed();
         let start = Instant::now();
         let systems = bodies

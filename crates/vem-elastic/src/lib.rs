@@ -94,6 +94,7 @@ mod dofs;
 mod error;
 pub mod estimate;
 mod material;
+mod memory;
 mod ordering;
 mod post;
 mod solid;
@@ -106,6 +107,7 @@ pub use dofs::{DofMap, DofStatus, PlateUnknown};
 pub use error::{ElasticError, SolveError};
 pub use estimate::{CellIndicator, ElasticEstimate};
 pub use material::{von_mises, Material, Plane};
+pub use memory::release_free_memory;
 pub use ordering::elimination_order;
 pub use post::{ElementField, PartReaction, Solution};
 pub use solver::{

@@ -18,11 +18,86 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
+use faer::traits::IndexCore;
+use faer::{Conj, Index, Mat, MatMut, MatRef, Par, Side};
 
 use crate::ordering::elimination_order;
 pub use crate::ordering::Ordering;
 use crate::SolveError;
+
+/// faer's symbolic factorisation, with 32-bit indices when the pattern and its factor fit
+/// them: its structure (supernodes, the rows of `L`) and the permuted matrix every numeric
+/// factorisation reads take half the memory of 64-bit ones. 64-bit indices for larger
+/// problems (a factor of more than `u32::MAX` values).
+#[derive(Debug)]
+enum Symbolic {
+    Narrow(SymbolicCholesky<u32>),
+    Wide(SymbolicCholesky<usize>),
+}
+
+/// `$body` with `$s` bound to the symbolic factorisation `$symbolic` (a `&Symbolic`),
+/// whatever its index type.
+macro_rules! with_symbolic {
+    ($symbolic:expr, $s:ident => $body:expr) => {
+        match $symbolic {
+            Symbolic::Narrow($s) => $body,
+            Symbolic::Wide($s) => $body,
+        }
+    };
+}
+
+/// The elimination order of `symbolic` (position -> original unknown).
+fn forward<I: Index>(symbolic: &SymbolicCholesky<I>) -> &[I] {
+    symbolic
+        .perm()
+        .map(|p| p.arrays().0)
+        .expect("every analysis has an explicit permutation")
+}
+
+/// The inverse of [`forward`] (original unknown -> position).
+fn inverse<I: Index>(symbolic: &SymbolicCholesky<I>) -> &[I] {
+    symbolic
+        .perm()
+        .map(|p| p.arrays().1)
+        .expect("every analysis has an explicit permutation")
+}
+
+/// The symbolic factorisation of `pattern` in the order `order` (inverse `inverse`) with
+/// 32-bit indices; `None` when the pattern or the factor does not fit them. The pattern is
+/// copied to 32-bit indices for the analysis (half its size, dropped before the return).
+fn narrow_symbolic(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    order: &[usize],
+    inverse: &[usize],
+) -> Result<Option<SymbolicCholesky<u32>>, SolveError> {
+    let n = pattern.ncols();
+    let fits = |x: usize| u32::try_from(x).is_ok_and(|x| x < u32::MAX);
+    if !fits(n) || !fits(pattern.row_idx().len()) {
+        return Ok(None);
+    }
+    let narrow = |x: usize| x as u32;
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut row_idx = Vec::with_capacity(pattern.row_idx().len());
+    col_ptr.push(0u32);
+    for j in 0..n {
+        row_idx.extend(pattern.row_idx_of_col_raw(j).iter().map(|&i| narrow(i)));
+        col_ptr.push(narrow(row_idx.len()));
+    }
+    let order: Vec<u32> = order.iter().map(|&i| narrow(i)).collect();
+    let inverse: Vec<u32> = inverse.iter().map(|&i| narrow(i)).collect();
+    let narrow_pattern =
+        SymbolicSparseColMatRef::new_unsorted_checked(n, n, &col_ptr, None, &row_idx);
+    match factorize_symbolic_cholesky(
+        narrow_pattern,
+        Side::Lower,
+        SymmetricOrdering::Custom(PermRef::new_checked(&order, &inverse, n)),
+        CholeskySymbolicParams::default(),
+    ) {
+        Ok(symbolic) => Ok(Some(symbolic)),
+        Err(faer::sparse::FaerError::IndexOverflow) => Ok(None),
+        Err(e) => Err(backend(e)),
+    }
+}
 
 /// A direct solver for symmetric positive definite sparse systems, split into the phases a
 /// contact solver needs: the pattern is analysed once (with the unknowns that couple to the
@@ -292,7 +367,7 @@ impl CholeskySettingsBuilder {
 /// Immutable; shared between solvers behind an [`Arc`] ([`CholeskySolver::shared_analysis`]).
 #[derive(Debug)]
 pub struct CholeskyAnalysis {
-    symbolic: SymbolicCholesky<usize>,
+    symbolic: Symbolic,
     n: usize,
     /// Number of unknowns eliminated last.
     n_trailing: usize,
@@ -310,6 +385,18 @@ impl CholeskyAnalysis {
         order: &[usize],
         n_trailing: usize,
         ordering: Ordering,
+    ) -> Result<Self, SolveError> {
+        Self::with_indices(pattern, order, n_trailing, ordering, true)
+    }
+
+    /// [`CholeskyAnalysis::new`], with 32-bit indices only if `narrow` allows them (the tests
+    /// compare both).
+    fn with_indices(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        order: &[usize],
+        n_trailing: usize,
+        ordering: Ordering,
+        narrow: bool,
     ) -> Result<Self, SolveError> {
         let n = pattern.nrows();
         if n != pattern.ncols() {
@@ -334,14 +421,24 @@ impl CholeskyAnalysis {
         // The natural order, too, is passed as an explicit permutation: faer's `Identity`
         // ordering skips the symmetric permutation step that selects the `Side::Lower`
         // triangle of a full-storage matrix.
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Lower,
-            SymmetricOrdering::Custom(PermRef::new_checked(order, &inverse, n)),
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(backend)?;
-        let flops = factor_flops(&symbolic);
+        let narrow_symbolic = if narrow {
+            narrow_symbolic(pattern, order, &inverse)?
+        } else {
+            None
+        };
+        let symbolic = match narrow_symbolic {
+            Some(symbolic) => Symbolic::Narrow(symbolic),
+            None => Symbolic::Wide(
+                factorize_symbolic_cholesky(
+                    pattern,
+                    Side::Lower,
+                    SymmetricOrdering::Custom(PermRef::new_checked(order, &inverse, n)),
+                    CholeskySymbolicParams::default(),
+                )
+                .map_err(backend)?,
+            ),
+        };
+        let flops = with_symbolic!(&symbolic, s => factor_flops(s));
         Ok(Self {
             symbolic,
             n,
@@ -368,17 +465,21 @@ impl CholeskyAnalysis {
         self.ordering
     }
 
-    /// The elimination order: `order[k]` is the unknown eliminated at step `k`.
-    pub fn elimination_order(&self) -> &[usize] {
-        self.symbolic
-            .perm()
-            .map(|p| p.arrays().0)
-            .expect("every analysis has an explicit permutation")
+    /// The elimination order: `order[k]` is the unknown eliminated at step `k` (a copy: the
+    /// analysis stores it with the index type of its structure).
+    pub fn elimination_order(&self) -> Vec<usize> {
+        with_symbolic!(&self.symbolic, s => forward(s).iter().map(|&i| i.zx()).collect())
     }
 
     /// Stored values of the factor `L`.
     pub fn factor_entries(&self) -> usize {
-        self.symbolic.len_val()
+        with_symbolic!(&self.symbolic, s => s.len_val())
+    }
+
+    /// True when faer's structure holds 32-bit indices (every pattern whose size and factor
+    /// fit them), half the memory of 64-bit ones.
+    pub fn has_narrow_indices(&self) -> bool {
+        matches!(self.symbolic, Symbolic::Narrow(_))
     }
 
     /// Multiply-adds of one numeric factorisation (see [`FactorStatistics::flops`]).
@@ -388,7 +489,7 @@ impl CholeskyAnalysis {
 
     /// True when faer chose the supernodal (blocked) factorisation.
     pub fn is_supernodal(&self) -> bool {
-        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+        with_symbolic!(&self.symbolic, s => matches!(s.raw(), SymbolicCholeskyRaw::Supernodal(_)))
     }
 
     fn check_pattern(&self, pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<(), SolveError> {
@@ -596,42 +697,34 @@ impl CholeskySolver {
             z[(first + p, 0)] = v;
         }
         let par = self.settings.solve_parallelism;
-        match analysis.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => {
-                let l = SparseColMatRef::new(s.factor(), &factor.values);
-                faer::sparse::linalg::triangular_solve::solve_lower_triangular_transpose_in_place(
-                    l,
-                    Conj::No,
-                    z.as_mut(),
-                    par,
-                );
-            }
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let mut scratch =
-                    MemBuffer::try_new(analysis.symbolic.solve_in_place_scratch::<f64>(1, par))
-                        .map_err(|_| backend("out of memory for the solve workspace"))?;
-                SupernodalLltRef::new(s, &factor.values).l_transpose_solve_with_conj(
-                    Conj::No,
-                    z.as_mut(),
-                    par,
-                    MemStack::new(&mut scratch),
-                );
-            }
-        }
-        match analysis.symbolic.perm() {
-            Some(perm) => {
-                // Position `new` of the factor holds the original unknown `forward[new]`.
-                let (forward, _) = perm.arrays();
-                for (new, &old) in forward.iter().enumerate() {
-                    x[old] = z[(new, 0)];
+        with_symbolic!(&analysis.symbolic, symbolic => {
+            match symbolic.raw() {
+                SymbolicCholeskyRaw::Simplicial(s) => {
+                    let l = SparseColMatRef::new(s.factor(), &factor.values);
+                    faer::sparse::linalg::triangular_solve::solve_lower_triangular_transpose_in_place(
+                        l,
+                        Conj::No,
+                        z.as_mut(),
+                        par,
+                    );
+                }
+                SymbolicCholeskyRaw::Supernodal(s) => {
+                    let mut scratch =
+                        MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
+                            .map_err(|_| backend("out of memory for the solve workspace"))?;
+                    SupernodalLltRef::new(s, &factor.values).l_transpose_solve_with_conj(
+                        Conj::No,
+                        z.as_mut(),
+                        par,
+                        MemStack::new(&mut scratch),
+                    );
                 }
             }
-            None => {
-                for (i, xi) in x.iter_mut().enumerate() {
-                    *xi = z[(i, 0)];
-                }
+            // Position `new` of the factor holds the original unknown `forward[new]`.
+            for (new, &old) in forward(symbolic).iter().enumerate() {
+                x[old.zx()] = z[(new, 0)];
             }
-        }
+        });
         Ok(())
     }
 
@@ -687,7 +780,7 @@ impl CholeskySolver {
                 ),
             });
         }
-        let SymbolicCholeskyRaw::Supernodal(s) = analysis.symbolic.raw() else {
+        if !analysis.is_supernodal() {
             // The simplicial factor (small systems): a full solve.
             let mut x = vec![0.0; analysis.n];
             for (&i, &v) in support.unknowns.iter().zip(values.iter()) {
@@ -698,65 +791,70 @@ impl CholeskySolver {
                 *v = x[i];
             }
             return Ok(());
-        };
-        let l = SupernodalLltRef::new(s, &factor.values);
-        let par = self.settings.solve_parallelism;
-        // Entries outside the reached supernodes are never read or written.
+        }
         let mut x = Mat::<f64>::zeros(analysis.n, 1);
-        for (&p, &v) in support.positions.iter().zip(values.iter()) {
-            x[(p, 0)] = v;
-        }
-        let mut tmp = vec![0.0; support.longest_pattern];
-        // L z = b over the reached supernodes, in elimination order.
-        for &k in &support.supernodes {
-            let node = l.supernode(k);
-            let (start, block, pattern) = (node.start(), node.val(), node.pattern());
-            let width = block.ncols();
-            let (top, bottom) = block.split_at_row(width);
-            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-                top,
-                x.as_mut().subrows_mut(start, width),
-                par,
-            );
-            let below =
-                MatMut::from_column_major_slice_mut(&mut tmp[..pattern.len()], pattern.len(), 1);
-            faer::linalg::matmul::matmul(
-                below,
-                faer::Accum::Replace,
-                bottom,
-                x.as_ref().subrows(start, width),
-                1.0,
-                par,
-            );
-            for (&i, &t) in pattern.iter().zip(&tmp) {
-                x[(i, 0)] -= t;
+        with_symbolic!(&analysis.symbolic, symbolic => {
+            let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
+                unreachable!("a supernodal analysis");
+            };
+            let l = SupernodalLltRef::new(s, &factor.values);
+            let par = self.settings.solve_parallelism;
+            // Entries outside the reached supernodes are never read or written.
+            for (&p, &v) in support.positions.iter().zip(values.iter()) {
+                x[(p, 0)] = v;
             }
-        }
-        // L' x = z over the same supernodes, backwards: the solution at the support's
-        // unknowns needs it only at their ancestors.
-        for &k in support.supernodes.iter().rev() {
-            let node = l.supernode(k);
-            let (start, block, pattern) = (node.start(), node.val(), node.pattern());
-            let width = block.ncols();
-            let (top, bottom) = block.split_at_row(width);
-            for (t, &i) in tmp.iter_mut().zip(pattern) {
-                *t = x[(i, 0)];
+            let mut tmp = vec![0.0; support.longest_pattern];
+            // L z = b over the reached supernodes, in elimination order.
+            for &k in &support.supernodes {
+                let node = l.supernode(k);
+                let (start, block, pattern) = (node.start(), node.val(), node.pattern());
+                let width = block.ncols();
+                let (top, bottom) = block.split_at_row(width);
+                faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+                    top,
+                    x.as_mut().subrows_mut(start, width),
+                    par,
+                );
+                let below =
+                    MatMut::from_column_major_slice_mut(&mut tmp[..pattern.len()], pattern.len(), 1);
+                faer::linalg::matmul::matmul(
+                    below,
+                    faer::Accum::Replace,
+                    bottom,
+                    x.as_ref().subrows(start, width),
+                    1.0,
+                    par,
+                );
+                for (&i, &t) in pattern.iter().zip(&tmp) {
+                    x[(i.zx(), 0)] -= t;
+                }
             }
-            let above = MatRef::from_column_major_slice(&tmp[..pattern.len()], pattern.len(), 1);
-            faer::linalg::matmul::matmul(
-                x.as_mut().subrows_mut(start, width),
-                faer::Accum::Add,
-                bottom.transpose(),
-                above,
-                -1.0,
-                par,
-            );
-            faer::linalg::triangular_solve::solve_upper_triangular_in_place(
-                top.transpose(),
-                x.as_mut().subrows_mut(start, width),
-                par,
-            );
-        }
+            // L' x = z over the same supernodes, backwards: the solution at the support's
+            // unknowns needs it only at their ancestors.
+            for &k in support.supernodes.iter().rev() {
+                let node = l.supernode(k);
+                let (start, block, pattern) = (node.start(), node.val(), node.pattern());
+                let width = block.ncols();
+                let (top, bottom) = block.split_at_row(width);
+                for (t, &i) in tmp.iter_mut().zip(pattern) {
+                    *t = x[(i.zx(), 0)];
+                }
+                let above = MatRef::from_column_major_slice(&tmp[..pattern.len()], pattern.len(), 1);
+                faer::linalg::matmul::matmul(
+                    x.as_mut().subrows_mut(start, width),
+                    faer::Accum::Add,
+                    bottom.transpose(),
+                    above,
+                    -1.0,
+                    par,
+                );
+                faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+                    top.transpose(),
+                    x.as_mut().subrows_mut(start, width),
+                    par,
+                );
+            }
+        });
         for (&p, v) in support.positions.iter().zip(values.iter_mut()) {
             *v = x[(p, 0)];
         }
@@ -782,21 +880,59 @@ pub struct SolveSupport {
     reached_entries: usize,
 }
 
+/// The supernodes a solve on `support`'s positions reaches, from the supernodal structure
+/// (`begin`, `end` of each supernode, `ptr` into `rows`, the rows below each supernode).
+fn reach<I: Index>(
+    support: &mut SolveSupport,
+    n: usize,
+    (begin, end): (&[I], &[I]),
+    ptr: &[I],
+    rows: &[I],
+) {
+    let n_supernodes = begin.len();
+    let mut owner = vec![0usize; n];
+    for k in 0..n_supernodes {
+        owner[begin[k].zx()..end[k].zx()].fill(k);
+    }
+    let below = |k: usize| ptr[k + 1].zx() - ptr[k].zx();
+    // The supernodal elimination tree: a supernode's parent owns its first row below.
+    let parent = |k: usize| (below(k) > 0).then(|| owner[rows[ptr[k].zx()].zx()]);
+    let mut reached = vec![false; n_supernodes];
+    for &p in &support.positions {
+        let mut k = Some(owner[p]);
+        while let Some(node) = k {
+            if reached[node] {
+                break;
+            }
+            reached[node] = true;
+            k = parent(node);
+        }
+    }
+    support.supernodes = (0..n_supernodes).filter(|&k| reached[k]).collect();
+    support.longest_pattern = support
+        .supernodes
+        .iter()
+        .map(|&k| below(k))
+        .max()
+        .unwrap_or(0);
+    support.reached_entries = support
+        .supernodes
+        .iter()
+        .map(|&k| {
+            let width = end[k].zx() - begin[k].zx();
+            width * (width + below(k))
+        })
+        .sum();
+}
+
 impl SolveSupport {
     fn new(analysis: &Arc<CholeskyAnalysis>, unknowns: &[usize]) -> Result<Self, SolveError> {
         let n = analysis.n;
         // Position `new` of the factor holds the original unknown `forward[new]`.
-        let (_, position) = analysis
-            .symbolic
-            .perm()
-            .expect("every analysis has an explicit permutation")
-            .arrays();
         let positions = unknowns
             .iter()
             .map(|&i| {
-                position
-                    .get(i)
-                    .copied()
+                with_symbolic!(&analysis.symbolic, s => inverse(s).get(i).map(|p| p.zx()))
                     .ok_or_else(|| SolveError::Mismatch {
                         reason: format!("unknown {i} of a support for a system of {n}"),
                     })
@@ -810,43 +946,17 @@ impl SolveSupport {
             longest_pattern: 0,
             reached_entries: analysis.factor_entries(),
         };
-        let SymbolicCholeskyRaw::Supernodal(s) = analysis.symbolic.raw() else {
-            return Ok(support);
-        };
-        let (begin, end) = (s.supernode_begin(), s.supernode_end());
-        let mut owner = vec![0usize; n];
-        for k in 0..s.n_supernodes() {
-            owner[begin[k]..end[k]].fill(k);
-        }
-        let (ptr, rows) = (s.col_ptr_for_row_idx(), s.row_idx());
-        // The supernodal elimination tree: a supernode's parent owns its first row below.
-        let parent = |k: usize| (ptr[k] < ptr[k + 1]).then(|| owner[rows[ptr[k]]]);
-        let mut reached = vec![false; s.n_supernodes()];
-        for &p in &support.positions {
-            let mut k = Some(owner[p]);
-            while let Some(node) = k {
-                if reached[node] {
-                    break;
-                }
-                reached[node] = true;
-                k = parent(node);
+        with_symbolic!(&analysis.symbolic, symbolic => {
+            if let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() {
+                reach(
+                    &mut support,
+                    n,
+                    (s.supernode_begin(), s.supernode_end()),
+                    s.col_ptr_for_row_idx(),
+                    s.row_idx(),
+                );
             }
-        }
-        support.supernodes = (0..s.n_supernodes()).filter(|&k| reached[k]).collect();
-        support.longest_pattern = support
-            .supernodes
-            .iter()
-            .map(|&k| ptr[k + 1] - ptr[k])
-            .max()
-            .unwrap_or(0);
-        support.reached_entries = support
-            .supernodes
-            .iter()
-            .map(|&k| {
-                let width = end[k] - begin[k];
-                width * (width + ptr[k + 1] - ptr[k])
-            })
-            .sum();
+        });
         Ok(support)
     }
 
@@ -867,13 +977,13 @@ impl SolveSupport {
 }
 
 /// Multiply-adds of the numeric factorisation: `sum_j c_j^2` over the stored columns.
-fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => s
             .col_ptr()
             .windows(2)
             .map(|w| {
-                let c = (w[1] - w[0]) as f64;
+                let c = (w[1].zx() - w[0].zx()) as f64;
                 c * c
             })
             .sum(),
@@ -883,8 +993,8 @@ fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
             let ptr = s.col_ptr_for_row_idx();
             (0..s.n_supernodes())
                 .map(|k| {
-                    let width = end[k] - begin[k];
-                    let below = (ptr[k + 1] - ptr[k]) as f64;
+                    let width = end[k].zx() - begin[k].zx();
+                    let below = (ptr[k + 1].zx() - ptr[k].zx()) as f64;
                     (0..width)
                         .map(|c| {
                             let entries = (width - c) as f64 + below;
@@ -900,21 +1010,18 @@ fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
 /// The matrix permuted by the analysis' order, only the triangle faer's numeric factorisation
 /// reads (the lower for the supernodal, the upper for the simplicial factorisation): half the
 /// memory of a full-storage copy.
-fn permuted_triangle(
-    analysis: &CholeskyAnalysis,
+fn permuted_triangle<I: Index>(
+    symbolic: &SymbolicCholesky<I>,
     matrix: SparseColMatRef<'_, usize, f64>,
-) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
-    let n = analysis.n;
-    let order = analysis.elimination_order();
-    let mut position = vec![0usize; n];
-    for (new, &old) in order.iter().enumerate() {
-        position[old] = new;
-    }
-    let lower = analysis.is_supernodal();
+) -> (Vec<I>, Vec<I>, Vec<f64>) {
+    let n = symbolic.nrows();
+    // Position of each original unknown in the elimination order.
+    let position = inverse(symbolic);
+    let lower = matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
     // Column of the permuted entry (i, j), i >= j, in the triangle kept: (max, min) for the
     // lower triangle, the other way round for the upper one.
     let place = |i: usize, j: usize| -> (usize, usize) {
-        let (pi, pj) = (position[i], position[j]);
+        let (pi, pj) = (position[i].zx(), position[j].zx());
         let (row, col) = (pi.max(pj), pi.min(pj));
         if lower {
             (row, col)
@@ -922,27 +1029,30 @@ fn permuted_triangle(
             (col, row)
         }
     };
-    let mut col_ptr = vec![0usize; n + 1];
+    // Counted in `usize`, stored in `I` (the analysis checked that the entries fit it).
+    let mut counts = vec![0usize; n + 1];
     for j in 0..n {
         for &i in matrix.symbolic().row_idx_of_col_raw(j) {
             if i >= j {
-                col_ptr[place(i, j).1 + 1] += 1;
+                counts[place(i, j).1 + 1] += 1;
             }
         }
     }
     for k in 0..n {
-        col_ptr[k + 1] += col_ptr[k];
+        counts[k + 1] += counts[k];
     }
-    let mut next = col_ptr.clone();
-    let entries = col_ptr[n];
-    let mut row_idx = vec![0usize; entries];
+    let col_ptr: Vec<I> = counts.iter().map(|&c| I::truncate(c)).collect();
+    let entries = counts[n];
+    // `counts` becomes the next free slot of each column.
+    let mut next = counts;
+    let mut row_idx = vec![I::truncate(0); entries];
     let mut values = vec![0.0f64; entries];
     for j in 0..n {
         let rows = matrix.symbolic().row_idx_of_col_raw(j);
         for (&i, &v) in rows.iter().zip(matrix.val_of_col(j)) {
             if i >= j {
                 let (row, col) = place(i, j);
-                row_idx[next[col]] = row;
+                row_idx[next[col]] = I::truncate(row);
                 values[next[col]] = v;
                 next[col] += 1;
             }
@@ -953,8 +1063,8 @@ fn permuted_triangle(
 
 /// The smallest relative pivot `d_k / A_kk` of the factor `factor` of `matrix` and the
 /// elimination step where it occurs.
-fn smallest_relative_pivot(
-    symbolic: &SymbolicCholesky<usize>,
+fn smallest_relative_pivot<I: Index>(
+    symbolic: &SymbolicCholesky<I>,
     factor: &[f64],
     matrix: SparseColMatRef<'_, usize, f64>,
 ) -> (f64, usize) {
@@ -969,7 +1079,7 @@ fn smallest_relative_pivot(
             .sum::<f64>()
     };
     let original = |new: usize| match symbolic.perm() {
-        Some(perm) => perm.arrays().0[new],
+        Some(perm) => perm.arrays().0[new].zx(),
         None => new,
     };
     let ratio = |new: usize, l_kk: f64| (l_kk * l_kk / diagonal(original(new)), new);
@@ -979,7 +1089,7 @@ fn smallest_relative_pivot(
         SymbolicCholeskyRaw::Simplicial(s) => {
             let col_ptr = s.col_ptr();
             (0..s.nrows())
-                .map(|k| ratio(k, factor[col_ptr[k]]))
+                .map(|k| ratio(k, factor[col_ptr[k].zx()]))
                 .fold(start, smaller)
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
@@ -1009,6 +1119,86 @@ fn backend(reason: impl std::fmt::Display) -> SolveError {
     SolveError::Backend {
         reason: reason.to_string(),
     }
+}
+
+/// Factor values (32 MiB) from which a factorisation first returns the freed memory to the
+/// system ([`crate::release_free_memory`]).
+const RELEASE_BEFORE_FACTOR_VALUES: usize = 1 << 22;
+
+/// Factorises `matrix` on `symbolic` into `values` (reallocated to the factor's size), with
+/// the permuted triangle faer reads made and dropped around the factorisation.
+fn numeric_factor<I: Index>(
+    symbolic: &SymbolicCholesky<I>,
+    matrix: SparseColMatRef<'_, usize, f64>,
+    par: Par,
+    values: &mut Vec<f64>,
+) -> Result<(), SolveError> {
+    // Before a large factor (above glibc's largest mapping threshold), the memory freed since
+    // the last phase (the assembly's work) goes back to the system rather than staying
+    // resident beside the factor.
+    if symbolic.len_val() >= RELEASE_BEFORE_FACTOR_VALUES {
+        crate::release_free_memory();
+    }
+    let (col_ptr, row_idx, permuted) = permuted_triangle(symbolic, matrix);
+    let n = symbolic.nrows();
+    let a = SparseColMatRef::new(
+        SymbolicSparseColMatRef::new_unsorted_checked(n, n, &col_ptr, None, &row_idx),
+        &permuted,
+    );
+    // The factor is the largest allocation of a solve: ask for it first, so that a
+    // problem too large for the machine is an error naming the size, not an abort.
+    let needed = symbolic.len_val();
+    values.clear();
+    values
+        .try_reserve_exact(needed)
+        .map_err(|_| SolveError::Backend {
+            reason: format!(
+                "cannot allocate the Cholesky factor: {needed} values ({:.1} GiB)",
+                needed as f64 * 8.0 / f64::from(1u32 << 30)
+            ),
+        })?;
+    values.resize(needed, 0.0);
+    let non_positive = |LltError::NonPositivePivot { index }| SolveError::NotPositiveDefinite {
+        step: index.saturating_sub(1),
+    };
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let mut scratch = MemBuffer::try_new(
+                simplicial::factorize_simplicial_numeric_llt_scratch::<I, f64>(n),
+            )
+            .map_err(|_| backend("out of memory for the factorisation workspace"))?;
+            simplicial::factorize_simplicial_numeric_llt(
+                values,
+                a,
+                LltRegularization::default(),
+                s,
+                MemStack::new(&mut scratch),
+            )
+            .map_err(non_positive)?;
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let mut scratch = MemBuffer::try_new(
+                supernodal::factorize_supernodal_numeric_llt_scratch::<I, f64>(
+                    s,
+                    par,
+                    Default::default(),
+                ),
+            )
+            .map_err(|_| backend("out of memory for the factorisation workspace"))?;
+            supernodal::factorize_supernodal_numeric_llt(
+                values,
+                a,
+                LltRegularization::default(),
+                s,
+                par,
+                MemStack::new(&mut scratch),
+                Default::default(),
+            )
+            .map_err(non_positive)?;
+        }
+    }
+    drop((col_ptr, row_idx, permuted));
+    Ok(())
 }
 
 impl LinearSolver for CholeskySolver {
@@ -1043,71 +1233,14 @@ impl LinearSolver for CholeskySolver {
             reason: "factorise before analyse",
         })?;
         analysis.check_pattern(matrix.symbolic())?;
-        let symbolic = &analysis.symbolic;
         let par = self
             .settings
             .factorisation_parallelism
-            .for_factor(symbolic.len_val());
-        let (col_ptr, row_idx, permuted) = permuted_triangle(analysis, matrix);
-        let n = analysis.n;
-        let a = SparseColMatRef::new(
-            SymbolicSparseColMatRef::new_unsorted_checked(n, n, &col_ptr, None, &row_idx),
-            &permuted,
-        );
-        // The factor is the largest allocation of a solve: ask for it first, so that a
-        // problem too large for the machine is an error naming the size, not an abort.
-        let needed = symbolic.len_val();
-        values.clear();
-        values
-            .try_reserve_exact(needed)
-            .map_err(|_| SolveError::Backend {
-                reason: format!(
-                    "cannot allocate the Cholesky factor: {needed} values ({:.1} GiB)",
-                    needed as f64 * 8.0 / f64::from(1u32 << 30)
-                ),
-            })?;
-        values.resize(needed, 0.0);
-        let non_positive = |LltError::NonPositivePivot { index }| SolveError::NotPositiveDefinite {
-            step: index.saturating_sub(1),
-        };
-        match symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => {
-                let mut scratch =
-                    MemBuffer::try_new(simplicial::factorize_simplicial_numeric_llt_scratch::<
-                        usize,
-                        f64,
-                    >(n))
-                    .map_err(|_| backend("out of memory for the factorisation workspace"))?;
-                simplicial::factorize_simplicial_numeric_llt(
-                    &mut values,
-                    a,
-                    LltRegularization::default(),
-                    s,
-                    MemStack::new(&mut scratch),
-                )
-                .map_err(non_positive)?;
-            }
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let mut scratch =
-                    MemBuffer::try_new(supernodal::factorize_supernodal_numeric_llt_scratch::<
-                        usize,
-                        f64,
-                    >(s, par, Default::default()))
-                    .map_err(|_| backend("out of memory for the factorisation workspace"))?;
-                supernodal::factorize_supernodal_numeric_llt(
-                    &mut values,
-                    a,
-                    LltRegularization::default(),
-                    s,
-                    par,
-                    MemStack::new(&mut scratch),
-                    Default::default(),
-                )
-                .map_err(non_positive)?;
-            }
-        }
-        drop((col_ptr, row_idx, permuted));
-        let (smallest, step) = smallest_relative_pivot(symbolic, &values, matrix);
+            .for_factor(analysis.factor_entries());
+        let (smallest, step) = with_symbolic!(&analysis.symbolic, symbolic => {
+            numeric_factor(symbolic, matrix, par, &mut values)?;
+            smallest_relative_pivot(symbolic, &values, matrix)
+        });
         // NaN (a zero diagonal entry) counts as singular too.
         if smallest.is_nan() || smallest <= self.settings.singular_pivot_tolerance {
             return Err(SolveError::NotPositiveDefinite { step });
@@ -1137,18 +1270,17 @@ impl LinearSolver for CholeskySolver {
             });
         }
         let par = self.settings.solve_parallelism;
-        let mut scratch = MemBuffer::try_new(
-            analysis
-                .symbolic
-                .solve_in_place_scratch::<f64>(rhs.ncols(), par),
-        )
-        .map_err(|_| backend("out of memory for the solve workspace"))?;
-        LltRef::new(&analysis.symbolic, &factor.values).solve_in_place_with_conj(
-            Conj::No,
-            rhs,
-            par,
-            MemStack::new(&mut scratch),
-        );
+        with_symbolic!(&analysis.symbolic, symbolic => {
+            let mut scratch =
+                MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), par))
+                    .map_err(|_| backend("out of memory for the solve workspace"))?;
+            LltRef::new(symbolic, &factor.values).solve_in_place_with_conj(
+                Conj::No,
+                rhs,
+                par,
+                MemStack::new(&mut scratch),
+            );
+        });
         Ok(())
     }
 
@@ -1161,12 +1293,12 @@ impl LinearSolver for CholeskySolver {
         let analysis = &factor.analysis;
         let first = analysis.n - analysis.n_trailing;
         let mut block = Mat::<f64>::zeros(analysis.n_trailing, analysis.n_trailing);
-        match analysis.symbolic.raw() {
+        with_symbolic!(&analysis.symbolic, symbolic => match symbolic.raw() {
             SymbolicCholeskyRaw::Simplicial(s) => {
                 let (col_ptr, row_idx) = (s.col_ptr(), s.row_idx());
                 for j in first..analysis.n {
-                    for k in col_ptr[j]..col_ptr[j + 1] {
-                        block[(row_idx[k] - first, j - first)] = factor.values[k];
+                    for k in col_ptr[j].zx()..col_ptr[j + 1].zx() {
+                        block[(row_idx[k].zx() - first, j - first)] = factor.values[k];
                     }
                 }
             }
@@ -1186,12 +1318,12 @@ impl LinearSolver for CholeskySolver {
                             block[(start + i - first, j - first)] = values[(i, c)];
                         }
                         for (r, &row) in pattern.iter().enumerate() {
-                            block[(row - first, j - first)] = values[(width + r, c)];
+                            block[(row.zx() - first, j - first)] = values[(width + r, c)];
                         }
                     }
                 }
             }
-        }
+        });
         Ok(block)
     }
 
@@ -1252,6 +1384,83 @@ mod tests {
             }
         }
         y
+    }
+
+    /// The analysis with 32-bit indices (the default) and with 64-bit ones (problems too
+    /// large for 32-bit ones) factorise to the same values bit for bit and solve alike: every
+    /// path that reads the structure (full solve, solve from the trailing block, trailing
+    /// factor, solve on a support, the pivot), on a simplicial (ring) and a supernodal (grid)
+    /// factor.
+    #[test]
+    fn narrow_and_wide_indices_factorise_alike() {
+        let side = 60;
+        let cases = [
+            (ring(40), vec![17, 3, 31, 8]),
+            (grid(side), (0..side).rev().collect::<Vec<_>>()),
+        ];
+        let mut supernodal_seen = false;
+        for ((a, trailing), ordering) in cases
+            .iter()
+            .flat_map(|case| [(case, Ordering::Amd), (case, Ordering::Natural)])
+        {
+            let n = a.nrows();
+            let settings = CholeskySettings::default();
+            let (order, ordering) = elimination_order(a.symbolic(), trailing, ordering).unwrap();
+            let solvers: Vec<CholeskySolver> = [true, false]
+                .into_iter()
+                .map(|narrow| {
+                    let analysis = CholeskyAnalysis::with_indices(
+                        a.symbolic(),
+                        &order,
+                        trailing.len(),
+                        ordering,
+                        narrow,
+                    )
+                    .unwrap();
+                    assert_eq!(analysis.has_narrow_indices(), narrow);
+                    let mut solver = CholeskySolver::from_analysis(settings, Arc::new(analysis));
+                    solver.factorise(a.as_ref()).unwrap();
+                    solver
+                })
+                .collect();
+            let (narrow, wide) = (&solvers[0], &solvers[1]);
+            supernodal_seen |= narrow.is_supernodal() == Some(true);
+            let factor = |s: &CholeskySolver| s.shared_factor().unwrap().values.clone();
+            assert_eq!(factor(narrow), factor(wide));
+            assert_eq!(
+                narrow.analysis.as_ref().unwrap().elimination_order(),
+                wide.analysis.as_ref().unwrap().elimination_order()
+            );
+            assert_eq!(narrow.factor_len(), wide.factor_len());
+            assert_eq!(
+                narrow.smallest_relative_pivot(),
+                wide.smallest_relative_pivot()
+            );
+            let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+            assert_eq!(narrow.solve(&b).unwrap(), wide.solve(&b).unwrap());
+            let (ln, lw) = (
+                narrow.trailing_factor().unwrap(),
+                wide.trailing_factor().unwrap(),
+            );
+            assert_eq!(ln, lw);
+            let y: Vec<f64> = (0..trailing.len()).map(|k| 1.0 + k as f64).collect();
+            let (mut xn, mut xw) = (vec![0.0; n], vec![0.0; n]);
+            narrow.solve_from_trailing(&y, &mut xn).unwrap();
+            wide.solve_from_trailing(&y, &mut xw).unwrap();
+            assert_eq!(xn, xw);
+            let unknowns = [trailing[0], trailing[1]];
+            let (sn, sw) = (
+                narrow.support(&unknowns).unwrap(),
+                wide.support(&unknowns).unwrap(),
+            );
+            assert_eq!(sn.supernodes, sw.supernodes);
+            assert_eq!(sn.reached_fraction(), sw.reached_fraction());
+            let (mut vn, mut vw) = (vec![1.0, -2.0], vec![1.0, -2.0]);
+            narrow.solve_on_support(&sn, &mut vn).unwrap();
+            wide.solve_on_support(&sw, &mut vw).unwrap();
+            assert_eq!(vn, vw);
+        }
+        assert!(supernodal_seen, "no case was supernodal");
     }
 
     /// The trailing block of the factor is the Cholesky factor of the Schur complement, with
