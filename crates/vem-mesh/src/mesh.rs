@@ -444,7 +444,9 @@ fn derive_edges(
         start[v + 1] += start[v];
     }
     let mut filled = vec![0usize; n_vertices];
-    let mut slots = vec![0usize; indices.len()];
+    // (larger end vertex, edge) of the edges filed so far: the search for a loop side's edge
+    // reads this table only, not the edges themselves (which lie in the mesh's order).
+    let mut slots = vec![(0usize, 0usize); indices.len()];
     // E = (sides + boundary sides) / 2: room for a boundary of up to an eighth of the sides
     // (any mesh but a strip), so that the edges, which live as long as the mesh, are not
     // reallocated to twice their size near the end.
@@ -455,10 +457,10 @@ fn derive_edges(
             let (a, b) = side(p, k);
             let (low, high) = (a.min(b), a.max(b));
             let filed = &slots[start[low]..start[low] + filled[low]];
-            let existing = filed.iter().copied().find(|&e| {
-                let [c, d] = edges[e].vertices;
-                c.max(d) == high
-            });
+            let existing = filed
+                .iter()
+                .find(|&&(other, _)| other == high)
+                .map(|&(_, e)| e);
             let e = match existing {
                 None => {
                     edges.push(Edge {
@@ -467,7 +469,7 @@ fn derive_edges(
                         right: None,
                     });
                     let e = edges.len() - 1;
-                    slots[start[low] + filled[low]] = e;
+                    slots[start[low] + filled[low]] = (high, e);
                     filled[low] += 1;
                     e
                 }
