@@ -543,7 +543,9 @@ fn check_duplicate_vertices(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError
     for &v in mesh.polygon_vertex_indices() {
         used[v] = true;
     }
-    if !(tolerance > 0.0) || u32::try_from(vertices.len()).is_err() {
+    // A tolerance of 0 (or NaN) has no cells of positive side.
+    let positive = tolerance > 0.0;
+    if !positive || u32::try_from(vertices.len()).is_err() {
         return check_duplicate_vertices_fine(mesh, &used, tolerance);
     }
     let fine = |v: usize| duplicate_cell(vertices[v].x, vertices[v].y, tolerance);
