@@ -532,7 +532,7 @@ const COARSE_SHIFT: u32 = 16;
 /// They are found through coarse cells, each a block of 2^s x 2^s fine cells (s at least
 /// [`COARSE_SHIFT`]), packed into one `u64` key: the vertices sorted by that key, a vertex's
 /// partners lie in its own run of the sorted list (no search) and, when its tolerance box
-/// reaches a neighbouring coarse cell (a chance of about 2^-15 per axis), in that cell's run,
+/// reaches a neighbouring coarse cell (a chance of about 2^-17 per axis), in that cell's run,
 /// found by binary search. A coarse cell holds one vertex unless vertices are closer than
 /// 2^16 tolerances (10^-5 times the mean polygon diameter); when the runs hold too many pairs
 /// (clustered vertices, a tolerance of 0, coordinates whose cells saturate), the fine check
