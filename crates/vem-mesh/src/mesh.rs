@@ -422,6 +422,56 @@ fn derive_edges(
     indices: &[usize],
 ) -> Result<(Vec<Edge>, Vec<usize>), MeshError> {
     let n_vertices = indices.iter().max().map_or(0, |&v| v + 1);
+    // Slots of two u32 (half the memory) when every vertex and edge index fits (there are no
+    // more edges than loop sides).
+    if u32::try_from(n_vertices.max(indices.len())).is_ok() {
+        derive_edges_with::<(u32, u32)>(offsets, indices, n_vertices)
+    } else {
+        derive_edges_with::<(usize, usize)>(offsets, indices, n_vertices)
+    }
+}
+
+/// A slot of [`derive_edges`]: an edge and its larger end vertex.
+trait EdgeSlot: Copy {
+    const EMPTY: Self;
+    fn new(high: usize, edge: usize) -> Self;
+    fn high(self) -> usize;
+    fn edge(self) -> usize;
+}
+
+impl EdgeSlot for (u32, u32) {
+    const EMPTY: Self = (0, 0);
+    fn new(high: usize, edge: usize) -> Self {
+        (high as u32, edge as u32)
+    }
+    fn high(self) -> usize {
+        self.0 as usize
+    }
+    fn edge(self) -> usize {
+        self.1 as usize
+    }
+}
+
+impl EdgeSlot for (usize, usize) {
+    const EMPTY: Self = (0, 0);
+    fn new(high: usize, edge: usize) -> Self {
+        (high, edge)
+    }
+    fn high(self) -> usize {
+        self.0
+    }
+    fn edge(self) -> usize {
+        self.1
+    }
+}
+
+/// [`derive_edges`] with slots of type `S` (which must hold every vertex and edge index),
+/// for vertices below `n_vertices`.
+fn derive_edges_with<S: EdgeSlot>(
+    offsets: &[usize],
+    indices: &[usize],
+    n_vertices: usize,
+) -> Result<(Vec<Edge>, Vec<usize>), MeshError> {
     let side = |p: usize, k: usize| -> (usize, usize) {
         let (start, end) = (offsets[p], offsets[p + 1]);
         let a = indices[start + k];
@@ -444,7 +494,9 @@ fn derive_edges(
         start[v + 1] += start[v];
     }
     let mut filled = vec![0usize; n_vertices];
-    let mut slots = vec![0usize; indices.len()];
+    // (larger end vertex, edge) of the edges filed so far: the search for a loop side's edge
+    // reads this table only, not the edges themselves (which lie in the mesh's order).
+    let mut slots = vec![S::EMPTY; indices.len()];
     // E = (sides + boundary sides) / 2: room for a boundary of up to an eighth of the sides
     // (any mesh but a strip), so that the edges, which live as long as the mesh, are not
     // reallocated to twice their size near the end.
@@ -455,10 +507,10 @@ fn derive_edges(
             let (a, b) = side(p, k);
             let (low, high) = (a.min(b), a.max(b));
             let filed = &slots[start[low]..start[low] + filled[low]];
-            let existing = filed.iter().copied().find(|&e| {
-                let [c, d] = edges[e].vertices;
-                c.max(d) == high
-            });
+            let existing = filed
+                .iter()
+                .find(|slot| slot.high() == high)
+                .map(|slot| slot.edge());
             let e = match existing {
                 None => {
                     edges.push(Edge {
@@ -467,7 +519,7 @@ fn derive_edges(
                         right: None,
                     });
                     let e = edges.len() - 1;
-                    slots[start[low] + filled[low]] = e;
+                    slots[start[low] + filled[low]] = S::new(high, e);
                     filled[low] += 1;
                     e
                 }

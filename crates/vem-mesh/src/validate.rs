@@ -94,11 +94,12 @@
 //! # Cost
 //!
 //! Everything is close to linear in the size of the mesh: duplicates by sorting the vertices
-//! by the cell of side 4 x tolerance that holds them and searching the neighbouring cells;
-//! boundary edge pairs (step 4) through grids of cells, one per class of edge length, each
-//! edge filed in the few cells it passes through and the edges visited in the order of a
-//! space-filling curve, so that graded meshes cost no more than uniform ones and the work
-//! stays in cache; corners by one angle per edge, sorted around each vertex; the covering by
+//! (a radix sort of one `u64` key) by the coarse cell, a block of 2^16 x 2^16 cells of side
+//! 4 x tolerance, that holds them and looking in the neighbouring cells only when the
+//! tolerance box reaches them; boundary edge pairs (step 4) through grids of cells, one per
+//! class of edge length, each edge filed in the few cells it passes through and the edges
+//! visited in the order of a space-filling curve, so that graded meshes cost no more than
+//! uniform ones and the work stays in cache; corners by one angle per edge, sorted around each vertex; the covering by
 //! chaining the boundary edges and one count per loop. Only polygons that are not convex are
 //! checked pair by pair (through a grid when they have more than 64 edges). On a Gmsh mesh of
 //! 147 000 triangles, steps 4 and 6 take 10 million instructions, 3 % of a build, where the
@@ -188,14 +189,23 @@ pub(crate) fn check_storage(
                 vertex_count: vertices.len(),
             });
         }
-        sorted.clear();
-        sorted.extend_from_slice(loop_);
-        sorted.sort_unstable();
-        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-            return Err(MeshError::RepeatedVertex {
-                polygon: p,
-                vertex: w[0],
-            });
+        // The smallest vertex listed twice: pair by pair in short loops, else by sorting.
+        let repeated = if loop_.len() <= 8 {
+            let mut smallest: Option<usize> = None;
+            for (i, &u) in loop_.iter().enumerate() {
+                if loop_[i + 1..].contains(&u) && smallest.is_none_or(|s| u < s) {
+                    smallest = Some(u);
+                }
+            }
+            smallest
+        } else {
+            sorted.clear();
+            sorted.extend_from_slice(loop_);
+            sorted.sort_unstable();
+            sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+        };
+        if let Some(vertex) = repeated {
+            return Err(MeshError::RepeatedVertex { polygon: p, vertex });
         }
     }
     Ok(())
@@ -326,14 +336,23 @@ pub(crate) fn validate_changed(mesh: &Mesh, changed: &[usize]) -> Result<(), Mes
                 count: loop_.len(),
             });
         }
-        sorted.clear();
-        sorted.extend_from_slice(loop_);
-        sorted.sort_unstable();
-        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-            return Err(MeshError::RepeatedVertex {
-                polygon: p,
-                vertex: w[0],
-            });
+        // The smallest vertex listed twice: pair by pair in short loops, else by sorting.
+        let repeated = if loop_.len() <= 8 {
+            let mut smallest: Option<usize> = None;
+            for (i, &u) in loop_.iter().enumerate() {
+                if loop_[i + 1..].contains(&u) && smallest.is_none_or(|s| u < s) {
+                    smallest = Some(u);
+                }
+            }
+            smallest
+        } else {
+            sorted.clear();
+            sorted.extend_from_slice(loop_);
+            sorted.sort_unstable();
+            sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+        };
+        if let Some(vertex) = repeated {
+            return Err(MeshError::RepeatedVertex { polygon: p, vertex });
         }
     }
     check_changed_duplicates(mesh, changed, tolerance)?;
@@ -475,26 +494,209 @@ pub fn coincidence_tolerance(mesh: &Mesh) -> f64 {
     COINCIDENCE_RATIO * total / mesh.n_polygons() as f64
 }
 
+/// The cell (of side 4 * `tolerance`) of the duplicate check that holds (x, y): `as`
+/// saturates, so far-away points share border cells, which costs time, not truth. For a
+/// tolerance of 0, the coordinates' bits.
+fn duplicate_cell(x: f64, y: f64, tolerance: f64) -> (i64, i64) {
+    let cell = 4.0 * tolerance;
+    if cell > 0.0 {
+        (floor_to_i64(x / cell), floor_to_i64(y / cell))
+    } else {
+        (x.to_bits() as i64, y.to_bits() as i64)
+    }
+}
+
+/// The duplicate pair `found` (the smallest, with its distance) as the result of step 2.
+fn duplicate_error(found: Option<(usize, usize, f64)>, tolerance: f64) -> Result<(), MeshError> {
+    match found {
+        Some((a, b, distance)) => Err(MeshError::DuplicateVertices {
+            a,
+            b,
+            distance,
+            tolerance,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Shift from the cells of [`duplicate_cell`] to the coarse cells of
+/// [`check_duplicate_vertices`]: 2^16 fine cells a side, or more when the fine cells of the
+/// mesh span more than 2^31 coarse ones along x or y.
+const COARSE_SHIFT: u32 = 16;
+
 /// Step 2: no two distinct vertices used by polygons closer than `tolerance`.
+///
+/// The pairs tested are those of [`check_duplicate_vertices_fine`]: a vertex a and a vertex
+/// b whose fine cell (of side 4 * tolerance, [`duplicate_cell`]) is among those a's
+/// tolerance box touches, and the smallest pair (a < b) within the tolerance is reported.
+/// They are found through coarse cells, each a block of 2^s x 2^s fine cells (s at least
+/// [`COARSE_SHIFT`]), packed into one `u64` key: the vertices sorted by that key, a vertex's
+/// partners lie in its own run of the sorted list (no search) and, when its tolerance box
+/// reaches a neighbouring coarse cell (a chance of about 2^-17 per axis), in that cell's run,
+/// found by binary search. A coarse cell holds one vertex unless vertices are closer than
+/// 2^16 tolerances (10^-5 times the mean polygon diameter); when the runs hold too many pairs
+/// (clustered vertices, a tolerance of 0, coordinates whose cells saturate), the fine check
+/// decides.
+fn check_duplicate_vertices(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
+    let vertices = mesh.vertices();
+    let mut used = vec![false; vertices.len()];
+    for &v in mesh.polygon_vertex_indices() {
+        used[v] = true;
+    }
+    // A tolerance of 0 (or NaN) has no cells of positive side.
+    let positive = tolerance > 0.0;
+    if !positive || u32::try_from(vertices.len()).is_err() {
+        return check_duplicate_vertices_fine(mesh, &used, tolerance);
+    }
+    let fine = |v: usize| duplicate_cell(vertices[v].x, vertices[v].y, tolerance);
+    let (mut lo, mut hi) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN));
+    for v in (0..vertices.len()).filter(|&v| used[v]) {
+        let (cx, cy) = fine(v);
+        lo = (lo.0.min(cx), lo.1.min(cy));
+        hi = (hi.0.max(cx), hi.1.max(cy));
+    }
+    if lo.0 > hi.0 {
+        return Ok(()); // no vertex used (a mesh always uses some)
+    }
+    // The shift s that makes the coarse cells of the used vertices span less than 2^31 along
+    // each axis.
+    let bits = |span: u64| 64 - span.leading_zeros();
+    let span_of = |lo: i64, hi: i64| hi.wrapping_sub(lo) as u64;
+    let span = bits(span_of(lo.0, hi.0).max(span_of(lo.1, hi.1)));
+    let shift = COARSE_SHIFT.max(span.saturating_sub(31));
+    let (base_x, base_y) = (lo.0 >> shift, lo.1 >> shift);
+    let (top_x, top_y) = (hi.0 >> shift, hi.1 >> shift);
+    // Coarse cell (clamped to those of the used vertices) -> key, in the order of (x, y).
+    let coarse = |c: (i64, i64)| -> (i64, i64) {
+        (
+            (c.0 >> shift).clamp(base_x, top_x),
+            (c.1 >> shift).clamp(base_y, top_y),
+        )
+    };
+    let pack = |c: (i64, i64)| -> u64 {
+        ((c.0.wrapping_sub(base_x) as u64) << 32) | (c.1.wrapping_sub(base_y) as u64)
+    };
+    let mut sorted: Vec<(u64, u32)> = (0..vertices.len())
+        .filter(|&v| used[v])
+        .map(|v| (pack(coarse(fine(v))), v as u32))
+        .collect();
+    // By key (y in bits 0..32, x above), ties in the order of the vertices.
+    radix_sort(
+        &mut sorted,
+        &[
+            (0, bits(span_of(base_y, top_y))),
+            (32, bits(span_of(base_x, top_x))),
+        ],
+    );
+    // Pairs within runs: too many, and the fine check decides.
+    let (mut pairs, mut run) = (0usize, 0usize);
+    for (i, &(key, _)) in sorted.iter().enumerate() {
+        run = if i > 0 && sorted[i - 1].0 == key {
+            run + 1
+        } else {
+            1
+        };
+        pairs += 2 * run - 1; // run^2 once the run ends
+    }
+    if pairs > 4 * sorted.len() + 1024 {
+        return check_duplicate_vertices_fine(mesh, &used, tolerance);
+    }
+    let mut found: Option<(usize, usize, f64)> = None;
+    let mut run_start = 0;
+    for i in 0..sorted.len() {
+        let (key, a) = (sorted[i].0, sorted[i].1 as usize);
+        if key != sorted[run_start].0 {
+            run_start = i;
+        }
+        let pa = vertices[a];
+        let (near_lo, near_hi) = (
+            duplicate_cell(pa.x - tolerance, pa.y - tolerance, tolerance),
+            duplicate_cell(pa.x + tolerance, pa.y + tolerance, tolerance),
+        );
+        // b is a partner when its fine cell is among those of a's tolerance box.
+        let mut visit = |b: usize| {
+            if a >= b {
+                return;
+            }
+            let (cx, cy) = fine(b);
+            if (near_lo.0..=near_hi.0).contains(&cx) && (near_lo.1..=near_hi.1).contains(&cy) {
+                let distance = (vertices[b] - pa).norm();
+                if distance <= tolerance && found.is_none_or(|(fa, fb, _)| (a, b) < (fa, fb)) {
+                    found = Some((a, b, distance));
+                }
+            }
+        };
+        let (clo, chi) = (coarse(near_lo), coarse(near_hi));
+        for cx in clo.0..=chi.0 {
+            for cy in clo.1..=chi.1 {
+                let k = pack((cx, cy));
+                let start = if k == key {
+                    run_start
+                } else {
+                    sorted.partition_point(|&(s, _)| s < k)
+                };
+                for &(s, b) in &sorted[start..] {
+                    if s != k {
+                        break;
+                    }
+                    visit(b as usize);
+                }
+            }
+        }
+    }
+    duplicate_error(found, tolerance)
+}
+
+/// Sorts `items` by their keys, stably (a least-significant-digit radix sort), given the
+/// keys' `fields` (first bit, number of bits), least significant first: every bit of a key
+/// that may be set lies in one of them.
+fn radix_sort(items: &mut Vec<(u64, u32)>, fields: &[(u32, u32)]) {
+    const DIGIT: u32 = 12;
+    let mut other = vec![(0u64, 0u32); items.len()];
+    let mut count = Vec::new();
+    for &(first, bits) in fields {
+        if bits == 0 {
+            continue;
+        }
+        let passes = bits.div_ceil(DIGIT);
+        let width = bits.div_ceil(passes);
+        let mask = (1u64 << width) - 1;
+        for pass in 0..passes {
+            let shift = first + pass * width;
+            count.clear();
+            count.resize(1usize << width, 0usize);
+            for &(key, _) in items.iter() {
+                count[((key >> shift) & mask) as usize] += 1;
+            }
+            let mut total = 0;
+            for c in count.iter_mut() {
+                let here = *c;
+                *c = total;
+                total += here;
+            }
+            for &item in items.iter() {
+                let digit = ((item.0 >> shift) & mask) as usize;
+                other[count[digit]] = item;
+                count[digit] += 1;
+            }
+            std::mem::swap(items, &mut other);
+        }
+    }
+}
+
+/// [`check_duplicate_vertices`] through the fine cells directly (`used[v]`: vertex v is used
+/// by a polygon).
 ///
 /// The vertices are sorted by the cell (of side 4 * tolerance) that holds them; each vertex
 /// then looks for partners in the at most 2 x 2 cells its tolerance disc touches, by binary
 /// search in the sorted list.
-fn check_duplicate_vertices(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError> {
-    let mut used = vec![false; mesh.n_vertices()];
-    for &v in mesh.polygon_vertex_indices() {
-        used[v] = true;
-    }
+fn check_duplicate_vertices_fine(
+    mesh: &Mesh,
+    used: &[bool],
+    tolerance: f64,
+) -> Result<(), MeshError> {
     let vertices = mesh.vertices();
-    let cell = 4.0 * tolerance;
-    let key = |x: f64, y: f64| -> (i64, i64) {
-        if cell > 0.0 {
-            // `as` saturates: far-away points share border cells, which costs time, not truth.
-            (floor_to_i64(x / cell), floor_to_i64(y / cell))
-        } else {
-            (x.to_bits() as i64, y.to_bits() as i64)
-        }
-    };
+    let key = |x: f64, y: f64| duplicate_cell(x, y, tolerance);
     let mut sorted: Vec<((i64, i64), usize)> = (0..vertices.len())
         .filter(|&v| used[v])
         .map(|v| (key(vertices[v].x, vertices[v].y), v))
@@ -525,15 +727,7 @@ fn check_duplicate_vertices(mesh: &Mesh, tolerance: f64) -> Result<(), MeshError
             }
         }
     }
-    match found {
-        Some((a, b, distance)) => Err(MeshError::DuplicateVertices {
-            a,
-            b,
-            distance,
-            tolerance,
-        }),
-        None => Ok(()),
-    }
+    duplicate_error(found, tolerance)
 }
 
 /// Step 3 for one polygon given by its points: simple, non-degenerate, counter-clockwise.
@@ -613,8 +807,8 @@ fn is_convex_loop(points: &[Point]) -> bool {
     let mut turning = 0.0;
     let sum_angles = m > 4;
     for k in 0..m {
-        let incoming = points[k] - points[(k + m - 1) % m];
-        let outgoing = points[(k + 1) % m] - points[k];
+        let incoming = points[k] - points[if k == 0 { m - 1 } else { k - 1 }];
+        let outgoing = points[if k + 1 == m { 0 } else { k + 1 }] - points[k];
         let c = cross(incoming, outgoing);
         let d = incoming.dot(&outgoing);
         if c < 0.0 || (c == 0.0 && d <= 0.0) {
@@ -798,43 +992,60 @@ fn check_corners_at(
         let edge = &mesh.edges()[e];
         (mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0])).norm()
     };
-    // Every edge's direction once (the whole mesh), or on demand around a few vertices.
+    // Every edge's direction once (the whole mesh), or on demand around a few vertices; the
+    // shortest edge's squared length in the same pass (for the whole mesh with a tolerance).
+    let mut shortest_squared = f64::INFINITY;
     let direction: Vec<f64> = if only.is_none() {
-        (0..mesh.n_edges()).map(direction_of).collect()
+        let with_lengths = tolerance.is_some();
+        mesh.edges()
+            .iter()
+            .map(|edge| {
+                let d = mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0]);
+                if with_lengths {
+                    shortest_squared = shortest_squared.min(d.norm_squared());
+                }
+                d.y.atan2(d.x)
+            })
+            .collect()
     } else {
+        if tolerance.is_some() {
+            shortest_squared = mesh
+                .edges()
+                .iter()
+                .map(|edge| {
+                    (mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0])).norm_squared()
+                })
+                .fold(f64::INFINITY, f64::min);
+        }
         Vec::new()
     };
     // Two edges at a vertex whose far ends come within the tolerance of each other's
     // interior are less than `bound` apart in angle: sin(angle) >= 2 angle / pi below a
     // right angle, and the shorter edge is at least the shortest of the mesh.
     let bound = tolerance.map_or(0.0, |tolerance| {
-        let shortest = mesh
-            .edges()
-            .iter()
-            .map(|edge| {
-                (mesh.vertex(edge.vertices[1]) - mesh.vertex(edge.vertices[0])).norm_squared()
-            })
-            .fold(f64::INFINITY, f64::min)
-            .sqrt();
-        (FRAC_PI_2 * tolerance / shortest).min(FRAC_PI_2)
+        (FRAC_PI_2 * tolerance / shortest_squared.sqrt()).min(FRAC_PI_2)
     });
-    // The angle of the ray from vertex `v` along edge `e`, in (-pi, pi].
-    let ray = |e: usize, v: usize| -> f64 {
+    // The angles of the rays along edge `e` from its end `v` and from its other end, in
+    // (-pi, pi].
+    let rays = |e: usize, v: usize| -> (f64, f64) {
         let edge = &mesh.edges()[e];
         let along = if direction.is_empty() {
             direction_of(e)
         } else {
             direction[e]
         };
-        if edge.vertices[0] == v {
-            along
-        } else {
+        let back = {
             let angle = along + PI;
             if angle > PI {
                 angle - TAU
             } else {
                 angle
             }
+        };
+        if edge.vertices[0] == v {
+            (along, back)
+        } else {
+            (back, along)
         }
     };
     // Whether edges `e` and `f` at a common vertex, `angle` apart, come within the tolerance.
@@ -874,17 +1085,34 @@ fn check_corners_at(
         let loop_ = mesh.polygon(p);
         let loop_edges = mesh.polygon_edges(p);
         let m = loop_.len();
+        // With every direction at hand, the ray into corner k along local edge k - 1 (from
+        // vertex k) is carried from the previous corner: each local edge is looked at once.
+        let carry = !direction.is_empty();
+        let mut into_ray = if carry {
+            rays(loop_edges[m - 1], loop_[0]).0
+        } else {
+            0.0
+        };
         for (k, &v) in loop_.iter().enumerate() {
+            let (out, into) = (
+                loop_edges[k],
+                loop_edges[if k == 0 { m - 1 } else { k - 1 }],
+            );
+            let carried = if carry {
+                let (from, next_into) = rays(out, v);
+                let to = std::mem::replace(&mut into_ray, next_into);
+                Some((from, to))
+            } else {
+                None
+            };
             if !wanted(v) {
                 continue;
             }
-            let (out, into) = (loop_edges[k], loop_edges[(k + m - 1) % m]);
             let single = start[v + 1] - start[v] < 2;
             if single && tolerance.is_none() {
                 continue;
             }
-            let from = ray(out, v);
-            let to = ray(into, v);
+            let (from, to) = carried.unwrap_or_else(|| (rays(out, v).0, rays(into, v).0));
             let opening = opening_of(from, to);
             if !near && !(bound..=TAU - bound).contains(&opening) {
                 near = close(out, into, opening.min(TAU - opening));
@@ -901,7 +1129,10 @@ fn check_corners_at(
         let p = polygon_of(slot);
         let (k, m) = (slot - offsets[p], offsets[p + 1] - offsets[p]);
         let loop_edges = mesh.polygon_edges(p);
-        (loop_edges[k], loop_edges[(k + m - 1) % m])
+        (
+            loop_edges[k],
+            loop_edges[if k == 0 { m - 1 } else { k - 1 }],
+        )
     };
     for v in 0..n {
         let around = &mut sectors[start[v]..start[v + 1]];
@@ -913,7 +1144,7 @@ fn check_corners_at(
         for i in 0..count {
             let (from, to, slot) = around[i];
             let opening = opening_of(from, to);
-            let (next_start, _, next_slot) = around[(i + 1) % count];
+            let (next_start, _, next_slot) = around[if i + 1 == count { 0 } else { i + 1 }];
             let next_from = if i + 1 == count {
                 next_start + TAU
             } else {
@@ -2328,6 +2559,82 @@ mod tests {
     /// Vertices moved (far, near other vertices and edges, within a few tolerances of an
     /// edge) in meshes with holes, islands and pinched corners: the boundary form of steps 4
     /// and 6 gives the exhaustive checks' verdict, error for error.
+    /// The duplicate check through coarse cells gives the error of the check through the fine
+    /// cells (the same pairs, the same smallest one) on random clouds of points with
+    /// near-duplicates at about the tolerance, points on the borders of coarse cells, unused
+    /// points, offsets and scales from tiny to huge, clusters (where the fine check decides)
+    /// and tolerances of 0.
+    #[test]
+    fn the_coarse_duplicate_check_agrees_with_the_fine_one() {
+        let mut state = 17u64;
+        let mut uniform = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut errors = 0;
+        for trial in 0..400 {
+            let scale = [1e-9, 1e-3, 1.0, 1e3, 1e12][trial % 5];
+            let offset = [0.0, -7.5, 1e6, -3e9][trial / 5 % 4] * scale;
+            let tolerance = match trial % 23 {
+                0 => 0.0,
+                1 => 1e300,
+                _ => scale * [1e-10, 1e-8, 1e-7, 1e-3][trial / 20 % 4],
+            };
+            let n = [3, 40, 300, 2000][trial % 4];
+            let mut vertices: Vec<Point> = (0..n)
+                .map(|_| Point::new(offset + scale * uniform(), offset + scale * uniform()))
+                .collect();
+            // Near-duplicates of random points, at 0.5 to 1.5 tolerances.
+            for _ in 0..n / 10 + 1 {
+                let p = vertices[(uniform() * vertices.len() as f64) as usize];
+                let (d, angle) = (
+                    tolerance * (0.5 + uniform()),
+                    std::f64::consts::TAU * uniform(),
+                );
+                vertices.push(Point::new(p.x + d * angle.cos(), p.y + d * angle.sin()));
+            }
+            // Pairs straddling the border of a coarse cell (2^16 fine cells of 4 tolerances).
+            let side = 4.0 * tolerance * f64::from(1u32 << COARSE_SHIFT);
+            for _ in 0..3 {
+                if !(side.is_finite() && side > 0.0) {
+                    break;
+                }
+                let x = (offset / side).floor() * side + side * (uniform() * 3.0).floor();
+                let y = offset + scale * uniform();
+                let d = tolerance * (0.2 + 0.6 * uniform());
+                vertices.push(Point::new(x - d, y));
+                vertices.push(Point::new(x + 0.9 * tolerance - d, y + 0.3 * d));
+            }
+            // A cluster of points within a few tolerances, in some trials.
+            if trial % 7 == 3 {
+                let c = vertices[0];
+                for _ in 0..200 {
+                    let d = 4.0 * tolerance * uniform();
+                    vertices.push(Point::new(c.x + d, c.y - d * uniform()));
+                }
+            }
+            for i in (1..vertices.len()).rev() {
+                let j = (uniform() * (i + 1) as f64) as usize;
+                vertices.swap(i, j.min(i));
+            }
+            // Triangles of consecutive vertices; every fifth vertex unused.
+            let used_ones: Vec<usize> = (0..vertices.len()).filter(|v| v % 5 != 4).collect();
+            let polygons: Vec<Vec<usize>> = used_ones.chunks_exact(3).map(|c| c.to_vec()).collect();
+            let mesh = unvalidated(vertices, &polygons).unwrap();
+            let mut used = vec![false; mesh.n_vertices()];
+            for &v in mesh.polygon_vertex_indices() {
+                used[v] = true;
+            }
+            let fast = check_duplicate_vertices(&mesh, tolerance);
+            let fine = check_duplicate_vertices_fine(&mesh, &used, tolerance);
+            assert_eq!(fast, fine, "trial {trial}");
+            errors += usize::from(fine.is_err());
+        }
+        assert!(errors > 200, "{errors} errors");
+    }
+
     #[test]
     fn the_boundary_form_agrees_with_the_exhaustive_checks() {
         let mut state = 17u64;
