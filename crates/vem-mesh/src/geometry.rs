@@ -19,6 +19,7 @@ pub fn signed_area(vertices: &[Point]) -> f64 {
 
 /// True when `p` lies inside the polygon `vertices` (crossing number; a point on the boundary
 /// may go either way).
+#[cfg(feature = "generators")]
 pub(crate) fn contains(vertices: &[Point], p: Point) -> bool {
     let m = vertices.len();
     let mut inside = false;
