@@ -189,22 +189,7 @@ pub(crate) fn check_storage(
                 vertex_count: vertices.len(),
             });
         }
-        // The smallest vertex listed twice: pair by pair in short loops, else by sorting.
-        let repeated = if loop_.len() <= 8 {
-            let mut smallest: Option<usize> = None;
-            for (i, &u) in loop_.iter().enumerate() {
-                if loop_[i + 1..].contains(&u) && smallest.is_none_or(|s| u < s) {
-                    smallest = Some(u);
-                }
-            }
-            smallest
-        } else {
-            sorted.clear();
-            sorted.extend_from_slice(loop_);
-            sorted.sort_unstable();
-            sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
-        };
-        if let Some(vertex) = repeated {
+        if let Some(vertex) = smallest_repeated(loop_, &mut sorted) {
             return Err(MeshError::RepeatedVertex { polygon: p, vertex });
         }
     }
@@ -336,22 +321,7 @@ pub(crate) fn validate_changed(mesh: &Mesh, changed: &[usize]) -> Result<(), Mes
                 count: loop_.len(),
             });
         }
-        // The smallest vertex listed twice: pair by pair in short loops, else by sorting.
-        let repeated = if loop_.len() <= 8 {
-            let mut smallest: Option<usize> = None;
-            for (i, &u) in loop_.iter().enumerate() {
-                if loop_[i + 1..].contains(&u) && smallest.is_none_or(|s| u < s) {
-                    smallest = Some(u);
-                }
-            }
-            smallest
-        } else {
-            sorted.clear();
-            sorted.extend_from_slice(loop_);
-            sorted.sort_unstable();
-            sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
-        };
-        if let Some(vertex) = repeated {
+        if let Some(vertex) = smallest_repeated(loop_, &mut sorted) {
             return Err(MeshError::RepeatedVertex { polygon: p, vertex });
         }
     }
@@ -523,6 +493,25 @@ fn duplicate_error(found: Option<(usize, usize, f64)>, tolerance: f64) -> Result
 /// [`check_duplicate_vertices`]: 2^16 fine cells a side, or more when the fine cells of the
 /// mesh span more than 2^31 coarse ones along x or y.
 const COARSE_SHIFT: u32 = 16;
+
+/// The smallest vertex listed twice in `loop_`: pair by pair in short loops, else by sorting a
+/// copy in `sorted` (a buffer reused across loops).
+fn smallest_repeated(loop_: &[usize], sorted: &mut Vec<usize>) -> Option<usize> {
+    if loop_.len() <= 8 {
+        let mut smallest: Option<usize> = None;
+        for (i, &u) in loop_.iter().enumerate() {
+            if loop_[i + 1..].contains(&u) && smallest.is_none_or(|s| u < s) {
+                smallest = Some(u);
+            }
+        }
+        smallest
+    } else {
+        sorted.clear();
+        sorted.extend_from_slice(loop_);
+        sorted.sort_unstable();
+        sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+    }
+}
 
 /// Step 2: no two distinct vertices used by polygons closer than `tolerance`.
 ///
