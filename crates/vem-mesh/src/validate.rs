@@ -2104,6 +2104,18 @@ impl SegmentGrid {
 mod tests {
     use super::*;
 
+    /// Uniform numbers in [0, 1) from a linear congruential generator seeded by `seed` (the
+    /// tests' random meshes and clouds, the same on every platform).
+    fn uniform_stream(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     fn square() -> Vec<Point> {
         vec![
             Point::new(0.0, 0.0),
@@ -2215,13 +2227,7 @@ mod tests {
     fn validating_near_a_change_agrees_with_the_whole_validation() {
         let n = 8;
         let mesh = jittered_grid(n);
-        let mut state = 5u64;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniform_stream(5);
         let (mut valid, mut invalid) = (0, 0);
         let mut kinds: Vec<String> = Vec::new();
         for trial in 0..600 {
@@ -2545,9 +2551,6 @@ mod tests {
         ));
     }
 
-    /// Vertices moved (far, near other vertices and edges, within a few tolerances of an
-    /// edge) in meshes with holes, islands and pinched corners: the boundary form of steps 4
-    /// and 6 gives the exhaustive checks' verdict, error for error.
     /// The duplicate check through coarse cells gives the error of the check through the fine
     /// cells (the same pairs, the same smallest one) on random clouds of points with
     /// near-duplicates at about the tolerance, points on the borders of coarse cells, unused
@@ -2555,13 +2558,7 @@ mod tests {
     /// and tolerances of 0.
     #[test]
     fn the_coarse_duplicate_check_agrees_with_the_fine_one() {
-        let mut state = 17u64;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniform_stream(17);
         let mut errors = 0;
         for trial in 0..400 {
             let scale = [1e-9, 1e-3, 1.0, 1e3, 1e12][trial % 5];
@@ -2624,15 +2621,12 @@ mod tests {
         assert!(errors > 200, "{errors} errors");
     }
 
+    /// Vertices moved (far, near other vertices and edges, within a few tolerances of an
+    /// edge) in meshes with holes, islands and pinched corners: the boundary form of steps 4
+    /// and 6 gives the exhaustive checks' verdict, error for error.
     #[test]
     fn the_boundary_form_agrees_with_the_exhaustive_checks() {
-        let mut state = 17u64;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut uniform = uniform_stream(17);
         let mut meshes = Vec::new();
         meshes.push(grid_with_holes(6, 5, &[(1, 1), (3, 2), (4, 2)]));
         meshes.push(grid_with_holes(5, 5, &[(1, 1), (2, 2), (3, 1), (0, 4)]));
