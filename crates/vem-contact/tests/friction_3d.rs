@@ -10,7 +10,7 @@ use std::sync::Arc;
 use faer::sparse::{SparseColMat, Triplet};
 use vem_contact::{
     CondensedSettings, CondensedSolver, ConstraintRows, ContactError, ContactLaw, ContactPair,
-    ContactProblem, ContactResult, ContactSolver, ContactSystem, Coulomb, Friction,
+    ContactProblem, ContactResult, ContactSolver, ContactSystem, Coulomb, Friction, Frictionless,
     InterfaceMethod, KktResiduals, Obstacle3, PenaltyParameter, PenaltySettings, PenaltySolver,
     SolverRegistry, Tresca,
 };
@@ -838,6 +838,22 @@ fn lattice(xs: &[f64], ys: &[f64], zs: &[f64]) -> PolyhedralMesh {
 fn mindlin_blocks(h: f64, ratio: f64) -> (ContactProblem<3>, f64) {
     let e_star = 100.0 / (2.0 * (1.0 - 0.09));
     let push = 4.0 * e_star * 0.1f64.powi(3) / 3.0;
+    let shear = ratio * COEFFICIENT * push;
+    let top = [
+        Dirichlet::rigid_plate("top", Component::Z, Vector3::new(0.0, 0.0, -0.5 * push)),
+        Dirichlet::rigid_plate("top", Component::X, Vector3::new(0.5 * shear, 0.0, 0.0)),
+    ];
+    let law = Coulomb::try_new(COEFFICIENT).unwrap();
+    (graded_blocks(h, top, law), 0.5 * shear)
+}
+
+/// The blocks of [`mindlin_blocks`] with the upper block's top held by `top` and the contact
+/// law `law`.
+fn graded_blocks(
+    h: f64,
+    top: [Dirichlet<3>; 2],
+    law: impl ContactLaw<3> + 'static,
+) -> ContactProblem<3> {
     let half = graded(h, 0.13, 1.0);
     let xs: Vec<f64> = half
         .iter()
@@ -847,20 +863,12 @@ fn mindlin_blocks(h: f64, ratio: f64) -> (ContactProblem<3>, f64) {
         .collect();
     let down: Vec<f64> = half.iter().rev().map(|z| -z).collect();
     let material = Material::isotropic(100.0, 0.3).unwrap();
-    let shear = ratio * COEFFICIENT * push;
+    let [vertical, sideways] = top;
     let upper =
         ElasticBody::builder_polyhedral("upper", lattice(&xs, &half, &half), material, element())
             .dirichlet(Dirichlet::fixed("front", Component::Y))
-            .dirichlet(Dirichlet::rigid_plate(
-                "top",
-                Component::Z,
-                Vector3::new(0.0, 0.0, -0.5 * push),
-            ))
-            .dirichlet(Dirichlet::rigid_plate(
-                "top",
-                Component::X,
-                Vector3::new(0.5 * shear, 0.0, 0.0),
-            ))
+            .dirichlet(vertical)
+            .dirichlet(sideways)
             .build()
             .unwrap();
     let lower =
@@ -869,15 +877,65 @@ fn mindlin_blocks(h: f64, ratio: f64) -> (ContactProblem<3>, f64) {
             .clamp("bottom")
             .build()
             .unwrap();
-    let problem = ContactProblem::two_bodies(
-        upper,
-        "bottom",
-        lower,
-        "top",
-        Coulomb::try_new(COEFFICIENT).unwrap(),
-    )
-    .with_imposed_gap(|x| 0.5 * (x.x * x.x + x.y * x.y));
-    (problem, 0.5 * shear)
+    ContactProblem::two_bodies(upper, "bottom", lower, "top", law)
+        .with_imposed_gap(|x| 0.5 * (x.x * x.x + x.y * x.y))
+}
+
+/// A contact zone of a few nodes on a large face (Cattaneo-Mindlin's blocks, frictionless
+/// and Coulomb at `Q = 0.5 F P`): the iterative interface solves on the candidate nodes
+/// (`H_CC` by block solves, the dense QP, the check on the whole face) and gives the dense
+/// interface's forces and displacements, each answer certified; with Coulomb, the held first
+/// step is iterated and the later steps are solved on the candidates.
+#[test]
+fn a_small_contact_zone_is_solved_on_its_candidate_nodes() {
+    let candidates = "condensed (iterative interface, dense on the candidate nodes)";
+    // The top pressed down by 0.01, and for Coulomb also moved sideways by 0.001.
+    let top = |slide: f64| {
+        [
+            Dirichlet::with_values("top", Component::Z, |_| Vector3::new(0.0, 0.0, -0.01)),
+            Dirichlet::with_values("top", Component::X, move |_| Vector3::new(slide, 0.0, 0.0)),
+        ]
+    };
+    for (name, problem) in [
+        ("frictionless", graded_blocks(0.05, top(0.0), Frictionless)),
+        (
+            "Coulomb",
+            graded_blocks(0.05, top(0.001), Coulomb::try_new(COEFFICIENT).unwrap()),
+        ),
+    ] {
+        let dense = solve_with_interface(&problem, InterfaceMethod::Dense);
+        let iterative = solve_with_interface(&problem, InterfaceMethod::Iterative);
+        assert_eq!(iterative.report.solver, candidates, "{name}");
+        let in_contact = iterative
+            .nodes
+            .iter()
+            .filter(|n| n.normal_force > 0.0)
+            .count();
+        // On the plane of symmetry y = 0 both sides are held in y: the friction force's y
+        // component is not determined there (any value within the disk is a minimiser), so it
+        // is not compared.
+        let mut determined = iterative.clone();
+        for (node, other) in determined.nodes.iter_mut().zip(&dense.nodes) {
+            if node.position.y == 0.0 {
+                node.friction_force.y = other.friction_force.y;
+            }
+        }
+        let (forces, displacements) = largest_differences(&determined, &dense);
+        println!(
+            "{name}: {in_contact} of {} nodes in contact; forces {forces:.1e}, displacements \
+             {displacements:.1e}; {} triangular solve passes",
+            iterative.nodes.len(),
+            iterative.work.triangular_solves
+        );
+        assert!(
+            4 * in_contact < iterative.nodes.len(),
+            "{name}: {in_contact}"
+        );
+        assert!(
+            forces < 1e-8 && displacements < 1e-8,
+            "{name}: {forces:e} {displacements:e}"
+        );
+    }
 }
 
 /// Cattaneo-Mindlin's blocks (the quick size of `cargo xtask hertz`, coarser): held at

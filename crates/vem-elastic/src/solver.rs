@@ -19,7 +19,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::traits::IndexCore;
-use faer::{Conj, Index, Mat, MatMut, MatRef, Par, Side};
+use faer::{Conj, Index, Mat, MatMut, Par, Side};
 
 use crate::ordering::elimination_order;
 pub use crate::ordering::Ordering;
@@ -760,17 +760,36 @@ impl CholeskySolver {
         support: &SolveSupport,
         values: &mut [f64],
     ) -> Result<(), SolveError> {
+        let rows = values.len();
+        self.solve_many_on_support(
+            support,
+            MatMut::from_column_major_slice_mut(values, rows, 1),
+        )
+    }
+
+    /// [`CholeskySolver::solve_on_support`] for the columns of `values` at once (a row per
+    /// unknown of the support, a column per right-hand side): the factor is read once for all
+    /// of them, so `k` columns cost far less than `k` solves. The work space holds the
+    /// reached rows only (the widths of the reached supernodes) times `k`.
+    ///
+    /// # Errors
+    /// As [`CholeskySolver::solve_on_support`].
+    pub fn solve_many_on_support(
+        &self,
+        support: &SolveSupport,
+        mut values: MatMut<'_, f64>,
+    ) -> Result<(), SolveError> {
         let Some(factor) = &self.factor else {
             return Err(SolveError::OutOfOrder {
                 reason: "solve before a successful factorise",
             });
         };
         let analysis = &factor.analysis;
-        if !Arc::ptr_eq(analysis, &support.analysis) || values.len() != support.unknowns.len() {
+        if !Arc::ptr_eq(analysis, &support.analysis) || values.nrows() != support.unknowns.len() {
             return Err(SolveError::Mismatch {
                 reason: format!(
                     "{} values for a support of {} unknowns{}",
-                    values.len(),
+                    values.nrows(),
                     support.unknowns.len(),
                     if Arc::ptr_eq(analysis, &support.analysis) {
                         ""
@@ -780,19 +799,26 @@ impl CholeskySolver {
                 ),
             });
         }
+        let k = values.ncols();
         if !analysis.is_supernodal() {
             // The simplicial factor (small systems): a full solve.
-            let mut x = vec![0.0; analysis.n];
-            for (&i, &v) in support.unknowns.iter().zip(values.iter()) {
-                x[i] = v;
+            let mut x = Mat::<f64>::zeros(analysis.n, k);
+            for (row, &i) in support.unknowns.iter().enumerate() {
+                for c in 0..k {
+                    x[(i, c)] = values[(row, c)];
+                }
             }
-            self.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, analysis.n, 1))?;
-            for (&i, v) in support.unknowns.iter().zip(values.iter_mut()) {
-                *v = x[i];
+            self.solve_in_place(x.as_mut())?;
+            for (row, &i) in support.unknowns.iter().enumerate() {
+                for c in 0..k {
+                    values[(row, c)] = x[(i, c)];
+                }
             }
             return Ok(());
         }
-        let mut x = Mat::<f64>::zeros(analysis.n, 1);
+        // Row `compact[p]` of `x` holds factor position `p` (of a reached supernode).
+        let compact = &support.compact;
+        let mut x = Mat::<f64>::zeros(support.reached_rows, k);
         with_symbolic!(&analysis.symbolic, symbolic => {
             let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
                 unreachable!("a supernodal analysis");
@@ -800,63 +826,69 @@ impl CholeskySolver {
             let l = SupernodalLltRef::new(s, &factor.values);
             let par = self.settings.solve_parallelism;
             // Entries outside the reached supernodes are never read or written.
-            for (&p, &v) in support.positions.iter().zip(values.iter()) {
-                x[(p, 0)] = v;
+            for (row, &p) in support.positions.iter().enumerate() {
+                for c in 0..k {
+                    x[(compact[p], c)] = values[(row, c)];
+                }
             }
-            let mut tmp = vec![0.0; support.longest_pattern];
+            let mut tmp = Mat::<f64>::zeros(support.longest_pattern, k);
             // L z = b over the reached supernodes, in elimination order.
-            for &k in &support.supernodes {
-                let node = l.supernode(k);
+            for &node in &support.supernodes {
+                let node = l.supernode(node);
                 let (start, block, pattern) = (node.start(), node.val(), node.pattern());
-                let width = block.ncols();
+                let (width, at) = (block.ncols(), compact[start]);
                 let (top, bottom) = block.split_at_row(width);
                 faer::linalg::triangular_solve::solve_lower_triangular_in_place(
                     top,
-                    x.as_mut().subrows_mut(start, width),
+                    x.as_mut().subrows_mut(at, width),
                     par,
                 );
-                let below =
-                    MatMut::from_column_major_slice_mut(&mut tmp[..pattern.len()], pattern.len(), 1);
+                let below = tmp.as_mut().subrows_mut(0, pattern.len());
                 faer::linalg::matmul::matmul(
                     below,
                     faer::Accum::Replace,
                     bottom,
-                    x.as_ref().subrows(start, width),
+                    x.as_ref().subrows(at, width),
                     1.0,
                     par,
                 );
-                for (&i, &t) in pattern.iter().zip(&tmp) {
-                    x[(i.zx(), 0)] -= t;
+                for c in 0..k {
+                    for (j, &i) in pattern.iter().enumerate() {
+                        x[(compact[i.zx()], c)] -= tmp[(j, c)];
+                    }
                 }
             }
             // L' x = z over the same supernodes, backwards: the solution at the support's
             // unknowns needs it only at their ancestors.
-            for &k in support.supernodes.iter().rev() {
-                let node = l.supernode(k);
+            for &node in support.supernodes.iter().rev() {
+                let node = l.supernode(node);
                 let (start, block, pattern) = (node.start(), node.val(), node.pattern());
-                let width = block.ncols();
+                let (width, at) = (block.ncols(), compact[start]);
                 let (top, bottom) = block.split_at_row(width);
-                for (t, &i) in tmp.iter_mut().zip(pattern) {
-                    *t = x[(i.zx(), 0)];
+                for c in 0..k {
+                    for (j, &i) in pattern.iter().enumerate() {
+                        tmp[(j, c)] = x[(compact[i.zx()], c)];
+                    }
                 }
-                let above = MatRef::from_column_major_slice(&tmp[..pattern.len()], pattern.len(), 1);
                 faer::linalg::matmul::matmul(
-                    x.as_mut().subrows_mut(start, width),
+                    x.as_mut().subrows_mut(at, width),
                     faer::Accum::Add,
                     bottom.transpose(),
-                    above,
+                    tmp.as_ref().subrows(0, pattern.len()),
                     -1.0,
                     par,
                 );
                 faer::linalg::triangular_solve::solve_upper_triangular_in_place(
                     top.transpose(),
-                    x.as_mut().subrows_mut(start, width),
+                    x.as_mut().subrows_mut(at, width),
                     par,
                 );
             }
         });
-        for (&p, v) in support.positions.iter().zip(values.iter_mut()) {
-            *v = x[(p, 0)];
+        for (row, &p) in support.positions.iter().enumerate() {
+            for c in 0..k {
+                values[(row, c)] = x[(compact[p], c)];
+            }
         }
         Ok(())
     }
@@ -876,6 +908,11 @@ pub struct SolveSupport {
     supernodes: Vec<usize>,
     /// The longest row pattern below a reached supernode.
     longest_pattern: usize,
+    /// Per factor position, its row in the work space of a solve (the reached supernodes'
+    /// columns numbered consecutively; unused elsewhere).
+    compact: Vec<usize>,
+    /// The rows of that work space: the reached supernodes' widths summed.
+    reached_rows: usize,
     /// Factor entries in the reached supernodes.
     reached_entries: usize,
 }
@@ -909,6 +946,15 @@ fn reach<I: Index>(
         }
     }
     support.supernodes = (0..n_supernodes).filter(|&k| reached[k]).collect();
+    support.compact = vec![usize::MAX; n];
+    let mut rows = 0;
+    for &k in &support.supernodes {
+        for p in begin[k].zx()..end[k].zx() {
+            support.compact[p] = rows;
+            rows += 1;
+        }
+    }
+    support.reached_rows = rows;
     support.longest_pattern = support
         .supernodes
         .iter()
@@ -944,6 +990,8 @@ impl SolveSupport {
             positions,
             supernodes: Vec::new(),
             longest_pattern: 0,
+            compact: Vec::new(),
+            reached_rows: 0,
             reached_entries: analysis.factor_entries(),
         };
         with_symbolic!(&analysis.symbolic, symbolic => {
@@ -963,6 +1011,17 @@ impl SolveSupport {
     /// The support's unknowns.
     pub fn unknowns(&self) -> &[usize] {
         &self.unknowns
+    }
+
+    /// The rows of the work space of a solve on the support (the widths of the reached
+    /// supernodes; the system's size for a simplicial factor): a block of `k` right-hand sides
+    /// ([`CholeskySolver::solve_many_on_support`]) works on `k` columns of them.
+    pub fn reached_rows(&self) -> usize {
+        if self.supernodes.is_empty() {
+            self.analysis.n
+        } else {
+            self.reached_rows
+        }
     }
 
     /// The fraction of the factor's entries a solve on the support reads (1 for a simplicial
@@ -1584,8 +1643,8 @@ mod tests {
     }
 
     /// A solve on a support (one side of the grid and a few scattered unknowns) equals the
-    /// full solve there, on simplicial and supernodal factors, in every ordering; a support of
-    /// another analysis is refused.
+    /// full solve there, one right-hand side or a block of them, on simplicial and supernodal
+    /// factors, in every ordering; a support of another analysis is refused.
     #[test]
     fn a_solve_on_a_support_equals_the_full_solve_there() {
         let mut kinds = [false; 2];
@@ -1620,6 +1679,27 @@ mod tests {
                 let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 for (&i, a) in unknowns.iter().zip(&on_support) {
                     assert!((a - full[i]).abs() < 1e-13 * scale, "{a} vs {}", full[i]);
+                }
+                // Three right-hand sides at once: each column equals its own full solve.
+                let columns = 3;
+                let mut many = Mat::<f64>::from_fn(unknowns.len(), columns, |p, c| {
+                    ((p * (c + 2)) as f64 * 0.37).cos()
+                });
+                let given = many.clone();
+                solver
+                    .solve_many_on_support(&support, many.as_mut())
+                    .unwrap();
+                for c in 0..columns {
+                    let mut b = vec![0.0; size];
+                    for (p, &i) in unknowns.iter().enumerate() {
+                        b[i] = given[(p, c)];
+                    }
+                    let full = solver.solve(&b).unwrap();
+                    let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    for (p, &i) in unknowns.iter().enumerate() {
+                        let a = many[(p, c)];
+                        assert!((a - full[i]).abs() < 1e-13 * scale, "{a} vs {}", full[i]);
+                    }
                 }
                 // The other analysis' support, or too few values: refused.
                 let mut other = CholeskySolver::default();

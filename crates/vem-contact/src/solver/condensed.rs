@@ -44,6 +44,11 @@
 //! ([`ITERATIVE_FROM`] interface unknowns without friction, [`ITERATIVE_WITH_FRICTION_FROM`]
 //! with friction in space, [`ITERATIVE_WITH_FRICTION_IN_THE_PLANE_FROM`] in the plane) or
 //! forced by the settings; a singular body makes the solver take the dense interface.
+//! Where few nodes carry a force (a Hertz-like zone on a large face, the later steps of a
+//! Coulomb fixed point) the iterative interface solves first on its **candidate nodes**
+//! (`candidates`): the dense QP on their rows with `H_CC = B_C K^-1 B_C'` from one block solve
+//! per body (kept per structure), checked on the whole interface with one product; nodes that
+//! fail the check join the candidates, and too many of them hand the problem to MPGP.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
@@ -93,9 +98,15 @@ use super::shared::{self, BlockFactor, BlockKey, BlockOrder, FactorKey};
 use super::system::{matrix_entry, ContactSystem, PatternId};
 use super::{ContactForces, ContactSolution, ContactSolver};
 
+mod candidates;
+use candidates::{solve_on_candidates, CandidateHessian, CandidateOutcome};
+
 const NAME: &str = "condensed (interface Schur complement)";
 /// The name in the reports of the solves on the iterative interface.
 const ITERATIVE_NAME: &str = "condensed (iterative interface, MPGP)";
+/// The name in the reports of the solves of the iterative interface on its candidate nodes
+/// (`candidates`).
+const CANDIDATES_NAME: &str = "condensed (iterative interface, dense on the candidate nodes)";
 /// The name in the reports of the solves the condensed solver hands over to the active-set
 /// solver: the solver the user chose, and who solved.
 const HANDED_OVER: &str =
@@ -590,6 +601,7 @@ impl Factors {
                 norm: None,
                 scaling: None,
                 kept: KeptProducts::new(),
+                candidates: CandidateHessian::default(),
             }),
             unconstrained: None,
             spans: Vec::new(),
@@ -633,6 +645,8 @@ struct IterativeState {
     /// structure (a Coulomb fixed point's steps share `H`): the spectral preconditioner of
     /// the Newton systems (`kept_products`).
     kept: KeptProducts,
+    /// `H_CC` on the candidate nodes (`candidates`).
+    candidates: CandidateHessian,
 }
 
 /// Power iterations for the estimate of `|S H S|_2` of the iterative interface (from the
@@ -1010,6 +1024,8 @@ struct Interface {
     free_mode: bool,
     /// `H lambda` (the iterative interface, which has no `H` to multiply by).
     hessian_lambda: Option<Vec<f64>>,
+    /// The solver's name in the report: how the interface was solved.
+    solver: &'static str,
 }
 
 /// The bound-constrained interface QP, with the tolerance relative to
@@ -1047,6 +1063,33 @@ fn interface_qp(
             converged: true,
         };
     }
+    dense_qp(
+        hessian,
+        d,
+        lower,
+        upper,
+        disks,
+        warm,
+        settings.tolerance * force_scale,
+        settings.max_iterations,
+        kept,
+    )
+}
+
+/// The dense interface QP from `warm` to the force `tolerance` of the projected Newton
+/// methods: the disk QP with disks (friction in space), else the box QP.
+#[allow(clippy::too_many_arguments)]
+fn dense_qp(
+    hessian: MatRef<'_, f64>,
+    d: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    disks: &[Disk],
+    warm: &[f64],
+    tolerance: f64,
+    max_iterations: usize,
+    kept: &mut ReducedFactor,
+) -> BoxQpOutcome {
     if !disks.is_empty() {
         return DiskQp {
             hessian,
@@ -1055,12 +1098,7 @@ fn interface_qp(
             upper,
             disks,
         }
-        .solve_with(
-            warm,
-            settings.tolerance * force_scale,
-            settings.max_iterations,
-            kept,
-        );
+        .solve_with(warm, tolerance, max_iterations, kept);
     }
     BoxQp {
         hessian,
@@ -1068,12 +1106,7 @@ fn interface_qp(
         lower,
         upper,
     }
-    .solve_with(
-        warm,
-        settings.tolerance * force_scale,
-        settings.max_iterations,
-        kept,
-    )
+    .solve_with(warm, tolerance, max_iterations, kept)
 }
 
 /// The interface QP by MPGP on the Schur operator `H = B K^-1 B'` (the iterative interface),
@@ -1119,8 +1152,27 @@ fn iterative_interface(
             converged: true,
             free_mode: false,
             hessian_lambda: Some(vec![0.0; rows.len()]),
+            solver: ITERATIVE_NAME,
         });
     }
+    let tolerance = settings.tolerance * length_scale;
+    // Few nodes carry a force: the dense QP on them (`candidates`).
+    let warm = match solve_on_candidates(
+        factors,
+        rows,
+        system.n_dofs(),
+        system.n_constraints(),
+        &d,
+        (lower, upper, disks),
+        &carries,
+        warm,
+        tolerance,
+        settings.max_iterations,
+        work,
+    )? {
+        CandidateOutcome::Solved(interface) => return Ok(interface),
+        CandidateOutcome::Iterate(warm) => warm,
+    };
     // The problem in scaled multipliers `lambda = S y` (`S` the [`lumped_scaling`]), whose
     // operator `S H S` has a nearly uniform diagonal; the stopping test stays unscaled.
     let scale = match factors.iterative.as_ref().and_then(|s| s.scaling.clone()) {
@@ -1168,9 +1220,8 @@ fn iterative_interface(
         disks: &scaled_disks,
         weights: &weights,
     };
-    let tolerance = settings.tolerance * length_scale;
     let budget = settings.max_iterations * ITERATIONS_PER_STEP;
-    let start = unit(warm, over);
+    let start = unit(&warm, over);
     let outcome = if disks.is_empty() {
         qp.solve(&start, tolerance, budget, norm, &mut apply)?
     } else {
@@ -1199,6 +1250,7 @@ fn iterative_interface(
         converged: outcome.converged,
         free_mode: false,
         hessian_lambda: Some(hessian_lambda),
+        solver: ITERATIVE_NAME,
     })
 }
 
@@ -1294,6 +1346,7 @@ fn proximal_iteration(
         converged: false,
         free_mode: false,
         hessian_lambda: None,
+        solver: NAME,
     };
     let load_scale = inf(system.load());
     let mut reaction = vec![0.0; system.n_dofs()];
@@ -1574,6 +1627,7 @@ impl CondensedSolver {
                 converged: outcome.converged,
                 free_mode: false,
                 hessian_lambda: None,
+                solver: NAME,
             }
         };
         if !interface.converged && !interface.free_mode && factors.is_shifted() {
@@ -1670,11 +1724,7 @@ impl CondensedSolver {
         };
         work.times.contact_solve = start.elapsed();
         let report = SolveReport {
-            solver: if factors.iterative.is_some() {
-                ITERATIVE_NAME
-            } else {
-                NAME
-            },
+            solver: interface.solver,
             status,
             iterations: interface.iterations,
             work,

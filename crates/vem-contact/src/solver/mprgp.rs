@@ -175,14 +175,24 @@ impl Mprgp<'_> {
         step.max(0.0)
     }
 
-    /// `|W g^P|_inf` with `W` the [`weights`](Self::weights).
-    fn projected_gradient(&self, phi: &[f64], beta: &[f64]) -> f64 {
-        let weighted = phi
-            .iter()
+    /// `|W g^P|` per variable with `W` the [`weights`](Self::weights).
+    fn weighted<'s>(&'s self, phi: &'s [f64], beta: &'s [f64]) -> impl Iterator<Item = f64> + 's {
+        phi.iter()
             .zip(beta)
             .enumerate()
-            .map(|(i, (a, b))| (a + b).abs() * self.weights.get(i).copied().unwrap_or(1.0));
-        weighted.fold(0.0f64, f64::max)
+            .map(|(i, (a, b))| (a + b).abs() * self.weights.get(i).copied().unwrap_or(1.0))
+    }
+
+    /// `|W g^P|_inf` with `W` the [`weights`](Self::weights).
+    fn projected_gradient(&self, phi: &[f64], beta: &[f64]) -> f64 {
+        self.weighted(phi, beta).fold(0.0f64, f64::max)
+    }
+
+    /// `|W g^P|` per variable at `x` with gradient `g`: what the stopping test of
+    /// [`Mprgp::solve`] measures, variable by variable.
+    pub fn violations(&self, x: &[f64], g: &[f64]) -> Vec<f64> {
+        let (phi, beta) = self.split(x, g, &self.in_disk());
+        self.weighted(&phi, &beta).collect()
     }
 
     /// Minimises from `start` (projected onto the set) until `|g^P|_inf <= tolerance` or

@@ -666,7 +666,8 @@ pub struct WorkCounters {
     /// Numeric factorisations (for the interior-point solver: one KKT factorisation per
     /// iteration plus the initial one).
     pub numeric_factorisations: usize,
-    /// Forward and backward triangular solve pairs (0 where the backend does not tell).
+    /// Forward and backward triangular solve pairs (a block of right-hand sides solved at once
+    /// counts once; 0 where the backend does not tell).
     pub triangular_solves: usize,
     /// The time of each stage.
     pub times: StageTimes,
