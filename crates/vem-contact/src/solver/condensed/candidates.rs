@@ -31,6 +31,11 @@ use super::{backend, dense_qp, Factors, Interface, CANDIDATES_NAME};
 pub(super) const MAX_CANDIDATE_FRACTION: f64 = 0.25;
 /// The candidates' rows stay within this many (`H_CC` and its reduced factor in memory).
 pub(super) const MAX_CANDIDATE_ROWS: usize = 3000;
+/// Without a warm start the first candidates penetrate by more than this fraction of the
+/// deepest unconstrained penetration: a Hertz-like contact zone covers about half the area
+/// of the bodies' overlap (`a^2 = R delta` against `2 R delta`), and nodes beyond it join at
+/// the check.
+const FIRST_PENETRATION: f64 = 0.5;
 /// Rounds of the dense QP and the check on the whole interface before the iteration takes
 /// over.
 const MAX_ROUNDS: usize = 8;
@@ -139,6 +144,9 @@ pub(super) fn solve_on_candidates(
         is_candidate[node] = true;
     }
     let warm_carries = (0..m).any(|i| carries[i] && warm[i] != 0.0);
+    let deepest = (0..normal_rows)
+        .filter(|&i| carries[i])
+        .fold(0.0f64, |a, i| a.max(d[i]));
     let mut joining: Vec<usize> = (0..normal_rows)
         .filter(|&node| {
             !is_candidate[node]
@@ -148,7 +156,7 @@ pub(super) fn solve_on_candidates(
                     layout.of(node).any(|i| {
                         carries[i]
                             && if i < normal_rows {
-                                d[i] > 0.0
+                                d[i] > FIRST_PENETRATION * deepest
                             } else {
                                 d[i].abs() > tolerance
                             }
