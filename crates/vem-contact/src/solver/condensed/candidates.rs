@@ -28,9 +28,9 @@ use super::{backend, dense_qp, Factors, Interface, CANDIDATES_NAME};
 
 /// The candidates' rows stay within this fraction of the interface rows; beyond it the
 /// iteration is cheaper than the columns of `H_CC`.
-pub(super) const MAX_CANDIDATE_FRACTION: f64 = 0.25;
+const MAX_CANDIDATE_FRACTION: f64 = 0.25;
 /// The candidates' rows stay within this many (`H_CC` and its reduced factor in memory).
-pub(super) const MAX_CANDIDATE_ROWS: usize = 3000;
+const MAX_CANDIDATE_ROWS: usize = 3000;
 /// Without a warm start the first candidates penetrate by more than this fraction of the
 /// deepest unconstrained penetration: a Hertz-like contact zone covers about half the area
 /// of the bodies' overlap (`a^2 = R delta` against `2 R delta`), and nodes beyond it join at
