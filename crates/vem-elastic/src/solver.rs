@@ -825,7 +825,8 @@ impl CholeskySolver {
             };
             let l = SupernodalLltRef::new(s, &factor.values);
             let par = self.settings.solve_parallelism;
-            // Entries outside the reached supernodes are never read or written.
+            // The work space holds the reached supernodes' rows only: the rest of the factor
+            // is never read.
             for (row, &p) in support.positions.iter().enumerate() {
                 for c in 0..k {
                     x[(compact[p], c)] = values[(row, c)];
@@ -1017,10 +1018,10 @@ impl SolveSupport {
     /// supernodes; the system's size for a simplicial factor): a block of `k` right-hand sides
     /// ([`CholeskySolver::solve_many_on_support`]) works on `k` columns of them.
     pub fn reached_rows(&self) -> usize {
-        if self.supernodes.is_empty() {
-            self.analysis.n
-        } else {
+        if self.analysis.is_supernodal() {
             self.reached_rows
+        } else {
+            self.analysis.n
         }
     }
 

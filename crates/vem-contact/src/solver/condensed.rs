@@ -48,7 +48,7 @@
 //! Coulomb fixed point) the iterative interface solves first on its **candidate nodes**
 //! (`candidates`): the dense QP on their rows with `H_CC = B_C K^-1 B_C'` from one block solve
 //! per body (kept per structure), checked on the whole interface with one product; nodes that
-//! fail the check join the candidates, and too many of them hand the problem to MPGP.
+//! fail the check join the candidates, and too many of them hand the problem to the iteration.
 //!
 //! **A body held only by contact or friction** has a singular stiffness (a rigid motion in
 //! the kernel) and no Cholesky factor. Its interface unknowns are then shifted: the body is
@@ -1161,7 +1161,10 @@ fn iterative_interface(
         factors,
         rows,
         system.n_dofs(),
-        system.n_constraints(),
+        (
+            system.n_constraints(),
+            system.friction().map_or(0, |f| f.rows_per_node()),
+        ),
         &d,
         (lower, upper, disks),
         &carries,

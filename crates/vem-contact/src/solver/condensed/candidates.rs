@@ -12,9 +12,9 @@
 //! friction force where none was expected) join them, and the dense QP is solved again from
 //! its answer; candidates that grow beyond [`MAX_CANDIDATE_FRACTION`] of the interface or
 //! [`MAX_CANDIDATE_ROWS`], or a check failed only on candidate rows, hand the problem back to
-//! the iteration, from the last answer. `H_CC` is kept per structure (`H` does not change
-//! along a Coulomb fixed point or a load history) and only grows: a node once a candidate
-//! stays one.
+//! the iteration (MPGP, or with friction in space its projected Newton steps), from the last
+//! answer. `H_CC` is kept per structure (`H` does not change along a Coulomb fixed point or a
+//! load history) and only grows: a node once a candidate stays one.
 
 use faer::Mat;
 use rayon::prelude::*;
@@ -110,7 +110,7 @@ pub(super) fn solve_on_candidates(
     factors: &mut Factors,
     rows: &[(&[usize], &[f64])],
     n_dofs: usize,
-    normal_rows: usize,
+    (normal_rows, per_node): (usize, usize),
     d: &[f64],
     (lower, upper, disks): (&[f64], &[f64], &[Disk]),
     carries: &[bool],
@@ -121,12 +121,12 @@ pub(super) fn solve_on_candidates(
 ) -> Result<CandidateOutcome, ContactSolverError> {
     let m = rows.len();
     let iterate = |lambda: &[f64]| Ok(CandidateOutcome::Iterate(lambda.to_vec()));
-    if normal_rows == 0 || (m - normal_rows) % normal_rows != 0 {
+    if normal_rows == 0 || m != normal_rows * (1 + per_node) {
         return iterate(warm);
     }
     let layout = NodeRows {
         normal: normal_rows,
-        per_node: (m - normal_rows) / normal_rows,
+        per_node,
     };
     let limit = MAX_CANDIDATE_ROWS.min((MAX_CANDIDATE_FRACTION * m as f64) as usize);
     let Some(mut candidates) = factors
@@ -170,16 +170,18 @@ pub(super) fn solve_on_candidates(
         for _ in 0..MAX_ROUNDS {
             let joining_rows: usize = joining.len() * (1 + layout.per_node);
             if candidates.rows.len() + joining_rows > limit {
-                break 'rounds CandidateOutcome::Iterate(lambda);
+                break 'rounds Ok(CandidateOutcome::Iterate(lambda));
             }
             if !joining.is_empty() {
-                candidates.extend(factors, rows, &layout, &joining, work)?;
+                if let Err(e) = candidates.extend(factors, rows, &layout, &joining, work) {
+                    break 'rounds Err(e);
+                }
                 for &node in &joining {
                     is_candidate[node] = true;
                 }
             }
             if candidates.rows.is_empty() {
-                break 'rounds CandidateOutcome::Iterate(lambda);
+                break 'rounds Ok(CandidateOutcome::Iterate(lambda));
             }
             // The dense QP on the candidates' rows, to the length `tolerance` on each row
             // (its force test scaled by the largest compliance).
@@ -201,7 +203,7 @@ pub(super) fn solve_on_candidates(
                 .map(|k| candidates.hessian[(k, k)])
                 .fold(0.0f64, f64::max);
             if !(largest > 0.0 && largest.is_finite()) {
-                break 'rounds CandidateOutcome::Iterate(lambda);
+                break 'rounds Ok(CandidateOutcome::Iterate(lambda));
             }
             let outcome = dense_qp(
                 candidates.hessian.as_ref(),
@@ -220,7 +222,10 @@ pub(super) fn solve_on_candidates(
                 lambda[i] = v;
             }
             // The check on the whole interface: one product.
-            let hessian_lambda = factors.apply_operator(rows, n_dofs, &lambda, work)?;
+            let hessian_lambda = match factors.apply_operator(rows, n_dofs, &lambda, work) {
+                Ok(hessian_lambda) => hessian_lambda,
+                Err(e) => break 'rounds Err(e),
+            };
             let g: Vec<f64> = hessian_lambda.iter().zip(d).map(|(h, d)| h - d).collect();
             let whole = Mprgp {
                 linear: d,
@@ -231,7 +236,7 @@ pub(super) fn solve_on_candidates(
             };
             let violations = whole.violations(&lambda, &g);
             if violations.iter().all(|&v| v <= tolerance) {
-                break 'rounds CandidateOutcome::Solved(Interface {
+                break 'rounds Ok(CandidateOutcome::Solved(Interface {
                     lambda,
                     d: d.to_vec(),
                     iterations,
@@ -239,7 +244,7 @@ pub(super) fn solve_on_candidates(
                     free_mode: false,
                     hessian_lambda: Some(hessian_lambda),
                     solver: CANDIDATES_NAME,
-                });
+                }));
             }
             joining = (0..normal_rows)
                 .filter(|&node| {
@@ -249,15 +254,16 @@ pub(super) fn solve_on_candidates(
             if joining.is_empty() {
                 // Only candidate rows fail: round-off of the dense answer against the
                 // products; the iteration finishes from here.
-                break 'rounds CandidateOutcome::Iterate(lambda);
+                break 'rounds Ok(CandidateOutcome::Iterate(lambda));
             }
         }
-        CandidateOutcome::Iterate(lambda)
+        Ok(CandidateOutcome::Iterate(lambda))
     };
+    // Kept for the next solve of the structure, also after an error of a solve.
     if let Some(state) = factors.iterative.as_mut() {
         state.candidates = candidates;
     }
-    Ok(outcome)
+    outcome
 }
 
 impl CandidateHessian {
@@ -350,6 +356,8 @@ impl CandidateHessian {
         }
         self.hessian = hessian;
         self.rows = all_rows;
+        // The disk QP names a kept factor's columns by the problem's size, which changed.
+        self.reduced = ReducedFactor::default();
         self.nodes.extend_from_slice(joining);
         Ok(())
     }
