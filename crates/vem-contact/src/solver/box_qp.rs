@@ -503,12 +503,7 @@ mod tests {
     #[test]
     fn updated_reduced_factors_solve_the_new_free_set() {
         let mut seed = 11u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut next = || crate::solver::uniform(&mut seed);
         let n = 16;
         let a = Mat::<f64>::from_fn(n, n, |_, _| next());
         let h = &a * a.transpose() + Mat::<f64>::identity(n, n) * 0.5;
@@ -577,12 +572,7 @@ mod tests {
     #[test]
     fn random_problems_satisfy_the_kkt_conditions() {
         let mut seed = 7u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut next = || crate::solver::uniform(&mut seed);
         for _ in 0..50 {
             let n = 5;
             let a = Mat::<f64>::from_fn(n, n, |_, _| next());

@@ -617,12 +617,7 @@ const CG_TOLERANCE: f64 = 1e-11;
 mod tests {
     use super::*;
 
-    fn next(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
+    use crate::solver::uniform as next;
 
     /// One disk with `H = h I`: the minimiser is the radial return of `d / h`.
     #[test]

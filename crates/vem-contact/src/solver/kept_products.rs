@@ -400,12 +400,7 @@ mod tests {
     fn the_kept_basis_is_orthonormal_and_its_images_are_its_products() {
         let m = 300;
         let mut seed = 3u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut next = || crate::solver::uniform(&mut seed);
         let a = Mat::<f64>::from_fn(m, m, |_, _| next());
         let h = &a * a.transpose() + Mat::<f64>::identity(m, m);
         let mut kept = KeptProducts::new();

@@ -163,3 +163,13 @@ pub trait ContactSolver {
         0.0
     }
 }
+
+/// Uniform numbers in `[-1, 1)` from a 64-bit linear congruential generator (Knuth's MMIX
+/// constants): the solvers' unit tests draw their random problems from it.
+#[cfg(test)]
+pub(crate) fn uniform(seed: &mut u64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+}

@@ -561,12 +561,7 @@ mod tests {
     use faer::Mat;
     use std::convert::Infallible;
 
-    fn next(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
+    use crate::solver::uniform as next;
 
     fn product(h: &Mat<f64>) -> impl FnMut(&[f64]) -> Result<Vec<f64>, Infallible> + '_ {
         move |x: &[f64]| {
