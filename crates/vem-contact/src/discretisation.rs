@@ -195,9 +195,13 @@ impl<const D: usize> ContactDiscretisation<D> {
         vem_elastic::release_free_memory();
         work.times.insertion = start.elapsed();
         let start = Instant::now();
+        // The bodies side by side (each assembly is parallel itself; side by side their
+        // sequential stretches overlap), the first failing body's error reported.
         let systems = bodies
-            .iter()
+            .par_iter()
             .map(|body| body.assemble().map(Arc::new))
+            .collect::<Vec<_>>()
+            .into_iter()
             .collect::<Result<Vec<_>, _>>()?;
         work.assemblies = systems.len();
         let mut offsets = Vec::with_capacity(systems.len() + 1);
@@ -1562,8 +1566,9 @@ fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, 
         .iter()
         .map(|system| {
             let k = system.stiffness();
-            if let Some((index, &value)) = k.val().iter().enumerate().find(|(_, v)| !v.is_finite())
-            {
+            let values = k.val();
+            if let Some(index) = first_non_finite(values) {
+                let value = values[index];
                 return Err(ContactError::System(ContactSystemError::NonFinite {
                     what: "stiffness values",
                     index,
@@ -1573,6 +1578,20 @@ fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, 
             Ok(matrix_diagonal(k.as_ref()))
         })
         .collect()
+}
+
+/// The index of the first non-finite value of `values`: blocks checked on every thread
+/// (without a branch per value), the first failing block searched.
+fn first_non_finite(values: &[f64]) -> Option<usize> {
+    const BLOCK: usize = 1 << 14;
+    let block = values
+        .par_chunks(BLOCK)
+        .position_first(|block| block.iter().fold(false, |bad, v| bad | !v.is_finite()))?;
+    let start = block * BLOCK;
+    values[start..]
+        .iter()
+        .position(|v| !v.is_finite())
+        .map(|k| start + k)
 }
 
 /// The load vectors of the bodies, one after the other.

@@ -81,6 +81,17 @@ pub struct AssembledSystem {
     chunk: usize,
 }
 
+/// `n` zeros written by every thread, a part each. `vec![0.0; n]` of a large `n` is fresh
+/// memory the system maps on first access: the scatter's first `+=` would read a page (mapped
+/// to the shared zero page) and then write it (a second fault, which on a multithreaded
+/// process also interrupts the other cores to flush their view of the page). Written first,
+/// every page faults once, on the thread that then works near it.
+fn written_zeros(n: usize) -> Vec<f64> {
+    let mut zeros = Vec::with_capacity(n);
+    zeros.par_extend(rayon::iter::repeat_n(0.0, n));
+    zeros
+}
+
 /// What one element contributes: its global degrees of freedom, matrix and load vector.
 pub(crate) struct ElementContribution {
     pub(crate) dofs: Vec<usize>,
@@ -101,7 +112,7 @@ impl AssembledSystem {
         let bordered = (dofs.n_plates() > 0).then(|| bordered_pattern(&ff, &fp, &dofs));
         let zeros = |p: SymbolicSparseColMat<usize>| {
             let nnz = p.row_idx().len();
-            SparseColMat::new(p, vec![0.0; nnz])
+            SparseColMat::new(p, written_zeros(nnz))
         };
         Self {
             body: body.to_string(),

@@ -6,6 +6,7 @@
 //! interpolated initial gap `g = h0_I` and the nodal friction bounds `b_i = l_i g_F(x_i)`
 //! (spec section 2, nodal quadrature `j_h`).
 
+use rayon::prelude::*;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 
@@ -913,6 +914,7 @@ pub(crate) fn checked_block<'a>(
 pub(crate) fn matrix_diagonal(k: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
     let (rows, values) = (k.row_idx(), k.val());
     (0..k.ncols())
+        .into_par_iter()
         .map(|j| {
             let range = k.col_range(j);
             let column = &rows[range.clone()];

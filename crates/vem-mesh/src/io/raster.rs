@@ -12,6 +12,22 @@ pub(crate) struct Raster {
     rgba: Vec<u8>,
 }
 
+/// One thing drawn into a [`Raster`] (see [`Raster::draw`]).
+pub(crate) enum Shape {
+    /// The polygon through the points `corners` of the drawing's points, filled (see
+    /// [`Raster::fill_polygon`]).
+    Polygon {
+        corners: std::ops::Range<usize>,
+        colour: [u8; 4],
+    },
+    /// The segment from `a` to `b`, blended (see [`Raster::segment`]).
+    Segment {
+        a: (f64, f64),
+        b: (f64, f64),
+        colour: [u8; 4],
+    },
+}
+
 impl Raster {
     /// A transparent image of `width` x `height` pixels.
     pub(crate) fn new(width: usize, height: usize) -> Self {
@@ -22,77 +38,58 @@ impl Raster {
         }
     }
 
+    /// Draws `shapes` in order (the polygons' corners in `points`), in bands of rows, one
+    /// thread each: every band draws every shape clipped to its rows, so the image is the one
+    /// drawn on one thread, pixel for pixel.
+    pub(crate) fn draw(&mut self, points: &[(f64, f64)], shapes: &[Shape]) {
+        self.draw_in_bands(points, shapes, pieces_for(self.rgba.len()));
+    }
+
+    /// [`Raster::draw`] in `bands` bands of rows.
+    fn draw_in_bands(&mut self, points: &[(f64, f64)], shapes: &[Shape], bands: usize) {
+        let stride = 4 * self.width;
+        let bands = bands.clamp(1, self.height.max(1));
+        let rows = self.height.div_ceil(bands).max(1);
+        let width = self.width;
+        let draw_band = |first: usize, rgba: &mut [u8]| {
+            let mut band = Band {
+                first,
+                width,
+                rgba,
+                crossings: Vec::new(),
+            };
+            for shape in shapes {
+                match shape {
+                    Shape::Polygon { corners, colour } => {
+                        band.fill_polygon(&points[corners.clone()], *colour);
+                    }
+                    Shape::Segment { a, b, colour } => band.segment(*a, *b, *colour),
+                }
+            }
+        };
+        if bands == 1 || stride == 0 {
+            draw_band(0, &mut self.rgba);
+            return;
+        }
+        std::thread::scope(|scope| {
+            for (k, rgba) in self.rgba.chunks_mut(rows * stride).enumerate() {
+                let draw_band = &draw_band;
+                scope.spawn(move || draw_band(k * rows, rgba));
+            }
+        });
+    }
+
     /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
     /// even-odd rule) with `colour`: every pixel whose centre lies inside.
+    #[cfg(test)]
     pub(crate) fn fill_polygon(&mut self, points: &[(f64, f64)], colour: [u8; 4]) {
-        let m = points.len();
-        if m < 3 {
-            return;
-        }
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for &(_, y) in points {
-            lo = lo.min(y);
-            hi = hi.max(y);
-        }
-        if !(lo.is_finite() && hi.is_finite()) {
-            return;
-        }
-        // Rows whose centre y + 1/2 lies in [lo, hi).
-        let first = (lo - 0.5).ceil().max(0.0) as usize;
-        let last = ((hi - 0.5).ceil().min(self.height as f64)).max(0.0) as usize;
-        let mut crossings: Vec<f64> = Vec::with_capacity(8);
-        for row in first..last {
-            let y = row as f64 + 0.5;
-            crossings.clear();
-            for k in 0..m {
-                let (a, b) = (points[k], points[(k + 1) % m]);
-                if (a.1 <= y) != (b.1 <= y) {
-                    crossings.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
-                }
-            }
-            crossings.sort_by(f64::total_cmp);
-            for pair in crossings.chunks_exact(2) {
-                // Pixels whose centre x + 1/2 lies in [pair[0], pair[1]).
-                let start = (pair[0] - 0.5).ceil().max(0.0) as usize;
-                let end = ((pair[1] - 0.5).ceil().min(self.width as f64)).max(0.0) as usize;
-                for column in start..end {
-                    self.put(column, row, colour);
-                }
-            }
-        }
-    }
-
-    /// Draws the segment from `a` to `b` one pixel wide (a pixel per step along the longer
-    /// axis), blending `colour` over what is there by its alpha.
-    pub(crate) fn segment(&mut self, a: (f64, f64), b: (f64, f64), colour: [u8; 4]) {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let steps = dx.abs().max(dy.abs()).ceil();
-        if !steps.is_finite() || steps > 1e7 {
-            return;
-        }
-        let steps = steps.max(1.0) as usize;
-        for k in 0..=steps {
-            let t = k as f64 / steps as f64;
-            let (x, y) = (a.0 + t * dx, a.1 + t * dy);
-            if x >= 0.0 && y >= 0.0 && x < self.width as f64 && y < self.height as f64 {
-                self.blend(x as usize, y as usize, colour);
-            }
-        }
-    }
-
-    fn put(&mut self, x: usize, y: usize, colour: [u8; 4]) {
-        let k = 4 * (y * self.width + x);
-        self.rgba[k..k + 4].copy_from_slice(&colour);
-    }
-
-    fn blend(&mut self, x: usize, y: usize, colour: [u8; 4]) {
-        let k = 4 * (y * self.width + x);
-        let alpha = u32::from(colour[3]);
-        for (old, &new) in self.rgba[k..k + 3].iter_mut().zip(&colour[..3]) {
-            *old = ((u32::from(new) * alpha + u32::from(*old) * (255 - alpha)) / 255) as u8;
-        }
-        let old = u32::from(self.rgba[k + 3]);
-        self.rgba[k + 3] = (alpha + old * (255 - alpha) / 255).min(255) as u8;
+        self.draw(
+            points,
+            &[Shape::Polygon {
+                corners: 0..points.len(),
+                colour,
+            }],
+        );
     }
 
     /// The image as a PNG file (8-bit RGBA, no interlacing, each row filtered by the
@@ -133,6 +130,100 @@ impl Raster {
         chunk(&mut png, b"IDAT", &idat);
         chunk(&mut png, b"IEND", &[]);
         png
+    }
+}
+
+/// The rows `first..` of a raster `width` pixels wide, drawn into by one thread.
+struct Band<'a> {
+    first: usize,
+    width: usize,
+    rgba: &'a mut [u8],
+    /// The crossings of a row with a polygon's edges (kept from one polygon to the next).
+    crossings: Vec<f64>,
+}
+
+impl Band<'_> {
+    /// The rows of the band, in the image's numbering.
+    fn rows(&self) -> std::ops::Range<usize> {
+        self.first..self.first + self.rgba.len() / (4 * self.width).max(1)
+    }
+
+    /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
+    /// even-odd rule) with `colour`: every pixel of the band whose centre lies inside.
+    fn fill_polygon(&mut self, points: &[(f64, f64)], colour: [u8; 4]) {
+        let m = points.len();
+        if m < 3 {
+            return;
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(_, y) in points {
+            lo = lo.min(y);
+            hi = hi.max(y);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return;
+        }
+        let rows = self.rows();
+        // Rows whose centre y + 1/2 lies in [lo, hi).
+        let first = ((lo - 0.5).ceil().max(0.0) as usize).max(rows.start);
+        let last = (((hi - 0.5).ceil().min(rows.end as f64)).max(0.0) as usize).min(rows.end);
+        let mut crossings = std::mem::take(&mut self.crossings);
+        for row in first..last {
+            let y = row as f64 + 0.5;
+            crossings.clear();
+            for k in 0..m {
+                let (a, b) = (points[k], points[(k + 1) % m]);
+                if (a.1 <= y) != (b.1 <= y) {
+                    crossings.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
+                }
+            }
+            crossings.sort_by(f64::total_cmp);
+            let line = 4 * (row - rows.start) * self.width;
+            for pair in crossings.chunks_exact(2) {
+                // Pixels whose centre x + 1/2 lies in [pair[0], pair[1]).
+                let start = (pair[0] - 0.5).ceil().max(0.0) as usize;
+                let end = ((pair[1] - 0.5).ceil().min(self.width as f64)).max(0.0) as usize;
+                if start < end {
+                    self.rgba[line + 4 * start..line + 4 * end]
+                        .chunks_exact_mut(4)
+                        .for_each(|pixel| pixel.copy_from_slice(&colour));
+                }
+            }
+        }
+        self.crossings = crossings;
+    }
+
+    /// Draws the segment from `a` to `b` one pixel wide (a pixel per step along the longer
+    /// axis), blending `colour` over what is there by its alpha; the band's pixels only.
+    fn segment(&mut self, a: (f64, f64), b: (f64, f64), colour: [u8; 4]) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let steps = dx.abs().max(dy.abs()).ceil();
+        if !steps.is_finite() || steps > 1e7 {
+            return;
+        }
+        let rows = self.rows();
+        if a.1.max(b.1) < rows.start as f64 || a.1.min(b.1) >= rows.end as f64 {
+            return;
+        }
+        let steps = steps.max(1.0) as usize;
+        for k in 0..=steps {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (a.0 + t * dx, a.1 + t * dy);
+            if x >= 0.0 && y >= 0.0 && x < self.width as f64 && rows.contains(&(y as usize)) {
+                self.blend(x as usize, y as usize - rows.start, colour);
+            }
+        }
+    }
+
+    /// Blends `colour` over pixel (x, y) of the band by its alpha.
+    fn blend(&mut self, x: usize, y: usize, colour: [u8; 4]) {
+        let k = 4 * (y * self.width + x);
+        let alpha = u32::from(colour[3]);
+        for (old, &new) in self.rgba[k..k + 3].iter_mut().zip(&colour[..3]) {
+            *old = ((u32::from(new) * alpha + u32::from(*old) * (255 - alpha)) / 255) as u8;
+        }
+        let old = u32::from(self.rgba[k + 3]);
+        self.rgba[k + 3] = (alpha + old * (255 - alpha) / 255).min(255) as u8;
     }
 }
 
@@ -255,20 +346,10 @@ fn raw_deflate(data: &[u8], level: u8, last: bool) -> Vec<u8> {
     out
 }
 
-/// The Adler-32 checksum of `data` (RFC 1950).
+/// The Adler-32 checksum of `data` (RFC 1950), by `adler2` (four sums at a time: a third of
+/// the time of the byte-by-byte loop on a picture's rows).
 fn adler32(data: &[u8]) -> u32 {
-    const MOD: u32 = 65_521;
-    let (mut a, mut b) = (1u32, 0u32);
-    // 5552 bytes keep the sums below 2^32 before the reduction.
-    for block in data.chunks(5552) {
-        for &byte in block {
-            a += u32::from(byte);
-            b += a;
-        }
-        a %= MOD;
-        b %= MOD;
-    }
-    (b << 16) | a
+    adler2::adler32_slice(data)
 }
 
 /// Appends a PNG chunk: length, type, data, CRC-32 of type and data.
@@ -359,6 +440,83 @@ mod tests {
         let raw =
             miniz_oxide::inflate::decompress_to_vec_zlib(&png[idat + 4..idat + 4 + len]).unwrap();
         assert_eq!(raw.len(), 10 * 41);
+    }
+
+    #[test]
+    fn an_image_drawn_in_bands_is_the_one_drawn_on_one_thread() {
+        // Random polygons (some reaching outside the image) and blended segments, in order.
+        let mut state = 11u32;
+        let mut next = |scale: f64| {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            f64::from(state >> 8) / f64::from(1u32 << 24) * scale - 0.1 * scale
+        };
+        let (mut points, mut shapes) = (Vec::new(), Vec::new());
+        for k in 0..300 {
+            let (cx, cy) = (next(60.0), next(45.0));
+            let first = points.len();
+            for _ in 0..3 + k % 4 {
+                points.push((cx + 0.2 * next(40.0), cy + 0.2 * next(40.0)));
+            }
+            let colour = [(k % 251) as u8, (k % 13) as u8 * 19, 200, 255];
+            shapes.push(Shape::Polygon {
+                corners: first..points.len(),
+                colour,
+            });
+            if k % 5 == 0 {
+                shapes.push(Shape::Segment {
+                    a: (next(60.0), next(45.0)),
+                    b: (next(60.0), next(45.0)),
+                    colour: [48, 48, 48, 150],
+                });
+            }
+        }
+        let drawn = |bands: usize| {
+            let mut image = Raster::new(53, 41);
+            image.draw_in_bands(&points, &shapes, bands);
+            image.rgba
+        };
+        let one = drawn(1);
+        assert!(one.chunks(4).filter(|p| p[3] != 0).count() > 1000);
+        // Without the segments, every pixel has the colour of the last polygon holding its
+        // centre (the even-odd rule by a ray to the right), transparent outside all.
+        let polygons_only: Vec<Shape> = shapes
+            .iter()
+            .filter_map(|s| match s {
+                Shape::Polygon { corners, colour } => Some(Shape::Polygon {
+                    corners: corners.clone(),
+                    colour: *colour,
+                }),
+                Shape::Segment { .. } => None,
+            })
+            .collect();
+        let mut filled = Raster::new(53, 41);
+        filled.draw_in_bands(&points, &polygons_only, 3);
+        for (k, pixel) in filled.rgba.chunks(4).enumerate() {
+            let (x, y) = ((k % 53) as f64 + 0.5, (k / 53) as f64 + 0.5);
+            let inside = |corners: &std::ops::Range<usize>| {
+                let loop_ = &points[corners.clone()];
+                let mut odd = false;
+                for i in 0..loop_.len() {
+                    let (a, b) = (loop_[i], loop_[(i + 1) % loop_.len()]);
+                    if (a.1 <= y) != (b.1 <= y) && a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0) > x {
+                        odd = !odd;
+                    }
+                }
+                odd
+            };
+            let expected = polygons_only
+                .iter()
+                .rev()
+                .find_map(|s| match s {
+                    Shape::Polygon { corners, colour } if inside(corners) => Some(*colour),
+                    _ => None,
+                })
+                .unwrap_or([0; 4]);
+            assert_eq!(pixel, expected, "pixel {k}");
+        }
+        for bands in [2, 3, 7, 41, 100] {
+            assert!(drawn(bands) == one, "{bands} bands");
+        }
     }
 
     #[test]

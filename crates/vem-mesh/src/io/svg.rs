@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::raster::{base64, Raster};
+use super::raster::{base64, Raster, Shape};
 use super::{write_atomically, xml_escape};
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -777,25 +777,34 @@ fn raster_cells(
         let (x, y) = to_picture(p);
         (x * scale, y * scale)
     };
+    let uncoloured = rgb(UNCOLOURED);
+    let (mut points, mut shapes) = (Vec::new(), Vec::new());
     for (d, &edges) in drawn.iter().zip(edges_shown) {
         let mesh = d.layer.mesh;
-        let mut corners = Vec::new();
         for (p, polygon) in mesh.polygons().enumerate() {
-            corners.clear();
-            corners.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
-            let fill = match (d.layer.cell_values, value_range) {
-                (Some(values), Some(range)) => rgb(colour_of(values[p], range)),
-                _ => rgb(UNCOLOURED.to_string()),
+            let first = points.len();
+            points.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
+            let [r, g, b] = match (d.layer.cell_values, value_range) {
+                (Some(values), Some(range)) => colour_components(values[p], range),
+                _ => uncoloured,
             };
-            image.fill_polygon(&corners, [fill[0], fill[1], fill[2], 255]);
+            shapes.push(Shape::Polygon {
+                corners: first..points.len(),
+                colour: [r, g, b, 255],
+            });
         }
         if edges {
             for edge in mesh.edges() {
                 let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
-                image.segment(a, b, [48, 48, 48, 150]);
+                shapes.push(Shape::Segment {
+                    a,
+                    b,
+                    colour: [48, 48, 48, 150],
+                });
             }
         }
     }
+    image.draw(&points, &shapes);
     let png = image.to_png();
     emit(
         out,
@@ -834,7 +843,7 @@ fn boundary_path(
 }
 
 /// The RGB triple of a `#rrggbb` colour.
-fn rgb(hex: String) -> [u8; 3] {
+fn rgb(hex: &str) -> [u8; 3] {
     let channel = |k: usize| {
         u8::from_str_radix(hex.get(1 + 2 * k..3 + 2 * k).unwrap_or("0"), 16).unwrap_or(0)
     };
@@ -929,7 +938,12 @@ fn colour_bar(out: &mut String, x: f64, y: f64, (lo, hi): (f64, f64), label: &st
 
 /// The colour of `value` in the range `(lo, hi)` (clamped; the middle of the map when the
 /// range is a single value).
-fn colour_of(value: f64, (lo, hi): (f64, f64)) -> String {
+fn colour_of(value: f64, range: (f64, f64)) -> String {
+    hex(colour_components(value, range).map(f64::from))
+}
+
+/// The red, green and blue of `value` in the colour map over `(lo, hi)` (see [`colour_of`]).
+fn colour_components(value: f64, (lo, hi): (f64, f64)) -> [u8; 3] {
     let t = if hi > lo {
         ((value - lo) / (hi - lo)).clamp(0.0, 1.0)
     } else {
@@ -939,7 +953,7 @@ fn colour_of(value: f64, (lo, hi): (f64, f64)) -> String {
     let k = (position.floor() as usize).min(COLOUR_MAP.len() - 2);
     let s = position - k as f64;
     let (a, b) = (COLOUR_MAP[k], COLOUR_MAP[k + 1]);
-    hex([0, 1, 2].map(|c| a[c] + s * (b[c] - a[c])))
+    [0, 1, 2].map(|c| (a[c] + s * (b[c] - a[c])).round().clamp(0.0, 255.0) as u8)
 }
 
 /// `#rrggbb` of an RGB triple in 0..=255.
