@@ -396,13 +396,18 @@ pub(crate) fn scene(
     Ok(Scene::from_value(value)?)
 }
 
-/// The options of the bench's builds: the built-in registries, no memory check (the bench
-/// measures the memory itself, up to sizes the scene's plan refuses on a smaller machine).
+/// The options of the bench's builds: the built-in registries, no memory check.
 fn build_options() -> Result<BuildOptions, Box<dyn std::error::Error>> {
     Ok(BuildOptions {
-        memory_limit: Some(MemoryLimit::try_from_gib(1e9, LimitOrigin::CommandLine)?),
+        memory_limit: Some(no_memory_check()?),
         ..BuildOptions::default()
     })
+}
+
+/// The bench's memory limit: none in effect (the bench measures the memory itself, up to sizes
+/// the estimate of a run refuses on a smaller machine).
+fn no_memory_check() -> Result<MemoryLimit, Box<dyn std::error::Error>> {
+    Ok(MemoryLimit::try_from_gib(1e9, LimitOrigin::CommandLine)?)
 }
 
 /// The manufactured case `case` (M1, M2) at size `n`: quads on both bodies, the exact
@@ -414,8 +419,10 @@ fn manufactured(case: Case, n: usize) -> Result<ContactProblem, Box<dyn std::err
         .iter()
         .map(|&b| MeshFamily::Quads.generate(&exact.domain(b), n, 1))
         .collect::<Result<_, _>>()?;
-    let discrete =
-        DiscreteProblem::try_new(Arc::clone(&exact), meshes, &ProblemSettings::default())?;
+    let settings = ProblemSettings::builder()
+        .memory_limit(no_memory_check()?)
+        .build()?;
+    let discrete = DiscreteProblem::try_new(Arc::clone(&exact), meshes, &settings)?;
     discrete
         .contact_problem()
         .ok_or_else(|| format!("{} is not a contact case", case.name()).into())

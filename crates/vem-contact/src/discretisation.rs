@@ -1642,3 +1642,26 @@ fn check_disjoint_parts<const D: usize>(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::first_non_finite;
+
+    #[test]
+    fn the_first_non_finite_value_is_found_in_any_block() {
+        let mut values = vec![1.0; 3 * (1 << 14) + 7];
+        assert_eq!(first_non_finite(&values), None);
+        assert_eq!(first_non_finite(&[]), None);
+        // Each new value lies before the earlier ones: it is the first.
+        let last = values.len() - 1;
+        for (at, bad) in [
+            (last, f64::NAN),
+            ((2 << 14) + 3, f64::NEG_INFINITY),
+            (1 << 14, f64::INFINITY),
+            (5, f64::NAN),
+        ] {
+            values[at] = bad;
+            assert_eq!(first_non_finite(&values), Some(at));
+        }
+    }
+}

@@ -51,6 +51,7 @@ use vem_scene::description::{
     BodyDescription, ContactDescription, DirichletDescription, MaterialDescription,
     PlaneDescription, TractionDescription,
 };
+use vem_scene::resources::MemoryLimit;
 use vem_scene::{BuildOptions, BuiltMesh, Model, Registries, ScalarValue, Scene, VectorValue};
 use vem_space::{Choice, ElementRegistry, ElementSpace, LowestOrderVem, RegistryError};
 
@@ -67,6 +68,7 @@ pub struct ProblemSettings {
     given_element: Option<Arc<dyn ElementSpace>>,
     traction_points: usize,
     law: Option<Arc<dyn ContactLaw>>,
+    memory_limit: Option<MemoryLimit>,
 }
 
 impl ProblemSettings {
@@ -98,6 +100,12 @@ impl ProblemSettings {
         self.law.as_ref()
     }
 
+    /// The memory limit the problem's scene is built under (default: `None`, the memory the
+    /// system reports available; see [`vem_scene::resources`]).
+    pub fn memory_limit(&self) -> Option<MemoryLimit> {
+        self.memory_limit
+    }
+
     /// The same settings with another contact law.
     pub(crate) fn with_law(mut self, law: Arc<dyn ContactLaw>) -> Self {
         self.law = Some(law);
@@ -119,6 +127,7 @@ impl Default for ProblemSettings {
             given_element: None,
             traction_points: Self::DEFAULT_TRACTION_POINTS,
             law: None,
+            memory_limit: None,
         }
     }
 }
@@ -149,6 +158,14 @@ impl ProblemSettingsBuilder {
         self
     }
 
+    /// The memory limit the scene is built under, in place of the memory the system reports
+    /// available (a benchmark that measures the memory itself, up to sizes the estimate of a
+    /// run refuses).
+    pub fn memory_limit(mut self, limit: MemoryLimit) -> Self {
+        self.settings.memory_limit = Some(limit);
+        self
+    }
+
     /// Validates the settings (the number of traction points must give a Gauss–Legendre rule).
     ///
     /// # Errors
@@ -175,6 +192,7 @@ impl std::fmt::Debug for ProblemSettings {
             .field("element", &self.element.name())
             .field("traction_points", &self.traction_points)
             .field("law", &self.law.as_ref().map(|l| l.describe()))
+            .field("memory_limit", &self.memory_limit)
             .finish()
     }
 }
@@ -376,6 +394,7 @@ impl DiscreteProblem {
         let (scene, registries) = scene_of(&exact, meshes, settings)?;
         let options = BuildOptions {
             registries,
+            memory_limit: settings.memory_limit,
             ..BuildOptions::default()
         };
         let model = Model::build(&scene, &options).map_err(|source| VerifyError::Scene {
