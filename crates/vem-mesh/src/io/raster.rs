@@ -14,13 +14,13 @@ pub(crate) struct Raster {
 
 /// One thing drawn into a [`Raster`] (see [`Raster::draw`]).
 pub(crate) enum Shape {
-    /// The polygon through the points `corners` of the drawing's points, filled (see
-    /// [`Raster::fill_polygon`]).
+    /// The polygon through the points `corners` of the drawing's points, filled: every pixel
+    /// whose centre lies inside (the even-odd rule).
     Polygon {
         corners: std::ops::Range<usize>,
         colour: [u8; 4],
     },
-    /// The segment from `a` to `b`, blended (see [`Raster::segment`]).
+    /// The segment from `a` to `b`, one pixel wide, blended by the colour's alpha.
     Segment {
         a: (f64, f64),
         b: (f64, f64),
