@@ -69,13 +69,13 @@ use crate::result::{
     InterfaceNode, ModelSummary, PairSummary, TractionBound,
 };
 use crate::solver::ForceScales;
-use crate::solver::{checked_block, matrix_diagonal};
+use crate::solver::{check_finite, checked_block, matrix_diagonal};
 use crate::warning::Warning;
 use crate::{
     ConstraintRows, ContactError, ContactLaw, ContactNode, ContactProblem, ContactSolution,
-    ContactSolver, ContactSolverError, ContactSystem, ContactSystemError, FixedPointSettings,
-    Friction, HistoryStep, KktResiduals, LoadCondition, LoadFactors, LoadHistory, LoadPath,
-    Location, PatternId, SolveReport, SolveStatus, WorkCounters,
+    ContactSolver, ContactSolverError, ContactSystem, FixedPointSettings, Friction, HistoryStep,
+    KktResiduals, LoadCondition, LoadFactors, LoadHistory, LoadPath, Location, PatternId,
+    SolveReport, SolveStatus, WorkCounters,
 };
 
 /// One contact pair as discretised: its law, its nodes in the discretisation's list, and what
@@ -1566,32 +1566,10 @@ fn checked_diagonals(systems: &[Arc<AssembledSystem>]) -> Result<Vec<Vec<f64>>, 
         .iter()
         .map(|system| {
             let k = system.stiffness();
-            let values = k.val();
-            if let Some(index) = first_non_finite(values) {
-                let value = values[index];
-                return Err(ContactError::System(ContactSystemError::NonFinite {
-                    what: "stiffness values",
-                    index,
-                    value,
-                }));
-            }
+            check_finite("stiffness values", k.val()).map_err(ContactError::System)?;
             Ok(matrix_diagonal(k.as_ref()))
         })
         .collect()
-}
-
-/// The index of the first non-finite value of `values`: blocks checked on every thread
-/// (without a branch per value), the first failing block searched.
-fn first_non_finite(values: &[f64]) -> Option<usize> {
-    const BLOCK: usize = 1 << 14;
-    let block = values
-        .par_chunks(BLOCK)
-        .position_first(|block| block.iter().fold(false, |bad, v| bad | !v.is_finite()))?;
-    let start = block * BLOCK;
-    values[start..]
-        .iter()
-        .position(|v| !v.is_finite())
-        .map(|k| start + k)
 }
 
 /// The load vectors of the bodies, one after the other.
@@ -1641,27 +1619,4 @@ fn check_disjoint_parts<const D: usize>(
         }
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::first_non_finite;
-
-    #[test]
-    fn the_first_non_finite_value_is_found_in_any_block() {
-        let mut values = vec![1.0; 3 * (1 << 14) + 7];
-        assert_eq!(first_non_finite(&values), None);
-        assert_eq!(first_non_finite(&[]), None);
-        // Each new value lies before the earlier ones: it is the first.
-        let last = values.len() - 1;
-        for (at, bad) in [
-            (last, f64::NAN),
-            ((2 << 14) + 3, f64::NEG_INFINITY),
-            (1 << 14, f64::INFINITY),
-            (5, f64::NAN),
-        ] {
-            values[at] = bad;
-            assert_eq!(first_non_finite(&values), Some(at));
-        }
-    }
 }

@@ -85,7 +85,7 @@ pub struct AssembledSystem {
 /// memory the system maps on first access: the scatter's first `+=` would read a page (mapped
 /// to the shared zero page) and then write it (a second fault, which on a multithreaded
 /// process also interrupts the other cores to flush their view of the page). Written first,
-/// every page faults once, on the thread that then works near it.
+/// every page faults once, the faults spread over the threads.
 fn written_zeros(n: usize) -> Vec<f64> {
     let mut zeros = Vec::with_capacity(n);
     zeros.par_extend(rayon::iter::repeat_n(0.0, n));

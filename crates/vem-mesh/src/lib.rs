@@ -27,7 +27,7 @@
 //! | `generators` | [`generators`]: structured, hexagonal, Voronoi, perturbed, ... meshes | `rand`, `rand_chacha` |
 //! | `gmsh` | `io::read_gmsh`, `io::read_gmsh_bytes`, `io::read_msh_bytes`: Gmsh `.msh` 4.1 and 2.2 input; `io::read_gmsh_polyhedral`: 3D meshes of tetrahedra, hexahedra, prisms and pyramids | none |
 //! | `vtu` | `io::write_vtu`, `io::write_polyhedral_vtu`, `io::UnstructuredGrid`, `io::PvdCollection`: VTK `.vtu` output (ASCII, binary, zlib; polygons and polyhedra) and `.pvd` collections; `io::read_vtu`, `io::read_legacy_vtk`, `io::read_vtk_mesh`: VTK input | `miniz_oxide`, `roxmltree` |
-//! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes (large ones with an embedded PNG) | `miniz_oxide` |
+//! | `svg` | `io::write_svg`, `io::write_svg_layers`: SVG pictures of meshes (large ones with an embedded PNG) | `miniz_oxide`, `adler2` |
 //!
 //! `io::read_polymesher` (PolyMesher/mVEM meshes exported as text) needs no feature.
 //!

@@ -5,9 +5,12 @@
 //! the machine is refused with the estimate, instead of being killed by the system (or
 //! aborting on a failed allocation) after minutes of work.
 //!
-//! The estimate is a model of what a run holds at its peak, fitted to the measured peaks of
-//! `cargo xtask bench` (docs/benchmarks.md: 20.0 GiB for 8.0e6 unknowns of quads) and kept
-//! above them (about 1.3x there): the meshes ([`MESH_BYTES_PER_CORNER`] per polygon corner,
+//! The estimate is a model of what a run holds at its peak, first fitted to the peak of
+//! `cargo xtask bench` at 8.0e6 unknowns of quads (20.0 GiB, about 1.3x below the estimate)
+//! and kept above the peaks of `vem run` measured since (docs/benchmarks.md, "8·10^6
+//! unknowns": 1.36-1.39x for Voronoi cells, the tightest family, 1.68x for quads, 1.94x for
+//! triangles on quads; a model of these terms cannot be lower for quads without being too low
+//! for Voronoi cells): the meshes ([`MESH_BYTES_PER_CORNER`] per polygon corner,
 //! [`BYTES_PER_VERTEX`] per vertex), the unknowns' vectors and the factor's fill
 //! ([`BYTES_PER_UNKNOWN`]) and the stiffness matrix with its factor
 //! ([`BYTES_PER_ELEMENT_ENTRY`] per entry of the element matrices, `(2k)^2` for a polygon

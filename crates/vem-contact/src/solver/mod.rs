@@ -56,7 +56,7 @@ pub(crate) use report::ForceScales;
 pub use report::{
     KktResiduals, KktScales, KktTolerance, SolveReport, SolveStatus, StageTimes, WorkCounters,
 };
-pub(crate) use system::{checked_block, matrix_diagonal};
+pub(crate) use system::{check_finite, checked_block, matrix_diagonal};
 pub use system::{
     ConstraintRows, ContactSystem, ContactSystemError, Friction, PatternId, StiffnessBlock,
 };

@@ -968,8 +968,9 @@ fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), C
     }
 }
 
-fn check_finite(what: &'static str, v: &[f64]) -> Result<(), ContactSystemError> {
-    match v.iter().position(|x| !x.is_finite()) {
+/// `v` finite, or the error naming `what` and its first non-finite value.
+pub(crate) fn check_finite(what: &'static str, v: &[f64]) -> Result<(), ContactSystemError> {
+    match first_non_finite(v) {
         None => Ok(()),
         Some(index) => Err(ContactSystemError::NonFinite {
             what,
@@ -977,6 +978,20 @@ fn check_finite(what: &'static str, v: &[f64]) -> Result<(), ContactSystemError>
             value: v[index],
         }),
     }
+}
+
+/// The index of the first non-finite value of `values`: blocks checked on every thread
+/// (without a branch per value), the first failing block searched.
+fn first_non_finite(values: &[f64]) -> Option<usize> {
+    const BLOCK: usize = 1 << 14;
+    let block = values
+        .par_chunks(BLOCK)
+        .position_first(|block| block.iter().fold(false, |bad, v| bad | !v.is_finite()))?;
+    let start = block * BLOCK;
+    values[start..]
+        .iter()
+        .position(|v| !v.is_finite())
+        .map(|k| start + k)
 }
 
 /// Finite entries, non-negative diagonal, symmetric pattern and values.
@@ -1009,4 +1024,27 @@ fn check_stiffness(k: SparseColMatRef<'_, usize, f64>) -> Result<(), ContactSyst
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_non_finite;
+
+    #[test]
+    fn the_first_non_finite_value_is_found_in_any_block() {
+        let mut values = vec![1.0; 3 * (1 << 14) + 7];
+        assert_eq!(first_non_finite(&values), None);
+        assert_eq!(first_non_finite(&[]), None);
+        // Each new value lies before the earlier ones: it is the first.
+        let last = values.len() - 1;
+        for (at, bad) in [
+            (last, f64::NAN),
+            ((2 << 14) + 3, f64::NEG_INFINITY),
+            (1 << 14, f64::INFINITY),
+            (5, f64::NAN),
+        ] {
+            values[at] = bad;
+            assert_eq!(first_non_finite(&values), Some(at));
+        }
+    }
 }

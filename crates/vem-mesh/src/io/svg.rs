@@ -52,6 +52,8 @@ const AXIS_LEFT: f64 = 76.0;
 const AXIS_BOTTOM: f64 = 44.0;
 /// Fill of cells without values whose edges are not drawn.
 const UNCOLOURED: &str = "#e4e4e4";
+/// [`UNCOLOURED`] as red, green and blue.
+const UNCOLOURED_RGB: [u8; 3] = [0xe4, 0xe4, 0xe4];
 /// Colour of the marked points.
 const MARK_COLOUR: &str = "#e8112d";
 /// The default [`SvgOptions::edge_min_pixels`].
@@ -777,8 +779,17 @@ fn raster_cells(
         let (x, y) = to_picture(p);
         (x * scale, y * scale)
     };
-    let uncoloured = rgb(UNCOLOURED);
+    // The shapes drawn in batches, in order: the memory of a batch, not of the whole mesh.
+    const BATCH: usize = 1 << 18;
     let (mut points, mut shapes) = (Vec::new(), Vec::new());
+    let mut add = |shape: Shape, points: &mut Vec<(f64, f64)>| {
+        shapes.push(shape);
+        if shapes.len() == BATCH {
+            image.draw(points, &shapes);
+            points.clear();
+            shapes.clear();
+        }
+    };
     for (d, &edges) in drawn.iter().zip(edges_shown) {
         let mesh = d.layer.mesh;
         for (p, polygon) in mesh.polygons().enumerate() {
@@ -786,21 +797,22 @@ fn raster_cells(
             points.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
             let [r, g, b] = match (d.layer.cell_values, value_range) {
                 (Some(values), Some(range)) => colour_components(values[p], range),
-                _ => uncoloured,
+                _ => UNCOLOURED_RGB,
             };
-            shapes.push(Shape::Polygon {
-                corners: first..points.len(),
-                colour: [r, g, b, 255],
-            });
+            let corners = first..points.len();
+            add(
+                Shape::Polygon {
+                    corners,
+                    colour: [r, g, b, 255],
+                },
+                &mut points,
+            );
         }
         if edges {
             for edge in mesh.edges() {
                 let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
-                shapes.push(Shape::Segment {
-                    a,
-                    b,
-                    colour: [48, 48, 48, 150],
-                });
+                let colour = [48, 48, 48, 150];
+                add(Shape::Segment { a, b, colour }, &mut points);
             }
         }
     }
@@ -840,14 +852,6 @@ fn boundary_path(
              stroke-linecap=\"round\"/>\n"
         ),
     );
-}
-
-/// The RGB triple of a `#rrggbb` colour.
-fn rgb(hex: &str) -> [u8; 3] {
-    let channel = |k: usize| {
-        u8::from_str_radix(hex.get(1 + 2 * k..3 + 2 * k).unwrap_or("0"), 16).unwrap_or(0)
-    };
-    [channel(0), channel(1), channel(2)]
 }
 
 /// Appends one `<polygon>` with the given vertex positions and optional fill colour (the
