@@ -179,22 +179,18 @@ impl ElasticBody<2> {
         let weight = 1.0 / coercivity(&self.tensor().voigt());
         let n_cells = mesh.n_polygons();
         let rule = TriangleRule::degree5();
-        // Each cell on its own: its stress, its stabilisation term and its residual (the
-        // element matrices as in the assembly, so on every thread).
+        // Each cell on its own: its stress, its stabilisation term and its residual (on every
+        // thread; the element gives the strain and the stabilisation energy in one pass).
         let per_cell = (0..n_cells)
             .into_par_iter()
             .map(|c| {
                 let local = self.local_values(c, displacement);
-                let strain = self
+                let (strain, stabilisation) = self
                     .element()
-                    .strain(self.body_mesh(), c, &local)
-                    .map_err(element_error(c))?;
-                let stiffness = self
-                    .element()
-                    .stiffness(self.body_mesh(), c, self.tensor())
+                    .strain_and_stabilisation_energy(self.body_mesh(), c, self.tensor(), &local)
                     .map_err(element_error(c))?;
                 let mut cell = CellIndicator {
-                    stabilisation: local.dot(&(&stiffness.stabilisation * &local)).max(0.0),
+                    stabilisation,
                     ..CellIndicator::default()
                 };
                 if let Some(force) = self.body_force() {

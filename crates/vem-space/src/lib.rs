@@ -201,4 +201,22 @@ pub trait ElementSpace: Send + Sync {
         polygon: &[Point],
         body_force: &(dyn Fn(Point) -> Vector + Sync),
     ) -> Result<DVector<f64>, SpaceError>;
+
+    /// The strain of `Pi u` in Voigt notation (see [`EnergyProjection::strain`]) and the
+    /// stabilisation energy `u' K_s u` (`K_s` the stabilisation of
+    /// [`ElementSpace::stiffness`], the energy clamped at zero) of the local degrees of
+    /// freedom `u` (length 2n, as for [`ElementSpace::stiffness`]): what the error estimate
+    /// needs of a cell. By default from
+    /// [`ElementSpace::projection`] and [`ElementSpace::stiffness`]; an element may give both
+    /// without forming `K_s`.
+    fn strain_and_stabilisation_energy(
+        &self,
+        polygon: &[Point],
+        material: &ElasticityTensor,
+        u: &DVector<f64>,
+    ) -> Result<(SMatrix<f64, 3, 1>, f64), SpaceError> {
+        let strain = self.projection(polygon)?.strain(u);
+        let stiffness = self.stiffness(polygon, material)?;
+        Ok((strain, u.dot(&(&stiffness.stabilisation * u)).max(0.0)))
+    }
 }

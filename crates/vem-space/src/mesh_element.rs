@@ -103,6 +103,26 @@ pub trait MeshElement<const D: usize>: Send + Sync {
         local: &DVector<f64>,
     ) -> Result<SMatrix<f64, D, D>, SpaceError>;
 
+    /// The strain of `Pi u_h` on cell `cell` (as [`MeshElement::strain`]) and the
+    /// stabilisation energy `u' K_s u` of the local degrees of freedom `local` (`K_s` the
+    /// stabilisation of [`MeshElement::stiffness`], the energy clamped at zero): what the error
+    /// estimate needs of a cell. By default from [`MeshElement::strain`] and
+    /// [`MeshElement::stiffness`].
+    fn strain_and_stabilisation_energy(
+        &self,
+        mesh: &dyn BodyMesh<D>,
+        cell: usize,
+        material: &ElasticityTensor<D>,
+        local: &DVector<f64>,
+    ) -> Result<(SMatrix<f64, D, D>, f64), SpaceError> {
+        let strain = self.strain(mesh, cell, local)?;
+        let stiffness = self.stiffness(mesh, cell, material)?;
+        Ok((
+            strain,
+            local.dot(&(&stiffness.stabilisation * local)).max(0.0),
+        ))
+    }
+
     /// The polygonal element behind this one, when it is one (`D = 2`): for the code that
     /// needs its energy projection as a polynomial (error norms).
     fn as_planar(&self) -> Option<&dyn ElementSpace> {
@@ -203,16 +223,28 @@ impl MeshElement<2> for PlanarElement {
         local: &DVector<f64>,
     ) -> Result<SMatrix<f64, 2, 2>, SpaceError> {
         let projection = self.0.projection(&Self::polygon(mesh, cell))?;
-        let e = projection.strain(local);
-        Ok(SMatrix::<f64, 2, 2>::new(
-            e[0],
-            0.5 * e[2],
-            0.5 * e[2],
-            e[1],
-        ))
+        Ok(strain_tensor(&projection.strain(local)))
+    }
+
+    fn strain_and_stabilisation_energy(
+        &self,
+        mesh: &dyn BodyMesh<2>,
+        cell: usize,
+        material: &ElasticityTensor<2>,
+        local: &DVector<f64>,
+    ) -> Result<(SMatrix<f64, 2, 2>, f64), SpaceError> {
+        let (strain, energy) =
+            self.0
+                .strain_and_stabilisation_energy(&Self::polygon(mesh, cell), material, local)?;
+        Ok((strain_tensor(&strain), energy))
     }
 
     fn as_planar(&self) -> Option<&dyn ElementSpace> {
         Some(&*self.0)
     }
+}
+
+/// The strain tensor of a plane strain in Voigt notation `[xx, yy, 2 xy]`.
+fn strain_tensor(e: &SMatrix<f64, 3, 1>) -> SMatrix<f64, 2, 2> {
+    SMatrix::<f64, 2, 2>::new(e[0], 0.5 * e[2], 0.5 * e[2], e[1])
 }

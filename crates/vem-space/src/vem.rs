@@ -25,7 +25,7 @@
 
 use std::sync::Arc;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SMatrix};
 
 use crate::quadrature::{polygon_rule, TriangleRule};
 use crate::{
@@ -97,6 +97,82 @@ impl LowestOrderVem {
         &self.stabilisation
     }
 
+    /// What the stiffness and the stabilisation energy share: the consistency part, the
+    /// diagonal `s` of the stabilisation and `R = I - Q` (row-major n x n; see
+    /// [`ElementSpace::stiffness`]).
+    fn parts(
+        &self,
+        geometry: &PolygonGeometry,
+        material: &ElasticityTensor,
+    ) -> Result<StiffnessParts, SpaceError> {
+        let n = geometry.n_vertices();
+        let dofs = 2 * n;
+        // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v), entry by entry from
+        // the columns of the Voigt strain matrix B (3 x 2n: [w_x, 0, w_y] for the x value of
+        // a vertex, [0, w_y, w_x] for its y value; see `strain_matrix`), the lower triangle
+        // computed and mirrored, so that K_c is exactly symmetric. The matrices are small
+        // (2n <= 30 or so): plain loops, no general matrix product and its workspace.
+        let c = material.voigt();
+        let weights = geometry.gradient_weights();
+        let column = |j: usize| {
+            let w = weights[j / 2];
+            if j % 2 == 0 {
+                [w.x, 0.0, w.y]
+            } else {
+                [0.0, w.y, w.x]
+            }
+        };
+        let area = geometry.area();
+        let mut consistency = DMatrix::zeros(dofs, dofs);
+        for j in 0..dofs {
+            let b = column(j);
+            let cb = [
+                c[(0, 0)] * b[0] + c[(0, 1)] * b[1] + c[(0, 2)] * b[2],
+                c[(1, 0)] * b[0] + c[(1, 1)] * b[1] + c[(1, 2)] * b[2],
+                c[(2, 0)] * b[0] + c[(2, 1)] * b[1] + c[(2, 2)] * b[2],
+            ];
+            for i in j..dofs {
+                let a = column(i);
+                let value = area * (a[0] * cb[0] + a[1] * cb[1] + a[2] * cb[2]);
+                consistency[(i, j)] = value;
+                consistency[(j, i)] = value;
+            }
+        }
+        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi. Both components of a vertex
+        // value are projected alike: Pi_dof = I_2 (x) Q with Q[k][m] = 1/n + r_k . w_m (r_k the
+        // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
+        // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
+        // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
+        let s = self
+            .stabilisation
+            .diagonal(geometry, material, &consistency)?;
+        if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
+            return Err(SpaceError::InvalidStabilisation {
+                stabilisation: self.stabilisation.name(),
+                reason: format!(
+                    "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
+                    s.len(),
+                    s.as_slice()
+                ),
+            });
+        }
+        let relative = geometry.relative_vertices();
+        let mean = 1.0 / n as f64;
+        // R = I - Q, row-major n x n.
+        let mut r = vec![0.0; n * n];
+        for (k, x) in relative.iter().enumerate() {
+            for (m, w) in weights.iter().enumerate() {
+                let identity = if k == m { 1.0 } else { 0.0 };
+                r[k * n + m] = identity - (mean + x.x * w.x + x.y * w.y);
+            }
+        }
+        Ok(StiffnessParts {
+            consistency,
+            diagonal: s,
+            complement: r,
+        })
+    }
+
     /// The 6 x 2n coefficient matrix of `Pi` (see [`EnergyProjection::coefficients`]).
     fn coefficients(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
@@ -148,6 +224,14 @@ impl LowestOrderVem {
     }
 }
 
+/// The consistency part of a polygon's stiffness, the diagonal `s` of its stabilisation and
+/// `R = I - Q` (see [`LowestOrderVem::parts`]).
+struct StiffnessParts {
+    consistency: DMatrix<f64>,
+    diagonal: DVector<f64>,
+    complement: Vec<f64>,
+}
+
 /// `(m + m^T) / 2`: removes the round-off asymmetry of a product `A^T S A`.
 #[cfg(test)]
 fn symmetrised(m: DMatrix<f64>) -> DMatrix<f64> {
@@ -170,68 +254,10 @@ impl ElementSpace for LowestOrderVem {
         material: &ElasticityTensor,
     ) -> Result<LocalStiffness, SpaceError> {
         let geometry = PolygonGeometry::try_new(polygon)?;
+        let parts = self.parts(&geometry, material)?;
         let n = geometry.n_vertices();
-        let dofs = 2 * n;
-        // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v), entry by entry from
-        // the columns of the Voigt strain matrix B (3 x 2n: [w_x, 0, w_y] for the x value of
-        // a vertex, [0, w_y, w_x] for its y value; see `strain_matrix`), the lower triangle
-        // computed and mirrored, so that K_c is exactly symmetric. The matrices are small
-        // (2n <= 30 or so): plain loops, no general matrix product and its workspace.
-        let c = material.voigt();
-        let weights = geometry.gradient_weights();
-        let column = |j: usize| {
-            let w = weights[j / 2];
-            if j % 2 == 0 {
-                [w.x, 0.0, w.y]
-            } else {
-                [0.0, w.y, w.x]
-            }
-        };
-        let area = geometry.area();
-        let mut consistency = DMatrix::zeros(dofs, dofs);
-        for j in 0..dofs {
-            let b = column(j);
-            let cb = [
-                c[(0, 0)] * b[0] + c[(0, 1)] * b[1] + c[(0, 2)] * b[2],
-                c[(1, 0)] * b[0] + c[(1, 1)] * b[1] + c[(1, 2)] * b[2],
-                c[(2, 0)] * b[0] + c[(2, 1)] * b[1] + c[(2, 2)] * b[2],
-            ];
-            for i in j..dofs {
-                let a = column(i);
-                let value = area * (a[0] * cb[0] + a[1] * cb[1] + a[2] * cb[2]);
-                consistency[(i, j)] = value;
-                consistency[(j, i)] = value;
-            }
-        }
-        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi. Both components of a vertex
-        // value are projected alike: Pi_dof = I_2 (x) Q with Q[k][m] = 1/n + r_k . w_m (r_k the
-        // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
-        // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
-        // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
-        let s = self
-            .stabilisation
-            .diagonal(&geometry, material, &consistency)?;
-        if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
-            return Err(SpaceError::InvalidStabilisation {
-                stabilisation: self.stabilisation.name(),
-                reason: format!(
-                    "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
-                    s.len(),
-                    s.as_slice()
-                ),
-            });
-        }
-        let relative = geometry.relative_vertices();
-        let mean = 1.0 / n as f64;
-        // R = I - Q, row-major n x n.
-        let mut r = vec![0.0; n * n];
-        for (k, x) in relative.iter().enumerate() {
-            for (m, w) in weights.iter().enumerate() {
-                let identity = if k == m { 1.0 } else { 0.0 };
-                r[k * n + m] = identity - (mean + x.x * w.x + x.y * w.y);
-            }
-        }
-        let mut stabilisation = DMatrix::zeros(dofs, dofs);
+        let (r, s) = (&parts.complement, &parts.diagonal);
+        let mut stabilisation = DMatrix::zeros(2 * n, 2 * n);
         for component in 0..2 {
             for b in 0..n {
                 for a in b..n {
@@ -245,9 +271,38 @@ impl ElementSpace for LowestOrderVem {
             }
         }
         Ok(LocalStiffness {
-            consistency,
+            consistency: parts.consistency,
             stabilisation,
         })
+    }
+
+    /// `K_s = sum_k s_k ((I - Pi_dof) u)_k^2` from `R = I - Q` and the diagonal `s`, without
+    /// forming `K_s`; the strain from the gradient weights.
+    fn strain_and_stabilisation_energy(
+        &self,
+        polygon: &[Point],
+        material: &ElasticityTensor,
+        u: &DVector<f64>,
+    ) -> Result<(SMatrix<f64, 3, 1>, f64), SpaceError> {
+        let geometry = PolygonGeometry::try_new(polygon)?;
+        let n = geometry.n_vertices();
+        let parts = self.parts(&geometry, material)?;
+        let (r, s) = (&parts.complement, &parts.diagonal);
+        let mut energy = 0.0;
+        for component in 0..2 {
+            for k in 0..n {
+                let residual: f64 = (0..n).map(|m| r[k * n + m] * u[2 * m + component]).sum();
+                energy += s[2 * k + component] * residual * residual;
+            }
+        }
+        let mut strain = SMatrix::<f64, 3, 1>::zeros();
+        for (k, w) in geometry.gradient_weights().iter().enumerate() {
+            let (ux, uy) = (u[2 * k], u[2 * k + 1]);
+            strain[0] += w.x * ux;
+            strain[1] += w.y * uy;
+            strain[2] += w.y * ux + w.x * uy;
+        }
+        Ok((strain, energy.max(0.0)))
     }
 
     fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError> {
@@ -370,6 +425,58 @@ mod tests {
                     assert!((a - b).norm() <= 1e-14 * scale, "{a} against {b}");
                     assert_eq!(a, &a.transpose(), "exactly symmetric");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn strain_and_stabilisation_energy_agree_with_the_projection_and_the_matrix() {
+        let material = ElasticityTensor::try_isotropic(3.0, 1.5).unwrap();
+        let polygons: Vec<Vec<Point>> = vec![
+            vec![
+                Point::new(0.1, 0.0),
+                Point::new(1.0, 0.2),
+                Point::new(0.3, 0.9),
+            ],
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(2.0, 0.0),
+                Point::new(2.0, 1.0),
+                Point::new(1.0, 1.0),
+                Point::new(1.0, 2.0),
+                Point::new(0.0, 2.0),
+            ],
+            (0..9)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / 9.0;
+                    let r = if k % 2 == 0 { 1.0 } else { 0.7 };
+                    Point::new(5.0 + r * t.cos(), -3.0 + 0.4 * r * t.sin())
+                })
+                .collect(),
+        ];
+        let stabilisations: [Arc<dyn Stabilisation>; 3] = [
+            Arc::new(DofiDofi::default()),
+            Arc::new(DRecipe),
+            Arc::new(crate::BBar),
+        ];
+        for stabilisation in stabilisations {
+            let element = LowestOrderVem::try_new(stabilisation).unwrap();
+            for polygon in &polygons {
+                let u = DVector::from_fn(2 * polygon.len(), |i, _| {
+                    (1.7 * i as f64 + 0.3).sin() + 0.1 * i as f64
+                });
+                let (strain, energy) = element
+                    .strain_and_stabilisation_energy(polygon, &material, &u)
+                    .unwrap();
+                let expected_strain = element.projection(polygon).unwrap().strain(&u);
+                assert!((strain - expected_strain).norm() <= 1e-14 * expected_strain.norm());
+                let stiffness = element.stiffness(polygon, &material).unwrap();
+                let expected = u.dot(&(&stiffness.stabilisation * &u)).max(0.0);
+                let scale = u.dot(&(&stiffness.consistency * &u)) + expected;
+                assert!(
+                    (energy - expected).abs() <= 1e-13 * scale,
+                    "{energy} against {expected}"
+                );
             }
         }
     }
