@@ -206,9 +206,8 @@ pub trait ElementSpace: Send + Sync {
     /// stabilisation energy `u' K_s u` (`K_s` the stabilisation of
     /// [`ElementSpace::stiffness`], the energy clamped at zero) of the local degrees of
     /// freedom `u` (length 2n, as for [`ElementSpace::stiffness`]): what the error estimate
-    /// needs of a cell. By default from
-    /// [`ElementSpace::projection`] and [`ElementSpace::stiffness`]; an element may give both
-    /// without forming `K_s`.
+    /// needs of a cell. By default from [`ElementSpace::projection`] and
+    /// [`ElementSpace::stiffness`]; an element may give both without forming `K_s`.
     fn strain_and_stabilisation_energy(
         &self,
         polygon: &[Point],

@@ -173,6 +173,14 @@ impl LowestOrderVem {
         })
     }
 
+    /// The energy projection of a polygon of geometry `geometry`.
+    fn projection_of(geometry: &PolygonGeometry) -> EnergyProjection {
+        EnergyProjection {
+            reference: geometry.vertex_mean(),
+            coefficients: Self::coefficients(geometry),
+        }
+    }
+
     /// The 6 x 2n coefficient matrix of `Pi` (see [`EnergyProjection::coefficients`]).
     fn coefficients(geometry: &PolygonGeometry) -> DMatrix<f64> {
         let n = geometry.n_vertices();
@@ -276,8 +284,9 @@ impl ElementSpace for LowestOrderVem {
         })
     }
 
-    /// `K_s = sum_k s_k ((I - Pi_dof) u)_k^2` from `R = I - Q` and the diagonal `s`, without
-    /// forming `K_s`; the strain from the gradient weights.
+    /// The energy `u' K_s u = sum_k s_k ((I - Pi_dof) u)_k^2` from `R = I - Q` and the
+    /// diagonal `s`, without forming `K_s`; the strain from the projection of the same
+    /// geometry.
     fn strain_and_stabilisation_energy(
         &self,
         polygon: &[Point],
@@ -295,22 +304,11 @@ impl ElementSpace for LowestOrderVem {
                 energy += s[2 * k + component] * residual * residual;
             }
         }
-        let mut strain = SMatrix::<f64, 3, 1>::zeros();
-        for (k, w) in geometry.gradient_weights().iter().enumerate() {
-            let (ux, uy) = (u[2 * k], u[2 * k + 1]);
-            strain[0] += w.x * ux;
-            strain[1] += w.y * uy;
-            strain[2] += w.y * ux + w.x * uy;
-        }
-        Ok((strain, energy.max(0.0)))
+        Ok((Self::projection_of(&geometry).strain(u), energy.max(0.0)))
     }
 
     fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError> {
-        let geometry = PolygonGeometry::try_new(polygon)?;
-        Ok(EnergyProjection {
-            reference: geometry.vertex_mean(),
-            coefficients: Self::coefficients(&geometry),
-        })
+        Ok(Self::projection_of(&PolygonGeometry::try_new(polygon)?))
     }
 
     fn body_load(
