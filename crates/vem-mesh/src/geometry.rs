@@ -7,11 +7,15 @@ use crate::{Point, Vector};
 
 /// Signed area by the shoelace formula: positive for a counter-clockwise loop.
 pub fn signed_area(vertices: &[Point]) -> f64 {
-    let n = vertices.len();
+    signed_area_of(vertices.len(), |i| vertices[i])
+}
+
+/// [`signed_area`] of the polygon of `n` corners `corner(0..n)`, without gathering them.
+pub(crate) fn signed_area_of(n: usize, corner: impl Fn(usize) -> Point) -> f64 {
     let mut twice_area = 0.0;
     for i in 0..n {
-        let a = vertices[i];
-        let b = vertices[(i + 1) % n];
+        let a = corner(i);
+        let b = corner((i + 1) % n);
         twice_area += a.x * b.y - b.x * a.y;
     }
     0.5 * twice_area

@@ -389,7 +389,8 @@ impl Mesh {
 
     /// Area of polygon `p`.
     pub fn area(&self, p: usize) -> f64 {
-        geometry::signed_area(&self.polygon_points(p))
+        let polygon = self.polygon(p);
+        geometry::signed_area_of(polygon.len(), |i| self.vertices[polygon[i]])
     }
 
     /// Centroid of polygon `p`.

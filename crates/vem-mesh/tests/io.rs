@@ -568,25 +568,26 @@ fn svg_of_many_cells_embeds_a_png_of_the_cells() {
     let height = u32::from_be_bytes(png[20..24].try_into().unwrap()) as usize;
     let picture_width: f64 = image.attribute("width").unwrap().parse().unwrap();
     assert_eq!(width as f64, 2.0 * picture_width);
-    // Decode the (single) IDAT chunk and undo the filters (none or up).
-    let at = png.windows(4).position(|w| w == b"IDAT").unwrap();
-    let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
-    let raw = inflate(&png[at + 4..at + 4 + len]);
+    // The palette (PLTE, tRNS) and the (single) IDAT chunk: rows of palette indices, each
+    // after its filter byte (none).
+    let chunk = |kind: &[u8]| {
+        let at = png.windows(4).position(|w| w == kind).unwrap();
+        let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
+        png[at + 4..at + 4 + len].to_vec()
+    };
+    assert_eq!(png[25], 3, "colour type 3: palette indices");
+    let (colours, alphas) = (chunk(b"PLTE"), chunk(b"tRNS"));
+    let raw = inflate(&chunk(b"IDAT"));
     let stride = 4 * width;
     let mut pixels = vec![0u8; stride * height];
     for row in 0..height {
-        let line = &raw[row * (stride + 1)..(row + 1) * (stride + 1)];
-        for k in 0..stride {
-            let above = if row > 0 {
-                pixels[(row - 1) * stride + k]
-            } else {
-                0
-            };
-            pixels[row * stride + k] = match line[0] {
-                0 => line[1 + k],
-                2 => line[1 + k].wrapping_add(above),
-                f => panic!("filter {f}"),
-            };
+        let line = &raw[row * (width + 1)..(row + 1) * (width + 1)];
+        assert_eq!(line[0], 0, "filter of row {row}");
+        for (i, &index) in line[1..].iter().enumerate() {
+            let index = usize::from(index);
+            let pixel = &mut pixels[row * stride + 4 * i..row * stride + 4 * i + 4];
+            pixel[..3].copy_from_slice(&colours[3 * index..3 * index + 3]);
+            pixel[3] = alphas.get(index).copied().unwrap_or(255);
         }
     }
     // The square is the box of the opaque pixels; sample the centres of the cells of

@@ -1,41 +1,95 @@
-//! A small RGBA raster for pictures of large meshes: polygons filled by scanlines, segments
+//! A small indexed raster for pictures of large meshes: polygons filled by scanlines, segments
 //! drawn one pixel wide (in bands of rows, one thread each), and PNG encoding (zlib through
 //! `miniz_oxide` in pieces on every thread, Adler-32 through `adler2`, CRC-32 here).
 //!
 //! A picture of 10^6 cells drawn as vectors is a file of 100 MB that no browser opens; the
 //! same picture rasterised at the resolution it is shown at is a PNG whose size depends on the
-//! number of pixels, not of cells.
+//! number of pixels, not of cells. Its pixels are indices into a [`Palette`] of at most 256
+//! colours (a PNG of colour type 3): a byte per pixel to draw, filter and deflate rather than
+//! four.
 
-/// An RGBA image, rows from the top, transparent where nothing is drawn.
+/// The colours of a [`Raster`], at most 256: index 0 is transparent, then the ink segments
+/// are drawn in over transparent, then the fills, then the ink over each fill.
+pub(crate) struct Palette {
+    /// Red, green, blue and alpha of every index.
+    colours: Vec<[u8; 4]>,
+    /// `under_ink[i]`: the index of the ink blended over colour `i`.
+    under_ink: Vec<u8>,
+    /// The number of fills.
+    fills: usize,
+}
+
+impl Palette {
+    /// The most fills a palette holds.
+    pub(crate) const MAX_FILLS: usize = 127;
+
+    /// The palette of the opaque colours `fills` (at most [`Palette::MAX_FILLS`]) and of
+    /// segments drawn in `ink`, blended by its alpha. Ink over ink stays the ink's first
+    /// blend (where segments cross, as at the vertices of a mesh's edges).
+    pub(crate) fn new(fills: &[[u8; 3]], ink: [u8; 4]) -> Self {
+        assert!(
+            fills.len() <= Self::MAX_FILLS,
+            "a palette of {} fills",
+            fills.len()
+        );
+        let n = fills.len();
+        let alpha = u32::from(ink[3]);
+        let over = |fill: &[u8; 3]| {
+            let [r, g, b] = [0, 1, 2].map(|c| {
+                ((u32::from(ink[c]) * alpha + u32::from(fill[c]) * (255 - alpha)) / 255) as u8
+            });
+            [r, g, b, 255]
+        };
+        let mut colours = vec![[0; 4], ink];
+        colours.extend(fills.iter().map(|&[r, g, b]| [r, g, b, 255]));
+        colours.extend(fills.iter().map(over));
+        let mut under_ink = vec![1u8, 1];
+        under_ink.extend((0..n).map(|i| (2 + n + i) as u8));
+        under_ink.extend((0..n).map(|i| (2 + n + i) as u8));
+        Palette {
+            colours,
+            under_ink,
+            fills: n,
+        }
+    }
+
+    /// The index of fill `k` (of the fills the palette was made with).
+    pub(crate) fn fill(&self, k: usize) -> u8 {
+        assert!(k < self.fills, "fill {k} of {}", self.fills);
+        (2 + k) as u8
+    }
+}
+
+/// An image of palette indices, rows from the top, transparent (index 0) where nothing is
+/// drawn.
 pub(crate) struct Raster {
     width: usize,
     height: usize,
-    rgba: Vec<u8>,
+    palette: Palette,
+    pixels: Vec<u8>,
 }
 
 /// One thing drawn into a [`Raster`] (see [`Raster::draw`]).
 pub(crate) enum Shape {
     /// The polygon through the drawing's points `corners` (a range of their indices),
-    /// filled: every pixel whose centre lies inside (the even-odd rule).
+    /// filled with the palette's `colour`: every pixel whose centre lies inside (the even-odd
+    /// rule).
     Polygon {
         corners: std::ops::Range<usize>,
-        colour: [u8; 4],
+        colour: u8,
     },
-    /// The segment from `a` to `b`, one pixel wide, blended by the colour's alpha.
-    Segment {
-        a: (f64, f64),
-        b: (f64, f64),
-        colour: [u8; 4],
-    },
+    /// The segment from `a` to `b`, one pixel wide, in the palette's ink.
+    Segment { a: (f64, f64), b: (f64, f64) },
 }
 
 impl Raster {
-    /// A transparent image of `width` x `height` pixels.
-    pub(crate) fn new(width: usize, height: usize) -> Self {
+    /// A transparent image of `width` x `height` pixels in the colours of `palette`.
+    pub(crate) fn new(width: usize, height: usize, palette: Palette) -> Self {
         Raster {
             width,
             height,
-            rgba: vec![0; width * height * 4],
+            palette,
+            pixels: vec![0; width * height],
         }
     }
 
@@ -43,20 +97,22 @@ impl Raster {
     /// thread each: every band draws every shape clipped to its rows, so the image is the one
     /// drawn on one thread, pixel for pixel.
     pub(crate) fn draw(&mut self, points: &[(f64, f64)], shapes: &[Shape]) {
-        self.draw_in_bands(points, shapes, pieces_for(self.rgba.len()));
+        self.draw_in_bands(points, shapes, pieces_for(self.pixels.len()));
     }
 
     /// [`Raster::draw`] in `bands` bands of rows.
     fn draw_in_bands(&mut self, points: &[(f64, f64)], shapes: &[Shape], bands: usize) {
-        let stride = 4 * self.width;
+        let stride = self.width;
         let bands = bands.clamp(1, self.height.max(1));
         let rows_per_band = self.height.div_ceil(bands).max(1);
         let width = self.width;
-        let draw_band = |first_row: usize, rgba: &mut [u8]| {
+        let under_ink = &self.palette.under_ink;
+        let draw_band = |first_row: usize, pixels: &mut [u8]| {
             let mut band = Band {
                 first_row,
                 width,
-                rgba,
+                pixels,
+                under_ink,
                 crossings: Vec::new(),
             };
             for shape in shapes {
@@ -64,18 +120,18 @@ impl Raster {
                     Shape::Polygon { corners, colour } => {
                         band.fill_polygon(&points[corners.clone()], *colour);
                     }
-                    Shape::Segment { a, b, colour } => band.segment(*a, *b, *colour),
+                    Shape::Segment { a, b } => band.segment(*a, *b),
                 }
             }
         };
         if bands == 1 || stride == 0 {
-            draw_band(0, &mut self.rgba);
+            draw_band(0, &mut self.pixels);
             return;
         }
         std::thread::scope(|scope| {
-            for (k, rgba) in self.rgba.chunks_mut(rows_per_band * stride).enumerate() {
+            for (k, pixels) in self.pixels.chunks_mut(rows_per_band * stride).enumerate() {
                 let draw_band = &draw_band;
-                scope.spawn(move || draw_band(k * rows_per_band, rgba));
+                scope.spawn(move || draw_band(k * rows_per_band, pixels));
             }
         });
     }
@@ -83,7 +139,7 @@ impl Raster {
     /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
     /// even-odd rule) with `colour`: every pixel whose centre lies inside.
     #[cfg(test)]
-    pub(crate) fn fill_polygon(&mut self, points: &[(f64, f64)], colour: [u8; 4]) {
+    pub(crate) fn fill_polygon(&mut self, points: &[(f64, f64)], colour: u8) {
         self.draw(
             points,
             &[Shape::Polygon {
@@ -93,11 +149,12 @@ impl Raster {
         );
     }
 
-    /// The image as a PNG file (8-bit RGBA, no interlacing, each row filtered by the
-    /// difference with the row above, which makes flat colour regions compress well).
+    /// The image as a PNG file (8-bit palette indices with the palette's alphas, no
+    /// interlacing, rows unfiltered: the filters' differences mean nothing between indices).
     pub(crate) fn to_png(&self) -> Vec<u8> {
-        let stride = 4 * self.width;
-        // Rows filtered piece by piece on the threads that deflate them.
+        let stride = self.width;
+        // Rows prefixed with their filter byte piece by piece on the threads that deflate
+        // them.
         let bytes = (stride + 1) * self.height;
         let pieces = pieces_for(bytes).min(self.height.max(1));
         let rows_per_piece = self.height.div_ceil(pieces).max(1);
@@ -105,15 +162,8 @@ impl Raster {
             let rows = k * rows_per_piece..((k + 1) * rows_per_piece).min(self.height);
             let mut filtered = Vec::with_capacity((stride + 1) * rows.len());
             for row in rows {
-                let line = &self.rgba[row * stride..(row + 1) * stride];
-                if row == 0 {
-                    filtered.push(0); // None
-                    filtered.extend_from_slice(line);
-                } else {
-                    filtered.push(2); // Up
-                    let above = &self.rgba[(row - 1) * stride..row * stride];
-                    filtered.extend(line.iter().zip(above).map(|(x, a)| x.wrapping_sub(*a)));
-                }
+                filtered.push(0); // None
+                filtered.extend_from_slice(&self.pixels[row * stride..(row + 1) * stride]);
             }
             filtered
         };
@@ -126,8 +176,18 @@ impl Raster {
         let mut header = Vec::with_capacity(13);
         header.extend_from_slice(&(self.width as u32).to_be_bytes());
         header.extend_from_slice(&(self.height as u32).to_be_bytes());
-        header.extend_from_slice(&[8, 6, 0, 0, 0]);
+        header.extend_from_slice(&[8, 3, 0, 0, 0]);
         chunk(&mut png, b"IHDR", &header);
+        let colours = &self.palette.colours;
+        let rgb: Vec<u8> = colours.iter().flat_map(|c| [c[0], c[1], c[2]]).collect();
+        chunk(&mut png, b"PLTE", &rgb);
+        // The alphas up to the last colour that is not opaque (the rest are).
+        let translucent = colours
+            .iter()
+            .rposition(|c| c[3] != 255)
+            .map_or(0, |i| i + 1);
+        let alphas: Vec<u8> = colours[..translucent].iter().map(|c| c[3]).collect();
+        chunk(&mut png, b"tRNS", &alphas);
         chunk(&mut png, b"IDAT", &idat);
         chunk(&mut png, b"IEND", &[]);
         png
@@ -138,7 +198,9 @@ impl Raster {
 struct Band<'a> {
     first_row: usize,
     width: usize,
-    rgba: &'a mut [u8],
+    pixels: &'a mut [u8],
+    /// The palette's [`Palette::under_ink`].
+    under_ink: &'a [u8],
     /// The crossings of a row with a polygon's edges (kept from one polygon to the next).
     crossings: Vec<f64>,
 }
@@ -146,12 +208,12 @@ struct Band<'a> {
 impl Band<'_> {
     /// The rows of the band, in the image's numbering.
     fn rows(&self) -> std::ops::Range<usize> {
-        self.first_row..self.first_row + self.rgba.len() / (4 * self.width).max(1)
+        self.first_row..self.first_row + self.pixels.len() / self.width.max(1)
     }
 
     /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
     /// even-odd rule) with `colour`: every pixel of the band whose centre lies inside.
-    fn fill_polygon(&mut self, points: &[(f64, f64)], colour: [u8; 4]) {
+    fn fill_polygon(&mut self, points: &[(f64, f64)], colour: u8) {
         let m = points.len();
         if m < 3 {
             return;
@@ -179,15 +241,13 @@ impl Band<'_> {
                 }
             }
             crossings.sort_by(f64::total_cmp);
-            let line = 4 * (row - rows.start) * self.width;
+            let line = (row - rows.start) * self.width;
             for pair in crossings.chunks_exact(2) {
                 // Pixels whose centre x + 1/2 lies in [pair[0], pair[1]).
                 let start = (pair[0] - 0.5).ceil().max(0.0) as usize;
                 let end = ((pair[1] - 0.5).ceil().min(self.width as f64)).max(0.0) as usize;
                 if start < end {
-                    self.rgba[line + 4 * start..line + 4 * end]
-                        .chunks_exact_mut(4)
-                        .for_each(|pixel| pixel.copy_from_slice(&colour));
+                    self.pixels[line + start..line + end].fill(colour);
                 }
             }
         }
@@ -195,8 +255,8 @@ impl Band<'_> {
     }
 
     /// Draws the segment from `a` to `b` one pixel wide (a pixel per step along the longer
-    /// axis), blending `colour` over what is there by its alpha; the band's pixels only.
-    fn segment(&mut self, a: (f64, f64), b: (f64, f64), colour: [u8; 4]) {
+    /// axis) in the palette's ink over what is there; the band's pixels only.
+    fn segment(&mut self, a: (f64, f64), b: (f64, f64)) {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let steps = dx.abs().max(dy.abs()).ceil();
         if !steps.is_finite() || steps > 1e7 {
@@ -212,25 +272,16 @@ impl Band<'_> {
             let t = k as f64 / steps as f64;
             let (x, y) = (a.0 + t * dx, a.1 + t * dy);
             if x >= 0.0 && y >= 0.0 && x < self.width as f64 && rows.contains(&(y as usize)) {
-                self.blend(x as usize, y as usize - rows.start, colour);
+                let k = (y as usize - rows.start) * self.width + x as usize;
+                self.pixels[k] = self.under_ink[usize::from(self.pixels[k])];
             }
         }
     }
-
-    /// Blends `colour` over pixel (x, y) of the band by its alpha.
-    fn blend(&mut self, x: usize, y: usize, colour: [u8; 4]) {
-        let k = 4 * (y * self.width + x);
-        let alpha = u32::from(colour[3]);
-        for (old, &new) in self.rgba[k..k + 3].iter_mut().zip(&colour[..3]) {
-            *old = ((u32::from(new) * alpha + u32::from(*old) * (255 - alpha)) / 255) as u8;
-        }
-        let old = u32::from(self.rgba[k + 3]);
-        self.rgba[k + 3] = (alpha + old * (255 - alpha) / 255).min(255) as u8;
-    }
 }
 
-/// zlib's compression level of the pictures: 1 (the fastest) makes the picture of a contact
-/// run (1800 x 1190 pixels) 30 % larger than 6 (0.63 against 0.48 MB) in a third of the time.
+/// zlib's compression level of the pictures: at 1 (the fastest) the picture of the whole-run
+/// bench at 10^5 unknowns (1800 x 2426 pixels) is a file of 0.67 MB against 0.34 MB at 6,
+/// and the run's output takes 47 ms against 60.
 const PNG_LEVEL: u8 = 1;
 
 /// Data of at least this many bytes is deflated in pieces, and an image of at least this many
@@ -428,26 +479,65 @@ mod tests {
 
     #[test]
     fn a_filled_square_covers_the_pixels_whose_centres_are_inside() {
-        let mut r = Raster::new(10, 10);
-        r.fill_polygon(
-            &[(2.0, 2.0), (6.0, 2.0), (6.0, 5.0), (2.0, 5.0)],
-            [255, 0, 0, 255],
-        );
-        let filled = r.rgba.chunks(4).filter(|p| p[3] == 255).count();
+        let palette = Palette::new(&[[255, 0, 0], [0, 0, 255]], [48, 48, 48, 150]);
+        let red = palette.fill(0);
+        let mut r = Raster::new(10, 10, palette);
+        r.fill_polygon(&[(2.0, 2.0), (6.0, 2.0), (6.0, 5.0), (2.0, 5.0)], red);
+        let filled = r.pixels.iter().filter(|&&p| p == red).count();
         assert_eq!(filled, 4 * 3);
-        // The PNG decodes back (zlib stream of rows of 1 + 40 bytes).
+        assert_eq!(r.pixels.iter().filter(|&&p| p != 0).count(), 4 * 3);
+        // A segment along row 3: the ink over red inside the square, over transparent outside.
+        r.draw(
+            &[],
+            &[Shape::Segment {
+                a: (0.5, 3.5),
+                b: (9.5, 3.5),
+            }],
+        );
+        let row: Vec<u8> = r.pixels[30..40].to_vec();
+        assert_eq!(row, [1, 1, 4, 4, 4, 4, 1, 1, 1, 1]);
+        // The PNG's chunks, each with its length and CRC, and its rows decoded back.
         let png = r.to_png();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
-        let idat = png.windows(4).position(|w| w == b"IDAT").unwrap();
-        let len = u32::from_be_bytes(png[idat - 4..idat].try_into().unwrap()) as usize;
-        let raw =
-            miniz_oxide::inflate::decompress_to_vec_zlib(&png[idat + 4..idat + 4 + len]).unwrap();
-        assert_eq!(raw.len(), 10 * 41);
+        let mut chunks = Vec::new();
+        let mut at = 8;
+        while at < png.len() {
+            let len = u32::from_be_bytes(png[at..at + 4].try_into().unwrap()) as usize;
+            let kind = &png[at + 4..at + 8];
+            let data = &png[at + 8..at + 8 + len];
+            let crc = u32::from_be_bytes(png[at + 8 + len..at + 12 + len].try_into().unwrap());
+            assert_eq!(crc, crc32(kind.iter().chain(data)));
+            chunks.push((kind.to_vec(), data.to_vec()));
+            at += 12 + len;
+        }
+        let kinds: Vec<&[u8]> = chunks.iter().map(|(k, _)| &k[..]).collect();
+        assert_eq!(kinds, [b"IHDR", b"PLTE", b"tRNS", b"IDAT", b"IEND"]);
+        // 10 x 10, 8 bits of colour type 3 (palette).
+        assert_eq!(chunks[0].1, [0, 0, 0, 10, 0, 0, 0, 10, 8, 3, 0, 0, 0]);
+        // Transparent, the ink, red, blue, then the ink over red and over blue (alpha 150:
+        // 48 * 150 / 255 + 255 * 105 / 255 = 133).
+        assert_eq!(
+            chunks[1].1,
+            [0, 0, 0, 48, 48, 48, 255, 0, 0, 0, 0, 255, 133, 28, 28, 28, 28, 133]
+        );
+        assert_eq!(chunks[2].1, [0, 150]);
+        let raw = miniz_oxide::inflate::decompress_to_vec_zlib(&chunks[3].1).unwrap();
+        assert_eq!(raw.len(), 10 * 11);
+        for (row, line) in raw.chunks(11).enumerate() {
+            assert_eq!(line[0], 0, "row {row} unfiltered");
+            assert_eq!(&line[1..], &r.pixels[10 * row..10 * row + 10]);
+        }
     }
 
     #[test]
     fn an_image_drawn_in_bands_is_the_one_drawn_on_one_thread() {
-        // Random polygons (some reaching outside the image) and blended segments, in order.
+        // Random polygons (some reaching outside the image) and segments over them, in order.
+        let palette = || {
+            let fills: Vec<[u8; 3]> = (0..Palette::MAX_FILLS)
+                .map(|k| [(2 * k) as u8, (k % 13) as u8 * 19, 200])
+                .collect();
+            Palette::new(&fills, [48, 48, 48, 150])
+        };
         let mut state = 11u32;
         let mut next = |scale: f64| {
             state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
@@ -460,26 +550,24 @@ mod tests {
             for _ in 0..3 + k % 4 {
                 points.push((cx + 0.2 * next(40.0), cy + 0.2 * next(40.0)));
             }
-            let colour = [(k % 251) as u8, (k % 13) as u8 * 19, 200, 255];
             shapes.push(Shape::Polygon {
                 corners: first..points.len(),
-                colour,
+                colour: palette().fill(k % Palette::MAX_FILLS),
             });
             if k % 5 == 0 {
                 shapes.push(Shape::Segment {
                     a: (next(60.0), next(45.0)),
                     b: (next(60.0), next(45.0)),
-                    colour: [48, 48, 48, 150],
                 });
             }
         }
         let drawn = |bands: usize| {
-            let mut image = Raster::new(53, 41);
+            let mut image = Raster::new(53, 41, palette());
             image.draw_in_bands(&points, &shapes, bands);
-            image.rgba
+            image.pixels
         };
         let one = drawn(1);
-        assert!(one.chunks(4).filter(|p| p[3] != 0).count() > 1000);
+        assert!(one.iter().filter(|&&p| p != 0).count() > 1000);
         // Without the segments, every pixel has the colour of the last polygon holding its
         // centre (the even-odd rule by a ray to the right), transparent outside all.
         let polygons_only: Vec<Shape> = shapes
@@ -492,9 +580,9 @@ mod tests {
                 Shape::Segment { .. } => None,
             })
             .collect();
-        let mut filled = Raster::new(53, 41);
+        let mut filled = Raster::new(53, 41, palette());
         filled.draw_in_bands(&points, &polygons_only, 3);
-        for (k, pixel) in filled.rgba.chunks(4).enumerate() {
+        for (k, &pixel) in filled.pixels.iter().enumerate() {
             let (x, y) = ((k % 53) as f64 + 0.5, (k / 53) as f64 + 0.5);
             let inside = |corners: &std::ops::Range<usize>| {
                 let loop_ = &points[corners.clone()];
@@ -514,7 +602,7 @@ mod tests {
                     Shape::Polygon { corners, colour } if inside(corners) => Some(*colour),
                     _ => None,
                 })
-                .unwrap_or([0; 4]);
+                .unwrap_or(0);
             assert_eq!(pixel, expected, "pixel {k}");
         }
         for bands in [2, 3, 7, 41, 100] {
@@ -525,14 +613,13 @@ mod tests {
         let segment = [Shape::Segment {
             a: (3.0, 1.856_562_196_386_494),
             b: (9.0, 9.999_999_999_999_998),
-            colour: [48, 48, 48, 150],
         }];
-        let mut one_band = Raster::new(12, 20);
+        let mut one_band = Raster::new(12, 20, palette());
         one_band.draw_in_bands(&[], &segment, 1);
-        let mut two_bands = Raster::new(12, 20);
+        let mut two_bands = Raster::new(12, 20, palette());
         two_bands.draw_in_bands(&[], &segment, 2);
-        assert!(one_band.rgba[4 * (10 * 12 + 9) + 3] != 0);
-        assert!(two_bands.rgba == one_band.rgba);
+        assert!(one_band.pixels[10 * 12 + 9] != 0);
+        assert!(two_bands.pixels == one_band.pixels);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::raster::{base64, Raster, Shape};
+use super::raster::{base64, Palette, Raster, Shape};
 use super::{write_atomically, xml_escape};
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -54,6 +54,8 @@ const AXIS_BOTTOM: f64 = 44.0;
 const UNCOLOURED: &str = "#e4e4e4";
 /// [`UNCOLOURED`] as red, green and blue.
 const UNCOLOURED_RGB: [u8; 3] = [0xe4, 0xe4, 0xe4];
+/// The ink of the edges in a raster picture: dark grey, alpha 150.
+const EDGE_INK: [u8; 4] = [48, 48, 48, 150];
 /// Colour of the marked points.
 const MARK_COLOUR: &str = "#e8112d";
 /// The default [`SvgOptions::edge_min_pixels`].
@@ -774,7 +776,30 @@ fn raster_cells(
         (width * scale).ceil().max(1.0) as usize,
         (height * scale).ceil().max(1.0) as usize,
     );
-    let mut image = Raster::new(w, h);
+    // The colour map in as many levels as the palette holds beside the uncoloured grey,
+    // from its first colour to its last (each value drawn in the nearest level), and an ink
+    // for the edges.
+    let levels = Palette::MAX_FILLS - 1;
+    let mut fills = vec![UNCOLOURED_RGB];
+    if let Some((lo, hi)) = value_range {
+        fills.extend((0..levels).map(|k| {
+            let t = k as f64 / (levels - 1) as f64;
+            colour_components(lo + t * (hi - lo), (lo, hi))
+        }));
+    }
+    let palette = Palette::new(&fills, EDGE_INK);
+    let uncoloured = palette.fill(0);
+    let lowest_level = usize::from(uncoloured) + 1;
+    let level_of = |value: f64, (lo, hi): (f64, f64)| {
+        let t = if hi > lo {
+            ((value - lo) / (hi - lo)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        // NaN (as `colour_components` draws it) at the bottom of the map.
+        (lowest_level + (t * (levels - 1) as f64).round() as usize) as u8
+    };
+    let mut image = Raster::new(w, h, palette);
     let to_pixels = |p: Point| {
         let (x, y) = to_picture(p);
         (x * scale, y * scale)
@@ -795,24 +820,17 @@ fn raster_cells(
         for (p, polygon) in mesh.polygons().enumerate() {
             let first = points.len();
             points.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
-            let [r, g, b] = match (d.layer.cell_values, value_range) {
-                (Some(values), Some(range)) => colour_components(values[p], range),
-                _ => UNCOLOURED_RGB,
+            let colour = match (d.layer.cell_values, value_range) {
+                (Some(values), Some(range)) => level_of(values[p], range),
+                _ => uncoloured,
             };
             let corners = first..points.len();
-            add(
-                Shape::Polygon {
-                    corners,
-                    colour: [r, g, b, 255],
-                },
-                &mut points,
-            );
+            add(Shape::Polygon { corners, colour }, &mut points);
         }
         if edges {
             for edge in mesh.edges() {
                 let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
-                let colour = [48, 48, 48, 150];
-                add(Shape::Segment { a, b, colour }, &mut points);
+                add(Shape::Segment { a, b }, &mut points);
             }
         }
     }
