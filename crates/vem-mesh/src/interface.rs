@@ -991,12 +991,20 @@ fn insert_points(
     let mut offsets = Vec::with_capacity(mesh.n_polygons() + 1);
     offsets.push(0);
     let mut indices = Vec::with_capacity(mesh.polygon_vertex_indices().len() + inserted);
+    // The vertices an edge with inserted points starts from: the map is asked about their
+    // edges only (a few hundred of the mesh's sides).
+    let mut starts_pieces = vec![false; mesh.n_vertices()];
+    for &(u, _) in pieces.keys() {
+        starts_pieces[u] = true;
+    }
     for polygon in mesh.polygons() {
         for (k, &u) in polygon.iter().enumerate() {
-            let v = polygon[(k + 1) % polygon.len()];
             indices.push(u);
-            if let Some(list) = pieces.get(&(u, v)) {
-                indices.extend_from_slice(list);
+            if starts_pieces[u] {
+                let v = polygon[(k + 1) % polygon.len()];
+                if let Some(list) = pieces.get(&(u, v)) {
+                    indices.extend_from_slice(list);
+                }
             }
         }
         offsets.push(indices.len());

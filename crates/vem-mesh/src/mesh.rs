@@ -441,7 +441,7 @@ trait EdgeSlot: Copy {
 }
 
 impl EdgeSlot for (u32, u32) {
-    const EMPTY: Self = (0, 0);
+    const EMPTY: Self = (u32::MAX, u32::MAX);
     fn new(high: usize, edge: usize) -> Self {
         (high as u32, edge as u32)
     }
@@ -454,7 +454,7 @@ impl EdgeSlot for (u32, u32) {
 }
 
 impl EdgeSlot for (usize, usize) {
-    const EMPTY: Self = (0, 0);
+    const EMPTY: Self = (usize::MAX, usize::MAX);
     fn new(high: usize, edge: usize) -> Self {
         (high, edge)
     }
@@ -494,9 +494,9 @@ fn derive_edges_with<S: EdgeSlot>(
     for v in 0..n_vertices {
         start[v + 1] += start[v];
     }
-    let mut filled = vec![0usize; n_vertices];
-    // (larger end vertex, edge) of the edges filed so far: the search for a loop side's edge
-    // reads this table only, not the edges themselves (which lie in the mesh's order).
+    // (larger end vertex, edge) of the edges filed so far, the rest of a vertex's slots
+    // empty: the search for a loop side's edge reads this table only (and the slots' start),
+    // not the edges themselves (which lie in the mesh's order).
     let mut slots = vec![S::EMPTY; indices.len()];
     // E = (sides + boundary sides) / 2: room for a boundary of up to an eighth of the sides
     // (any mesh but a strip), so that the edges, which live as long as the mesh, are not
@@ -507,11 +507,14 @@ fn derive_edges_with<S: EdgeSlot>(
         for k in 0..offsets[p + 1] - offsets[p] {
             let (a, b) = side(p, k);
             let (low, high) = (a.min(b), a.max(b));
-            let filed = &slots[start[low]..start[low] + filled[low]];
-            let existing = filed
-                .iter()
-                .find(|slot| slot.high() == high)
-                .map(|slot| slot.edge());
+            // The side's edge among those filed under `low`, or the first empty slot (there
+            // are as many slots as sides whose smaller end is `low`).
+            let (first, end) = (start[low], start[low + 1]);
+            let mut at = first;
+            while at < end && slots[at].high() != high && slots[at].high() != S::EMPTY.high() {
+                at += 1;
+            }
+            let existing = (at < end && slots[at].high() == high).then(|| slots[at].edge());
             let e = match existing {
                 None => {
                     edges.push(Edge {
@@ -520,8 +523,7 @@ fn derive_edges_with<S: EdgeSlot>(
                         right: None,
                     });
                     let e = edges.len() - 1;
-                    slots[start[low] + filled[low]] = S::new(high, e);
-                    filled[low] += 1;
+                    slots[at] = S::new(high, e);
                     e
                 }
                 Some(e) => {
