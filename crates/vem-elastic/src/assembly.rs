@@ -44,9 +44,7 @@ use std::ops::Range;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
-use vem_mesh::BodyMesh;
-
-use vem_mesh::VectorD;
+use vem_mesh::{morton_key, BodyMesh, PointD, VectorD};
 
 use crate::{DofMap, DofStatus, ElasticError};
 
@@ -434,8 +432,8 @@ fn transpose_matvec_add(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) 
     }
 }
 
-/// The cells sorted along a Morton (Z-order) curve of their vertex means (16 bits per
-/// coordinate in the bounding box, x in the lowest bit; ties keep the mesh order).
+/// The cells sorted along the Morton (Z-order) curve of the mesh's bounding box by their
+/// vertex means ([`morton_key`]; ties keep the mesh order).
 fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
     let points = mesh.points();
     let Some(&first) = points.first() else {
@@ -447,8 +445,6 @@ fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
         max = max.sup(x);
     }
     let extent = (max - min).map(|e| if e > 0.0 { e } else { 1.0 });
-    const BITS: usize = 16;
-    let cells = ((1u64 << BITS) - 1) as f64;
     let mut keyed: Vec<(u64, usize)> = (0..mesh.n_cells())
         .into_par_iter()
         .map(|c| {
@@ -456,16 +452,8 @@ fn morton_order<const D: usize>(mesh: &dyn BodyMesh<D>) -> Vec<usize> {
             let sum = vertices
                 .iter()
                 .fold(VectorD::<D>::zeros(), |acc, &v| acc + points[v].coords);
-            let mean = sum / vertices.len().max(1) as f64;
-            let scaled = (mean - min.coords).component_div(&extent) * cells;
-            // Interleave the bits of the D coordinates, the most significant first.
-            let mut key = 0u64;
-            for b in (0..BITS).rev() {
-                for k in (0..D).rev() {
-                    key = (key << 1) | ((scaled[k] as u64 >> b) & 1);
-                }
-            }
-            (key, c)
+            let mean = PointD::from(sum / vertices.len().max(1) as f64);
+            (morton_key(&mean, &min, &extent), c)
         })
         .collect();
     keyed.par_sort_unstable();

@@ -55,7 +55,7 @@ pub mod quality;
 pub mod refine;
 pub mod validate;
 
-pub use body_mesh::{BodyMesh, PointD, VectorD};
+pub use body_mesh::{morton_key, BodyMesh, PointD, VectorD};
 pub use error::MeshError;
 pub use interface::{
     boundary_chain, insert_interface_nodes, ChainNode, Interface, InterfaceOptions, InterfacePair,

@@ -28,7 +28,7 @@ use std::fs;
 use std::path::Path;
 
 use super::msh::{element_type_name, read_msh_bytes, MshFile};
-use crate::{Mesh, MeshError, PartSpec, Point};
+use crate::{morton_key, Mesh, MeshError, PartSpec, Point};
 
 /// Gmsh's type number of a 2-node line.
 const LINE: i32 = 1;
@@ -214,7 +214,7 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
             x += msh.nodes[p].xyz[0];
             y += msh.nodes[p].xyz[1];
         }
-        (x / corners.len() as f64, y / corners.len() as f64)
+        Point::new(x / corners.len() as f64, y / corners.len() as f64)
     };
     let order = morton_order((0..faces.len()).map(centroid));
 
@@ -311,38 +311,24 @@ fn locate(error: &MeshError, element_tags: &[u64], node_tags: &[u64]) -> String 
     }
 }
 
-/// The indices of `points` sorted along the Morton curve of their bounding box (16 bits per
-/// coordinate; ties, and non-finite points at the end, in index order).
-fn morton_order(points: impl ExactSizeIterator<Item = (f64, f64)>) -> Vec<usize> {
-    let points: Vec<(f64, f64)> = points.collect();
-    let finite = points.iter().filter(|p| p.0.is_finite() && p.1.is_finite());
-    let (mut lo, mut hi) = (
-        (f64::INFINITY, f64::INFINITY),
-        (f64::NEG_INFINITY, f64::NEG_INFINITY),
-    );
-    for &(x, y) in finite {
-        lo = (lo.0.min(x), lo.1.min(y));
-        hi = (hi.0.max(x), hi.1.max(y));
-    }
-    const CELLS: f64 = 65_535.0;
-    let scaled = |v: f64, lo: f64, hi: f64| {
-        let t = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
-        (t.clamp(0.0, 1.0) * CELLS) as u64
+/// The indices of `points` sorted along the Morton curve of their bounding box
+/// ([`morton_key`]; ties in index order).
+fn morton_order(points: impl Iterator<Item = Point>) -> Vec<usize> {
+    let points: Vec<Point> = points.collect();
+    let finite = || points.iter().filter(|p| p.x.is_finite() && p.y.is_finite());
+    let Some(&first) = finite().next() else {
+        return (0..points.len()).collect();
     };
+    let (mut min, mut max) = (first, first);
+    for p in finite() {
+        min = min.inf(p);
+        max = max.sup(p);
+    }
+    let extent = (max - min).map(|e| if e > 0.0 { e } else { 1.0 });
     let mut keyed: Vec<(u64, usize)> = points
         .iter()
         .enumerate()
-        .map(|(i, &(x, y))| {
-            if !(x.is_finite() && y.is_finite()) {
-                return (u64::MAX, i);
-            }
-            let (ix, iy) = (scaled(x, lo.0, hi.0), scaled(y, lo.1, hi.1));
-            let mut key = 0u64;
-            for b in (0..16).rev() {
-                key = (key << 2) | (((iy >> b) & 1) << 1) | ((ix >> b) & 1);
-            }
-            (key, i)
-        })
+        .map(|(i, p)| (morton_key(p, &min, &extent), i))
         .collect();
     keyed.sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
