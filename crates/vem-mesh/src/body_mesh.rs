@@ -34,7 +34,7 @@ pub type VectorD<const D: usize> = nalgebra::SVector<f64, D>;
 /// significant, x in the lowest bit. Points sorted by it lie near their neighbours in the
 /// sequence, the numbering the Gmsh reader gives cells and the order assembly visits them in.
 /// A point outside the box counts as on its nearest side (a coordinate that is not a number
-/// as on its lower side).
+/// as on its lower side). For `D` up to 4 (the key's 64 bits).
 ///
 /// ```
 /// use vem_mesh::{morton_key, PointD, VectorD};
@@ -47,6 +47,12 @@ pub type VectorD<const D: usize> = nalgebra::SVector<f64, D>;
 /// ```
 pub fn morton_key<const D: usize>(point: &PointD<D>, min: &PointD<D>, extent: &VectorD<D>) -> u64 {
     const BITS: usize = 16;
+    const {
+        assert!(
+            D * BITS <= 64,
+            "a Morton key of 64 bits holds up to 4 coordinates"
+        )
+    };
     let cells = ((1u64 << BITS) - 1) as f64;
     let scaled = (point - min)
         .component_div(extent)

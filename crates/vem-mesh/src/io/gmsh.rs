@@ -172,11 +172,19 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
         );
     }
 
-    // The nodes of every face as positions in the $Nodes section (in file order: a missing
-    // node and a node off the plane are reported as the file's first).
+    // The nodes of every face as positions in the $Nodes section, counter-clockwise, and the
+    // face's centroid, in file order (a missing node and a node off the plane are reported as
+    // the file's first). The coordinates are read here only: the passes below go through the
+    // faces in another order, and the nodes in theirs.
     let mut positions: Vec<usize> = Vec::with_capacity(faces.iter().map(|f| f.1.len()).sum());
+    let mut face_start = Vec::with_capacity(faces.len() + 1);
+    face_start.push(0);
+    let mut centroids: Vec<Point> = Vec::with_capacity(faces.len());
     let mut plane_z: Option<(u64, f64)> = None;
+    let mut corners: Vec<Point> = Vec::with_capacity(4);
     for &(element_tag, element_nodes) in &faces {
+        let mut sum = Point::origin();
+        corners.clear();
         for &node in element_nodes {
             let position = nodes.get(node).ok_or_else(|| {
                 format!(
@@ -184,7 +192,7 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
                      section"
                 )
             })?;
-            let z = msh.nodes[position].xyz[2];
+            let [x, y, z] = msh.nodes[position].xyz;
             match plane_z {
                 None => plane_z = Some((node, z)),
                 Some((first, z0)) if (z - z0).abs() > 1e-9 * (1.0 + z0.abs()) => {
@@ -195,53 +203,50 @@ fn convert(msh: &MshFile) -> Result<Mesh, String> {
                 }
                 Some(_) => {}
             }
+            sum.x += x;
+            sum.y += y;
+            corners.push(Point::new(x, y));
             positions.push(position);
         }
+        if crate::geometry::signed_area(&corners) < 0.0 {
+            let start = face_start[face_start.len() - 1];
+            positions[start..].reverse();
+        }
+        face_start.push(positions.len());
+        centroids.push(sum / element_nodes.len() as f64);
     }
     // The faces along a space-filling curve (Morton order of their centroids), so that cells
     // near each other in the plane are near each other in the mesh's numbering, whatever
     // the file's order: every later pass over cells and vertices (edges, validation,
     // assembly) then reads memory in order rather than at random.
-    let mut face_start = Vec::with_capacity(faces.len() + 1);
-    face_start.push(0);
-    for &(_, element_nodes) in &faces {
-        face_start.push(face_start[face_start.len() - 1] + element_nodes.len());
-    }
-    let centroid = |f: usize| {
-        let corners = &positions[face_start[f]..face_start[f + 1]];
-        let (mut x, mut y) = (0.0, 0.0);
-        for &p in corners {
-            x += msh.nodes[p].xyz[0];
-            y += msh.nodes[p].xyz[1];
-        }
-        Point::new(x / corners.len() as f64, y / corners.len() as f64)
-    };
-    let order = morton_order((0..faces.len()).map(centroid));
+    let order = morton_order(&centroids);
+    drop(centroids);
 
     // Compact renumbering in order of first use along the curve (`compact[node position]`,
-    // `usize::MAX` unused); counter-clockwise loops.
+    // `usize::MAX` unused), then the coordinates and tags of the vertices in the nodes' order.
     let mut compact = vec![usize::MAX; msh.nodes.len()];
-    let mut vertices: Vec<Point> = Vec::new();
-    let mut node_tags: Vec<u64> = Vec::new();
+    let mut used = 0;
     let mut offsets = Vec::with_capacity(faces.len() + 1);
     offsets.push(0);
     let mut indices: Vec<usize> = Vec::with_capacity(positions.len());
     for &f in &order {
-        let first = indices.len();
         for &position in &positions[face_start[f]..face_start[f + 1]] {
             if compact[position] == usize::MAX {
-                let [x, y, _] = msh.nodes[position].xyz;
-                vertices.push(Point::new(x, y));
-                node_tags.push(msh.nodes[position].tag);
-                compact[position] = vertices.len() - 1;
+                compact[position] = used;
+                used += 1;
             }
             indices.push(compact[position]);
         }
-        let polygon = &mut indices[first..];
-        if signed_area_of(polygon, &vertices) < 0.0 {
-            polygon.reverse();
-        }
         offsets.push(indices.len());
+    }
+    drop(positions);
+    let mut vertices = vec![Point::origin(); used];
+    let mut node_tags = vec![0; used];
+    for (node, &v) in msh.nodes.iter().zip(&compact) {
+        if v != usize::MAX {
+            vertices[v] = Point::new(node.xyz[0], node.xyz[1]);
+            node_tags[v] = node.tag;
+        }
     }
 
     let parts = boundary_parts(msh, &lines_of_curve, &nodes, &compact, &offsets, &indices)?;
@@ -313,8 +318,7 @@ fn locate(error: &MeshError, element_tags: &[u64], node_tags: &[u64]) -> String 
 
 /// The indices of `points` sorted along the Morton curve of their bounding box
 /// ([`morton_key`]; ties in index order).
-fn morton_order(points: impl Iterator<Item = Point>) -> Vec<usize> {
-    let points: Vec<Point> = points.collect();
+fn morton_order(points: &[Point]) -> Vec<usize> {
     let finite = || points.iter().filter(|p| p.x.is_finite() && p.y.is_finite());
     let Some(&first) = finite().next() else {
         return (0..points.len()).collect();
@@ -332,18 +336,6 @@ fn morton_order(points: impl Iterator<Item = Point>) -> Vec<usize> {
         .collect();
     keyed.sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
-}
-
-/// The signed area of the polygon with vertex indices `loop_` (shoelace formula, as
-/// `geometry::signed_area`, without gathering the points).
-fn signed_area_of(loop_: &[usize], vertices: &[Point]) -> f64 {
-    let m = loop_.len();
-    let mut twice = 0.0;
-    for k in 0..m {
-        let (a, b) = (vertices[loop_[k]], vertices[loop_[(k + 1) % m]]);
-        twice += a.x * b.y - b.x * a.y;
-    }
-    0.5 * twice
 }
 
 /// The boundary parts: one per physical curve group, in increasing order of physical tag.
@@ -599,19 +591,21 @@ mod tests {
 
     #[test]
     fn an_invalid_mesh_names_its_elements_and_nodes_by_tag() {
-        // Element 101 repeats the first triangle's corners: the two overlap.
+        // The first triangle twice, as element 100 and (retagged below) element 200: the two
+        // use the same edges.
         let text = triangles_msh(2, &[0, 0, 1, 2, 3, 4, 5, 6, 7]);
         let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
         // Retag the duplicate: element tags must be unique.
         let at = lines.iter().rposition(|l| l.starts_with("100 ")).unwrap();
         lines[at] = lines[at].replacen("100 ", "200 ", 1);
-        let text = lines.join("\n") + "\n";
+        let text = (lines.join("\n") + "\n").replace("1 9 100 108\n", "1 9 100 200\n");
         let err = read_gmsh_bytes(text.as_bytes(), "twice.msh").unwrap_err();
         let message = err.to_string();
         assert!(
             message.contains("is element 100") && message.contains("is element 200"),
             "{message}"
         );
+        assert!(message.contains("vertex 0 is node 1"), "{message}");
         assert!(
             message.contains("numbered from 0 along a space-filling curve"),
             "{message}"

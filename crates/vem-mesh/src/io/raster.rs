@@ -5,8 +5,7 @@
 //! A picture of 10^6 cells drawn as vectors is a file of 100 MB that no browser opens; the
 //! same picture rasterised at the resolution it is shown at is a PNG whose size depends on the
 //! number of pixels, not of cells. Its pixels are indices into a [`Palette`] of at most 256
-//! colours (a PNG of colour type 3): a byte per pixel to draw, filter and deflate rather than
-//! four.
+//! colours (a PNG of colour type 3): a byte per pixel to draw and deflate rather than four.
 
 /// The colours of a [`Raster`], at most 256: index 0 is transparent, then the ink segments
 /// are drawn in over transparent, then the fills, then the ink over each fill.
@@ -280,8 +279,8 @@ impl Band<'_> {
 }
 
 /// zlib's compression level of the pictures: at 1 (the fastest) the picture of the whole-run
-/// bench at 10^5 unknowns (1800 x 2426 pixels) is a file of 0.67 MB against 0.34 MB at 6,
-/// and the run's output takes 47 ms against 60.
+/// bench at 10^5 unknowns (1800 x 2426 pixels) is an SVG file of 0.67 MB against 0.34 MB at
+/// 6, and the run's output takes 47 ms against 60.
 const PNG_LEVEL: u8 = 1;
 
 /// Data of at least this many bytes is deflated in pieces, and an image of at least this many

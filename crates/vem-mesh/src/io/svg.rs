@@ -796,7 +796,6 @@ fn raster_cells(
         } else {
             0.5
         };
-        // NaN (as `colour_components` draws it) at the bottom of the map.
         (lowest_level + (t * (levels - 1) as f64).round() as usize) as u8
     };
     let mut image = Raster::new(w, h, palette);
