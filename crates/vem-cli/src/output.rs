@@ -63,28 +63,47 @@ impl Outcome {
             return self.write_into_3d(dir);
         }
         let start = Instant::now();
-        let mesh_error = |path: &Path| {
-            let context = path.display().to_string();
-            move |source| CliError::Mesh { context, source }
-        };
         let mut written = Vec::new();
         let width = self.width();
-        // The bodies' files on a thread of their own beside the picture (independent files;
-        // the picture's rasterisation and compression are as long as a large body's file).
+        // The bodies' files, then the interface's and the contact's, on a thread of their own
+        // beside the picture (independent files; the picture's rasterisation and compression
+        // are as long as a large body's file).
         let this = &*self;
-        let (bodies, deformed) = std::thread::scope(|scope| {
-            let bodies = scope.spawn(|| this.write_bodies(dir));
+        let (data, contact_files, deformed) = std::thread::scope(|scope| {
+            let files = scope.spawn(|| {
+                let mut data = this.write_bodies(dir)?;
+                data.extend(this.write_interface_and_collection(dir)?);
+                Ok::<_, CliError>((data, this.write_contact_files(dir, width)))
+            });
             let path = dir.join("deformed.svg");
             let deformed = this
                 .write_deformed(&path, width)
                 .map(|()| path.clone())
                 .map_err(mesh_error(&path));
-            let bodies = bodies
+            let files = files
                 .join()
                 .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-            (bodies, deformed)
-        });
-        written.extend(bodies?);
+            files.map(|(data, contact_files)| (data, contact_files, deformed))
+        })?;
+        // In the order of the files, the first failure reported.
+        written.extend(data);
+        written.push(deformed?);
+        written.extend(contact_files?);
+        let path = dir.join("summary.json");
+        self.set_output_time(start.elapsed());
+        let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
+            action: "serialise",
+            path: path.clone(),
+            source: e.into(),
+        })?;
+        write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
+        written.push(path);
+        Ok(written)
+    }
+
+    /// `interface.vtu` with contact, then `results.pvd` (or the files of a load history).
+    fn write_interface_and_collection(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let mut written = Vec::new();
         if let Some(contact) = &self.contact {
             let path = dir.join("interface.vtu");
             interface_grid(&contact.nodes, &contact.model.pairs)
@@ -108,7 +127,13 @@ impl Outcome {
         } else {
             written.extend(self.write_history(dir)?);
         }
-        written.push(deformed?);
+        Ok(written)
+    }
+
+    /// With contact `contact.csv`, `pressure.svg` (and `slip.svg` with friction); with `adapt`
+    /// `adapt.csv`.
+    fn write_contact_files(&self, dir: &Path, width: f64) -> Result<Vec<PathBuf>, CliError> {
+        let mut written = Vec::new();
         if let Some(contact) = &self.contact {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
@@ -172,15 +197,6 @@ impl Outcome {
                 .map_err(mesh_error(&path))?;
             written.push(path);
         }
-        let path = dir.join("summary.json");
-        self.set_output_time(start.elapsed());
-        let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
-            action: "serialise",
-            path: path.clone(),
-            source: e.into(),
-        })?;
-        write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
-        written.push(path);
         Ok(written)
     }
 
@@ -238,10 +254,6 @@ impl Outcome {
     /// `history.svg`: the contact force on body A and the load point's displacement at every
     /// step.
     fn write_history(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
-        let mesh_error = |path: &Path| {
-            let context = path.display().to_string();
-            move |source| CliError::Mesh { context, source }
-        };
         let mut written = Vec::new();
         let Some(last) = &self.contact else {
             return Ok(written);
@@ -459,6 +471,12 @@ impl Outcome {
         };
         write_svg_layers(path, &layers, &options)
     }
+}
+
+/// The error of writing the file `path`, for `map_err`.
+pub(crate) fn mesh_error(path: &Path) -> impl FnOnce(vem_mesh::MeshError) -> CliError {
+    let context = path.display().to_string();
+    move |source| CliError::Mesh { context, source }
 }
 
 /// `value` to four significant digits, as the summary prints numbers.

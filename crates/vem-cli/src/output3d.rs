@@ -21,7 +21,7 @@ use vem_mesh::polyhedral::quality::CellQuality;
 use vem_mesh::{Point3, Vector3};
 use vem_scene::SolvedBody;
 
-use crate::output::status_label;
+use crate::output::{mesh_error, status_label};
 use crate::{plot, CliError, Outcome};
 
 /// The columns of `contact.csv` in space, in order.
@@ -41,10 +41,6 @@ impl Outcome {
     /// Writes the files of a scene in space into the existing folder `dir`.
     pub(crate) fn write_into_3d(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let start = Instant::now();
-        let mesh_error = |path: &Path| {
-            let context = path.display().to_string();
-            move |source| CliError::Mesh { context, source }
-        };
         let mut written = Vec::new();
         let mut collection = PvdCollection::new();
         let nodes = self.contact_3d.as_ref().map_or(&[][..], |c| &c.nodes[..]);
