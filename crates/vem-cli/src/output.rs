@@ -89,6 +89,16 @@ impl Outcome {
         written.extend(data);
         written.push(deformed?);
         written.extend(contact_files?);
+        written.push(self.write_summary(dir, start)?);
+        Ok(written)
+    }
+
+    /// `summary.json`, last, with the output time from `start` and the total time.
+    pub(crate) fn write_summary(
+        &mut self,
+        dir: &Path,
+        start: Instant,
+    ) -> Result<PathBuf, CliError> {
         let path = dir.join("summary.json");
         self.set_output_time(start.elapsed());
         let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
@@ -97,8 +107,7 @@ impl Outcome {
             source: e.into(),
         })?;
         write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
-        written.push(path);
-        Ok(written)
+        Ok(path)
     }
 
     /// `interface.vtu` with contact, then `results.pvd` (or the files of a load history).

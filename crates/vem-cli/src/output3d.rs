@@ -95,15 +95,7 @@ impl Outcome {
         if !self.summary.notes.iter().any(|n| n == NO_PICTURES_IN_SPACE) {
             self.summary.notes.push(NO_PICTURES_IN_SPACE.to_string());
         }
-        let path = dir.join("summary.json");
-        self.set_output_time(start.elapsed());
-        let json = serde_json::to_string_pretty(&self.summary).map_err(|e| CliError::Io {
-            action: "serialise",
-            path: path.clone(),
-            source: e.into(),
-        })?;
-        write_atomically(&path, |w| writeln!(w, "{json}")).map_err(mesh_error(&path))?;
-        written.push(path);
+        written.push(self.write_summary(dir, start)?);
         Ok(written)
     }
 }
