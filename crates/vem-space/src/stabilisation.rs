@@ -327,6 +327,26 @@ impl Stabilisation for BBar {
     }
 }
 
+/// `s` as the diagonal of the stabilisation named `stabilisation` for `dofs` degrees of
+/// freedom: `dofs` finite positive entries, or the error naming what came instead.
+pub(crate) fn checked_diagonal(
+    stabilisation: String,
+    s: DVector<f64>,
+    dofs: usize,
+) -> Result<DVector<f64>, SpaceError> {
+    if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
+        return Err(SpaceError::InvalidStabilisation {
+            stabilisation,
+            reason: format!(
+                "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
+                s.len(),
+                s.as_slice()
+            ),
+        });
+    }
+    Ok(s)
+}
+
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;

@@ -143,19 +143,12 @@ impl LowestOrderVem {
         // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
         // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
         // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
-        let s = self
-            .stabilisation
-            .diagonal(geometry, material, &consistency)?;
-        if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
-            return Err(SpaceError::InvalidStabilisation {
-                stabilisation: self.stabilisation.name(),
-                reason: format!(
-                    "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
-                    s.len(),
-                    s.as_slice()
-                ),
-            });
-        }
+        let s = crate::stabilisation::checked_diagonal(
+            self.stabilisation.name(),
+            self.stabilisation
+                .diagonal(geometry, material, &consistency)?,
+            dofs,
+        )?;
         let relative = geometry.relative_vertices();
         let mean = 1.0 / n as f64;
         // R = I - Q, row-major n x n.

@@ -210,19 +210,12 @@ impl PolyhedralVem {
                 consistency[(j, i)] = value;
             }
         }
-        let s = self
-            .stabilisation
-            .polyhedral_diagonal(geometry, material, &consistency)?;
-        if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
-            return Err(SpaceError::InvalidStabilisation {
-                stabilisation: self.stabilisation.name(),
-                reason: format!(
-                    "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
-                    s.len(),
-                    s.as_slice()
-                ),
-            });
-        }
+        let s = crate::stabilisation::checked_diagonal(
+            self.stabilisation.name(),
+            self.stabilisation
+                .polyhedral_diagonal(geometry, material, &consistency)?,
+            dofs,
+        )?;
         let mean = 1.0 / n as f64;
         // R = I - Q, row-major n x n.
         let mut r = vec![0.0; n * n];
