@@ -1151,12 +1151,36 @@ impl<const D: usize> ContactDiscretisation<D> {
         let normal_jump_free = self.normal_rows.apply(u);
         let slip_free = self.tangential_rows.as_ref().map(|rows| rows.apply(u));
         let system = self.system_at(level, bounds.map(Cow::Borrowed), None);
-        let (forces, _) = ForceScales::of_answer(
-            &system,
-            u,
-            &solution.normal_force,
-            &solution.tangential_force,
+        // The force scales (a product with the whole stiffness) beside the bodies' solutions
+        // (each its reactions and energy: a product with its own stiffness), the bodies side
+        // by side.
+        let ((forces, _), bodies) = rayon::join(
+            || {
+                ForceScales::of_answer(
+                    &system,
+                    u,
+                    &solution.normal_force,
+                    &solution.tangential_force,
+                )
+            },
+            || {
+                self.bodies
+                    .par_iter()
+                    .zip(&self.systems)
+                    .enumerate()
+                    .map(|(k, (body, system))| {
+                        let free = &u[self.offsets[k]..self.offsets[k + 1]];
+                        Ok(BodyResult {
+                            body: body.clone(),
+                            system: Arc::clone(system),
+                            solution: level.body_solution(k, body, system, free)?,
+                        })
+                    })
+                    .collect::<Vec<Result<_, ContactError>>>()
+            },
         );
+        // The first failing body's error, whatever the order the threads finished in.
+        let bodies = bodies.into_iter().collect::<Result<Vec<_>, _>>()?;
         let theta = force_accuracy.max(1e-8);
         let mut nodes: Vec<InterfaceNode<D>> = Vec::with_capacity(self.nodes.len());
         for (i, node) in self.nodes.iter().enumerate() {
@@ -1215,16 +1239,6 @@ impl<const D: usize> ContactDiscretisation<D> {
         }
         let mut warnings = solution.report.warnings.clone();
         warnings.extend(self.model_warnings(&nodes, bounds, forces.global(), &solution.report));
-        let mut bodies = Vec::with_capacity(self.bodies.len());
-        for (k, (body, system)) in self.bodies.iter().zip(&self.systems).enumerate() {
-            let free = &u[self.offsets[k]..self.offsets[k + 1]];
-            let body_solution = level.body_solution(k, body, system, free)?;
-            bodies.push(BodyResult {
-                body: body.clone(),
-                system: Arc::clone(system),
-                solution: body_solution,
-            });
-        }
         let model = ModelSummary {
             solver: solution.report.solver,
             bodies: bodies

@@ -114,6 +114,10 @@ impl CellIndicator {
 pub struct ElasticEstimate {
     /// Per cell, its squared parts.
     pub cells: Vec<CellIndicator>,
+    /// Per cell, the strain `eps(Pi u_h)` (a tensor), the one the element fields
+    /// ([`crate::ElementField::from_strain`]) are made of: a run needs one pass over the
+    /// cells for both.
+    pub strains: Vec<Matrix2<f64>>,
     /// Per cell, the in-plane stress `sigma_E = C eps(Pi u_h)`.
     pub stresses: Vec<Matrix2<f64>>,
     /// The energy weight `w = 1 / c_min` of the stress terms.
@@ -202,11 +206,15 @@ impl ElasticBody<2> {
                         .sum();
                     cell.residual = weight * h * h * integral.max(0.0);
                 }
-                Ok((cell, self.tensor().stress_tensor(&strain)))
+                Ok((cell, strain))
             })
             .collect::<Result<Vec<_>, ElasticError>>()?;
-        let (mut cells, stresses): (Vec<CellIndicator>, Vec<Matrix2<f64>>) =
+        let (mut cells, strains): (Vec<CellIndicator>, Vec<Matrix2<f64>>) =
             per_cell.into_iter().unzip();
+        let stresses: Vec<Matrix2<f64>> = strains
+            .iter()
+            .map(|strain| self.tensor().stress_tensor(strain))
+            .collect();
         // Boundary edges: prescribed components, tractions, contact.
         let mut prescribed = vec![[false; 2]; mesh.n_edges()];
         let mesh_error = |source| ElasticError::Mesh {
@@ -275,6 +283,7 @@ impl ElasticBody<2> {
         }
         Ok(ElasticEstimate {
             cells,
+            strains,
             stresses,
             weight,
         })
@@ -366,6 +375,15 @@ mod tests {
             }
             for s in &estimate.stresses {
                 assert!((s - sigma).norm() < 1e-12);
+            }
+            // The strains the element fields are made of: the exact strain, and those of
+            // `element_fields` (its own pass over the cells).
+            let epsilon = Matrix2::new(0.1, 0.05, 0.05, 0.05);
+            let fields = body.element_fields(solution.displacement()).unwrap();
+            assert_eq!(estimate.strains.len(), fields.len());
+            for (strain, field) in estimate.strains.iter().zip(&fields) {
+                assert!((strain - epsilon).norm() < 1e-12);
+                assert!((field.strain.fixed_view::<2, 2>(0, 0) - strain).norm() < 1e-15);
             }
         }
     }

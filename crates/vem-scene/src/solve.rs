@@ -6,6 +6,7 @@
 use std::fmt;
 use std::time::{Duration, Instant};
 
+use rayon::prelude::*;
 use serde::Serialize;
 use vem_contact::{
     ContactError, ContactProblem, ContactResult, ContactSolverError, FixedPointReport, HistoryStep,
@@ -292,7 +293,8 @@ pub struct RunTimes {
     pub assembly_s: f64,
     /// Linear or contact solves.
     pub solve_s: f64,
-    /// Element fields and quality figures.
+    /// Element fields and quality figures, and the contact answer's forces, tractions and
+    /// warnings.
     pub post_s: f64,
     /// The error estimate (in the plane; with `adapt`, every cycle's).
     pub estimate_s: f64,
@@ -674,27 +676,32 @@ impl Model {
         let bodies = solved
             .into_iter()
             .zip(estimates)
-            .enumerate()
-            .map(|(index, ((body, solution), estimate))| {
-                let elastic = |e| {
-                    located(locate_elastic(scene, e).unwrap_or_else(|text| {
-                        SceneError::at(KeyPath::key("body").index(index), text)
-                    }))
-                };
-                let fields = body
-                    .element_fields(solution.displacement())
-                    .map_err(elastic)?;
-                let qualities = vem_mesh::quality::element_qualities(body.mesh());
-                Ok(SolvedBody {
+            .map(|((body, solution), estimate)| {
+                // The fields of the strains the estimate's pass over the cells computed.
+                let fields = estimate
+                    .strains
+                    .par_iter()
+                    .map(|strain| ElementField::from_strain(strain, body.tensor(), body.material()))
+                    .collect();
+                let mesh = body.mesh();
+                let qualities = (0..mesh.n_polygons())
+                    .into_par_iter()
+                    .map_init(Vec::new, |points, p| {
+                        points.clear();
+                        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+                        vem_mesh::quality::element_quality(points)
+                    })
+                    .collect();
+                SolvedBody {
                     body,
                     solution,
                     fields,
                     qualities,
                     error_indicator: estimate.indicators(),
-                })
+                }
             })
-            .collect::<Result<Vec<_>, SceneError>>()?;
-        times.post_s = start.elapsed().as_secs_f64();
+            .collect::<Vec<_>>();
+        times.post_s += start.elapsed().as_secs_f64();
         times.total_s =
             times.mesh_s + times.assembly_s + times.solve_s + times.post_s + times.estimate_s;
         let mut summary = self.summarise(&bodies, contact.as_ref(), times, history);
@@ -830,6 +837,7 @@ impl Model {
         let stages = result.work.times;
         times.assembly_s += (stages.insertion + stages.assembly).as_secs_f64();
         times.solve_s += stages.contact_solve.as_secs_f64();
+        times.post_s += stages.post.as_secs_f64();
         let bodies = std::mem::take(&mut result.bodies)
             .into_iter()
             .map(|b| (b.body, b.solution))

@@ -106,17 +106,17 @@ impl<const D: usize> ElasticityTensor<D> {
     /// The stress tensor `sigma = C eps` of the (symmetric) strain tensor `strain`.
     pub fn stress_tensor(&self, strain: &SMatrix<f64, D, D>) -> SMatrix<f64, D, D> {
         let pairs = voigt_pairs(D);
-        // Voigt strain with engineering shears.
-        let eps: Vec<f64> = pairs
-            .iter()
-            .map(|&(i, j)| {
-                if i == j {
-                    strain[(i, j)]
-                } else {
-                    strain[(i, j)] + strain[(j, i)]
-                }
-            })
-            .collect();
+        // Voigt strain with engineering shears (at most 6 entries: no allocation, the
+        // post-processing calls this for every cell).
+        let mut eps = [0.0; 6];
+        for (e, &(i, j)) in eps.iter_mut().zip(pairs) {
+            *e = if i == j {
+                strain[(i, j)]
+            } else {
+                strain[(i, j)] + strain[(j, i)]
+            };
+        }
+        let eps = &eps[..pairs.len()];
         let mut sigma = SMatrix::<f64, D, D>::zeros();
         for (a, &(i, j)) in pairs.iter().enumerate() {
             let value: f64 = eps

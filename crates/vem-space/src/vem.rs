@@ -97,14 +97,44 @@ impl LowestOrderVem {
         &self.stabilisation
     }
 
-    /// What the stiffness and the stabilisation energy share: the consistency part, the
-    /// diagonal `s` of the stabilisation and `R = I - Q` (row-major n x n; see
-    /// [`ElementSpace::stiffness`]).
+    /// What the stiffness needs: the consistency part, the diagonal `s` of the stabilisation
+    /// and `R = I - Q` (row-major n x n; see [`ElementSpace::stiffness`]).
     fn parts(
         &self,
         geometry: &PolygonGeometry,
         material: &ElasticityTensor,
     ) -> Result<StiffnessParts, SpaceError> {
+        let n = geometry.n_vertices();
+        let (consistency, s) = self.consistency_and_diagonal(geometry, material)?;
+        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi. Both components of a vertex
+        // value are projected alike: Pi_dof = I_2 (x) Q with Q[k][m] = 1/n + r_k . w_m (r_k the
+        // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
+        // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
+        // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
+        let weights = geometry.gradient_weights();
+        let relative = geometry.relative_vertices();
+        let mean = 1.0 / n as f64;
+        // R = I - Q, row-major n x n.
+        let mut r = vec![0.0; n * n];
+        for (k, x) in relative.iter().enumerate() {
+            for (m, w) in weights.iter().enumerate() {
+                let identity = if k == m { 1.0 } else { 0.0 };
+                r[k * n + m] = identity - (mean + x.x * w.x + x.y * w.y);
+            }
+        }
+        Ok(StiffnessParts {
+            consistency,
+            diagonal: s,
+            complement: r,
+        })
+    }
+
+    /// The consistency part `K_c` of the stiffness and the diagonal `s` of the stabilisation.
+    fn consistency_and_diagonal(
+        &self,
+        geometry: &PolygonGeometry,
+        material: &ElasticityTensor,
+    ) -> Result<(DMatrix<f64>, DVector<f64>), SpaceError> {
         let n = geometry.n_vertices();
         let dofs = 2 * n;
         // Consistency part: a_T(Pi u, Pi v) = |T| eps(Pi u) . C eps(Pi v), entry by entry from
@@ -138,32 +168,13 @@ impl LowestOrderVem {
                 consistency[(j, i)] = value;
             }
         }
-        // Stabilisation part on (I - Pi_dof), Pi_dof = D Pi. Both components of a vertex
-        // value are projected alike: Pi_dof = I_2 (x) Q with Q[k][m] = 1/n + r_k . w_m (r_k the
-        // vertex relative to the vertex mean, w_m the gradient weights; `basis_at_vertices`
-        // times `coefficients`), so K_s = (I - Pi_dof)' S (I - Pi_dof) couples only equal
-        // components: K_s[2a + c][2b + c] = sum_k R[k][a] s_(2k + c) R[k][b], R = I - Q.
         let s = crate::stabilisation::checked_diagonal(
             self.stabilisation.name(),
             self.stabilisation
                 .diagonal(geometry, material, &consistency)?,
             dofs,
         )?;
-        let relative = geometry.relative_vertices();
-        let mean = 1.0 / n as f64;
-        // R = I - Q, row-major n x n.
-        let mut r = vec![0.0; n * n];
-        for (k, x) in relative.iter().enumerate() {
-            for (m, w) in weights.iter().enumerate() {
-                let identity = if k == m { 1.0 } else { 0.0 };
-                r[k * n + m] = identity - (mean + x.x * w.x + x.y * w.y);
-            }
-        }
-        Ok(StiffnessParts {
-            consistency,
-            diagonal: s,
-            complement: r,
-        })
+        Ok((consistency, s))
     }
 
     /// The energy projection of a polygon of geometry `geometry`.
@@ -277,9 +288,10 @@ impl ElementSpace for LowestOrderVem {
         })
     }
 
-    /// The energy `u' K_s u = sum_k s_k ((I - Pi_dof) u)_k^2` from `R = I - Q` and the
-    /// diagonal `s`, without forming `K_s`; the strain from the projection of the same
-    /// geometry.
+    /// The energy `u' K_s u = sum_k s_k ((I - Pi_dof) u)_k^2` with the diagonal `s`, without
+    /// forming `K_s` or `R = I - Q`: `Pi u` is the linear function of vertex mean `u_bar` and
+    /// gradient `G = sum_m u_m w_m'`, so `((I - Pi_dof) u)_k = u_k - u_bar - G r_k` (O(n) per
+    /// cell); the strain is the symmetric part of the same `G`.
     fn strain_and_stabilisation_energy(
         &self,
         polygon: &[Point],
@@ -288,16 +300,25 @@ impl ElementSpace for LowestOrderVem {
     ) -> Result<(SMatrix<f64, 3, 1>, f64), SpaceError> {
         let geometry = PolygonGeometry::try_new(polygon)?;
         let n = geometry.n_vertices();
-        let parts = self.parts(&geometry, material)?;
-        let (r, s) = (&parts.complement, &parts.diagonal);
-        let mut energy = 0.0;
-        for component in 0..2 {
-            for k in 0..n {
-                let residual: f64 = (0..n).map(|m| r[k * n + m] * u[2 * m + component]).sum();
-                energy += s[2 * k + component] * residual * residual;
-            }
+        let (_, s) = self.consistency_and_diagonal(&geometry, material)?;
+        // G = [gx'; gy'] (the gradients of the two components) and the vertex means.
+        let (mut gx, mut gy) = (Vector::zeros(), Vector::zeros());
+        let (mut mean_x, mut mean_y) = (0.0, 0.0);
+        for (m, w) in geometry.gradient_weights().iter().enumerate() {
+            gx += w * u[2 * m];
+            gy += w * u[2 * m + 1];
+            mean_x += u[2 * m];
+            mean_y += u[2 * m + 1];
         }
-        Ok((Self::projection_of(&geometry).strain(u), energy.max(0.0)))
+        let (mean_x, mean_y) = (mean_x / n as f64, mean_y / n as f64);
+        let mut energy = 0.0;
+        for (k, r) in geometry.relative_vertices().iter().enumerate() {
+            let residual_x = u[2 * k] - mean_x - gx.dot(r);
+            let residual_y = u[2 * k + 1] - mean_y - gy.dot(r);
+            energy += s[2 * k] * residual_x * residual_x + s[2 * k + 1] * residual_y * residual_y;
+        }
+        let strain = SMatrix::<f64, 3, 1>::new(gx.x, gy.y, gx.y + gy.x);
+        Ok((strain, energy.max(0.0)))
     }
 
     fn projection(&self, polygon: &[Point]) -> Result<EnergyProjection, SpaceError> {
