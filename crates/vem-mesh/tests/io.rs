@@ -569,7 +569,7 @@ fn svg_of_many_cells_embeds_a_png_of_the_cells() {
     let picture_width: f64 = image.attribute("width").unwrap().parse().unwrap();
     assert_eq!(width as f64, 2.0 * picture_width);
     // The palette (PLTE, tRNS) and the (single) IDAT chunk: rows of palette indices, each
-    // after its filter byte (none).
+    // after its filter byte.
     let chunk = |kind: &[u8]| {
         let at = png.windows(4).position(|w| w == kind).unwrap();
         let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
@@ -580,11 +580,15 @@ fn svg_of_many_cells_embeds_a_png_of_the_cells() {
     let raw = inflate(&chunk(b"IDAT"));
     let stride = 4 * width;
     let mut pixels = vec![0u8; stride * height];
+    let mut above = vec![0u8; width];
     for row in 0..height {
         let line = &raw[row * (width + 1)..(row + 1) * (width + 1)];
-        assert_eq!(line[0], 0, "filter of row {row}");
-        for (i, &index) in line[1..].iter().enumerate() {
-            let index = usize::from(index);
+        // The filters: none for the first row, "Up" (the row above added back) for the
+        // others.
+        assert_eq!(line[0], if row == 0 { 0 } else { 2 }, "filter of row {row}");
+        for (i, &byte) in line[1..].iter().enumerate() {
+            above[i] = byte.wrapping_add(above[i]);
+            let index = usize::from(above[i]);
             let pixel = &mut pixels[row * stride + 4 * i..row * stride + 4 * i + 4];
             pixel[..3].copy_from_slice(&colours[3 * index..3 * index + 3]);
             pixel[3] = alphas.get(index).copied().unwrap_or(255);

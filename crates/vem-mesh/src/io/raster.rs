@@ -149,11 +149,14 @@ impl Raster {
     }
 
     /// The image as a PNG file (8-bit palette indices with the palette's alphas, no
-    /// interlacing, rows unfiltered: the filters' differences mean nothing between indices).
+    /// interlacing). Every row but the first is filtered "Up" (its bytes minus the row
+    /// above's, modulo 256): the differences of indices mean nothing as numbers, but a row
+    /// of cells mostly repeats the row above, and its zeros deflate to half the size of the
+    /// unfiltered rows (the whole-run picture at 10^5 unknowns: 400 -> 213 kB).
     pub(crate) fn to_png(&self) -> Vec<u8> {
         let stride = self.width;
         // Rows prefixed with their filter byte piece by piece on the threads that deflate
-        // them.
+        // them (a piece's first row is filtered against the last row of the piece before).
         let bytes = (stride + 1) * self.height;
         let pieces = pieces_for(bytes).min(self.height.max(1));
         let rows_per_piece = self.height.div_ceil(pieces).max(1);
@@ -161,8 +164,15 @@ impl Raster {
             let rows = k * rows_per_piece..((k + 1) * rows_per_piece).min(self.height);
             let mut filtered = Vec::with_capacity((stride + 1) * rows.len());
             for row in rows {
-                filtered.push(0); // None
-                filtered.extend_from_slice(&self.pixels[row * stride..(row + 1) * stride]);
+                let line = &self.pixels[row * stride..(row + 1) * stride];
+                if row == 0 {
+                    filtered.push(PNG_FILTER_NONE);
+                    filtered.extend_from_slice(line);
+                } else {
+                    let above = &self.pixels[(row - 1) * stride..row * stride];
+                    filtered.push(PNG_FILTER_UP);
+                    filtered.extend(line.iter().zip(above).map(|(x, b)| x.wrapping_sub(*b)));
+                }
             }
             filtered
         };
@@ -282,6 +292,10 @@ impl Band<'_> {
 /// bench at 10^5 unknowns (1800 x 2426 pixels) is an SVG file of 0.67 MB against 0.34 MB at
 /// 6, and the run's output takes 47 ms against 60.
 const PNG_LEVEL: u8 = 1;
+
+/// PNG's filter types of a row (the byte before it): none, and "Up" (minus the row above).
+const PNG_FILTER_NONE: u8 = 0;
+const PNG_FILTER_UP: u8 = 2;
 
 /// Data of at least this many bytes is deflated in pieces, and an image of at least this many
 /// bytes drawn in bands, one thread each.
@@ -522,9 +536,17 @@ mod tests {
         assert_eq!(chunks[2].1, [0, 150]);
         let raw = miniz_oxide::inflate::decompress_to_vec_zlib(&chunks[3].1).unwrap();
         assert_eq!(raw.len(), 10 * 11);
+        // The first row unfiltered, the others "Up": undone by adding the row above.
+        let mut above = [0u8; 10];
         for (row, line) in raw.chunks(11).enumerate() {
-            assert_eq!(line[0], 0, "row {row} unfiltered");
-            assert_eq!(&line[1..], &r.pixels[10 * row..10 * row + 10]);
+            assert_eq!(line[0], if row == 0 { 0 } else { 2 }, "filter of row {row}");
+            let pixels: Vec<u8> = line[1..]
+                .iter()
+                .zip(above)
+                .map(|(x, b)| x.wrapping_add(b))
+                .collect();
+            assert_eq!(pixels, &r.pixels[10 * row..10 * row + 10]);
+            above.copy_from_slice(&pixels);
         }
     }
 
