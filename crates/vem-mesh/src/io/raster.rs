@@ -5,7 +5,8 @@
 //! A picture of 10^6 cells drawn as vectors is a file of 100 MB that no browser opens; the
 //! same picture rasterised at the resolution it is shown at is a PNG whose size depends on the
 //! number of pixels, not of cells. Its pixels are indices into a [`Palette`] of at most 256
-//! colours (a PNG of colour type 3): a byte per pixel to draw and deflate rather than four.
+//! colours (a PNG of colour type 3): a byte per pixel to draw, filter and deflate rather than
+//! four.
 
 /// The colours of a [`Raster`], at most 256: index 0 is transparent, then the ink segments
 /// are drawn in over transparent, then the fills, then the ink over each fill.
@@ -289,8 +290,8 @@ impl Band<'_> {
 }
 
 /// zlib's compression level of the pictures: at 1 (the fastest) the picture of the whole-run
-/// bench at 10^5 unknowns (1800 x 2426 pixels) is an SVG file of 0.67 MB against 0.34 MB at
-/// 6, and the run's output takes 47 ms against 60.
+/// bench at 10^5 unknowns (1800 x 2426 pixels, rows filtered "Up") is an SVG file of 0.42 MB
+/// against 0.28 MB at 6, and the run's output takes 47 ms against 65-68.
 const PNG_LEVEL: u8 = 1;
 
 /// PNG's filter types of a row (the byte before it): none, and "Up" (minus the row above).
@@ -641,6 +642,45 @@ mod tests {
         two_bands.draw_in_bands(&[], &segment, 2);
         assert!(one_band.pixels[10 * 12 + 9] != 0);
         assert!(two_bands.pixels == one_band.pixels);
+    }
+
+    /// An image large enough to be deflated in pieces (one per thread): its rows, inflated
+    /// and with the "Up" filter undone, are the pixels, also across the pieces' seams (a
+    /// piece's first row is filtered against the last row of the piece before).
+    #[test]
+    fn a_png_in_pieces_decodes_to_the_pixels() {
+        let (width, height) = (1200, 1000);
+        assert!(width * height >= PIECE_MIN_BYTES);
+        let palette = Palette::new(&[[200, 0, 0], [0, 0, 200]], [48, 48, 48, 150]);
+        let mut image = Raster::new(width, height, palette);
+        let mut state = 7u32;
+        for (k, pixel) in image.pixels.iter_mut().enumerate() {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            // Bands of colour, with a noisy pixel now and then (wrapping differences).
+            let (x, y) = (k % width, k / width);
+            *pixel = if state >> 28 == 0 {
+                (state >> 20) as u8
+            } else {
+                ((x / 37 + y / 23) % 5) as u8
+            };
+        }
+        let png = image.to_png();
+        let at = png.windows(4).position(|w| w == b"IDAT").unwrap();
+        let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
+        let raw = miniz_oxide::inflate::decompress_to_vec_zlib(&png[at + 4..at + 4 + len]).unwrap();
+        assert_eq!(raw.len(), (width + 1) * height);
+        let mut above = vec![0u8; width];
+        for (row, line) in raw.chunks(width + 1).enumerate() {
+            let expected_filter = if row == 0 { 0 } else { 2 };
+            assert_eq!(line[0], expected_filter, "filter of row {row}");
+            for (a, &byte) in above.iter_mut().zip(&line[1..]) {
+                *a = byte.wrapping_add(*a);
+            }
+            assert!(
+                above[..] == image.pixels[row * width..(row + 1) * width],
+                "row {row}"
+            );
+        }
     }
 
     #[test]
