@@ -70,6 +70,7 @@ pub(crate) struct Raster {
 }
 
 /// One thing drawn into a [`Raster`] (see [`Raster::draw`]).
+#[cfg(test)]
 pub(crate) enum Shape {
     /// The polygon through the drawing's points `corners` (a range of their indices),
     /// filled with the palette's `colour`: every pixel whose centre lies inside (the even-odd
@@ -96,12 +97,41 @@ impl Raster {
     /// Draws `shapes` in order (the polygons' corners in `points`), in bands of rows, one
     /// thread each: every band draws every shape clipped to its rows, so the image is the one
     /// drawn on one thread, pixel for pixel.
+    #[cfg(test)]
     pub(crate) fn draw(&mut self, points: &[(f64, f64)], shapes: &[Shape]) {
         self.draw_in_bands(points, shapes, pieces_for(self.pixels.len()));
     }
 
     /// [`Raster::draw`] in `bands` bands of rows.
+    #[cfg(test)]
     fn draw_in_bands(&mut self, points: &[(f64, f64)], shapes: &[Shape], bands: usize) {
+        self.draw_with_in_bands(
+            |band| {
+                for shape in shapes {
+                    match shape {
+                        Shape::Polygon { corners, colour } => {
+                            band.fill_polygon(&points[corners.clone()], *colour);
+                        }
+                        Shape::Segment { a, b } => band.segment(*a, *b),
+                    }
+                }
+            },
+            bands,
+        );
+    }
+
+    /// Draws the shapes `shapes` draws with the [`Band`] it is given, in bands of rows, one
+    /// thread each: every band runs `shapes`, which draws every shape in the same order, each
+    /// clipped to the band's rows, so the image is the one drawn on one thread, pixel for
+    /// pixel. The shapes are made where they are drawn (a mesh's cells straight from the
+    /// mesh): no list of them is gathered first.
+    pub(crate) fn draw_with(&mut self, shapes: impl Fn(&mut Band) + Sync) {
+        let bands = pieces_for(self.pixels.len());
+        self.draw_with_in_bands(shapes, bands);
+    }
+
+    /// [`Raster::draw_with`] in `bands` bands of rows.
+    fn draw_with_in_bands(&mut self, shapes: impl Fn(&mut Band) + Sync, bands: usize) {
         let stride = self.width;
         let bands = bands.clamp(1, self.height.max(1));
         let rows_per_band = self.height.div_ceil(bands).max(1);
@@ -115,14 +145,7 @@ impl Raster {
                 under_ink,
                 crossings: Vec::new(),
             };
-            for shape in shapes {
-                match shape {
-                    Shape::Polygon { corners, colour } => {
-                        band.fill_polygon(&points[corners.clone()], *colour);
-                    }
-                    Shape::Segment { a, b } => band.segment(*a, *b),
-                }
-            }
+            shapes(&mut band);
         };
         if bands == 1 || stride == 0 {
             draw_band(0, &mut self.pixels);
@@ -204,8 +227,9 @@ impl Raster {
     }
 }
 
-/// The rows `first_row..` of a raster `width` pixels wide, drawn into by one thread.
-struct Band<'a> {
+/// The rows `first_row..` of a raster `width` pixels wide, drawn into by one thread (see
+/// [`Raster::draw_with`]).
+pub(crate) struct Band<'a> {
     first_row: usize,
     width: usize,
     pixels: &'a mut [u8],
@@ -223,7 +247,7 @@ impl Band<'_> {
 
     /// Fills the polygon through `points` (pixel coordinates, y down; any orientation, the
     /// even-odd rule) with `colour`: every pixel of the band whose centre lies inside.
-    fn fill_polygon(&mut self, points: &[(f64, f64)], colour: u8) {
+    pub(crate) fn fill_polygon(&mut self, points: &[(f64, f64)], colour: u8) {
         let m = points.len();
         if m < 3 {
             return;
@@ -266,7 +290,7 @@ impl Band<'_> {
 
     /// Draws the segment from `a` to `b` one pixel wide (a pixel per step along the longer
     /// axis) in the palette's ink over what is there; the band's pixels only.
-    fn segment(&mut self, a: (f64, f64), b: (f64, f64)) {
+    pub(crate) fn segment(&mut self, a: (f64, f64), b: (f64, f64)) {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let steps = dx.abs().max(dy.abs()).ceil();
         if !steps.is_finite() || steps > 1e7 {

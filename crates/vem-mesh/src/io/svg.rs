@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::raster::{base64, Palette, Raster, Shape};
+use super::raster::{base64, Palette, Raster};
 use super::{write_atomically, xml_escape};
 use crate::{Mesh, MeshError, Point, Vector};
 
@@ -767,7 +767,7 @@ fn raster_cells(
     drawn: &[Drawn],
     edges_shown: &[bool],
     value_range: Option<(f64, f64)>,
-    to_picture: &impl Fn(Point) -> (f64, f64),
+    to_picture: &(impl Fn(Point) -> (f64, f64) + Sync),
     (width, height): (f64, f64),
 ) {
     // At most about 16 million pixels, whatever the picture's size.
@@ -803,37 +803,30 @@ fn raster_cells(
         let (x, y) = to_picture(p);
         (x * scale, y * scale)
     };
-    // The shapes drawn in batches, in order: the memory of a batch, not of the whole mesh.
-    const BATCH: usize = 1 << 18;
-    let (mut points, mut shapes) = (Vec::new(), Vec::new());
-    let mut add = |shape: Shape, points: &mut Vec<(f64, f64)>| {
-        shapes.push(shape);
-        if shapes.len() == BATCH {
-            image.draw(points, &shapes);
-            points.clear();
-            shapes.clear();
-        }
-    };
-    for (d, &edges) in drawn.iter().zip(edges_shown) {
-        let mesh = d.layer.mesh;
-        for (p, polygon) in mesh.polygons().enumerate() {
-            let first = points.len();
-            points.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
-            let colour = match (d.layer.cell_values, value_range) {
-                (Some(values), Some(range)) => level_of(values[p], range),
-                _ => uncoloured,
-            };
-            let corners = first..points.len();
-            add(Shape::Polygon { corners, colour }, &mut points);
-        }
-        if edges {
-            for edge in mesh.edges() {
-                let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
-                add(Shape::Segment { a, b }, &mut points);
+    // Every band draws the cells (and edges) straight from the meshes, in order: no list of
+    // shapes is gathered first (gathered on one thread, the 70 000 cells of the whole-run
+    // picture at 10^5 unknowns took 4-14 ms before the bands could start).
+    image.draw_with(|band| {
+        let mut corners = Vec::new();
+        for (d, &edges) in drawn.iter().zip(edges_shown) {
+            let mesh = d.layer.mesh;
+            for (p, polygon) in mesh.polygons().enumerate() {
+                corners.clear();
+                corners.extend(polygon.iter().map(|&v| to_pixels(d.positions[v])));
+                let colour = match (d.layer.cell_values, value_range) {
+                    (Some(values), Some(range)) => level_of(values[p], range),
+                    _ => uncoloured,
+                };
+                band.fill_polygon(&corners, colour);
+            }
+            if edges {
+                for edge in mesh.edges() {
+                    let [a, b] = edge.vertices.map(|v| to_pixels(d.positions[v]));
+                    band.segment(a, b);
+                }
             }
         }
-    }
-    image.draw(&points, &shapes);
+    });
     let png = image.to_png();
     emit(
         out,
