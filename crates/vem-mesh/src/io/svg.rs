@@ -805,7 +805,7 @@ fn raster_cells(
     };
     // Every band draws the cells (and edges) straight from the meshes, in order: no list of
     // shapes is gathered first (gathered on one thread, the 70 000 cells of the whole-run
-    // picture at 10^5 unknowns took 4-14 ms before the bands could start).
+    // picture at 10^5 unknowns took 11-14 ms before the bands could start).
     image.draw_with(|band| {
         let mut corners = Vec::new();
         for (d, &edges) in drawn.iter().zip(edges_shown) {
