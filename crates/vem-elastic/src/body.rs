@@ -673,9 +673,17 @@ impl<const D: usize> ElasticBody<D> {
 
     /// The local degrees of freedom of cell `c` taken from the full displacement `displacement`.
     pub fn local_values(&self, c: usize, displacement: &[f64]) -> DVector<f64> {
-        let mut dofs = Vec::new();
-        self.dofs.cell_dofs(self.mesh.cell_vertices(c), &mut dofs);
-        DVector::from_iterator(dofs.len(), dofs.iter().map(|&g| displacement[g]))
+        // One allocation per cell (the values'), not three: the estimate and the element
+        // fields call this for every cell.
+        let vertices = self.mesh.cell_vertices(c);
+        let mut values = Vec::with_capacity(self.dofs.components() * vertices.len());
+        values.extend(
+            vertices
+                .iter()
+                .flat_map(|&v| self.dofs.vertex_dofs(v))
+                .map(|g| displacement[g]),
+        );
+        DVector::from_vec(values)
     }
 
     /// Strain, stress and von Mises stress of every element from the energy projection of
