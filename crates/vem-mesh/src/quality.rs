@@ -326,16 +326,29 @@ impl fmt::Display for QualitySummary {
     }
 }
 
-/// The A1 figures of every polygon of `mesh`, in polygon order.
+/// The A1 figures of every polygon of `mesh`, in polygon order (on every thread with the
+/// `parallel` feature).
 pub fn element_qualities(mesh: &Mesh) -> Vec<ElementQuality> {
-    let mut points = Vec::new();
-    (0..mesh.n_polygons())
-        .map(|p| {
-            points.clear();
-            points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
-            element_quality(&points)
-        })
-        .collect()
+    let quality = |points: &mut Vec<Point>, p: usize| {
+        points.clear();
+        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
+        element_quality(points)
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..mesh.n_polygons())
+            .into_par_iter()
+            .map_init(Vec::new, quality)
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let mut points = Vec::new();
+        (0..mesh.n_polygons())
+            .map(|p| quality(&mut points, p))
+            .collect()
+    }
 }
 
 /// The distribution of the A1 figures over `mesh`.

@@ -683,15 +683,7 @@ impl Model {
                     .par_iter()
                     .map(|strain| ElementField::from_strain(strain, body.tensor(), body.material()))
                     .collect();
-                let mesh = body.mesh();
-                let qualities = (0..mesh.n_polygons())
-                    .into_par_iter()
-                    .map_init(Vec::new, |points, p| {
-                        points.clear();
-                        points.extend(mesh.polygon(p).iter().map(|&v| mesh.vertex(v)));
-                        vem_mesh::quality::element_quality(points)
-                    })
-                    .collect();
+                let qualities = vem_mesh::quality::element_qualities(body.mesh());
                 SolvedBody {
                     body,
                     solution,
