@@ -24,7 +24,7 @@ if [ "$profile" = "test" ]; then
     # test profile: the dev profile with the test profile's settings instead, whose libraries
     # are those of `cargo test` (both build into target/debug).
     cargo_profile=dev
-    export CARGO_PROFILE_DEV_OPT_LEVEL=3 CARGO_PROFILE_DEV_DEBUG=line-tables-only
+    export CARGO_PROFILE_DEV_OPT_LEVEL=3 CARGO_PROFILE_DEV_DEBUG=false
 fi
 python=$(scripts/python-venv.sh install-python-package "$venv" \
     maturin==1.16.0 numpy==2.4.6 pytest==9.2.0 meshio==5.3.5 | tail -n 1)
