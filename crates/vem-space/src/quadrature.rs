@@ -236,13 +236,20 @@ impl TriangleRule {
 /// star-shaped with respect to its centroid some points lie outside it (the integrand must then
 /// be defined there).
 pub fn polygon_rule(polygon: &[Point], rule: &TriangleRule) -> Vec<QuadraturePoint> {
+    let mut points = Vec::with_capacity(polygon.len() * rule.barycentric().len());
+    points.extend(polygon_points(polygon, rule));
+    points
+}
+
+/// The points of [`polygon_rule`], in the same order, without collecting them (the load of
+/// every cell of an assembly sums over them).
+pub(crate) fn polygon_points<'a>(
+    polygon: &'a [Point],
+    rule: &'a TriangleRule,
+) -> impl Iterator<Item = QuadraturePoint> + 'a {
     let n = polygon.len();
     let centroid = geometry::centroid(polygon);
-    let mut points = Vec::with_capacity(n * rule.barycentric().len());
-    for k in 0..n {
-        points.extend(rule.on_triangle(centroid, polygon[k], polygon[(k + 1) % n]));
-    }
-    points
+    (0..n).flat_map(move |k| rule.on_triangle(centroid, polygon[k], polygon[(k + 1) % n]))
 }
 
 #[cfg(test)]

@@ -327,16 +327,17 @@ impl Stabilisation for BBar {
     }
 }
 
-/// `s` as the diagonal of the stabilisation named `stabilisation` for `dofs` degrees of
-/// freedom: `dofs` finite positive entries, or the error naming what came instead.
+/// `s` as the diagonal of the stabilisation `stabilisation` (its name, asked for only in the
+/// error) for `dofs` degrees of freedom: `dofs` finite positive entries, or the error naming
+/// what came instead.
 pub(crate) fn checked_diagonal(
-    stabilisation: String,
+    stabilisation: impl FnOnce() -> String,
     s: DVector<f64>,
     dofs: usize,
 ) -> Result<DVector<f64>, SpaceError> {
     if s.len() != dofs || s.iter().any(|s_i| !(s_i.is_finite() && *s_i > 0.0)) {
         return Err(SpaceError::InvalidStabilisation {
-            stabilisation,
+            stabilisation: stabilisation(),
             reason: format!(
                 "the diagonal of S must have {dofs} finite positive entries, got {}: {:?}",
                 s.len(),

@@ -27,7 +27,7 @@ use std::sync::Arc;
 
 use nalgebra::{DMatrix, DVector, SMatrix};
 
-use crate::quadrature::{polygon_rule, TriangleRule};
+use crate::quadrature::{polygon_points, TriangleRule};
 use crate::{
     DofiDofi, ElasticityTensor, ElementSpace, EnergyProjection, LocalStiffness, Point,
     PolygonGeometry, SpaceError, Stabilisation, Vector,
@@ -169,7 +169,7 @@ impl LowestOrderVem {
             }
         }
         let s = crate::stabilisation::checked_diagonal(
-            self.stabilisation.name(),
+            || self.stabilisation.name(),
             self.stabilisation
                 .diagonal(geometry, material, &consistency)?,
             dofs,
@@ -333,7 +333,7 @@ impl ElementSpace for LowestOrderVem {
         let geometry = PolygonGeometry::try_new(polygon)?;
         // |T| f_bar = int_T f, by the degree-5 rule on the centroid fan (A3).
         let mut integral = Vector::zeros();
-        for q in polygon_rule(polygon, &TriangleRule::degree5()) {
+        for q in polygon_points(polygon, &TriangleRule::degree5()) {
             let f = body_force(q.point);
             if !(f.x.is_finite() && f.y.is_finite()) {
                 return Err(SpaceError::NonFiniteLoad {
@@ -350,13 +350,9 @@ impl ElementSpace for LowestOrderVem {
         // systematically skewed cells (chevrons) and costs the O(h^2) L2 rate.
         let n = geometry.n_vertices();
         let offset = geometry.centroid() - geometry.vertex_mean();
-        let weights: Vec<f64> = geometry
-            .gradient_weights()
-            .iter()
-            .map(|w| 1.0 / n as f64 + w.dot(&offset))
-            .collect();
+        let weights = geometry.gradient_weights();
         Ok(DVector::from_fn(2 * n, |i, _| {
-            integral[i % 2] * weights[i / 2]
+            integral[i % 2] * (1.0 / n as f64 + weights[i / 2].dot(&offset))
         }))
     }
 }

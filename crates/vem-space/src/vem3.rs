@@ -211,7 +211,7 @@ impl PolyhedralVem {
             }
         }
         let s = crate::stabilisation::checked_diagonal(
-            self.stabilisation.name(),
+            || self.stabilisation.name(),
             self.stabilisation
                 .polyhedral_diagonal(geometry, material, &consistency)?,
             dofs,
