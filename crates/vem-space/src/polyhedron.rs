@@ -140,12 +140,16 @@ impl PolyhedronGeometry {
         }
         let mut q = vec![Vector3::zeros(); n];
         let (mut closure, mut total_area) = (Vector3::zeros(), 0.0);
-        for (k, face) in local.faces().enumerate() {
-            let face_points = local.face_points(k);
+        // One buffer each for the faces' points and weights, reused face after face.
+        let (mut face_points, mut weights) = (Vec::new(), Vec::new());
+        for face in local.faces() {
+            face_points.clear();
+            face_points.extend(face.iter().map(|&v| local.points()[v]));
             let vector_area = geometry::face_vector_area(&face_points);
             closure += vector_area;
             total_area += vector_area.norm();
-            for (&v, w) in face.iter().zip(geometry::face_vertex_weights(&face_points)) {
+            geometry::face_vertex_weights_into(&face_points, &mut weights);
+            for (&v, w) in face.iter().zip(&weights) {
                 q[v] += w / volume;
             }
         }

@@ -521,8 +521,10 @@ pub fn polyhedron_rule(
     }
     let centre = polyhedron.centroid();
     let mut points = Vec::new();
-    for k in 0..polyhedron.n_faces() {
-        let face = polyhedron.face_points(k);
+    let mut face = Vec::new();
+    for loop_ in polyhedron.faces() {
+        face.clear();
+        face.extend(loop_.iter().map(|&v| polyhedron.points()[v]));
         let mean = vem_mesh::polyhedral::geometry::vertex_mean(&face);
         let n = face.len();
         for i in 0..n {

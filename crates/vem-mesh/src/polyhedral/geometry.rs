@@ -108,15 +108,32 @@ pub fn face_centroid(points: &[Point3]) -> Point3 {
 /// v linear on each fan triangle and equal at the fan centre to the mean of its vertex values,
 /// int_F v n dS = sum_a v_a w_a (see the module docs). They add up to the vector area S_F.
 pub fn face_vertex_weights(points: &[Point3]) -> Vec<Vector3> {
-    let centre = vertex_mean(points);
+    let mut weights = Vec::with_capacity(points.len());
+    face_vertex_weights_into(points, &mut weights);
+    weights
+}
+
+/// [`face_vertex_weights`] written into `weights` (cleared first), so that a pass over many
+/// faces (the geometry of every cell of an assembly) reuses one buffer.
+pub fn face_vertex_weights_into(points: &[Point3], weights: &mut Vec<Vector3>) {
+    weights.clear();
     let n = points.len();
-    let areas: Vec<Vector3> = (0..n)
-        .map(|k| 0.5 * (points[k] - centre).cross(&(points[(k + 1) % n] - centre)))
-        .collect();
-    let total: Vector3 = areas.iter().sum();
-    (0..n)
-        .map(|a| (areas[(a + n - 1) % n] + areas[a]) / 3.0 + total / (3.0 * n as f64))
-        .collect()
+    if n == 0 {
+        return;
+    }
+    let centre = vertex_mean(points);
+    // The vector areas of the fan triangles first; then, from the last vertex back, each
+    // weight from the areas of its two triangles (the first vertex's other triangle is the
+    // last, kept before it is overwritten).
+    weights
+        .extend((0..n).map(|k| 0.5 * (points[k] - centre).cross(&(points[(k + 1) % n] - centre))));
+    let total: Vector3 = weights.iter().sum();
+    let share = total / (3.0 * n as f64);
+    let last = weights[n - 1];
+    for a in (1..n).rev() {
+        weights[a] = (weights[a - 1] + weights[a]) / 3.0 + share;
+    }
+    weights[0] = (last + weights[0]) / 3.0 + share;
 }
 
 /// Largest distance of a vertex of the face loop `points` from the plane through its vertex mean
