@@ -677,12 +677,7 @@ impl<const D: usize> ElasticBody<D> {
         // fields call this for every cell.
         let vertices = self.mesh.cell_vertices(c);
         let mut values = Vec::with_capacity(self.dofs.components() * vertices.len());
-        values.extend(
-            vertices
-                .iter()
-                .flat_map(|&v| self.dofs.vertex_dofs(v))
-                .map(|g| displacement[g]),
-        );
+        values.extend(self.dofs.cell_dof_iter(vertices).map(|g| displacement[g]));
         DVector::from_vec(values)
     }
 

@@ -269,7 +269,16 @@ impl DofMap {
     /// Appends the global degrees of freedom of a cell with vertices `cell_vertices`, in the
     /// element's local order, to `out`.
     pub fn cell_dofs(&self, cell_vertices: &[usize], out: &mut Vec<usize>) {
-        out.extend(cell_vertices.iter().flat_map(|&v| self.vertex_dofs(v)));
+        out.extend(self.cell_dof_iter(cell_vertices));
+    }
+
+    /// The global degrees of freedom of a cell with vertices `cell_vertices`, in the element's
+    /// local order ([`DofMap::cell_dofs`] without a buffer).
+    pub fn cell_dof_iter<'a>(
+        &'a self,
+        cell_vertices: &'a [usize],
+    ) -> impl Iterator<Item = usize> + 'a {
+        cell_vertices.iter().flat_map(|&v| self.vertex_dofs(v))
     }
 
     /// Number of free degrees of freedom (the size of the reduced system).
