@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use vem_cli::resources::{LimitOrigin, MemoryLimit};
 use vem_cli::{convert_mesh, default_output_dir, generate_mesh_within, CliError, Model, Scene};
+use vem_scene::{OutputFiles, VtuEncodingName};
 
 /// Contact of elastic bodies with the lowest-order virtual element method (VEM).
 ///
@@ -36,7 +37,9 @@ enum Command {
     /// values) and results.pvd (opens every body and the interface at once); with a load
     /// history of several steps also BODY_NNNN.vtu, interface_NNNN.vtu and contact_NNNN.csv
     /// per step, results.pvd over the steps, history.csv and history.svg (load-displacement
-    /// curves). Prints a short summary.
+    /// curves). `--files` (or the scene's `[output] files`) keeps fewer kinds of files besides
+    /// summary.json; `--vtu-encoding` writes the .vtu files compressed or as text. Prints a
+    /// short summary.
     Run {
         /// The scene file (TOML).
         scene: PathBuf,
@@ -52,6 +55,14 @@ enum Command {
         /// rounded down to 1, 2 or 5 times a power of ten, never below 1].
         #[arg(long, value_name = "FACTOR")]
         magnification: Option<f64>,
+        /// The encoding of the .vtu files [default: the scene's `[output] vtu_encoding`, else
+        /// binary: raw appended data, the interface's zlib-compressed].
+        #[arg(long, value_name = "ENCODING")]
+        vtu_encoding: Option<EncodingArg>,
+        /// The kinds of files written besides summary.json, separated by commas (`none`: the
+        /// summary alone) [default: the scene's `[output] files`, else all three].
+        #[arg(long, value_name = "KINDS", value_delimiter = ',')]
+        files: Option<Vec<FilesArg>>,
     },
     /// Check a scene without solving it.
     ///
@@ -131,6 +142,85 @@ fn load(path: &Path, memory_limit: Option<f64>) -> Result<Scene, CliError> {
     })
 }
 
+/// `--vtu-encoding`.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+enum EncodingArg {
+    /// Raw appended binary data (the interface's zlib-compressed).
+    Binary,
+    /// Appended binary data, every array zlib-compressed.
+    Compressed,
+    /// Text.
+    Ascii,
+}
+
+/// A kind of `--files`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum FilesArg {
+    /// The bodies' and the interface's .vtu files and results.pvd.
+    Vtu,
+    /// contact.csv, and with a load history every step's and history.csv.
+    Csv,
+    /// deformed.svg, pressure.svg, slip.svg, history.svg.
+    Pictures,
+    /// summary.json alone.
+    None,
+}
+
+/// The output settings of the command line, over the scene's.
+struct OutputArgs {
+    magnification: Option<f64>,
+    vtu_encoding: Option<EncodingArg>,
+    files: Option<Vec<FilesArg>>,
+}
+
+impl OutputArgs {
+    /// Checks the settings before the run.
+    fn check(&self) -> Result<(), CliError> {
+        if let Some(m) = self.magnification {
+            if !(m.is_finite() && m > 0.0) {
+                return Err(CliError::Usage(format!(
+                    "--magnification {m}: give a finite number > 0"
+                )));
+            }
+        }
+        if let Some(files) = &self.files {
+            if files.contains(&FilesArg::None) && files.len() > 1 {
+                return Err(CliError::Usage(
+                    "--files: `none` (summary.json alone) cannot be given with other kinds"
+                        .to_string(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Applies the settings to `outcome`.
+    fn apply(&self, outcome: &mut vem_cli::Outcome) {
+        if let Some(m) = self.magnification {
+            outcome.set_magnification(m);
+        }
+        if let Some(encoding) = self.vtu_encoding {
+            outcome.set_vtu_encoding(match encoding {
+                EncodingArg::Binary => VtuEncodingName::Binary,
+                EncodingArg::Compressed => VtuEncodingName::Compressed,
+                EncodingArg::Ascii => VtuEncodingName::Ascii,
+            });
+        }
+        if let Some(files) = &self.files {
+            let kinds: Vec<OutputFiles> = files
+                .iter()
+                .filter_map(|f| match f {
+                    FilesArg::Vtu => Some(OutputFiles::Vtu),
+                    FilesArg::Csv => Some(OutputFiles::Csv),
+                    FilesArg::Pictures => Some(OutputFiles::Pictures),
+                    FilesArg::None => None,
+                })
+                .collect();
+            outcome.set_files(&kinds);
+        }
+    }
+}
+
 fn command_line_limit(gib: f64) -> Result<MemoryLimit, CliError> {
     MemoryLimit::try_from_gib(gib, LimitOrigin::CommandLine).map_err(CliError::Usage)
 }
@@ -139,15 +229,9 @@ fn run(
     scene: &Path,
     out: Option<PathBuf>,
     memory_limit: Option<f64>,
-    magnification: Option<f64>,
+    output: OutputArgs,
 ) -> Result<(), CliError> {
-    if let Some(m) = magnification {
-        if !(m.is_finite() && m > 0.0) {
-            return Err(CliError::Usage(format!(
-                "--magnification {m}: give a finite number > 0"
-            )));
-        }
-    }
+    output.check()?;
     let progress = spinner();
     progress.set_message(format!("reading {}", scene.display()));
     let scene = load(scene, memory_limit)?;
@@ -155,9 +239,7 @@ fn run(
     let model = Model::build(&scene)?;
     progress.set_message("solving");
     let mut outcome = model.solve()?;
-    if let Some(m) = magnification {
-        outcome.set_magnification(m);
-    }
+    output.apply(&mut outcome);
     let dir = out.unwrap_or_else(|| default_output_dir(&scene));
     progress.set_message(format!("writing {}", dir.display()));
     let files = outcome.write(&dir)?;
@@ -232,7 +314,18 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             out,
             memory_limit,
             magnification,
-        } => run(&scene, out, memory_limit, magnification),
+            vtu_encoding,
+            files,
+        } => run(
+            &scene,
+            out,
+            memory_limit,
+            OutputArgs {
+                magnification,
+                vtu_encoding,
+                files,
+            },
+        ),
         Command::Check {
             scene,
             memory_limit,

@@ -4,7 +4,8 @@
 use std::ops::{Deref, DerefMut};
 
 use vem_contact::Obstacle;
-use vem_scene::RunSummary;
+use vem_mesh::io::VtuEncoding;
+use vem_scene::{OutputFiles, RunSummary, VtuEncodingName};
 
 /// The result of solving a scene: the outcome of `vem_scene` (its fields read through this
 /// value) and what the output files need.
@@ -31,6 +32,30 @@ pub struct Outcome {
     /// Body A's contact part of every pair, in the order of the scene (the contact surface of
     /// a scene in space is drawn on its faces).
     pub(crate) contact_parts: Vec<String>,
+    /// The scene's `[output] vtu_encoding`.
+    pub(crate) vtu_encoding: VtuEncodingName,
+    /// The scene's `[output] files`.
+    pub(crate) files: OutputSelection,
+}
+
+/// The kinds of files a run writes besides `summary.json` (`[output] files`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct OutputSelection {
+    pub(crate) vtu: bool,
+    pub(crate) csv: bool,
+    pub(crate) pictures: bool,
+}
+
+impl OutputSelection {
+    /// The kinds named in `files`; every kind when `files` is `None`.
+    fn of(files: Option<&[OutputFiles]>) -> Self {
+        let has = |kind| files.is_none_or(|f| f.contains(&kind));
+        Self {
+            vtu: has(OutputFiles::Vtu),
+            csv: has(OutputFiles::Csv),
+            pictures: has(OutputFiles::Pictures),
+        }
+    }
 }
 
 impl Outcome {
@@ -81,6 +106,55 @@ impl Outcome {
                 .iter()
                 .map(|c| c.part.clone())
                 .collect(),
+            vtu_encoding: output.vtu_encoding.unwrap_or_default(),
+            files: OutputSelection::of(output.files.as_deref()),
+        }
+    }
+
+    /// Writes the `.vtu` files in `encoding` (instead of the scene's `[output] vtu_encoding`).
+    pub fn set_vtu_encoding(&mut self, encoding: VtuEncodingName) {
+        self.vtu_encoding = encoding;
+    }
+
+    /// Writes only the kinds of files in `files` besides `summary.json` (instead of the
+    /// scene's `[output] files`).
+    pub fn set_files(&mut self, files: &[OutputFiles]) {
+        self.files = OutputSelection::of(Some(files));
+    }
+
+    /// The encoding of the `.vtu` files [`Outcome::write`] writes.
+    pub fn vtu_encoding(&self) -> VtuEncodingName {
+        self.vtu_encoding
+    }
+
+    /// The kinds of files [`Outcome::write`] writes besides `summary.json`.
+    pub fn files(&self) -> Vec<OutputFiles> {
+        [
+            (self.files.vtu, OutputFiles::Vtu),
+            (self.files.csv, OutputFiles::Csv),
+            (self.files.pictures, OutputFiles::Pictures),
+        ]
+        .into_iter()
+        .filter_map(|(written, kind)| written.then_some(kind))
+        .collect()
+    }
+
+    /// The encoding of the bodies' `.vtu` files.
+    pub(crate) fn body_encoding(&self) -> VtuEncoding {
+        match self.vtu_encoding {
+            VtuEncodingName::Binary => VtuEncoding::Binary,
+            VtuEncodingName::Compressed => VtuEncoding::Compressed,
+            VtuEncodingName::Ascii => VtuEncoding::Ascii,
+        }
+    }
+
+    /// The encoding of the interface's `.vtu` files: compressed where the bodies' are raw
+    /// binary (meshio misreads the raw appended arrays of these small files; VTK and ParaView
+    /// read both).
+    pub(crate) fn interface_encoding(&self) -> VtuEncoding {
+        match self.body_encoding() {
+            VtuEncoding::Binary => VtuEncoding::Compressed,
+            other => other,
         }
     }
 

@@ -11,9 +11,9 @@ use std::time::Instant;
 use vem_contact::{InterfaceNode, NodeStatus, Obstacle};
 use vem_elastic::ElementField;
 use vem_mesh::io::{
-    remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers, write_vtu,
-    CellType, Cells, PvdCollection, SvgLayer, SvgMarks, SvgOptions, UnstructuredGrid, VtkArray,
-    VtuData, VtuEncoding,
+    remove_stale_temporaries, temporary_sibling, write_atomically, write_svg_layers,
+    write_vtu_with, CellType, Cells, PvdCollection, SvgLayer, SvgMarks, SvgOptions,
+    UnstructuredGrid, VtkArray, VtuData,
 };
 use vem_mesh::{Mesh, PartSpec, Point, Vector};
 
@@ -26,10 +26,6 @@ pub const CONTACT_COLUMNS: &str =
     "pair,x,y,nx,ny,initial_gap,normal_jump,normal_force,pressure,consistent_pressure,friction_force,\
      consistent_friction_traction,slip,status";
 
-/// The encoding of the interface datasets: compressed (zlib) binary, which VTK, ParaView and
-/// meshio read alike (meshio misreads the raw appended arrays of these small files).
-const INTERFACE_ENCODING: VtuEncoding = VtuEncoding::Compressed;
-
 /// Default width of pictures and plots, in pixels.
 pub const DEFAULT_WIDTH: f64 = 900.0;
 
@@ -41,7 +37,8 @@ impl Outcome {
     /// Writes every output file into `dir` (created if needed) and returns their paths:
     /// `<body>.vtu` for each body, `deformed.svg`, and with a contact pair `contact.csv`,
     /// `pressure.svg` (and `slip.svg` with friction), with `adapt` `adapt.csv`;
-    /// `summary.json` last, with the output and total times.
+    /// `summary.json` last, with the output and total times. Only the kinds of files of the
+    /// scene's `[output] files` ([`Outcome::set_files`]) are written besides the summary.
     ///
     /// The set is written into a fresh folder beside `dir` and renamed into place: `dir`
     /// holds either its earlier contents or the whole new set. `dir` must be new, empty, or
@@ -71,15 +68,20 @@ impl Outcome {
         let this = &*self;
         let (data, contact_files, deformed) = std::thread::scope(|scope| {
             let files = scope.spawn(|| {
-                let mut data = this.write_bodies(dir)?;
+                let mut data = if this.files.vtu {
+                    this.write_bodies(dir)?
+                } else {
+                    Vec::new()
+                };
                 data.extend(this.write_interface_and_collection(dir)?);
                 Ok::<_, CliError>((data, this.write_contact_files(dir, width)))
             });
-            let path = dir.join("deformed.svg");
-            let deformed = this
-                .write_deformed(&path, width)
-                .map(|()| path.clone())
-                .map_err(mesh_error(&path));
+            let deformed = this.files.pictures.then(|| {
+                let path = dir.join("deformed.svg");
+                this.write_deformed(&path, width)
+                    .map(|()| path.clone())
+                    .map_err(mesh_error(&path))
+            });
             let files = files
                 .join()
                 .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
@@ -87,7 +89,7 @@ impl Outcome {
         })?;
         // In the order of the files, the first failure reported.
         written.extend(data);
-        written.push(deformed?);
+        written.extend(deformed.transpose()?);
         written.extend(contact_files?);
         written.push(self.write_summary(dir, start)?);
         Ok(written)
@@ -113,14 +115,16 @@ impl Outcome {
     /// `interface.vtu` with contact, then `results.pvd` (or the files of a load history).
     fn write_interface_and_collection(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let mut written = Vec::new();
-        if let Some(contact) = &self.contact {
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.vtu) {
             let path = dir.join("interface.vtu");
             interface_grid(&contact.nodes, &contact.model.pairs)
-                .write(&path, INTERFACE_ENCODING)
+                .write(&path, self.interface_encoding())
                 .map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if self.steps.is_empty() {
+        if !self.steps.is_empty() {
+            written.extend(self.write_history(dir)?);
+        } else if self.files.vtu {
             // One collection that opens every body and the interface at once.
             let mut collection = PvdCollection::new();
             for (part, solved) in self.bodies.iter().enumerate() {
@@ -133,8 +137,6 @@ impl Outcome {
             let path = dir.join("results.pvd");
             collection.write(&path).map_err(mesh_error(&path))?;
             written.push(path);
-        } else {
-            written.extend(self.write_history(dir)?);
         }
         Ok(written)
     }
@@ -143,7 +145,7 @@ impl Outcome {
     /// `adapt.csv`.
     fn write_contact_files(&self, dir: &Path, width: f64) -> Result<Vec<PathBuf>, CliError> {
         let mut written = Vec::new();
-        if let Some(contact) = &self.contact {
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.csv) {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
             write_atomically(&path, |w| {
@@ -151,6 +153,8 @@ impl Outcome {
             })
             .map_err(mesh_error(&path))?;
             written.push(path);
+        }
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.pictures) {
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.first());
             // Cattaneo-Mindlin beside the friction traction of a Hertz pair with Coulomb
             // friction carrying a tangential load.
@@ -200,7 +204,7 @@ impl Outcome {
                 written.push(path);
             }
         }
-        if let Some(adapt) = &self.summary.adaptivity {
+        if let Some(adapt) = self.summary.adaptivity.as_ref().filter(|_| self.files.csv) {
             let path = dir.join("adapt.csv");
             write_atomically(&path, |w| write_adapt_csv(w, &adapt.cycles))
                 .map_err(mesh_error(&path))?;
@@ -228,7 +232,7 @@ impl Outcome {
                             solved,
                             pressure,
                         );
-                        write_vtu(&path, solved.body.mesh(), &data)
+                        write_vtu_with(&path, solved.body.mesh(), &data, self.body_encoding())
                             .map(|()| path.clone())
                             .map_err(|source| CliError::Mesh {
                                 context: path.display().to_string(),
@@ -281,6 +285,17 @@ impl Outcome {
                 None => (&last.nodes, steps.last().map_or(1.0, |s| s.time)),
             };
             let label = format!("{:04}", k + 1);
+            if self.files.csv {
+                let path = dir.join(format!("contact_{label}.csv"));
+                write_atomically(&path, |w| {
+                    write_contact_csv(w, nodes, &last.model.pairs, frictionless)
+                })
+                .map_err(mesh_error(&path))?;
+                written.push(path);
+            }
+            if !self.files.vtu {
+                continue;
+            }
             let pressures = self.pressures(nodes);
             for (b, &index) in self.contact_bodies.iter().enumerate() {
                 let solved = &self.bodies[index];
@@ -308,33 +323,34 @@ impl Outcome {
                         pressures[index].clone(),
                     ),
                 };
-                write_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
+                write_vtu_with(&path, solved.body.mesh(), &data, self.body_encoding())
+                    .map_err(mesh_error(&path))?;
                 series.add(time, b, name, file);
                 written.push(path);
             }
-            let path = dir.join(format!("contact_{label}.csv"));
-            write_atomically(&path, |w| {
-                write_contact_csv(w, nodes, &last.model.pairs, frictionless)
-            })
-            .map_err(mesh_error(&path))?;
-            written.push(path);
             let file = format!("interface_{label}.vtu");
             let path = dir.join(&file);
             interface_grid(nodes, &last.model.pairs)
-                .write(&path, INTERFACE_ENCODING)
+                .write(&path, self.interface_encoding())
                 .map_err(mesh_error(&path))?;
             series.add(time, self.contact_bodies.len(), "interface", file);
             written.push(path);
         }
-        let path = dir.join("results.pvd");
-        series.write(&path).map_err(mesh_error(&path))?;
-        written.push(path);
-        let path = dir.join("history.csv");
-        write_atomically(&path, |w| write_history_csv(w, steps)).map_err(mesh_error(&path))?;
-        written.push(path);
-        let path = dir.join("history.svg");
-        plot::history(&path, &self.summary.title, steps, self.width())?;
-        written.push(path);
+        if self.files.vtu {
+            let path = dir.join("results.pvd");
+            series.write(&path).map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        if self.files.csv {
+            let path = dir.join("history.csv");
+            write_atomically(&path, |w| write_history_csv(w, steps)).map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        if self.files.pictures {
+            let path = dir.join("history.svg");
+            plot::history(&path, &self.summary.title, steps, self.width())?;
+            written.push(path);
+        }
         Ok(written)
     }
 

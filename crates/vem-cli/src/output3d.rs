@@ -14,8 +14,8 @@ use std::time::Instant;
 
 use vem_contact::{InterfaceNode, NodeStatus, PairSummary};
 use vem_mesh::io::{
-    write_atomically, write_polyhedral_vtu, write_svg_layers, CellType, Cells, DataArray,
-    PvdCollection, SvgLayer, SvgOptions, UnstructuredGrid, VtkArray, VtuData, VtuEncoding,
+    write_atomically, write_polyhedral_vtu_with, write_svg_layers, CellType, Cells, DataArray,
+    PvdCollection, SvgLayer, SvgOptions, UnstructuredGrid, VtkArray, VtuData,
 };
 use vem_mesh::polyhedral::quality::CellQuality;
 use vem_mesh::{Point3, Vector3};
@@ -42,6 +42,47 @@ impl Outcome {
     pub(crate) fn write_into_3d(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let start = Instant::now();
         let mut written = Vec::new();
+        if self.files.vtu {
+            written.extend(self.write_vtu_3d(dir)?);
+        }
+        if let Some(contact) = &self.contact_3d {
+            if self.files.csv {
+                let path = dir.join("contact.csv");
+                let frictionless = contact.model.tangential_rows == 0;
+                write_atomically(&path, |w| {
+                    write_contact_csv_3d(w, &contact.nodes, &contact.model.pairs, frictionless)
+                })
+                .map_err(mesh_error(&path))?;
+                written.push(path);
+            }
+            if self.files.pictures {
+                let (pictures, notes) =
+                    self.pressure_pictures_3d(dir, &contact.nodes, &contact.model.pairs)?;
+                written.extend(pictures);
+                for note in notes {
+                    if !self.summary.notes.contains(&note) {
+                        self.summary.notes.push(note);
+                    }
+                }
+            }
+        }
+        if self.files.csv {
+            let path = dir.join("reactions.csv");
+            write_atomically(&path, |w| write_reactions_csv(w, self.summary()))
+                .map_err(mesh_error(&path))?;
+            written.push(path);
+        }
+        if self.files.pictures && !self.summary.notes.iter().any(|n| n == NO_PICTURES_IN_SPACE) {
+            self.summary.notes.push(NO_PICTURES_IN_SPACE.to_string());
+        }
+        written.push(self.write_summary(dir, start)?);
+        Ok(written)
+    }
+
+    /// `<body>.vtu` of every body in space, `interface.vtu` with contact and `results.pvd`,
+    /// which opens them all at once.
+    fn write_vtu_3d(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+        let mut written = Vec::new();
         let mut collection = PvdCollection::new();
         let nodes = self.contact_3d.as_ref().map_or(&[][..], |c| &c.nodes[..]);
         let raw = self.pressure_at_vertices_3d(nodes, |n| n.pressure);
@@ -58,44 +99,22 @@ impl Outcome {
                     .with_point_scalars("contact_pressure", raw)
                     .with_point_scalars("consistent_contact_pressure", consistent);
             }
-            write_polyhedral_vtu(&path, solved.body.mesh(), &data).map_err(mesh_error(&path))?;
+            write_polyhedral_vtu_with(&path, solved.body.mesh(), &data, self.body_encoding())
+                .map_err(mesh_error(&path))?;
             collection.add(0.0, part, name, file);
             written.push(path);
         }
         if let Some(contact) = &self.contact_3d {
             let path = dir.join("interface.vtu");
             self.contact_surface(&contact.nodes, &contact.model.pairs)
-                .write(&path, VtuEncoding::Compressed)
+                .write(&path, self.interface_encoding())
                 .map_err(mesh_error(&path))?;
             collection.add(0.0, self.bodies_3d.len(), "interface", "interface.vtu");
             written.push(path);
-            let path = dir.join("contact.csv");
-            let frictionless = contact.model.tangential_rows == 0;
-            write_atomically(&path, |w| {
-                write_contact_csv_3d(w, &contact.nodes, &contact.model.pairs, frictionless)
-            })
-            .map_err(mesh_error(&path))?;
-            written.push(path);
-            let (pictures, notes) =
-                self.pressure_pictures_3d(dir, &contact.nodes, &contact.model.pairs)?;
-            written.extend(pictures);
-            for note in notes {
-                if !self.summary.notes.contains(&note) {
-                    self.summary.notes.push(note);
-                }
-            }
         }
         let path = dir.join("results.pvd");
         collection.write(&path).map_err(mesh_error(&path))?;
         written.push(path);
-        let path = dir.join("reactions.csv");
-        write_atomically(&path, |w| write_reactions_csv(w, self.summary()))
-            .map_err(mesh_error(&path))?;
-        written.push(path);
-        if !self.summary.notes.iter().any(|n| n == NO_PICTURES_IN_SPACE) {
-            self.summary.notes.push(NO_PICTURES_IN_SPACE.to_string());
-        }
-        written.push(self.write_summary(dir, start)?);
         Ok(written)
     }
 }

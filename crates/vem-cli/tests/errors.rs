@@ -86,6 +86,21 @@ fn unknown_variant_lists_the_choices() {
 }
 
 #[test]
+fn unknown_output_kinds_list_the_choices() {
+    let text = format!("{BLOCK}\n[output]\nvtu_encoding = \"asci\"\n");
+    let e = error_of(&text);
+    assert_located(
+        &e,
+        &text,
+        "\"asci\"",
+        &["`binary`", "`compressed`", "`ascii`"],
+    );
+    let text = format!("{BLOCK}\n[output]\nfiles = [\"csv\", \"png\"]\n");
+    let e = error_of(&text);
+    assert_located(&e, &text, "\"png\"", &["`vtu`", "`csv`", "`pictures`"]);
+}
+
+#[test]
 fn unknown_part_lists_the_parts() {
     let text = format!("{BLOCK}\n[[body.dirichlet]]\npart = \"botom\"\ny = 0.0\n");
     let e = error_of(&text);

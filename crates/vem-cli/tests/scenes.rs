@@ -882,3 +882,102 @@ fn bracket_on_a_polygon_balances_its_loads() {
         "{reaction}"
     );
 }
+
+/// The shipped scene `name` with `output` appended (an `[output]` table; its mesh files found
+/// where the scene is) run into a fresh directory; returns the outcome and the directory.
+fn run_with_output(name: &str, output: &str, label: &str) -> (Outcome, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("vem-cli-output-{label}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scenes = scene(name).parent().unwrap().display().to_string();
+    let text = std::fs::read_to_string(scene(name))
+        .unwrap()
+        .replace("file = \"", &format!("file = \"{scenes}/"));
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, format!("{text}\n[output]\n{output}\n")).unwrap();
+    let out = dir.join("out");
+    let (outcome, _) = vem_cli::run(&path, Some(&out)).unwrap();
+    (outcome, out)
+}
+
+/// The names of the files in `dir`, sorted.
+fn file_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// `[output] files` and `vtu_encoding` change what is written, not what it says: the tables
+/// of a run that writes only them are the full run's byte for byte, and the `.vtu` files as
+/// text hold the values of the binary ones bit for bit.
+#[test]
+fn output_files_and_encoding_change_the_files_not_the_results() {
+    let (_, full) = run("signorini");
+    assert_eq!(
+        file_names(&full),
+        [
+            "block.vtu",
+            "contact.csv",
+            "deformed.svg",
+            "interface.vtu",
+            "pressure.svg",
+            "results.pvd",
+            "summary.json"
+        ]
+    );
+    let (_, csv) = run_with_output("signorini", "files = [\"csv\"]", "csv");
+    assert_eq!(file_names(&csv), ["contact.csv", "summary.json"]);
+    let read = |dir: &Path, file: &str| std::fs::read(dir.join(file)).unwrap();
+    assert_eq!(read(&csv, "contact.csv"), read(&full, "contact.csv"));
+    let (_, none) = run_with_output("signorini", "files = []", "none");
+    assert_eq!(file_names(&none), ["summary.json"]);
+    for encoding in ["ascii", "compressed"] {
+        let (_, text) = run_with_output(
+            "signorini",
+            &format!("files = [\"vtu\"]\nvtu_encoding = \"{encoding}\""),
+            encoding,
+        );
+        assert_eq!(
+            file_names(&text),
+            ["block.vtu", "interface.vtu", "results.pvd", "summary.json"]
+        );
+        for file in ["block.vtu", "interface.vtu"] {
+            let bytes = read(&text, file);
+            let written = String::from_utf8_lossy(&bytes);
+            if encoding == "ascii" {
+                assert!(
+                    written.contains("format=\"ascii\"") && !written.contains("AppendedData"),
+                    "{file}"
+                );
+            } else {
+                assert!(
+                    written.contains("compressor=\"vtkZLibDataCompressor\""),
+                    "{file}"
+                );
+            }
+            let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join(file)).unwrap();
+            assert_eq!(grid(&text), grid(&full), "{encoding} {file}");
+        }
+        let binary = read(&full, "block.vtu");
+        assert!(String::from_utf8_lossy(&binary).contains("encoding=\"raw\""));
+    }
+    // A load history: the tables of every step, without the step's .vtu files or the curves.
+    let (_, full) = run("fretting");
+    let (_, csv) = run_with_output("fretting", "files = [\"csv\"]", "fretting");
+    let mut expected = vec!["contact.csv".to_string()];
+    expected.extend((1..=14).map(|k| format!("contact_{k:04}.csv")));
+    expected.extend(["history.csv".to_string(), "summary.json".to_string()]);
+    assert_eq!(file_names(&csv), expected);
+    for file in ["contact_0007.csv", "history.csv"] {
+        assert_eq!(read(&csv, file), read(&full, file), "{file}");
+    }
+    // In space: the body's file as text holds the binary one's values.
+    let (_, full) = run("block3d");
+    let (_, text) = run_with_output("block3d", "vtu_encoding = \"ascii\"", "block3d");
+    assert_eq!(file_names(&text), file_names(&full));
+    let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join("block.vtu")).unwrap();
+    assert_eq!(grid(&text), grid(&full));
+}

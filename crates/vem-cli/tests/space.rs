@@ -132,9 +132,9 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
             "upper.vtu",
             "lower.vtu",
             "interface.vtu",
+            "results.pvd",
             "contact.csv",
             "pressure.svg",
-            "results.pvd",
             "reactions.csv",
             "summary.json"
         ]

@@ -1287,11 +1287,37 @@ impl PyResultSet {
 
     /// Writes the outputs of the `vem` command into `dir` (VTU per body, interface.vtu,
     /// results.pvd, contact.csv, SVG pictures, summary.json; per step with a history) and
-    /// returns the paths written. The folder is replaced whole; one holding other files is
-    /// refused (`OutputError`).
-    fn write(&mut self, py: Python<'_>, dir: PathBuf) -> PyResult<Vec<PathBuf>> {
+    /// returns the paths written. `files` (some of "vtu", "csv", "pictures") and
+    /// `vtu_encoding` ("binary", "compressed", "ascii") replace the scene's `[output] files`
+    /// and `vtu_encoding` for this call. The folder is replaced whole; one holding other files
+    /// is refused (`OutputError`).
+    #[pyo3(signature = (dir, *, files = None, vtu_encoding = None))]
+    fn write(
+        &mut self,
+        py: Python<'_>,
+        dir: PathBuf,
+        files: Option<Vec<String>>,
+        vtu_encoding: Option<String>,
+    ) -> PyResult<Vec<PathBuf>> {
+        let encoding: Option<vem_scene::VtuEncodingName> = vtu_encoding
+            .as_deref()
+            .map(|name| output_name("vtu_encoding", name))
+            .transpose()?;
+        let kinds: Option<Vec<vem_scene::OutputFiles>> = files
+            .as_deref()
+            .map(|names| names.iter().map(|n| output_name("files:", n)).collect())
+            .transpose()?;
         let outcome = &mut self.outcome;
+        let (scene_encoding, scene_files) = (outcome.vtu_encoding(), outcome.files());
+        if let Some(encoding) = encoding {
+            outcome.set_vtu_encoding(encoding);
+        }
+        if let Some(kinds) = &kinds {
+            outcome.set_files(kinds);
+        }
         let written = py.detach(|| catch_unwind(AssertUnwindSafe(|| outcome.write(&dir))));
+        outcome.set_vtu_encoding(scene_encoding);
+        outcome.set_files(&scene_files);
         match written {
             Err(payload) => Err(panic_error(py, payload)),
             Ok(Ok(files)) => Ok(files),
@@ -1344,6 +1370,13 @@ fn mesh_path(path: &KeyPath) -> KeyPath {
     } else {
         path.clone()
     }
+}
+
+/// The setting of the scene's `[output]` table named `name` (an error naming `what` and the
+/// choices when it names none).
+fn output_name<T: serde::de::DeserializeOwned>(what: &str, name: &str) -> PyResult<T> {
+    serde_json::from_value(serde_json::Value::from(name))
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("{what} {name:?}: {e}")))
 }
 
 /// Builds the mesh of the mesh description `description` (the keys of a body's `mesh`:

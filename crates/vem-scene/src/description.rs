@@ -560,6 +560,39 @@ pub struct OutputDescription {
     /// plots ("MPa"); default: none written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stress_unit: Option<String>,
+    /// The encoding of the `.vtu` files (default [`VtuEncodingName::Binary`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vtu_encoding: Option<VtuEncodingName>,
+    /// The kinds of files written besides `summary.json` (default: every kind).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub files: Option<Vec<OutputFiles>>,
+}
+
+/// `[output] vtu_encoding`: how the arrays of the `.vtu` files are stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VtuEncodingName {
+    /// Binary appended data, as ParaView writes it: raw for the bodies in the plane,
+    /// zlib-compressed for the interface and for bodies in space.
+    #[default]
+    Binary,
+    /// Binary appended data, every array zlib-compressed.
+    Compressed,
+    /// Text, every value written out.
+    Ascii,
+}
+
+/// `[output] files`: a kind of output file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OutputFiles {
+    /// The `.vtu` files of the bodies and the interface and `results.pvd` (every step's with
+    /// a load history).
+    Vtu,
+    /// `contact.csv` (and every step's, `history.csv`, `adapt.csv`).
+    Csv,
+    /// The pictures and plots: `deformed.svg`, `pressure.svg`, `slip.svg`, `history.svg`.
+    Pictures,
 }
 
 /// `[limits]`: what a run may use.

@@ -76,7 +76,7 @@ pub use build::{
     body_mesh, inline_mesh, BuildOptions, Model, ModelBody, ModelContact, Registries, LOCKING_FREE,
     NEARLY_INCOMPRESSIBLE,
 };
-pub use description::{MeshDescription, Scene};
+pub use description::{MeshDescription, OutputFiles, Scene, VtuEncodingName};
 pub use error::{one_line, Deprecation, KeyPath, SceneError, Segment};
 pub use history::MAX_STEPS;
 pub use solve::{

@@ -133,6 +133,32 @@ def test_same_numbers_as_the_vem_command(name, scenes, vem_bin, tmp_path):
     assert {f.name for f in files} >= {"contact.csv", "summary.json", "interface.vtu"}
 
 
+def test_write_keeps_the_kinds_and_the_encoding_asked_for(scenes, tmp_path):
+    """`write(dir, files=..., vtu_encoding=...)`: fewer kinds of files with the same contents,
+    the .vtu files as text holding the computed values bit for bit; the keywords hold for
+    that call only."""
+    meshio = pytest.importorskip("meshio")
+    result = vc.load(scenes / "signorini.toml").solve()
+    full = {f.name for f in result.write(tmp_path / "full")}
+    assert {"block.vtu", "contact.csv", "deformed.svg", "summary.json"} <= full
+    tables = result.write(tmp_path / "csv", files=["csv"])
+    assert sorted(f.name for f in tables) == ["contact.csv", "summary.json"]
+    assert (tmp_path / "csv" / "contact.csv").read_text() == (tmp_path / "full" / "contact.csv").read_text()
+    text = result.write(tmp_path / "ascii", files=["vtu"], vtu_encoding="ascii")
+    assert sorted(f.name for f in text) == ["block.vtu", "interface.vtu", "results.pvd", "summary.json"]
+    assert 'format="ascii"' in (tmp_path / "ascii" / "block.vtu").read_text()
+    grid = meshio.read(tmp_path / "ascii" / "block.vtu")
+    np.testing.assert_array_equal(grid.point_data["displacement"][:, :2], result.body("block").displacement)
+    assert {f.name for f in result.write(tmp_path / "again")} == full
+    with pytest.raises(ValueError, match="ascii"):
+        result.write(tmp_path / "bad", vtu_encoding="asci")
+    with pytest.raises(ValueError, match="pictures"):
+        result.write(tmp_path / "bad", files=["png"])
+    # The same settings as the scene's keys, through the builder.
+    built = block_on_line().set_output(files=["csv"], vtu_encoding="compressed").solve()
+    assert sorted(f.name for f in built.write(tmp_path / "built")) == ["contact.csv", "summary.json"]
+
+
 def test_a_dict_gives_the_same_answer_as_its_file(scenes):
     """The file read by Python's own TOML reader into a dict, then by `from_dict`: the same
     scene, the same numbers to the last bit."""

@@ -350,9 +350,26 @@ class SceneBuilder:
         )
         return self
 
-    def set_output(self, magnification: Optional[Number] = None, width: Optional[Number] = None) -> "SceneBuilder":
-        """The pictures' displacement magnification and width in pixels."""
-        self._d["output"] = _keys(magnification=magnification, width=width)
+    def set_output(
+        self,
+        magnification: Optional[Number] = None,
+        width: Optional[Number] = None,
+        length_unit: Optional[str] = None,
+        stress_unit: Optional[str] = None,
+        vtu_encoding: Optional[str] = None,
+        files: Optional[Sequence[str]] = None,
+    ) -> "SceneBuilder":
+        """The `[output]` table: the pictures' displacement magnification, width in pixels and
+        units; the encoding of the .vtu files ("binary", "compressed", "ascii") and the kinds
+        of files written besides summary.json (some of "vtu", "csv", "pictures")."""
+        self._d["output"] = _keys(
+            magnification=magnification,
+            width=width,
+            length_unit=length_unit,
+            stress_unit=stress_unit,
+            vtu_encoding=vtu_encoding,
+            files=None if files is None else list(files),
+        )
         return self
 
     def to_dict(self) -> Dict[str, Any]:
