@@ -158,7 +158,8 @@ enum EncodingArg {
 enum FilesArg {
     /// The bodies' and the interface's .vtu files and results.pvd.
     Vtu,
-    /// contact.csv, and with a load history every step's and history.csv.
+    /// contact.csv (with a load history every step's and history.csv), reactions.csv in
+    /// space, adapt.csv.
     Csv,
     /// deformed.svg, pressure.svg, slip.svg, history.svg.
     Pictures,
