@@ -572,8 +572,8 @@ pub struct OutputDescription {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum VtuEncodingName {
-    /// Binary appended data, as ParaView writes it: raw for the bodies in the plane,
-    /// zlib-compressed for the interface and for bodies in space.
+    /// Binary appended data, as ParaView writes it: raw for the bodies, zlib-compressed for
+    /// the interface (meshio misreads the raw arrays of these small files).
     #[default]
     Binary,
     /// Binary appended data, every array zlib-compressed.
