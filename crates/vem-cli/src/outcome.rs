@@ -149,8 +149,7 @@ impl Outcome {
     }
 
     /// The encoding of the interface's `.vtu` files: compressed where the bodies' are raw
-    /// binary (meshio misreads the raw appended arrays of these small files; VTK and ParaView
-    /// read both).
+    /// binary (small files, with integer arrays that compress well), the bodies' otherwise.
     pub(crate) fn interface_encoding(&self) -> VtuEncoding {
         match self.body_encoding() {
             VtuEncoding::Binary => VtuEncoding::Compressed,

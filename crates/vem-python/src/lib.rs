@@ -1296,16 +1296,24 @@ impl PyResultSet {
         &mut self,
         py: Python<'_>,
         dir: PathBuf,
-        files: Option<Vec<String>>,
+        files: Option<&Bound<'_, PyAny>>,
         vtu_encoding: Option<String>,
     ) -> PyResult<Vec<PathBuf>> {
         let encoding: Option<vem_scene::VtuEncodingName> = vtu_encoding
             .as_deref()
             .map(|name| output_name("vtu_encoding", name))
             .transpose()?;
-        let kinds: Option<Vec<vem_scene::OutputFiles>> = files
+        let names: Option<Vec<String>> = files
+            .map(|files| {
+                if files.is_instance_of::<pyo3::types::PyString>() {
+                    return Err(not_a_list_of_kinds(files));
+                }
+                files.extract().map_err(|_| not_a_list_of_kinds(files))
+            })
+            .transpose()?;
+        let kinds: Option<Vec<vem_scene::OutputFiles>> = names
             .as_deref()
-            .map(|names| names.iter().map(|n| output_name("files:", n)).collect())
+            .map(|names| names.iter().map(|n| output_name("files", n)).collect())
             .transpose()?;
         let outcome = &mut self.outcome;
         let (scene_encoding, scene_files) = (outcome.vtu_encoding(), outcome.files());
@@ -1370,6 +1378,16 @@ fn mesh_path(path: &KeyPath) -> KeyPath {
     } else {
         path.clone()
     }
+}
+
+/// The error of a `files` argument that is not a list of strings.
+fn not_a_list_of_kinds(files: &Bound<'_, PyAny>) -> PyErr {
+    let shown = files
+        .repr()
+        .map_or_else(|_| "this".to_string(), |r| r.to_string());
+    pyo3::exceptions::PyTypeError::new_err(format!(
+        "files: give a list of kinds (some of \"vtu\", \"csv\", \"pictures\"), not {shown}"
+    ))
 }
 
 /// The setting of the scene's `[output]` table named `name` (an error naming `what` and the

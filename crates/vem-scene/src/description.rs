@@ -573,7 +573,7 @@ pub struct OutputDescription {
 #[serde(rename_all = "lowercase")]
 pub enum VtuEncodingName {
     /// Binary appended data, as ParaView writes it: raw for the bodies, zlib-compressed for
-    /// the interface (meshio misreads the raw arrays of these small files).
+    /// the interface.
     #[default]
     Binary,
     /// Binary appended data, every array zlib-compressed.

@@ -154,6 +154,10 @@ def test_write_keeps_the_kinds_and_the_encoding_asked_for(scenes, tmp_path):
         result.write(tmp_path / "bad", vtu_encoding="asci")
     with pytest.raises(ValueError, match="pictures"):
         result.write(tmp_path / "bad", files=["png"])
+    with pytest.raises(TypeError, match="list of kinds"):
+        result.write(tmp_path / "bad", files="csv")
+    with pytest.raises(TypeError, match="list of kinds"):
+        block_on_line().set_output(files="csv")
     # The same settings as the scene's keys, through the builder.
     built = block_on_line().set_output(files=["csv"], vtu_encoding="compressed").solve()
     assert sorted(f.name for f in built.write(tmp_path / "built")) == ["contact.csv", "summary.json"]

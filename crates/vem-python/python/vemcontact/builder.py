@@ -359,9 +359,12 @@ class SceneBuilder:
         vtu_encoding: Optional[str] = None,
         files: Optional[Sequence[str]] = None,
     ) -> "SceneBuilder":
-        """The `[output]` table: the pictures' displacement magnification, width in pixels and
-        units; the encoding of the .vtu files ("binary", "compressed", "ascii") and the kinds
-        of files written besides summary.json (some of "vtu", "csv", "pictures")."""
+        """The `[output]` table (replaced as a whole): the pictures' displacement
+        magnification, width in pixels and units; the encoding of the .vtu files ("binary",
+        "compressed", "ascii") and the kinds of files written besides summary.json (a list of
+        some of "vtu", "csv", "pictures")."""
+        if isinstance(files, str):
+            raise TypeError(f'files: give a list of kinds, e.g. ["{files}"], not the string {files!r}')
         self._d["output"] = _keys(
             magnification=magnification,
             width=width,
