@@ -12,7 +12,8 @@
 //!    the solver; only what the scene requires;
 //! 3. [`Model::solve`]: the [`Outcome`] with its summary;
 //! 4. [`Outcome::write`]: `<body>.vtu`, `contact.csv`, `deformed.svg`, `pressure.svg`,
-//!    `slip.svg` (with friction) and `summary.json`, each written whole or not at all.
+//!    `slip.svg` (with friction) and `summary.json` (the kinds of files of the scene's
+//!    `[output] files`), written as a set, all or nothing.
 //!
 //! [`run`] does all four with the built-in solvers, elements and laws, [`run_with`] with the
 //! [`Registries`] of one's own. The scene format is documented key by key in `docs/scenes.md`.

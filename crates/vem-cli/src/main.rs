@@ -55,14 +55,17 @@ enum Command {
         /// rounded down to 1, 2 or 5 times a power of ten, never below 1].
         #[arg(long, value_name = "FACTOR")]
         magnification: Option<f64>,
-        /// The encoding of the .vtu files [default: the scene's `[output] vtu_encoding`, else
-        /// binary: raw appended data, the interface's zlib-compressed].
-        #[arg(long, value_name = "ENCODING")]
-        vtu_encoding: Option<EncodingArg>,
-        /// The kinds of files written besides summary.json, separated by commas (`none`: the
-        /// summary alone) [default: the scene's `[output] files`, else all three].
-        #[arg(long, value_name = "KINDS", value_delimiter = ',')]
-        files: Option<Vec<FilesArg>>,
+        /// The encoding of the .vtu files: binary, compressed or ascii [default: the scene's
+        /// `[output] vtu_encoding`, else binary: raw appended data, the interface's
+        /// zlib-compressed].
+        #[arg(long, value_name = "ENCODING", value_parser = parse_encoding)]
+        vtu_encoding: Option<VtuEncodingName>,
+        /// The kinds of files written besides summary.json, separated by commas: vtu (the
+        /// .vtu files and results.pvd), csv (the tables), pictures (the SVG pictures and
+        /// plots), or none (the summary alone) [default: the scene's `[output] files`, else
+        /// all three].
+        #[arg(long, value_name = "KINDS", value_delimiter = ',', value_parser = parse_kind)]
+        files: Option<Vec<Option<OutputFiles>>>,
     },
     /// Check a scene without solving it.
     ///
@@ -143,35 +146,26 @@ fn load(path: &Path, memory_limit: Option<f64>) -> Result<Scene, CliError> {
 }
 
 /// `--vtu-encoding`.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-enum EncodingArg {
-    /// Raw appended binary data (the interface's zlib-compressed).
-    Binary,
-    /// Appended binary data, every array zlib-compressed.
-    Compressed,
-    /// Text.
-    Ascii,
+fn parse_encoding(name: &str) -> Result<VtuEncodingName, String> {
+    name.parse()
 }
 
-/// A kind of `--files`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum FilesArg {
-    /// The bodies' and the interface's .vtu files and results.pvd.
-    Vtu,
-    /// contact.csv (with a load history every step's and history.csv), reactions.csv in
-    /// space, adapt.csv.
-    Csv,
-    /// deformed.svg, pressure.svg, slip.svg, history.svg.
-    Pictures,
-    /// summary.json alone.
-    None,
+/// A kind of `--files`: `None` for `none` (the summary alone).
+fn parse_kind(name: &str) -> Result<Option<OutputFiles>, String> {
+    match name {
+        "none" => Ok(None),
+        kind => kind
+            .parse()
+            .map(Some)
+            .map_err(|e: String| format!("{e} or `none`")),
+    }
 }
 
 /// The output settings of the command line, over the scene's.
 struct OutputArgs {
     magnification: Option<f64>,
-    vtu_encoding: Option<EncodingArg>,
-    files: Option<Vec<FilesArg>>,
+    vtu_encoding: Option<VtuEncodingName>,
+    files: Option<Vec<Option<OutputFiles>>>,
 }
 
 impl OutputArgs {
@@ -185,7 +179,7 @@ impl OutputArgs {
             }
         }
         if let Some(files) = &self.files {
-            if files.contains(&FilesArg::None) && files.len() > 1 {
+            if files.contains(&None) && files.iter().any(Option::is_some) {
                 return Err(CliError::Usage(
                     "--files: `none` (summary.json alone) cannot be given with other kinds"
                         .to_string(),
@@ -201,22 +195,10 @@ impl OutputArgs {
             outcome.set_magnification(m);
         }
         if let Some(encoding) = self.vtu_encoding {
-            outcome.set_vtu_encoding(match encoding {
-                EncodingArg::Binary => VtuEncodingName::Binary,
-                EncodingArg::Compressed => VtuEncodingName::Compressed,
-                EncodingArg::Ascii => VtuEncodingName::Ascii,
-            });
+            outcome.set_vtu_encoding(encoding);
         }
         if let Some(files) = &self.files {
-            let kinds: Vec<OutputFiles> = files
-                .iter()
-                .filter_map(|f| match f {
-                    FilesArg::Vtu => Some(OutputFiles::Vtu),
-                    FilesArg::Csv => Some(OutputFiles::Csv),
-                    FilesArg::Pictures => Some(OutputFiles::Pictures),
-                    FilesArg::None => None,
-                })
-                .collect();
+            let kinds: Vec<OutputFiles> = files.iter().flatten().copied().collect();
             outcome.set_files(&kinds);
         }
     }

@@ -268,6 +268,68 @@ fn the_binary_checks_a_scene_and_explains_itself() {
 }
 
 #[test]
+fn the_binary_writes_the_files_and_encoding_asked_for() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/signorini.toml");
+    let scene = scene.to_str().unwrap();
+    let out = std::env::temp_dir().join(format!("vem-cli-files-{}", std::process::id()));
+    let out = out.to_str().unwrap();
+    let output = vem(&[
+        "run",
+        scene,
+        "--out",
+        out,
+        "--files",
+        "vtu,csv",
+        "--vtu-encoding",
+        "ascii",
+    ]);
+    assert!(output.status.success(), "{output:?}");
+    let mut names: Vec<String> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "block.vtu",
+            "contact.csv",
+            "interface.vtu",
+            "results.pvd",
+            "summary.json"
+        ]
+    );
+    let block = std::fs::read_to_string(Path::new(out).join("block.vtu")).unwrap();
+    assert!(block.contains("format=\"ascii\""));
+    // `none` with another kind, an unknown kind, an unknown encoding: refused, nothing written.
+    for (args, status, words) in [
+        (
+            ["--files", "vtu,none"],
+            1,
+            "cannot be given with other kinds",
+        ),
+        (
+            ["--files", "vtu,png"],
+            2,
+            "expected one of `vtu`, `csv`, `pictures` or `none`",
+        ),
+        (
+            ["--vtu-encoding", "zlib"],
+            2,
+            "expected one of `binary`, `compressed`, `ascii`",
+        ),
+    ] {
+        let output = vem(&[&["run", scene, "--out", out][..], &args[..]].concat());
+        assert_eq!(output.status.code(), Some(status), "{args:?}");
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert!(stderr.contains(words), "{stderr}");
+    }
+    let written: Vec<_> = std::fs::read_dir(out).unwrap().collect();
+    assert_eq!(written.len(), 5);
+    std::fs::remove_dir_all(out).unwrap();
+}
+
+#[test]
 fn the_binary_generates_a_mesh() {
     let out = std::env::temp_dir().join(format!("vem-cli-mesh-{}", std::process::id()));
     let output = vem(&[

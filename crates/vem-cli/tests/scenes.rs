@@ -884,7 +884,8 @@ fn bracket_on_a_polygon_balances_its_loads() {
 }
 
 /// The shipped scene `name` with `output` appended (an `[output]` table; its mesh files found
-/// where the scene is) run into a fresh directory; returns the outcome and the directory.
+/// where the scene is) run into a fresh directory of its own, `label` (tests run side by side
+/// in one process); returns the outcome and the directory.
 fn run_with_output(name: &str, output: &str, label: &str) -> (Outcome, PathBuf) {
     let dir = std::env::temp_dir().join(format!("vem-cli-output-{label}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -915,7 +916,7 @@ fn file_names(dir: &Path) -> Vec<String> {
 /// text hold the values of the binary ones bit for bit.
 #[test]
 fn output_files_and_encoding_change_the_files_not_the_results() {
-    let (_, full) = run("signorini");
+    let (_, full) = run_with_output("signorini", "", "signorini-full");
     assert_eq!(
         file_names(&full),
         [
@@ -945,27 +946,12 @@ fn output_files_and_encoding_change_the_files_not_the_results() {
             ["block.vtu", "interface.vtu", "results.pvd", "summary.json"]
         );
         for file in ["block.vtu", "interface.vtu"] {
-            let bytes = read(&text, file);
-            let written = String::from_utf8_lossy(&bytes);
-            if encoding == "ascii" {
-                assert!(
-                    written.contains("format=\"ascii\"") && !written.contains("AppendedData"),
-                    "{file}"
-                );
-            } else {
-                assert!(
-                    written.contains("compressor=\"vtkZLibDataCompressor\""),
-                    "{file}"
-                );
-            }
-            let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join(file)).unwrap();
-            assert_eq!(grid(&text), grid(&full), "{encoding} {file}");
+            assert_encoded(&text, &full, file, encoding);
         }
-        let binary = read(&full, "block.vtu");
-        assert!(String::from_utf8_lossy(&binary).contains("encoding=\"raw\""));
     }
+    assert!(String::from_utf8_lossy(&read(&full, "block.vtu")).contains("encoding=\"raw\""));
     // A load history: the tables of every step, without the step's .vtu files or the curves.
-    let (_, full) = run("fretting");
+    let (_, full) = run_with_output("fretting", "", "fretting-full");
     let (_, csv) = run_with_output("fretting", "files = [\"csv\"]", "fretting");
     let mut expected = vec!["contact.csv".to_string()];
     expected.extend((1..=14).map(|k| format!("contact_{k:04}.csv")));
@@ -974,10 +960,36 @@ fn output_files_and_encoding_change_the_files_not_the_results() {
     for file in ["contact_0007.csv", "history.csv"] {
         assert_eq!(read(&csv, file), read(&full, file), "{file}");
     }
+    // The same history's .vtu files as text: every step's hold the binary ones' values.
+    let (_, text) = run_with_output(
+        "fretting",
+        "files = [\"vtu\"]\nvtu_encoding = \"ascii\"",
+        "fretting-ascii",
+    );
+    assert!(!text.join("history.csv").exists() && !text.join("history.svg").exists());
+    for file in ["disc_0007.vtu", "block_0014.vtu", "interface_0007.vtu"] {
+        assert_encoded(&text, &full, file, "ascii");
+    }
     // In space: the body's file as text holds the binary one's values.
-    let (_, full) = run("block3d");
+    let (_, full) = run_with_output("block3d", "", "block3d-full");
     let (_, text) = run_with_output("block3d", "vtu_encoding = \"ascii\"", "block3d");
     assert_eq!(file_names(&text), file_names(&full));
-    let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join("block.vtu")).unwrap();
-    assert_eq!(grid(&text), grid(&full));
+    assert_encoded(&text, &full, "block.vtu", "ascii");
+}
+
+/// `file` of `dir` is written in `encoding` (`"ascii"` or `"compressed"`) and holds the values
+/// of the same file of `reference` (another encoding), bit for bit.
+fn assert_encoded(dir: &Path, reference: &Path, file: &str, encoding: &str) {
+    let bytes = std::fs::read(dir.join(file)).unwrap();
+    let written = String::from_utf8_lossy(&bytes);
+    let marker = match encoding {
+        "ascii" => "format=\"ascii\"",
+        _ => "compressor=\"vtkZLibDataCompressor\"",
+    };
+    assert!(written.contains(marker), "{file}: no {marker}");
+    if encoding == "ascii" {
+        assert!(!written.contains("AppendedData"), "{file}");
+    }
+    let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join(file)).unwrap();
+    assert_eq!(grid(dir), grid(reference), "{encoding} {file}");
 }

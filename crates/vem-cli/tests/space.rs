@@ -208,6 +208,36 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
         text.contains("contact: body 'upper' part 'bottom' against body 'lower' part 'top'"),
         "{text}"
     );
+    // The .vtu files alone, as text: the bodies' and the contact surface's values bit for bit.
+    let text_dir = dir.with_extension("ascii");
+    let _ = std::fs::remove_dir_all(&text_dir);
+    std::fs::write(
+        &path,
+        format!("{STACKED}\n[output]\nvtu_encoding = \"ascii\"\nfiles = [\"vtu\"]\n"),
+    )
+    .unwrap();
+    let (_, files) = vem_cli::run(&path, Some(&text_dir)).unwrap();
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "upper.vtu",
+            "lower.vtu",
+            "interface.vtu",
+            "results.pvd",
+            "summary.json"
+        ]
+    );
+    for file in ["upper.vtu", "interface.vtu"] {
+        let written = std::fs::read_to_string(text_dir.join(file)).unwrap();
+        assert!(written.contains("format=\"ascii\""), "{file}");
+        let grid = |dir: &Path| vem_mesh::io::read_vtu(dir.join(file)).unwrap();
+        assert_eq!(grid(&text_dir), grid(&dir), "{file}");
+    }
+    std::fs::remove_dir_all(&text_dir).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     std::fs::remove_file(&path).unwrap();
 }

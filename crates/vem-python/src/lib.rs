@@ -1392,9 +1392,9 @@ fn not_a_list_of_kinds(files: &Bound<'_, PyAny>) -> PyErr {
 
 /// The setting of the scene's `[output]` table named `name` (an error naming `what` and the
 /// choices when it names none).
-fn output_name<T: serde::de::DeserializeOwned>(what: &str, name: &str) -> PyResult<T> {
-    serde_json::from_value(serde_json::Value::from(name))
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("{what} {name:?}: {e}")))
+fn output_name<T: std::str::FromStr<Err = String>>(what: &str, name: &str) -> PyResult<T> {
+    name.parse()
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("{what}: {e}")))
 }
 
 /// Builds the mesh of the mesh description `description` (the keys of a body's `mesh`:

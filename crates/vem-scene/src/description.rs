@@ -582,6 +582,22 @@ pub enum VtuEncodingName {
     Ascii,
 }
 
+impl std::str::FromStr for VtuEncodingName {
+    type Err = String;
+
+    /// The encoding named `name` (as a scene writes it).
+    fn from_str(name: &str) -> Result<Self, String> {
+        match name {
+            "binary" => Ok(Self::Binary),
+            "compressed" => Ok(Self::Compressed),
+            "ascii" => Ok(Self::Ascii),
+            other => Err(format!(
+                "unknown encoding `{other}`, expected one of `binary`, `compressed`, `ascii`"
+            )),
+        }
+    }
+}
+
 /// `[output] files`: a kind of output file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -593,6 +609,22 @@ pub enum OutputFiles {
     Csv,
     /// The pictures and plots: `deformed.svg`, `pressure.svg`, `slip.svg`, `history.svg`.
     Pictures,
+}
+
+impl std::str::FromStr for OutputFiles {
+    type Err = String;
+
+    /// The kind named `name` (as a scene writes it).
+    fn from_str(name: &str) -> Result<Self, String> {
+        match name {
+            "vtu" => Ok(Self::Vtu),
+            "csv" => Ok(Self::Csv),
+            "pictures" => Ok(Self::Pictures),
+            other => Err(format!(
+                "unknown kind of files `{other}`, expected one of `vtu`, `csv`, `pictures`"
+            )),
+        }
+    }
 }
 
 /// `[limits]`: what a run may use.

@@ -150,6 +150,7 @@ def test_write_keeps_the_kinds_and_the_encoding_asked_for(scenes, tmp_path):
     grid = meshio.read(tmp_path / "ascii" / "block.vtu")
     np.testing.assert_array_equal(grid.point_data["displacement"][:, :2], result.body("block").displacement)
     assert {f.name for f in result.write(tmp_path / "again")} == full
+    assert b'encoding="raw"' in (tmp_path / "again" / "block.vtu").read_bytes()
     with pytest.raises(ValueError, match="ascii"):
         result.write(tmp_path / "bad", vtu_encoding="asci")
     with pytest.raises(ValueError, match="pictures"):
@@ -159,8 +160,10 @@ def test_write_keeps_the_kinds_and_the_encoding_asked_for(scenes, tmp_path):
     with pytest.raises(TypeError, match="list of kinds"):
         block_on_line().set_output(files="csv")
     # The same settings as the scene's keys, through the builder.
-    built = block_on_line().set_output(files=["csv"], vtu_encoding="compressed").solve()
-    assert sorted(f.name for f in built.write(tmp_path / "built")) == ["contact.csv", "summary.json"]
+    built = block_on_line().set_output(files=["vtu"], vtu_encoding="compressed").solve()
+    names = sorted(f.name for f in built.write(tmp_path / "built"))
+    assert names == ["block.vtu", "interface.vtu", "results.pvd", "summary.json"]
+    assert b'compressor="vtkZLibDataCompressor"' in (tmp_path / "built" / "block.vtu").read_bytes()
 
 
 def test_a_dict_gives_the_same_answer_as_its_file(scenes):
