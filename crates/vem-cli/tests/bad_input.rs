@@ -4,9 +4,13 @@
 //! or nothing) with the temporaries of killed runs removed; an initial overlap and a contact
 //! that holds nothing named with their gaps.
 
+mod common;
+
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Stdio};
+
+use common::file_names;
 
 use vem_cli::{CliError, Model, Scene};
 
@@ -306,16 +310,6 @@ fn closed_or_full_standard_output_is_no_panic() {
     fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The names in `dir`, sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
 #[test]
 fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
     let dir = scratch("atomic");
@@ -340,10 +334,10 @@ fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
         "results.pvd",
         "summary.json",
     ];
-    assert_eq!(names(&out), expected);
+    assert_eq!(file_names(&out), expected);
     assert_eq!(files.len(), expected.len());
     assert!(files.iter().all(|f| f.parent() == Some(out.as_path())));
-    assert_eq!(names(&dir), ["out", "s.toml"]);
+    assert_eq!(file_names(&dir), ["out", "s.toml"]);
     // The summary on disk is this run's.
     let summary = fs::read_to_string(out.join("summary.json")).unwrap();
     let written: serde_json::Value = serde_json::from_str(&summary).unwrap();
@@ -357,7 +351,7 @@ fn outputs_are_replaced_as_a_set_and_stale_temporaries_removed() {
     fs::write(&pulled, signorini_with("pressure = 0.5", "pressure = -0.5")).unwrap();
     assert!(vem_cli::run(&pulled, Some(&out)).is_err());
     assert_eq!(fs::read(out.join("summary.json")).unwrap(), before);
-    assert_eq!(names(&dir), ["out", "pulled.toml", "s.toml"]);
+    assert_eq!(file_names(&dir), ["out", "pulled.toml", "s.toml"]);
     // A folder holding anything a run does not write is refused, not replaced.
     fs::write(out.join("notes.txt"), "mine").unwrap();
     let refused = vem_cli::run(&scene, Some(&out)).unwrap_err().to_string();

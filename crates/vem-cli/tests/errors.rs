@@ -3,8 +3,12 @@
 //! exist for an unknown part, the bodies for an unknown body. Never a panic. The binary
 //! prints them and exits with a failure code.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+use common::file_names;
 
 use vem_cli::{CliError, Model, Scene};
 
@@ -284,13 +288,8 @@ fn the_binary_writes_the_files_and_encoding_asked_for() {
         "ascii",
     ]);
     assert!(output.status.success(), "{output:?}");
-    let mut names: Vec<String> = std::fs::read_dir(out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
     assert_eq!(
-        names,
+        file_names(Path::new(out)),
         [
             "block.vtu",
             "contact.csv",
@@ -324,8 +323,7 @@ fn the_binary_writes_the_files_and_encoding_asked_for() {
         let stderr = String::from_utf8(output.stderr).unwrap();
         assert!(stderr.contains(words), "{stderr}");
     }
-    let written: Vec<_> = std::fs::read_dir(out).unwrap().collect();
-    assert_eq!(written.len(), 5);
+    assert_eq!(file_names(Path::new(out)).len(), 5);
     std::fs::remove_dir_all(out).unwrap();
 }
 

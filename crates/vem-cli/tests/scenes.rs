@@ -3,7 +3,11 @@
 //! independent expectations: exact uniform states, Hertz's formulas, equilibrium of the
 //! reactions and contact forces, the friction laws node by node.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::file_names;
 
 use vem_cli::{Outcome, SolvedBody};
 use vem_contact::{InterfaceNode, NodeStatus};
@@ -899,16 +903,6 @@ fn run_with_output(name: &str, output: &str, label: &str) -> (Outcome, PathBuf) 
     let out = dir.join("out");
     let (outcome, _) = vem_cli::run(&path, Some(&out)).unwrap();
     (outcome, out)
-}
-
-/// The names of the files in `dir`, sorted.
-fn file_names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// `[output] files` and `vtu_encoding` change what is written, not what it says: the tables

@@ -122,12 +122,8 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
     let path = dir.with_extension("toml");
     std::fs::write(&path, STACKED).unwrap();
     let (outcome, files) = vem_cli::run(&path, Some(&dir)).unwrap();
-    let names: Vec<String> = files
-        .iter()
-        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
     assert_eq!(
-        names,
+        names_of(&files),
         [
             "upper.vtu",
             "lower.vtu",
@@ -217,12 +213,8 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
     )
     .unwrap();
     let (_, files) = vem_cli::run(&path, Some(&text_dir)).unwrap();
-    let names: Vec<String> = files
-        .iter()
-        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
     assert_eq!(
-        names,
+        names_of(&files),
         [
             "upper.vtu",
             "lower.vtu",
@@ -240,6 +232,14 @@ fn contact_in_space_writes_the_contact_surface_and_table() {
     std::fs::remove_dir_all(&text_dir).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     std::fs::remove_file(&path).unwrap();
+}
+
+/// The file names of `files`, in their order.
+fn names_of(files: &[PathBuf]) -> Vec<String> {
+    files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect()
 }
 
 /// The range `data-min`, `data-max` of the colour bar of an SVG picture.
