@@ -70,7 +70,7 @@ use std::path::{Path, PathBuf};
 pub use error::{CliError, Location};
 pub use mesh_command::{convert_mesh, generate_mesh, generate_mesh_within, MeshReport};
 pub use model::{CheckReport, CheckedBody, CheckedContact, Model};
-pub use outcome::Outcome;
+pub use outcome::{Outcome, OutputSettings};
 pub use output::{status_label, CONTACT_COLUMNS, DEFAULT_WIDTH};
 pub use output3d::{CONTACT_COLUMNS_3D, NO_PICTURES_IN_SPACE, REACTION_COLUMNS};
 pub use scene::Scene;

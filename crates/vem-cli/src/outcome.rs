@@ -32,9 +32,15 @@ pub struct Outcome {
     /// Body A's contact part of every pair, in the order of the scene (the contact surface of
     /// a scene in space is drawn on its faces).
     pub(crate) contact_parts: Vec<String>,
-    /// The scene's `[output] vtu_encoding`.
+    /// The scene's `[output] vtu_encoding` and `files`.
+    pub(crate) output: OutputSettings,
+}
+
+/// Which files [`Outcome::write`] writes and how: the scene's `[output] vtu_encoding` and
+/// `files`, or what replaced them ([`Outcome::set_vtu_encoding`], [`Outcome::set_files`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutputSettings {
     pub(crate) vtu_encoding: VtuEncodingName,
-    /// The scene's `[output] files`.
     pub(crate) files: OutputSelection,
 }
 
@@ -106,42 +112,38 @@ impl Outcome {
                 .iter()
                 .map(|c| c.part.clone())
                 .collect(),
-            vtu_encoding: output.vtu_encoding.unwrap_or_default(),
-            files: OutputSelection::of(output.files.as_deref()),
+            output: OutputSettings {
+                vtu_encoding: output.vtu_encoding.unwrap_or_default(),
+                files: OutputSelection::of(output.files.as_deref()),
+            },
         }
     }
 
     /// Writes the `.vtu` files in `encoding` (instead of the scene's `[output] vtu_encoding`).
     pub fn set_vtu_encoding(&mut self, encoding: VtuEncodingName) {
-        self.vtu_encoding = encoding;
+        self.output.vtu_encoding = encoding;
     }
 
     /// Writes only the kinds of files in `files` besides `summary.json` (instead of the
     /// scene's `[output] files`).
     pub fn set_files(&mut self, files: &[OutputFiles]) {
-        self.files = OutputSelection::of(Some(files));
+        self.output.files = OutputSelection::of(Some(files));
     }
 
-    /// The encoding of the `.vtu` files [`Outcome::write`] writes.
-    pub fn vtu_encoding(&self) -> VtuEncodingName {
-        self.vtu_encoding
+    /// The output settings [`Outcome::write`] follows (to set back after a write with other
+    /// settings: [`Outcome::set_output_settings`]).
+    pub fn output_settings(&self) -> OutputSettings {
+        self.output
     }
 
-    /// The kinds of files [`Outcome::write`] writes besides `summary.json`.
-    pub fn files(&self) -> Vec<OutputFiles> {
-        [
-            (self.files.vtu, OutputFiles::Vtu),
-            (self.files.csv, OutputFiles::Csv),
-            (self.files.pictures, OutputFiles::Pictures),
-        ]
-        .into_iter()
-        .filter_map(|(written, kind)| written.then_some(kind))
-        .collect()
+    /// Follows `settings` (taken from [`Outcome::output_settings`]).
+    pub fn set_output_settings(&mut self, settings: OutputSettings) {
+        self.output = settings;
     }
 
     /// The encoding of the bodies' `.vtu` files.
     pub(crate) fn body_encoding(&self) -> VtuEncoding {
-        match self.vtu_encoding {
+        match self.output.vtu_encoding {
             VtuEncodingName::Binary => VtuEncoding::Binary,
             VtuEncodingName::Compressed => VtuEncoding::Compressed,
             VtuEncodingName::Ascii => VtuEncoding::Ascii,

@@ -68,7 +68,7 @@ impl Outcome {
         let this = &*self;
         let (data, contact_files, deformed) = std::thread::scope(|scope| {
             let files = scope.spawn(|| {
-                let mut data = if this.files.vtu {
+                let mut data = if this.output.files.vtu {
                     this.write_bodies(dir)?
                 } else {
                     Vec::new()
@@ -76,7 +76,7 @@ impl Outcome {
                 data.extend(this.write_interface_and_collection(dir)?);
                 Ok::<_, CliError>((data, this.write_contact_files(dir, width)))
             });
-            let deformed = this.files.pictures.then(|| {
+            let deformed = this.output.files.pictures.then(|| {
                 let path = dir.join("deformed.svg");
                 this.write_deformed(&path, width)
                     .map(|()| path.clone())
@@ -115,7 +115,7 @@ impl Outcome {
     /// `interface.vtu` with contact, then `results.pvd` (or the files of a load history).
     fn write_interface_and_collection(&self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let mut written = Vec::new();
-        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.vtu) {
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.output.files.vtu) {
             let path = dir.join("interface.vtu");
             interface_grid(&contact.nodes, &contact.model.pairs)
                 .write(&path, self.interface_encoding())
@@ -124,7 +124,7 @@ impl Outcome {
         }
         if !self.steps.is_empty() {
             written.extend(self.write_history(dir)?);
-        } else if self.files.vtu {
+        } else if self.output.files.vtu {
             // One collection that opens every body and the interface at once.
             let mut collection = PvdCollection::new();
             for (part, solved) in self.bodies.iter().enumerate() {
@@ -145,7 +145,7 @@ impl Outcome {
     /// `adapt.csv`.
     fn write_contact_files(&self, dir: &Path, width: f64) -> Result<Vec<PathBuf>, CliError> {
         let mut written = Vec::new();
-        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.csv) {
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.output.files.csv) {
             let path = dir.join("contact.csv");
             let frictionless = contact.model.tangential_rows == 0;
             write_atomically(&path, |w| {
@@ -154,7 +154,7 @@ impl Outcome {
             .map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if let Some(contact) = self.contact.as_ref().filter(|_| self.files.pictures) {
+        if let Some(contact) = self.contact.as_ref().filter(|_| self.output.files.pictures) {
             let hertz = self.summary.contact.as_ref().and_then(|c| c.hertz.first());
             // Cattaneo-Mindlin beside the friction traction of a Hertz pair with Coulomb
             // friction carrying a tangential load.
@@ -204,7 +204,12 @@ impl Outcome {
                 written.push(path);
             }
         }
-        if let Some(adapt) = self.summary.adaptivity.as_ref().filter(|_| self.files.csv) {
+        if let Some(adapt) = self
+            .summary
+            .adaptivity
+            .as_ref()
+            .filter(|_| self.output.files.csv)
+        {
             let path = dir.join("adapt.csv");
             write_atomically(&path, |w| write_adapt_csv(w, &adapt.cycles))
                 .map_err(mesh_error(&path))?;
@@ -285,7 +290,7 @@ impl Outcome {
                 None => (&last.nodes, steps.last().map_or(1.0, |s| s.time)),
             };
             let label = format!("{:04}", k + 1);
-            if self.files.csv {
+            if self.output.files.csv {
                 let path = dir.join(format!("contact_{label}.csv"));
                 write_atomically(&path, |w| {
                     write_contact_csv(w, nodes, &last.model.pairs, frictionless)
@@ -293,7 +298,7 @@ impl Outcome {
                 .map_err(mesh_error(&path))?;
                 written.push(path);
             }
-            if !self.files.vtu {
+            if !self.output.files.vtu {
                 continue;
             }
             let pressures = self.pressures(nodes);
@@ -336,17 +341,17 @@ impl Outcome {
             series.add(time, self.contact_bodies.len(), "interface", file);
             written.push(path);
         }
-        if self.files.vtu {
+        if self.output.files.vtu {
             let path = dir.join("results.pvd");
             series.write(&path).map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if self.files.csv {
+        if self.output.files.csv {
             let path = dir.join("history.csv");
             write_atomically(&path, |w| write_history_csv(w, steps)).map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if self.files.pictures {
+        if self.output.files.pictures {
             let path = dir.join("history.svg");
             plot::history(&path, &self.summary.title, steps, self.width())?;
             written.push(path);

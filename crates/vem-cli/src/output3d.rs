@@ -42,11 +42,11 @@ impl Outcome {
     pub(crate) fn write_into_3d(&mut self, dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         let start = Instant::now();
         let mut written = Vec::new();
-        if self.files.vtu {
+        if self.output.files.vtu {
             written.extend(self.write_vtu_3d(dir)?);
         }
         if let Some(contact) = &self.contact_3d {
-            if self.files.csv {
+            if self.output.files.csv {
                 let path = dir.join("contact.csv");
                 let frictionless = contact.model.tangential_rows == 0;
                 write_atomically(&path, |w| {
@@ -55,7 +55,7 @@ impl Outcome {
                 .map_err(mesh_error(&path))?;
                 written.push(path);
             }
-            if self.files.pictures {
+            if self.output.files.pictures {
                 let (pictures, notes) =
                     self.pressure_pictures_3d(dir, &contact.nodes, &contact.model.pairs)?;
                 written.extend(pictures);
@@ -66,13 +66,15 @@ impl Outcome {
                 }
             }
         }
-        if self.files.csv {
+        if self.output.files.csv {
             let path = dir.join("reactions.csv");
             write_atomically(&path, |w| write_reactions_csv(w, self.summary()))
                 .map_err(mesh_error(&path))?;
             written.push(path);
         }
-        if self.files.pictures && !self.summary.notes.iter().any(|n| n == NO_PICTURES_IN_SPACE) {
+        if self.output.files.pictures
+            && !self.summary.notes.iter().any(|n| n == NO_PICTURES_IN_SPACE)
+        {
             self.summary.notes.push(NO_PICTURES_IN_SPACE.to_string());
         }
         written.push(self.write_summary(dir, start)?);

@@ -1316,7 +1316,7 @@ impl PyResultSet {
             .map(|names| names.iter().map(|n| output_name("files", n)).collect())
             .transpose()?;
         let outcome = &mut self.outcome;
-        let (scene_encoding, scene_files) = (outcome.vtu_encoding(), outcome.files());
+        let scene_settings = outcome.output_settings();
         if let Some(encoding) = encoding {
             outcome.set_vtu_encoding(encoding);
         }
@@ -1324,8 +1324,7 @@ impl PyResultSet {
             outcome.set_files(kinds);
         }
         let written = py.detach(|| catch_unwind(AssertUnwindSafe(|| outcome.write(&dir))));
-        outcome.set_vtu_encoding(scene_encoding);
-        outcome.set_files(&scene_files);
+        outcome.set_output_settings(scene_settings);
         match written {
             Err(payload) => Err(panic_error(py, payload)),
             Ok(Ok(files)) => Ok(files),

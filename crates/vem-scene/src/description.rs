@@ -585,16 +585,9 @@ pub enum VtuEncodingName {
 impl std::str::FromStr for VtuEncodingName {
     type Err = String;
 
-    /// The encoding named `name` (as a scene writes it).
+    /// The encoding named `name`, as a scene writes it.
     fn from_str(name: &str) -> Result<Self, String> {
-        match name {
-            "binary" => Ok(Self::Binary),
-            "compressed" => Ok(Self::Compressed),
-            "ascii" => Ok(Self::Ascii),
-            other => Err(format!(
-                "unknown encoding `{other}`, expected one of `binary`, `compressed`, `ascii`"
-            )),
-        }
+        from_scene_name(name)
     }
 }
 
@@ -614,17 +607,17 @@ pub enum OutputFiles {
 impl std::str::FromStr for OutputFiles {
     type Err = String;
 
-    /// The kind named `name` (as a scene writes it).
+    /// The kind named `name`, as a scene writes it.
     fn from_str(name: &str) -> Result<Self, String> {
-        match name {
-            "vtu" => Ok(Self::Vtu),
-            "csv" => Ok(Self::Csv),
-            "pictures" => Ok(Self::Pictures),
-            other => Err(format!(
-                "unknown kind of files `{other}`, expected one of `vtu`, `csv`, `pictures`"
-            )),
-        }
+        from_scene_name(name)
     }
+}
+
+/// The value of a unit-variant enum named `name` as in a scene (its serde names, so that a
+/// name is spelt in one place); the error lists the names.
+fn from_scene_name<T: serde::de::DeserializeOwned>(name: &str) -> Result<T, String> {
+    let name = serde::de::value::StrDeserializer::<serde::de::value::Error>::new(name);
+    T::deserialize(name).map_err(|e| e.to_string())
 }
 
 /// `[limits]`: what a run may use.
